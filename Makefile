@@ -1,0 +1,55 @@
+# Every target sets up what it needs: a fresh clone needs only `make test` or `make serve`.
+SHELL := /bin/bash
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+BUF := node_modules/.bin/buf
+PROTOS := $(wildcard protos/telerobot/v1/*.proto)
+GEN_OUT ?= gen
+export MUJOCO_GL ?= egl
+
+.PHONY: install gen lint test serve teleop bench clean
+
+install: $(VENV)/.installed node_modules/.installed
+
+# The virtual environment, with the project installed editable (services, clients, gen).
+$(VENV)/.installed: pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[dev]'
+	touch $@
+
+# buf (lint, curl) and the Node.js client's packages, exactly as locked.
+node_modules/.installed: package.json package-lock.json
+	npm ci --no-audit --no-fund --loglevel=error
+	touch $@
+
+# Regenerate the Python code and .pyi stubs from protos/ into $(GEN_OUT) (default gen/).
+gen: $(VENV)/.installed
+	rm -rf $(GEN_OUT)/telerobot
+	mkdir -p $(GEN_OUT)
+	$(PY) -m grpc_tools.protoc -Iprotos --python_out=$(GEN_OUT) --pyi_out=$(GEN_OUT) \
+		--grpc_python_out=$(GEN_OUT) $(PROTOS)
+	touch $(GEN_OUT)/telerobot/__init__.py $(GEN_OUT)/telerobot/v1/__init__.py
+
+lint: install
+	$(BUF) lint
+	$(PY) -m ruff check services clients tests
+
+test: install
+	$(PY) -m pytest $(PYTEST_ARGS)
+
+# The slave station: every service in its own process, until Ctrl-C.
+serve: $(VENV)/.installed
+	$(PY) -m services.launcher
+
+teleop: $(VENV)/.installed
+	@echo "make teleop: the operator station is not built yet (issue: Operator station)." >&2
+	@exit 2
+
+bench: $(VENV)/.installed
+	@echo "make bench: the benchmarks are not built yet (issue: Benchmarks)." >&2
+	@exit 2
+
+clean:
+	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache

@@ -1,0 +1,21 @@
+from google.protobuf import descriptor_pb2 as _descriptor_pb2
+from google.protobuf.internal import enum_type_wrapper as _enum_type_wrapper
+from google.protobuf import descriptor as _descriptor
+from typing import ClassVar as _ClassVar
+
+DESCRIPTOR: _descriptor.FileDescriptor
+
+class Lane(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    LANE_UNSPECIFIED: _ClassVar[Lane]
+    LANE_EMERGENCY: _ClassVar[Lane]
+    LANE_HIGH: _ClassVar[Lane]
+    LANE_MEDIUM: _ClassVar[Lane]
+    LANE_LOW: _ClassVar[Lane]
+LANE_UNSPECIFIED: Lane
+LANE_EMERGENCY: Lane
+LANE_HIGH: Lane
+LANE_MEDIUM: Lane
+LANE_LOW: Lane
+DEFAULT_LANE_FIELD_NUMBER: _ClassVar[int]
+default_lane: _descriptor.FieldDescriptor

@@ -1,0 +1,74 @@
+"""Configuration shared by every process: addresses, flags with environment defaults, logging.
+
+Each service listens on loopback by default. `TELEROBOT_<NAME>_ADDRESS` (for example
+TELEROBOT_PROXY_ROBOT_ADDRESS=0.0.0.0:50052) or the `--address` flag changes it; the launcher and
+the clients read the same variables, so they always agree on where a service is.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import sys
+
+from services.runtime.lanes import Lane
+
+DEFAULT_HOST = "127.0.0.1"
+# The operator's one address is the DecisionServer's; the others are the slave station's inside.
+DEFAULT_PORTS = {
+    "decision_server": 50051,
+    "proxy_robot": 50052,
+    "force_sensor": 50053,
+    "stereo_camera": 50054,
+}
+DEFAULT_GRACE_S = 2.0
+
+
+def env_name(service: str, setting: str) -> str:
+    """Environment variable for a service's setting: ("proxy_robot", "address") ->
+    TELEROBOT_PROXY_ROBOT_ADDRESS."""
+    return f"TELEROBOT_{service.upper()}_{setting.upper()}"
+
+
+def address_for(service: str) -> str:
+    """host:port where `service` listens, from its environment variable or the default."""
+    if service not in DEFAULT_PORTS:
+        raise KeyError(f"unknown service {service!r}; known: {', '.join(DEFAULT_PORTS)}")
+    default = f"{DEFAULT_HOST}:{DEFAULT_PORTS[service]}"
+    return os.environ.get(env_name(service, "address"), default)
+
+
+def base_parser(service: str, description: str) -> argparse.ArgumentParser:
+    """Flags every service process takes; each default comes from the environment first."""
+    parser = argparse.ArgumentParser(prog=f"python -m services.{service}", description=description)
+    parser.add_argument(
+        "--address", default=address_for(service),
+        help=f"host:port to listen on (env {env_name(service, 'address')}); "
+             "port 0 picks a free one",
+    )
+    parser.add_argument(
+        "--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"),
+        help="DEBUG, INFO, WARNING or ERROR (env TELEROBOT_LOG_LEVEL)",
+    )
+    parser.add_argument(
+        "--grace-s", type=float,
+        default=float(os.environ.get("TELEROBOT_GRACE_S", DEFAULT_GRACE_S)),
+        help="on SIGINT/SIGTERM, how long in-flight calls may finish (env TELEROBOT_GRACE_S)",
+    )
+    parser.add_argument(
+        "--client-lane-limit", type=Lane.parse,
+        default=Lane.parse(os.environ.get("TELEROBOT_CLIENT_LANE_LIMIT", "high")),
+        help="highest lane a client may ask for in telerobot-lane metadata "
+             "(env TELEROBOT_CLIENT_LANE_LIMIT)",
+    )
+    return parser
+
+
+def configure_logging(service: str, level: str) -> None:
+    """One line per record on stderr, tagged with the service name and pid."""
+    logging.basicConfig(
+        level=level.upper(),
+        stream=sys.stderr,
+        format=f"%(asctime)s {service}[%(process)d] %(levelname)s %(name)s: %(message)s",
+    )

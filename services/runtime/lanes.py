@@ -1,0 +1,281 @@
+"""Priority lanes for request handling, after RT-CORBA thread-pool lanes (the Parma paper).
+
+Each lane has its own bounded queue, `static_threads` threads that live as long as the pool,
+and dynamic threads up to `max_threads` that retire when idle. An idle thread of a lower lane
+may run work of a higher lane (borrowing); a higher lane's threads never run lower work, so a
+saturated low lane cannot delay high-priority calls. Nothing here knows about gRPC.
+
+Thread priorities are set with per-thread nice values where the OS allows. Under the GIL they
+are a hint: the isolation that matters is that a high lane never waits behind a low queue.
+"""
+
+from __future__ import annotations
+
+import enum
+import logging
+import os
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from concurrent.futures import Future
+from dataclasses import dataclass
+from typing import Any
+
+log = logging.getLogger(__name__)
+
+# A dynamic thread with nothing to do for this long retires.
+DYNAMIC_IDLE_TIMEOUT_S = 5.0
+
+
+class Lane(enum.IntEnum):
+    """Lanes, highest priority first (a smaller value is more urgent)."""
+
+    EMERGENCY = 0
+    HIGH = 1
+    MEDIUM = 2
+    LOW = 3
+
+    @classmethod
+    def parse(cls, text: str) -> Lane:
+        """Lane from its name, any case ("high"); ValueError names the valid ones."""
+        try:
+            return cls[text.strip().upper()]
+        except KeyError:
+            names = ", ".join(lane.name.lower() for lane in cls)
+            raise ValueError(f"unknown lane {text!r}; use one of {names}") from None
+
+
+@dataclass(frozen=True)
+class LaneConfig:
+    """Sizing of one lane."""
+
+    static_threads: int
+    max_threads: int
+    queue_capacity: int
+    nice: int = 0
+
+    def __post_init__(self) -> None:
+        if self.static_threads < 0 or self.max_threads < max(1, self.static_threads):
+            raise ValueError("need 0 <= static_threads <= max_threads and max_threads >= 1")
+        if self.queue_capacity < 0:
+            raise ValueError("queue_capacity must be >= 0")
+
+
+DEFAULT_LANES: dict[Lane, LaneConfig] = {
+    Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=2, queue_capacity=16, nice=-5),
+    Lane.HIGH: LaneConfig(static_threads=2, max_threads=8, queue_capacity=64, nice=-2),
+    Lane.MEDIUM: LaneConfig(static_threads=1, max_threads=4, queue_capacity=64, nice=0),
+    Lane.LOW: LaneConfig(static_threads=1, max_threads=4, queue_capacity=256, nice=2),
+}
+
+
+class LaneFull(Exception):
+    """Raised by submit when the lane's queue is at capacity."""
+
+    def __init__(self, lane: Lane, capacity: int):
+        super().__init__(
+            f"the {lane.name.lower()} lane is saturated ({capacity} calls waiting); "
+            "retry after a short back-off"
+        )
+        self.lane = lane
+
+
+class LaneExecutorClosed(Exception):
+    """Raised by submit after shutdown began."""
+
+
+@dataclass
+class LaneCounters:
+    """Live counters of one lane. `borrowed` counts its tasks run by lower lanes' threads."""
+
+    queued: int = 0
+    running: int = 0
+    served: int = 0
+    rejected: int = 0
+    borrowed: int = 0
+    threads: int = 0
+
+
+@dataclass
+class _Task:
+    lane: Lane
+    fn: Callable[[], Any]
+    future: Future
+    enqueued_ns: int
+
+
+class _Worker:
+    def __init__(self, lane: Lane, dynamic: bool, lock: threading.Lock):
+        self.lane = lane
+        self.dynamic = dynamic
+        self.wake = threading.Condition(lock)
+        self.reserved = False  # set by a submitter that handed this idle worker a task
+
+
+class LaneExecutor:
+    """Runs callables on priority lanes. `submit` returns a concurrent.futures.Future."""
+
+    def __init__(self, lanes: dict[Lane, LaneConfig] | None = None, name: str = "lanes"):
+        self._config = dict(DEFAULT_LANES if lanes is None else lanes)
+        missing = set(Lane) - set(self._config)
+        if missing:
+            raise ValueError(f"no config for lanes {sorted(m.name for m in missing)}")
+        self._name = name
+        self._lock = threading.Lock()
+        self._queues: dict[Lane, deque[_Task]] = {lane: deque() for lane in Lane}
+        self._idle: dict[Lane, list[_Worker]] = {lane: [] for lane in Lane}
+        self._counters = {lane: LaneCounters() for lane in Lane}
+        self._threads: set[threading.Thread] = set()
+        self._closed = False
+        with self._lock:
+            for lane in Lane:
+                for _ in range(self._config[lane].static_threads):
+                    self._spawn(lane, dynamic=False)
+
+    # -- public -----------------------------------------------------------------------------
+
+    def submit(self, lane: Lane, fn: Callable[[], Any]) -> Future:
+        """Queue fn on lane; LaneFull when its queue is at capacity."""
+        future: Future = Future()
+        with self._lock:
+            if self._closed:
+                raise LaneExecutorClosed("the server is shutting down; retry on another instance")
+            queue = self._queues[lane]
+            counters = self._counters[lane]
+            if (
+                len(queue) >= self._config[lane].queue_capacity
+                and not self._has_idle(lane)
+                and counters.threads >= self._config[lane].max_threads
+            ):
+                counters.rejected += 1
+                raise LaneFull(lane, self._config[lane].queue_capacity)
+            queue.append(_Task(lane, fn, future, time.monotonic_ns()))
+            counters.queued += 1
+            self._dispatch(lane)
+        return future
+
+    def counters(self) -> dict[Lane, LaneCounters]:
+        """A consistent copy of every lane's counters."""
+        with self._lock:
+            return {lane: LaneCounters(**vars(c)) for lane, c in self._counters.items()}
+
+    def shutdown(self, wait: bool = True, timeout_s: float | None = None) -> None:
+        """Cancel queued work, let running work finish, and stop every thread."""
+        with self._lock:
+            self._closed = True
+            for lane, queue in self._queues.items():
+                while queue:
+                    task = queue.popleft()
+                    self._counters[lane].queued -= 1
+                    task.future.cancel()
+            for workers in self._idle.values():
+                for worker in workers:
+                    worker.wake.notify()
+            threads = list(self._threads)
+        if wait:
+            deadline = None if timeout_s is None else time.monotonic() + timeout_s
+            for thread in threads:
+                remaining = None if deadline is None else max(0.0, deadline - time.monotonic())
+                thread.join(remaining)
+
+    # -- internals (called with the lock held) ----------------------------------------------
+
+    def _has_idle(self, lane: Lane) -> bool:
+        return any(self._idle[candidate] for candidate in Lane if candidate >= lane)
+
+    def _dispatch(self, lane: Lane) -> None:
+        """Wake one idle worker that may run `lane` work: its own first, then a lower lane's."""
+        for candidate in Lane:
+            if candidate < lane or not self._idle[candidate]:
+                continue
+            worker = self._idle[candidate].pop()
+            worker.reserved = True
+            worker.wake.notify()
+            return
+        if self._counters[lane].threads < self._config[lane].max_threads:
+            self._spawn(lane, dynamic=True)
+
+    def _spawn(self, lane: Lane, dynamic: bool) -> None:
+        worker = _Worker(lane, dynamic, self._lock)
+        kind = "dyn" if dynamic else "static"
+        thread = threading.Thread(
+            target=self._run_worker,
+            args=(worker,),
+            name=f"{self._name}-{lane.name.lower()}-{kind}",
+            daemon=True,
+        )
+        self._counters[lane].threads += 1
+        self._threads.add(thread)
+        thread.start()
+
+    def _next_task(self, lane: Lane) -> _Task | None:
+        """The most urgent queued task this lane's thread may run: its own lane or higher."""
+        for candidate in Lane:
+            if candidate > lane:
+                return None
+            if self._queues[candidate]:
+                return self._queues[candidate].popleft()
+        return None
+
+    # -- worker thread ----------------------------------------------------------------------
+
+    def _run_worker(self, worker: _Worker) -> None:
+        _set_thread_nice(self._config[worker.lane].nice)
+        lock = self._lock
+        lock.acquire()
+        try:
+            while True:
+                task = self._next_task(worker.lane)
+                if task is None:
+                    if self._closed:
+                        return
+                    worker.reserved = False
+                    self._idle[worker.lane].append(worker)
+                    timeout = DYNAMIC_IDLE_TIMEOUT_S if worker.dynamic else None
+                    worker.wake.wait(timeout)
+                    if not worker.reserved and worker in self._idle[worker.lane]:
+                        self._idle[worker.lane].remove(worker)
+                        if worker.dynamic and not self._queues_for(worker.lane):
+                            return
+                    continue
+                self._run_task(worker, task)
+        finally:
+            self._counters[worker.lane].threads -= 1
+            self._threads.discard(threading.current_thread())
+            lock.release()
+
+    def _queues_for(self, lane: Lane) -> bool:
+        return any(self._queues[candidate] for candidate in Lane if candidate <= lane)
+
+    def _run_task(self, worker: _Worker, task: _Task) -> None:
+        """Run one task with the lock released; counters are updated under the lock."""
+        counters = self._counters[task.lane]
+        counters.queued -= 1
+        if not task.future.set_running_or_notify_cancel():
+            return  # cancelled while queued (the client went away)
+        counters.running += 1
+        if worker.lane != task.lane:
+            counters.borrowed += 1
+        self._lock.release()
+        try:
+            result = task.fn()
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller through the future
+            task.future.set_exception(exc)
+        else:
+            task.future.set_result(result)
+        finally:
+            self._lock.acquire()
+            counters.running -= 1
+            counters.served += 1
+
+
+def _set_thread_nice(nice: int) -> None:
+    """Set this thread's nice value (Linux: per thread). Raising priority needs privilege."""
+    if nice == 0 or not hasattr(os, "setpriority"):
+        return
+    try:
+        os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), nice)
+    except PermissionError:
+        log.info("no privilege to set nice %d on %s; it runs at the default", nice,
+                 threading.current_thread().name)

@@ -1,0 +1,224 @@
+"""The gRPC side of the runtime: lanes for every call, and domain errors as status codes.
+
+`LaneInterceptor` wraps every method handler of a server:
+- unary calls run on the lane the RPC declares in its proto (`default_lane`), or the lane the
+  client asks for in the `telerobot-lane` metadata key, clamped to the server's limit;
+- streaming calls keep their gRPC thread (a stream would pin a lane thread for its whole life)
+  but count against a cap on open streams;
+- requests are decoded here, so a malformed message gets INVALID_ARGUMENT instead of the
+  INTERNAL that grpcio gives by default;
+- `TelerobotError`s raised by servicers become their status code with a google.rpc.ErrorInfo.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import threading
+from collections.abc import Callable, Iterator
+from concurrent.futures import CancelledError
+
+import grpc
+from google.protobuf import descriptor_pool
+from google.protobuf.message import DecodeError
+from google.rpc import code_pb2, error_details_pb2, status_pb2
+from grpc_status import rpc_status
+
+from services.runtime.errors import TelerobotError
+from services.runtime.lanes import Lane, LaneExecutor, LaneExecutorClosed, LaneFull
+from telerobot.v1 import options_pb2
+
+log = logging.getLogger(__name__)
+
+LANE_METADATA_KEY = "telerobot-lane"
+ERROR_DOMAIN = "telerobot.v1"
+
+# Lanes for the runtime's own services, which carry no `default_lane` option.
+_BUILTIN_LANES = {
+    "/grpc.health.v1.Health/Check": Lane.HIGH,
+    "/grpc.health.v1.Health/Watch": Lane.LOW,
+}
+_PROTO_LANES = {
+    options_pb2.LANE_EMERGENCY: Lane.EMERGENCY,
+    options_pb2.LANE_HIGH: Lane.HIGH,
+    options_pb2.LANE_MEDIUM: Lane.MEDIUM,
+    options_pb2.LANE_LOW: Lane.LOW,
+}
+LANE_TO_PROTO = {lane: value for value, lane in _PROTO_LANES.items()}
+
+
+def declared_lane(method_path: str) -> Lane:
+    """The lane an RPC declares in its proto ("/pkg.Service/Method"); MEDIUM when it has none."""
+    if method_path in _BUILTIN_LANES:
+        return _BUILTIN_LANES[method_path]
+    service, _, method = method_path.lstrip("/").partition("/")
+    try:
+        descriptor = descriptor_pool.Default().FindMethodByName(f"{service}.{method}")
+    except KeyError:
+        return Lane.MEDIUM
+    options = descriptor.GetOptions()
+    return _PROTO_LANES.get(options.Extensions[options_pb2.default_lane], Lane.MEDIUM)
+
+
+def error_status(code: grpc.StatusCode, message: str, reason: str) -> status_pb2.Status:
+    """A google.rpc.Status carrying an ErrorInfo(reason, domain) detail."""
+    info = error_details_pb2.ErrorInfo(reason=reason, domain=ERROR_DOMAIN)
+    status = status_pb2.Status(code=getattr(code_pb2, code.name), message=message)
+    status.details.add().Pack(info)
+    return status
+
+
+def abort(context: grpc.ServicerContext, code: grpc.StatusCode, message: str, reason: str):
+    """End the call with `code`, `message` and an ErrorInfo detail. Never returns."""
+    context.abort_with_status(rpc_status.to_status(error_status(code, message, reason)))
+
+
+def abort_with_error(context: grpc.ServicerContext, error: TelerobotError):
+    """End the call with the status code that matches a domain error."""
+    abort(context, grpc.StatusCode[error.status_name], error.message, error.reason)
+
+
+class LaneInterceptor(grpc.ServerInterceptor):
+    """Dispatches every call of a server onto its priority lane; see the module docstring."""
+
+    def __init__(self, executor: LaneExecutor, client_lane_limit: Lane = Lane.HIGH,
+                 max_streams: int = 64):
+        self._executor = executor
+        self._client_lane_limit = client_lane_limit
+        self._max_streams = max_streams
+        self._open_streams = 0
+        self._streams_lock = threading.Lock()
+
+    @property
+    def open_streams(self) -> int:
+        return self._open_streams
+
+    def intercept_service(self, continuation, handler_call_details):
+        handler = continuation(handler_call_details)
+        if handler is None:
+            return None  # unknown method: grpcio answers UNIMPLEMENTED
+        method = handler_call_details.method
+        requested = _requested_lane(handler_call_details.invocation_metadata)
+        return self._wrap(handler, method, requested)
+
+    # -- wrapping ---------------------------------------------------------------------------
+
+    def _lane_for(self, method: str, requested: str | None) -> Lane:
+        if requested is None:
+            return declared_lane(method)
+        lane = Lane.parse(requested)  # ValueError for an unknown name
+        return max(lane, self._client_lane_limit)  # clamp: never above the limit
+
+    def _wrap(self, handler: grpc.RpcMethodHandler, method: str, requested: str | None):
+        decode = handler.request_deserializer or (lambda raw: raw)
+        encode = handler.response_serializer
+
+        def resolve_lane(context) -> Lane:
+            try:
+                return self._lane_for(method, requested)
+            except ValueError as exc:
+                abort(context, grpc.StatusCode.INVALID_ARGUMENT,
+                      f"bad {LANE_METADATA_KEY} metadata: {exc}", "BAD_LANE")
+
+        if handler.unary_unary:
+            behavior = handler.unary_unary
+
+            def unary_unary(raw, context):
+                lane = resolve_lane(context)
+                request = _decode_or_abort(decode, raw, context)
+                return self._run_on_lane(lane, behavior, request, context)
+
+            return grpc.unary_unary_rpc_method_handler(unary_unary, None, encode)
+
+        if handler.unary_stream:
+            behavior = handler.unary_stream
+
+            def unary_stream(raw, context):
+                resolve_lane(context)
+                request = _decode_or_abort(decode, raw, context)
+                yield from self._run_stream(behavior, request, context)
+
+            return grpc.unary_stream_rpc_method_handler(unary_stream, None, encode)
+
+        if handler.stream_unary:
+            behavior = handler.stream_unary
+
+            def stream_unary(raw_iterator, context):
+                resolve_lane(context)
+                with self._stream_slot(context):
+                    return _call(behavior, _decoded(raw_iterator, decode, context), context)
+
+            return grpc.stream_unary_rpc_method_handler(stream_unary, None, encode)
+
+        behavior = handler.stream_stream
+
+        def stream_stream(raw_iterator, context):
+            resolve_lane(context)
+            yield from self._run_stream(behavior, _decoded(raw_iterator, decode, context),
+                                        context)
+
+        return grpc.stream_stream_rpc_method_handler(stream_stream, None, encode)
+
+    def _run_on_lane(self, lane: Lane, behavior: Callable, request, context):
+        try:
+            future = self._executor.submit(lane, lambda: _call(behavior, request, context))
+        except LaneFull as exc:
+            abort(context, grpc.StatusCode.RESOURCE_EXHAUSTED, str(exc), "LANE_SATURATED")
+        except LaneExecutorClosed as exc:
+            abort(context, grpc.StatusCode.UNAVAILABLE, str(exc), "SHUTTING_DOWN")
+        context.add_callback(future.cancel)  # drop it from the queue if the client leaves
+        try:
+            return future.result()
+        except CancelledError:
+            abort(context, grpc.StatusCode.CANCELLED, "the call was cancelled before it ran",
+                  "CANCELLED")
+
+    def _run_stream(self, behavior: Callable, request, context) -> Iterator:
+        with self._stream_slot(context):
+            try:
+                yield from behavior(request, context)
+            except TelerobotError as error:
+                abort_with_error(context, error)
+
+    @contextlib.contextmanager
+    def _stream_slot(self, context):
+        """Hold one of the server's stream slots for the life of a stream."""
+        with self._streams_lock:
+            if self._open_streams >= self._max_streams:
+                abort(context, grpc.StatusCode.RESOURCE_EXHAUSTED,
+                      f"{self._max_streams} streams are open on this server; close one or "
+                      "retry later", "STREAMS_EXHAUSTED")
+            self._open_streams += 1
+        try:
+            yield
+        finally:
+            with self._streams_lock:
+                self._open_streams -= 1
+
+
+def _call(behavior: Callable, request, context):
+    """Run a handler, turning domain errors into status codes."""
+    try:
+        return behavior(request, context)
+    except TelerobotError as error:
+        abort_with_error(context, error)
+
+
+def _requested_lane(metadata) -> str | None:
+    for key, value in metadata or ():
+        if key == LANE_METADATA_KEY:
+            return value
+    return None
+
+
+def _decode_or_abort(decode: Callable, raw: bytes, context):
+    try:
+        return decode(raw)
+    except (DecodeError, ValueError, TypeError) as exc:
+        abort(context, grpc.StatusCode.INVALID_ARGUMENT,
+              f"the request is not a valid message for this method: {exc}", "MALFORMED_REQUEST")
+
+
+def _decoded(raw_iterator: Iterator[bytes], decode: Callable, context) -> Iterator:
+    for raw in raw_iterator:
+        yield _decode_or_abort(decode, raw, context)

@@ -1,0 +1,156 @@
+"""The lane executor on its own, without gRPC: bounds, borrowing, dynamic threads, and the
+Parma experiment (no priority inversion with the low lane saturated)."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import pytest
+
+from services.runtime.lanes import Lane, LaneConfig, LaneExecutor, LaneFull
+
+SMALL = {
+    Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=1, queue_capacity=4),
+    Lane.HIGH: LaneConfig(static_threads=1, max_threads=2, queue_capacity=4),
+    Lane.MEDIUM: LaneConfig(static_threads=1, max_threads=1, queue_capacity=4),
+    Lane.LOW: LaneConfig(static_threads=1, max_threads=2, queue_capacity=3),
+}
+
+
+@pytest.fixture
+def executor():
+    pool = LaneExecutor(SMALL, name="test")
+    yield pool
+    pool.shutdown(wait=True, timeout_s=5)
+
+
+def blocker(release: threading.Event, started: threading.Semaphore | None = None):
+    def run():
+        if started:
+            started.release()
+        release.wait(10)
+        return threading.current_thread().name
+    return run
+
+
+def test_runs_work_and_counts_it(executor):
+    results = [executor.submit(Lane.MEDIUM, lambda i=i: i * i).result(5) for i in range(10)]
+    assert results == [i * i for i in range(10)]
+    counters = executor.counters()[Lane.MEDIUM]
+    assert counters.served == 10 and counters.queued == 0 and counters.running == 0
+
+
+def test_full_lane_rejects_and_counts(executor):
+    release = threading.Event()
+    started = threading.Semaphore(0)
+    running = [executor.submit(Lane.LOW, blocker(release, started)) for _ in range(2)]
+    for _ in range(2):
+        assert started.acquire(timeout=5)
+    queued = [executor.submit(Lane.LOW, lambda: "queued") for _ in range(3)]
+    with pytest.raises(LaneFull, match="low lane is saturated"):
+        executor.submit(Lane.LOW, lambda: "one too many")
+    counters = executor.counters()[Lane.LOW]
+    assert (counters.running, counters.queued, counters.rejected) == (2, 3, 1)
+    release.set()
+    assert [f.result(5) for f in queued] == ["queued"] * 3
+    for f in running:
+        f.result(5)
+
+
+def test_dynamic_threads_grow_to_the_cap_and_no_further(executor):
+    release = threading.Event()
+    started = threading.Semaphore(0)
+    futures = [executor.submit(Lane.HIGH, blocker(release, started)) for _ in range(2)]
+    for _ in range(2):
+        assert started.acquire(timeout=5)
+    # HIGH is at its cap of 2 threads; EMERGENCY never lends to it, but the lower lanes
+    # (MEDIUM, LOW) each have one idle static thread to lend.
+    more = [executor.submit(Lane.HIGH, blocker(release, started)) for _ in range(2)]
+    for _ in range(2):
+        assert started.acquire(timeout=5)
+    counters = executor.counters()
+    assert counters[Lane.HIGH].threads == 2
+    assert counters[Lane.HIGH].running == 4
+    assert counters[Lane.HIGH].borrowed == 2
+    release.set()
+    names = {f.result(5) for f in futures + more}
+    assert any("-medium-" in n for n in names) and any("-low-" in n for n in names)
+
+
+def test_lower_lane_never_borrows_from_higher(executor):
+    release = threading.Event()
+    started = threading.Semaphore(0)
+    low = [executor.submit(Lane.LOW, blocker(release, started)) for _ in range(2)]
+    for _ in range(2):
+        assert started.acquire(timeout=5)
+    # Emergency, high and medium threads are idle, yet the next low call must wait.
+    waiting = executor.submit(Lane.LOW, lambda: threading.current_thread().name)
+    time.sleep(0.2)
+    assert not waiting.done()
+    release.set()
+    assert "-low-" in waiting.result(5)
+    for f in low:
+        f.result(5)
+
+
+def test_parma_no_priority_inversion_with_low_lane_saturated(executor):
+    """Parma's experiment: long low-priority calls fill the low lane (threads and queue);
+    a high-priority call and an emergency call still start at once."""
+    release = threading.Event()
+    started = threading.Semaphore(0)
+    low = [executor.submit(Lane.LOW, blocker(release, started)) for _ in range(2)]
+    for _ in range(2):
+        assert started.acquire(timeout=5)
+    low += [executor.submit(Lane.LOW, blocker(release)) for _ in range(3)]  # queue full
+    with pytest.raises(LaneFull):
+        executor.submit(Lane.LOW, blocker(release))
+
+    for lane in (Lane.HIGH, Lane.EMERGENCY):
+        submitted = time.monotonic()
+        started_at = executor.submit(lane, time.monotonic).result(timeout=2)
+        # "At once": it did not wait for any low call (those wait for `release`, seconds away).
+        assert started_at - submitted < 0.5
+        assert not any(f.done() for f in low)
+    release.set()
+    for f in low:
+        f.result(5)
+
+
+def test_cancelled_work_is_skipped(executor):
+    release = threading.Event()
+    started = threading.Semaphore(0)
+    busy = [executor.submit(Lane.LOW, blocker(release, started)) for _ in range(2)]
+    for _ in range(2):
+        assert started.acquire(timeout=5)
+    ran = threading.Event()
+    queued = executor.submit(Lane.LOW, ran.set)
+    assert queued.cancel()
+    release.set()
+    for f in busy:
+        f.result(5)
+    executor.submit(Lane.LOW, lambda: None).result(5)
+    assert not ran.is_set()
+
+
+def test_shutdown_cancels_queued_work():
+    pool = LaneExecutor(SMALL, name="test")
+    release = threading.Event()
+    started = threading.Semaphore(0)
+    busy = [pool.submit(Lane.MEDIUM, blocker(release, started))]
+    assert started.acquire(timeout=5)
+    # MEDIUM's only thread is busy; LOW's idle thread lends itself, so fill it too before
+    # the next call has to queue.
+    busy.append(pool.submit(Lane.MEDIUM, blocker(release, started)))
+    assert started.acquire(timeout=5)
+    queued = pool.submit(Lane.MEDIUM, lambda: "never")
+    threading.Timer(0.2, release.set).start()
+    pool.shutdown(wait=True, timeout_s=5)
+    assert queued.cancelled()
+    assert all(f.result(1) for f in busy)
+
+
+def test_bad_lane_names_are_refused():
+    assert Lane.parse(" High ") is Lane.HIGH
+    with pytest.raises(ValueError, match="use one of emergency, high, medium, low"):
+        Lane.parse("urgent")
