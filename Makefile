@@ -19,9 +19,10 @@ $(VENV)/.installed: pyproject.toml
 	$(PY) -m pip install --quiet -e '.[dev]'
 	touch $@
 
-# buf (lint, curl) and the Node.js client's packages, exactly as locked.
+# buf (lint, curl) and the Node.js client's packages, as locked. Not `npm ci`: the lock holds
+# only the platform binaries of buf this registry serves, and `npm ci` wants every platform's.
 node_modules/.installed: package.json package-lock.json
-	npm ci --no-audit --no-fund --loglevel=error
+	npm install --no-audit --no-fund --loglevel=error
 	touch $@
 
 # Regenerate the Python code and .pyi stubs from protos/ into $(GEN_OUT) (default gen/).
