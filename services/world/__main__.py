@@ -1,0 +1,49 @@
+"""python -m services.world: the simulated hardware (arm, wrist sensor) behind shared memory.
+
+Serves only health and reflection on its port; drivers reach the arm through the shared-memory
+segment named by --shm-name / TELEROBOT_WORLD_SHM (see shm_link.py).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+
+from services.runtime.process import run_service
+from services.world.service import WorldService
+from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+
+# The physics thread must get the GIL back soon after its sleep ends, even if a gRPC thread is
+# running Python code: 0.5 ms instead of CPython's default 5 ms bounds that wait.
+GIL_SWITCH_INTERVAL_S = 0.0005
+
+
+def _add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
+        help=f"shared-memory segment of the hardware link (env {SHM_NAME_ENV})",
+    )
+
+
+def main(argv: list[str] | None = None) -> int:
+    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
+    built: list[WorldService] = []
+
+    def build(args: argparse.Namespace) -> WorldService:
+        # A crashed physics loop stops the process like a signal would, then exits 1 below.
+        service = WorldService(args.shm_name,
+                               on_failure=lambda: os.kill(os.getpid(), signal.SIGTERM))
+        built.append(service)
+        return service
+
+    code = run_service("world", "The simulated PUMA 560 and wrist sensor (shared-memory link).",
+                       build, argv, _add_arguments)
+    if code == 0 and built and built[0].failed:
+        return 1
+    return code
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,69 @@
+"""The hardware link: what a driver needs from an arm and a wrist force/torque sensor.
+
+The simulated world implements it over shared memory (`shm_link.py`); a real robot controller or
+a real F/T sensor driver implements the same protocols. Nothing here knows about MuJoCo or gRPC.
+Errors: implementations raise services.runtime.errors.Unavailable when the hardware does not
+answer (process gone, heartbeat stale, link closed).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+JOINT_COUNT = 6
+
+
+@dataclass(frozen=True)
+class ArmSample:
+    """One servo-rate sample of the arm."""
+
+    sequence: int  # servo step counter; increases by one per servo period
+    sample_time_ns: int  # wall clock (time.time_ns) when the sample was taken
+    joint_positions_rad: np.ndarray  # (6,)
+    joint_velocities_rad_per_s: np.ndarray  # (6,)
+    joint_targets_rad: np.ndarray  # (6,) the target the servo is tracking now
+    hold_latched: bool  # a latched hold (emergency stop) is in force: targets are ignored
+    fault: str  # empty when healthy; otherwise what the hardware reported
+
+
+@dataclass(frozen=True)
+class RawWrench:
+    """One sample of the wrist sensor, in the sensor's own frame, about its origin."""
+
+    sequence: int  # increases by one per sensor sample
+    sample_time_ns: int  # wall clock (time.time_ns)
+    force_n: np.ndarray  # (3,)
+    torque_nm: np.ndarray  # (3,)
+
+
+class ArmLink(Protocol):
+    """Joint-level access to an arm whose servo tracks a joint target under a velocity cap."""
+
+    def read_arm(self) -> ArmSample:
+        """The latest sample."""
+
+    def write_target(self, joint_positions_rad: np.ndarray) -> None:
+        """Make the servo track a new joint target (6,). Ignored while a hold is latched."""
+
+    def hold(self) -> None:
+        """Controlled stop: take the current position as the target and latch it, so later
+        targets are ignored until release_hold()."""
+
+    def release_hold(self) -> None:
+        """Clear the latch. The target stays the current position: nothing starts moving."""
+
+    def close(self) -> None:
+        """Detach from the hardware. The arm keeps holding its last target."""
+
+
+class WrenchLink(Protocol):
+    """Access to a six-axis force/torque sensor."""
+
+    def read_wrench(self) -> RawWrench:
+        """The latest sample."""
+
+    def close(self) -> None:
+        """Detach from the sensor."""

@@ -1,0 +1,144 @@
+"""WorldService: the simulation, its shared-memory link and the 1 kHz loop, as one service.
+
+The physics thread runs the RealtimeLoop; each step applies the drivers' new commands (in issue
+order), steps the simulation and publishes the result. The service serves no telerobot gRPC
+contract (its link is shared memory): run_service gives it health, reflection, flags and a
+graceful stop.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import threading
+import time
+from collections.abc import Callable, Sequence
+
+import mujoco
+
+from services.runtime.errors import InvalidArgument
+from services.runtime.server import ServiceBinding
+from services.world.realtime import RealtimeLoop
+from services.world.shm_link import Command, WorldPublisher
+from services.world.sim import ArmSim
+
+log = logging.getLogger(__name__)
+
+STATS_LOG_PERIOD_S = 10.0
+FIRST_STEP_TIMEOUT_S = 10.0  # start() waits this long for the loop to run its first step
+STOP_TIMEOUT_S = 2.0  # close() waits this long for the physics thread
+# The physics thread asks the OS for priority over ordinary work (Linux nice is per thread; raising
+# it needs CAP_SYS_NICE, without which it runs at the default and says so).
+PHYSICS_THREAD_NICE = -10
+_NOT_SET = object()
+
+
+class WorldService:
+    """The simulated hardware. ``start()`` returns once the loop has stepped; ``failed`` is set
+    when the physics thread died (the process should then exit non-zero)."""
+
+    def __init__(self, shm_name: str | None = None,
+                 sim_factory: Callable[[], ArmSim] = ArmSim,
+                 on_failure: Callable[[], None] | None = None):
+        self._shm_name = shm_name
+        self._sim_factory = sim_factory
+        self._on_failure = on_failure
+        self._stop = threading.Event()
+        self._stepped = threading.Event()
+        self._threads: list[threading.Thread] = []
+        self.sim: ArmSim | None = None
+        self.publisher: WorldPublisher | None = None
+        self.loop: RealtimeLoop | None = None
+        self.failed = False
+        self._previous_mujoco_warning = _NOT_SET
+
+    def bindings(self) -> Sequence[ServiceBinding]:
+        return []
+
+    def start(self) -> None:
+        # MuJoCo's default warning handler appends to MUJOCO_LOG.TXT in the working directory;
+        # the world's warnings belong in its log (the sim turns a diverged state into a fault).
+        self._previous_mujoco_warning = mujoco.get_mju_user_warning()
+        mujoco.set_mju_user_warning(_log_mujoco_warning)
+        sim = self.sim = self._sim_factory()
+        self.publisher = WorldPublisher(sim.joint_lower, sim.joint_upper, sim.period_s,
+                                        self._shm_name)
+        self.publisher.publish(sim.arm_sample(), sim.wrench_sample())  # readable at once
+        self.loop = RealtimeLoop(self._step, period_s=sim.period_s)
+        self._spawn("physics", self._run_physics)
+        self._spawn("loop-stats", self._report_stats)
+        if not self._stepped.wait(FIRST_STEP_TIMEOUT_S) or self.failed:
+            raise RuntimeError("the physics loop did not start")
+        log.info("world running: shared memory %r, servo at %.0f Hz", self.publisher.name,
+                 1.0 / sim.period_s)
+
+    def close(self) -> None:
+        self._stop.set()
+        for thread in self._threads:
+            thread.join(STOP_TIMEOUT_S)
+            if thread.is_alive():
+                log.error("thread %s did not stop within %.1f s", thread.name, STOP_TIMEOUT_S)
+        if self.loop is not None:
+            log.info("loop stats at shutdown: %s", self.loop.stats().describe())
+        if self.publisher is not None:
+            self.publisher.close()
+            self.publisher = None
+        if self._previous_mujoco_warning is not _NOT_SET:
+            mujoco.set_mju_user_warning(self._previous_mujoco_warning)
+            self._previous_mujoco_warning = _NOT_SET
+
+    # -- threads ----------------------------------------------------------------------------
+
+    def _spawn(self, name: str, target: Callable[[], None]) -> None:
+        thread = threading.Thread(target=target, name=name, daemon=True)
+        self._threads.append(thread)
+        thread.start()
+
+    def _run_physics(self) -> None:
+        _raise_thread_priority(PHYSICS_THREAD_NICE)
+        try:
+            self.loop.run(self._stop)
+        except Exception:
+            log.exception("the physics loop crashed; the world stops")
+            self.failed = True
+            self._stepped.set()
+            if self._on_failure is not None:
+                self._on_failure()
+
+    def _step(self) -> None:
+        sim, publisher = self.sim, self.publisher
+        for command in publisher.poll_commands():
+            self._apply(sim, command)
+        sim.step()
+        now = time.time_ns()
+        publisher.publish(sim.arm_sample(now), sim.wrench_sample(now), self.loop.stats())
+        self._stepped.set()
+
+    @staticmethod
+    def _apply(sim: ArmSim, command: Command) -> None:
+        if command.kind == "hold":
+            sim.hold()
+        elif command.kind == "release":
+            sim.release_hold()
+        else:
+            try:
+                sim.set_target(command.target)
+            except InvalidArgument as exc:  # the driver checks too; never trust shared memory
+                log.warning("ignored a bad target: %s", exc)
+
+    def _report_stats(self) -> None:
+        while not self._stop.wait(STATS_LOG_PERIOD_S):
+            log.info("loop stats: %s", self.loop.stats().describe())
+
+
+def _log_mujoco_warning(message: str) -> None:
+    log.warning("MuJoCo: %s", message.strip())
+
+
+def _raise_thread_priority(nice: int) -> None:
+    """Give the calling thread the nice value ``nice`` if the OS allows it."""
+    try:
+        os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), nice)
+    except (PermissionError, AttributeError):
+        log.info("no privilege to set nice %d on the physics thread; it runs at the default",
+                 nice)

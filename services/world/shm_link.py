@@ -1,0 +1,413 @@
+"""The hardware link over shared memory: the world publishes, drivers read and command.
+
+World side: ``WorldPublisher`` creates the segment (see shm_layout.py), publishes one arm sample
+and one wrench per servo step with a heartbeat, hands out the drivers' commands in the order they
+were issued, and unlinks the segment on close.
+
+Driver side: ``SharedMemoryArmLink`` (ArmLink) and ``SharedMemoryWrenchLink`` (WrenchLink).
+They raise Unavailable when the world is not running, has shut down, or has not stepped for
+``stale_after_s``. One driver process commands a world at a time (the command record has a
+single writer); within that process the links are thread-safe.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import threading
+import time
+from dataclasses import dataclass
+from multiprocessing import shared_memory
+
+import numpy as np
+
+from services.runtime.errors import AlreadyExists, InvalidArgument, OutOfRange, Unavailable
+from services.world.link import JOINT_COUNT, ArmSample, RawWrench
+from services.world.realtime import LoopStats
+from services.world.seqlock import ORDERING_GUARANTEED, TornRead
+from services.world.shm_layout import (
+    FAULT_BYTES,
+    LAYOUT_VERSION,
+    MAGIC,
+    SEGMENT_SIZE,
+    STATE_DTYPE,
+    STATUS_CLOSED,
+    STATUS_RUNNING,
+    STATUS_STARTING,
+    WorldSegment,
+    adopt_for_unlink,
+    attach_untracked,
+    create_segment,
+    pid_alive,
+    segment_name,
+    unlink_segment,
+)
+
+log = logging.getLogger(__name__)
+
+STALE_AFTER_S = 0.1  # a world that has not stepped for this long counts as gone
+TORN_READ_TIMEOUT_S = 0.05  # how long a reader waits for a writer stuck mid-write
+# A stale segment (its world killed) is replaced; one whose world stepped this recently, or whose
+# pid is alive, belongs to a running world and is left alone.
+REPLACE_AFTER_S = 1.0
+# Targets may lie this far past a joint limit (the measured position of an arm pushed against
+# its limit stop, sent back as a hold target); the world clips them onto the limit.
+LIMIT_TOLERANCE_RAD = 0.02
+
+_HOLD, _RELEASE, _TARGET = "hold", "release", "target"
+
+
+@dataclass(frozen=True)
+class Command:
+    """One command from the driver, as the world receives it."""
+
+    number: int  # command_sequence when it was issued; commands apply in this order
+    kind: str  # "target", "hold" or "release"
+    target: np.ndarray | None = None  # rad (6,), for "target"
+
+
+# -- world side ---------------------------------------------------------------------------------
+
+
+class WorldPublisher:
+    """The world's end of the link. Single-threaded: the servo thread calls everything."""
+
+    def __init__(self, joint_lower: np.ndarray, joint_upper: np.ndarray, period_s: float,
+                 name: str | None = None):
+        self.name = segment_name(name)
+        if not ORDERING_GUARANTEED:
+            log.warning("this CPU is not x86: the seqlock has no memory fences here, so a "
+                        "driver may (rarely) read a torn sample")
+        self._segment = WorldSegment(_create_or_replace(self.name))
+        header = self._segment.header
+        header["layout_version"] = LAYOUT_VERSION
+        header["world_pid"] = os.getpid()
+        header["status"] = STATUS_STARTING  # RUNNING from the first publish on
+        header["heartbeat_ns"] = time.monotonic_ns()
+        header["period_ns"] = round(period_s * 1e9)
+        header["joint_lower"] = joint_lower
+        header["joint_upper"] = joint_upper
+        header["magic"] = MAGIC  # last: the segment is complete
+        self._applied = 0
+        self._running = False
+        self._state = np.zeros(1, STATE_DTYPE)  # filled here, then copied in one go
+
+    def publish(self, arm: ArmSample, wrench: RawWrench, loop: LoopStats | None = None) -> None:
+        """Publish one step's samples and beat the heartbeat."""
+        now = time.monotonic_ns()
+        loop = loop or LoopStats()
+        record = self._state
+        record["heartbeat_ns"] = now
+        record["arm_sequence"] = arm.sequence
+        record["arm_time_ns"] = arm.sample_time_ns
+        record["q"] = arm.joint_positions_rad
+        record["qd"] = arm.joint_velocities_rad_per_s
+        record["target"] = arm.joint_targets_rad
+        record["hold_latched"] = arm.hold_latched
+        record["fault"] = arm.fault.encode()[:FAULT_BYTES]
+        record["wrench_sequence"] = wrench.sequence
+        record["wrench_time_ns"] = wrench.sample_time_ns
+        record["force"] = wrench.force_n
+        record["torque"] = wrench.torque_nm
+        record["applied_command"] = self._applied
+        record["loop_steps"] = loop.steps
+        record["loop_overruns"] = loop.overruns
+        record["loop_dropped_steps"] = loop.dropped_steps
+        record["loop_worst_lateness_ns"] = loop.worst_lateness_ns
+        record["loop_worst_step_ns"] = loop.worst_step_ns
+        self._segment.state.write(record)
+        self._segment.header["heartbeat_ns"] = now
+        if not self._running:
+            self._segment.header["status"] = STATUS_RUNNING
+            self._running = True
+
+    def poll_commands(self) -> list[Command]:
+        """Commands issued since the last poll, oldest first. They count as applied from the
+        next publish on. Empty while the driver is mid-write (they come next step)."""
+        try:
+            record = self._segment.command.read(timeout_s=0.0)[0]
+        except TornRead:
+            return []
+        commands = []
+        for kind, field in ((_HOLD, "hold_command"), (_RELEASE, "release_command"),
+                            (_TARGET, "target_command")):
+            number = int(record[field])
+            if number > self._applied:
+                target = record["target"].copy() if kind == _TARGET else None
+                commands.append(Command(number, kind, target))
+        self._applied = max(self._applied, int(record["command_sequence"]))
+        return sorted(commands, key=lambda command: command.number)
+
+    def close(self) -> None:
+        """Tell drivers the world is gone and remove the segment."""
+        segment, self._segment = self._segment, None
+        if segment is None:
+            return
+        segment.header["status"] = STATUS_CLOSED
+        shm = segment.shm
+        segment.close()
+        unlink_segment(shm)
+
+
+def _create_or_replace(name: str) -> shared_memory.SharedMemory:
+    """Create the segment; replace a stale one left by a killed world; refuse a live one."""
+    try:
+        return create_segment(name)
+    except FileExistsError:
+        pass
+    try:
+        old = attach_untracked(name)
+    except FileNotFoundError:  # removed meanwhile
+        return create_segment(name)
+    owner = _live_owner(old)
+    if owner is not None:
+        old.close()
+        raise AlreadyExists(
+            f"a world (pid {owner}) is already running on shared memory {name!r}: stop it, or "
+            f"give this one another name with TELEROBOT_WORLD_SHM", reason="WORLD_RUNNING")
+    log.warning("replacing the stale shared memory %r left by a world that did not shut down",
+                name)
+    adopt_for_unlink(old)
+    old.close()
+    unlink_segment(old)
+    return create_segment(name)
+
+
+def _live_owner(shm: shared_memory.SharedMemory) -> int | None:
+    """The pid of the running world that owns this segment, or None if it is stale."""
+    if shm.size < SEGMENT_SIZE:
+        return None
+    segment = WorldSegment(shm)
+    try:
+        if segment.layout_problem() or segment.status != STATUS_RUNNING:
+            return None
+        fresh = time.monotonic_ns() - segment.heartbeat_ns < REPLACE_AFTER_S * 1e9
+        pid = segment.world_pid
+        return pid if fresh or pid_alive(pid) else None
+    finally:
+        segment.release()
+
+
+# -- driver side --------------------------------------------------------------------------------
+
+
+class _WorldConnection:
+    """An attachment to a running world's segment, with the liveness checks every read makes."""
+
+    def __init__(self, name: str | None, stale_after_s: float):
+        self.name = segment_name(name)
+        self._stale_after_ns = round(stale_after_s * 1e9)
+        try:
+            shm = attach_untracked(self.name)
+        except FileNotFoundError:
+            raise Unavailable(
+                f"no world is running: shared memory {self.name!r} does not exist. Start it "
+                "with `python -m services.world` (TELEROBOT_WORLD_SHM names the segment)",
+                reason="WORLD_NOT_RUNNING") from None
+        if shm.size < SEGMENT_SIZE:
+            shm.close()
+            raise Unavailable(f"shared memory {self.name!r} is {shm.size} bytes, not a world "
+                              f"segment ({SEGMENT_SIZE}): check TELEROBOT_WORLD_SHM",
+                              reason="WORLD_SEGMENT_INVALID")
+        self.segment: WorldSegment | None = WorldSegment(shm)
+        problem = self.segment.layout_problem()
+        try:
+            if problem:
+                raise Unavailable(f"shared memory {self.name!r} is not usable: {problem}",
+                                  reason="WORLD_SEGMENT_INVALID")
+            self.check_alive(self.segment.heartbeat_ns)
+        except Unavailable:
+            self.close()
+            raise
+
+    def require(self) -> WorldSegment:
+        if self.segment is None:
+            raise Unavailable("the hardware link is closed: open a new one",
+                              reason="LINK_CLOSED")
+        return self.segment
+
+    def check_alive(self, heartbeat_ns: int) -> None:
+        """Unavailable unless the world is running and stepped within stale_after_s."""
+        segment = self.require()
+        status = segment.status
+        if status == STATUS_CLOSED:
+            raise Unavailable(
+                f"the world (pid {segment.world_pid}) has shut down; restart it and reconnect",
+                reason="WORLD_STOPPED")
+        if status != STATUS_RUNNING:
+            raise Unavailable(f"the world (pid {segment.world_pid}) is starting; try again",
+                              reason="WORLD_STARTING")
+        age_ns = time.monotonic_ns() - heartbeat_ns
+        if age_ns > self._stale_after_ns:
+            raise Unavailable(
+                f"the world (pid {segment.world_pid}) has not stepped for {age_ns / 1e6:.0f} ms "
+                f"(limit {self._stale_after_ns / 1e6:.0f} ms): it is stopped, stuck or gone",
+                reason="WORLD_STALE")
+
+    def read_state(self) -> np.void:
+        """A consistent copy of the latest state record, from a live world."""
+        segment = self.require()
+        try:
+            record = segment.state.read(TORN_READ_TIMEOUT_S)[0]
+        except TornRead:
+            raise Unavailable(
+                f"the world (pid {segment.world_pid}) stopped in the middle of publishing a "
+                "sample: it is stuck or gone", reason="WORLD_STALE") from None
+        self.check_alive(int(record["heartbeat_ns"]))
+        return record
+
+    def close(self) -> None:
+        segment, self.segment = self.segment, None
+        if segment is not None:
+            segment.close()
+
+
+class SharedMemoryArmLink:
+    """ArmLink to the simulated arm through the world's shared memory.
+
+    Unavailable on open and on every call when the world is not running, has shut down or has
+    not stepped for ``stale_after_s`` (s). Thread-safe.
+    """
+
+    def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S):
+        self._state_lock = threading.Lock()
+        self._command_lock = threading.Lock()
+        self._connection = _WorldConnection(name, stale_after_s)
+        segment = self._connection.require()
+        self.joint_lower = segment.header["joint_lower"][0].copy()  # rad
+        self.joint_upper = segment.header["joint_upper"][0].copy()  # rad
+        self._issued = self._adopt_command_record(segment)
+
+    @property
+    def name(self) -> str:
+        """The shared-memory segment name."""
+        return self._connection.name
+
+    def _adopt_command_record(self, segment: WorldSegment) -> int:
+        """The latest command number in the record (we continue from it). If a previous driver
+        died mid-write, its target may be torn: mark it as already applied so it never is."""
+        try:
+            return int(segment.command.read(TORN_READ_TIMEOUT_S)[0]["command_sequence"])
+        except TornRead:
+            pass
+        applied = int(self._connection.read_state()["applied_command"])
+        with segment.command.writing() as record:
+            record["target_command"] = min(int(record["target_command"][0]), applied)
+            return int(record["command_sequence"][0])
+
+    # -- ArmLink ----------------------------------------------------------------------------
+
+    def read_arm(self) -> ArmSample:
+        """The latest servo sample. Unavailable when the world is gone or stale."""
+        with self._state_lock:
+            record = self._connection.read_state()
+        return ArmSample(
+            sequence=int(record["arm_sequence"]),
+            sample_time_ns=int(record["arm_time_ns"]),
+            joint_positions_rad=record["q"].copy(),
+            joint_velocities_rad_per_s=record["qd"].copy(),
+            joint_targets_rad=record["target"].copy(),
+            hold_latched=bool(record["hold_latched"]),
+            fault=bytes(record["fault"]).decode("utf-8", "replace"),
+        )
+
+    def write_target(self, joint_positions_rad: np.ndarray) -> None:
+        """Make the servo track a new joint target (6,) in rad; the world ignores it while a
+        hold is latched. InvalidArgument on a wrong shape or NaN; OutOfRange past a joint limit
+        (by more than LIMIT_TOLERANCE_RAD; the world clips onto the limit)."""
+        target = np.asarray(joint_positions_rad, dtype=float)
+        if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
+            raise InvalidArgument(
+                f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}",
+                reason="BAD_TARGET")
+        outside = np.flatnonzero((target < self.joint_lower - LIMIT_TOLERANCE_RAD)
+                                 | (target > self.joint_upper + LIMIT_TOLERANCE_RAD))
+        if outside.size:
+            joint = int(outside[0])
+            raise OutOfRange(
+                f"joint {joint + 1} target {np.degrees(target[joint]):.1f} deg is past its limit "
+                f"({np.degrees(self.joint_lower[joint]):.0f}.."
+                f"{np.degrees(self.joint_upper[joint]):.0f} deg)", reason="JOINT_LIMIT")
+        self._issue(_TARGET, target)
+
+    def hold(self) -> None:
+        """Latch a controlled stop: the arm brakes at its acceleration cap and holds where it
+        stops; later targets are ignored until release_hold()."""
+        self._issue(_HOLD)
+
+    def release_hold(self) -> None:
+        """Clear the latch (and a fault); the target becomes the current position."""
+        self._issue(_RELEASE)
+
+    def close(self) -> None:
+        """Detach. The world keeps holding the last target."""
+        with self._state_lock, self._command_lock:
+            self._connection.close()
+
+    # -- beyond ArmLink ---------------------------------------------------------------------
+
+    def commands_applied(self) -> bool:
+        """Whether the world has applied every command this link issued (within one step)."""
+        with self._state_lock:
+            record = self._connection.read_state()
+        with self._command_lock:
+            return int(record["applied_command"]) >= self._issued
+
+    def read_loop_stats(self) -> LoopStats:
+        """The world's real-time loop counters (see realtime.py)."""
+        with self._state_lock:
+            record = self._connection.read_state()
+        return LoopStats(
+            steps=int(record["loop_steps"]),
+            overruns=int(record["loop_overruns"]),
+            dropped_steps=int(record["loop_dropped_steps"]),
+            worst_lateness_ns=int(record["loop_worst_lateness_ns"]),
+            worst_step_ns=int(record["loop_worst_step_ns"]),
+        )
+
+    def _issue(self, kind: str, target: np.ndarray | None = None) -> None:
+        with self._command_lock:
+            connection = self._connection
+            segment = connection.require()
+            connection.check_alive(segment.heartbeat_ns)
+            number = self._issued + 1
+            with segment.command.writing() as record:
+                # Payload first, numbers last: a driver killed in between leaves no new number.
+                if kind == _TARGET:
+                    record["target"] = target
+                    record["target_command"] = number
+                elif kind == _HOLD:
+                    record["hold_command"] = number
+                else:
+                    record["release_command"] = number
+                record["driver_pid"] = os.getpid()
+                record["command_sequence"] = number
+            self._issued = number
+
+
+class SharedMemoryWrenchLink:
+    """WrenchLink to the simulated wrist force/torque sensor through the world's shared memory.
+
+    Unavailable on open and on every read when the world is not running, has shut down or has
+    not stepped for ``stale_after_s`` (s). Thread-safe.
+    """
+
+    def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S):
+        self._lock = threading.Lock()
+        self._connection = _WorldConnection(name, stale_after_s)
+
+    def read_wrench(self) -> RawWrench:
+        """The latest sensor sample (N, N*m, sensor frame). Unavailable when the world is gone."""
+        with self._lock:
+            record = self._connection.read_state()
+        return RawWrench(
+            sequence=int(record["wrench_sequence"]),
+            sample_time_ns=int(record["wrench_time_ns"]),
+            force_n=record["force"].copy(),
+            torque_nm=record["torque"].copy(),
+        )
+
+    def close(self) -> None:
+        """Detach from the sensor."""
+        with self._lock:
+            self._connection.close()

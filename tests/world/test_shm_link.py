@@ -1,0 +1,229 @@
+"""The shared-memory link, world end and driver end in this process (no physics loop): command
+ordering, validation, liveness, segment ownership."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from services.runtime.errors import AlreadyExists, InvalidArgument, OutOfRange, Unavailable
+from services.world.realtime import LoopStats
+from services.world.shm_layout import STATUS_RUNNING, WorldSegment, attach_untracked
+from services.world.shm_link import (
+    Command,
+    SharedMemoryArmLink,
+    SharedMemoryWrenchLink,
+    WorldPublisher,
+)
+from services.world.sim import ArmSim
+from tests.world.conftest import segment_exists, unique_shm_name
+
+PERIOD_S = 0.001
+
+
+@pytest.fixture(scope="module")
+def sim() -> ArmSim:
+    return ArmSim()
+
+
+@pytest.fixture
+def publisher(sim: ArmSim):
+    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
+    world.publish(sim.arm_sample(), sim.wrench_sample())
+    yield world
+    world.close()
+
+
+@pytest.fixture
+def link(publisher: WorldPublisher):
+    arm = SharedMemoryArmLink(publisher.name)
+    yield arm
+    arm.close()
+
+
+def kinds(commands: list[Command]) -> list[str]:
+    return [command.kind for command in commands]
+
+
+def test_samples_arrive_intact(publisher, link, sim: ArmSim) -> None:
+    arm, wrench = sim.arm_sample(42), sim.wrench_sample(43)
+    loop = LoopStats(steps=5, overruns=1, dropped_steps=2, worst_lateness_ns=7, worst_step_ns=3)
+    publisher.publish(arm, wrench, loop)
+    read = link.read_arm()
+    assert (read.sequence, read.sample_time_ns, read.hold_latched, read.fault) == (
+        arm.sequence, 42, False, "")
+    np.testing.assert_array_equal(read.joint_positions_rad, arm.joint_positions_rad)
+    np.testing.assert_array_equal(read.joint_velocities_rad_per_s, arm.joint_velocities_rad_per_s)
+    np.testing.assert_array_equal(read.joint_targets_rad, arm.joint_targets_rad)
+    sensor = SharedMemoryWrenchLink(publisher.name)
+    got = sensor.read_wrench()
+    sensor.close()
+    assert (got.sequence, got.sample_time_ns) == (wrench.sequence, 43)
+    np.testing.assert_array_equal(got.force_n, wrench.force_n)
+    np.testing.assert_array_equal(got.torque_nm, wrench.torque_nm)
+    assert link.read_loop_stats() == loop
+
+
+def test_faults_and_holds_arrive(publisher, link, sim: ArmSim) -> None:
+    arm = sim.arm_sample()
+    faulty = type(arm)(**{**arm.__dict__, "hold_latched": True, "fault": "motor 3 über-hot"})
+    publisher.publish(faulty, sim.wrench_sample())
+    read = link.read_arm()
+    assert read.hold_latched and read.fault == "motor 3 über-hot"
+
+
+def test_commands_arrive_in_the_order_they_were_issued(publisher, link) -> None:
+    target = link.read_arm().joint_targets_rad + 0.1
+    link.hold()
+    link.release_hold()
+    link.write_target(target)
+    commands = publisher.poll_commands()
+    assert kinds(commands) == ["hold", "release", "target"]
+    assert [c.number for c in commands] == sorted(c.number for c in commands)
+    np.testing.assert_array_equal(commands[2].target, target)
+    assert publisher.poll_commands() == []  # each command is handed out once
+
+    link.release_hold()
+    link.hold()  # the later one wins: the arm ends up held
+    assert kinds(publisher.poll_commands()) == ["release", "hold"]
+
+
+def test_no_edge_is_lost_between_two_polls(publisher, link) -> None:
+    for _ in range(3):
+        link.hold()
+        link.release_hold()
+    link.hold()
+    # Repeats collapse (holding twice is holding), but the latest of each kind is there and in
+    # order: held, then the final hold after the last release.
+    assert kinds(publisher.poll_commands()) == ["release", "hold"]
+
+
+def test_the_driver_sees_when_its_commands_are_applied(publisher, link, sim: ArmSim) -> None:
+    link.write_target(link.read_arm().joint_targets_rad)
+    assert not link.commands_applied()
+    publisher.poll_commands()
+    assert not link.commands_applied()  # not until the world has published after applying
+    publisher.publish(sim.arm_sample(), sim.wrench_sample())
+    assert link.commands_applied()
+
+
+def test_a_new_driver_continues_the_command_numbers(publisher, link) -> None:
+    link.hold()
+    first = publisher.poll_commands()[0].number
+    second_driver = SharedMemoryArmLink(publisher.name)
+    second_driver.release_hold()
+    second_driver.close()
+    assert publisher.poll_commands()[0].number > first
+
+
+def test_a_torn_target_from_a_dead_driver_is_never_applied(publisher, link, sim) -> None:
+    link.hold()
+    publisher.poll_commands()
+    publisher.publish(sim.arm_sample(), sim.wrench_sample())
+    segment = WorldSegment(attach_untracked(publisher.name))
+    writing = segment.command.writing()
+    record = writing.__enter__()  # a driver that dies half-way through a target
+    record["target"] = np.full(6, 0.5)
+    record["target_command"] = 99
+    assert publisher.poll_commands() == []  # mid-write: nothing is taken
+    recovered = SharedMemoryArmLink(publisher.name)
+    recovered.release_hold()
+    assert kinds(publisher.poll_commands()) == ["release"]
+    recovered.close()
+    del writing, record
+    segment.close()
+
+
+@pytest.mark.parametrize("bad", [np.zeros(5), np.array([0, 0, np.nan, 0, 0, 0])])
+def test_malformed_targets_are_refused(link, bad) -> None:
+    with pytest.raises(InvalidArgument):
+        link.write_target(bad)
+
+
+def test_targets_past_a_joint_limit_are_refused(link) -> None:
+    target = link.read_arm().joint_positions_rad
+    target[2] = link.joint_lower[2] - 0.1
+    with pytest.raises(OutOfRange, match="joint 3"):
+        link.write_target(target)
+
+
+def test_a_world_that_has_not_published_yet_is_starting(sim: ArmSim) -> None:
+    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
+    with pytest.raises(Unavailable, match="starting"):
+        SharedMemoryArmLink(world.name)
+    world.publish(sim.arm_sample(), sim.wrench_sample())
+    SharedMemoryArmLink(world.name).close()
+    world.close()
+
+
+def test_opening_with_no_world_is_unavailable() -> None:
+    with pytest.raises(Unavailable, match="no world is running"):
+        SharedMemoryArmLink(unique_shm_name())
+    with pytest.raises(Unavailable, match="no world is running"):
+        SharedMemoryWrenchLink(unique_shm_name())
+
+
+def test_a_world_that_stops_stepping_is_unavailable(publisher, sim: ArmSim) -> None:
+    link = SharedMemoryArmLink(publisher.name, stale_after_s=0.05)
+    link.read_arm()
+    time.sleep(0.1)  # no publish meanwhile: the world is stuck
+    with pytest.raises(Unavailable, match="has not stepped"):
+        link.read_arm()
+    with pytest.raises(Unavailable, match="has not stepped"):
+        link.hold()
+    with pytest.raises(Unavailable, match="has not stepped"):
+        SharedMemoryArmLink(publisher.name, stale_after_s=0.05)
+    publisher.publish(sim.arm_sample(), sim.wrench_sample())
+    link.read_arm()  # it is back
+    link.close()
+
+
+def test_a_closed_world_is_unavailable_and_its_segment_gone(sim: ArmSim) -> None:
+    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
+    world.publish(sim.arm_sample(), sim.wrench_sample())
+    link = SharedMemoryArmLink(world.name)
+    world.close()
+    assert not segment_exists(world.name)
+    with pytest.raises(Unavailable, match="shut down"):
+        link.read_arm()
+    with pytest.raises(Unavailable, match="shut down"):
+        link.write_target(np.zeros(6))
+    link.close()
+    with pytest.raises(Unavailable, match="closed"):
+        link.read_arm()
+
+
+def test_a_second_world_on_a_live_segment_is_refused(publisher, sim: ArmSim) -> None:
+    with pytest.raises(AlreadyExists, match=f"pid {os.getpid()}"):
+        WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, publisher.name)
+    SharedMemoryArmLink(publisher.name).close()  # the first is untouched
+
+
+def test_a_stale_segment_from_a_killed_world_is_replaced(sim: ArmSim) -> None:
+    name = unique_shm_name()
+    killed = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, name)
+    killed.publish(sim.arm_sample(), sim.wrench_sample())
+    segment = killed._segment  # what a killed world leaves
+    segment.header["world_pid"] = _dead_pid()
+    segment.header["heartbeat_ns"] = time.monotonic_ns() - 10**10
+    assert segment.status == STATUS_RUNNING
+    segment.close()  # abandoned: not unlinked
+
+    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, name)
+    world.publish(sim.arm_sample(), sim.wrench_sample())
+    link = SharedMemoryArmLink(name)
+    assert link.read_arm().sequence == sim.steps
+    link.close()
+    world.close()
+    assert not segment_exists(name)
+
+
+def _dead_pid() -> int:
+    process = subprocess.Popen([sys.executable, "-c", "pass"])
+    process.wait()
+    return process.pid

@@ -1,0 +1,181 @@
+"""The real `python -m services.world` process, driven through SharedMemoryArmLink from here."""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import grpc
+import numpy as np
+import pytest
+from grpc_health.v1 import health_pb2, health_pb2_grpc
+
+from services.runtime.errors import Unavailable
+from services.world.link import ArmSample
+from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
+from tests.conftest import REPO
+from tests.world.conftest import World, segment_exists
+
+pytestmark = pytest.mark.e2e
+
+ARRIVAL_TOLERANCE_RAD = 1e-3
+AT_REST_RAD_PER_S = 1e-2
+MOVE = np.array([0.2, -0.1, 0.15, 0.3, 0.2, -0.3])  # rad, 0.3 s at the speed cap
+WAIT_S = 10.0  # generous: the machine may be busy; nothing here measures speed
+STOP_LIMIT_S = 3.0
+
+
+def wait_for(link: SharedMemoryArmLink, condition, what: str) -> ArmSample:
+    deadline = time.monotonic() + WAIT_S
+    while time.monotonic() < deadline:
+        sample = link.read_arm()
+        if condition(sample):
+            return sample
+        time.sleep(0.005)
+    pytest.fail(f"timed out waiting for {what}; last sample {sample}")
+
+
+def at_rest(sample: ArmSample) -> bool:
+    return np.abs(sample.joint_velocities_rad_per_s).max() < AT_REST_RAD_PER_S
+
+
+def wait_applied(link: SharedMemoryArmLink) -> None:
+    deadline = time.monotonic() + WAIT_S
+    while not link.commands_applied():
+        assert time.monotonic() < deadline, "the world did not apply the command"
+        time.sleep(0.001)
+
+
+@pytest.fixture
+def link(shared_world: World):
+    arm = SharedMemoryArmLink(shared_world.shm_name)
+    yield arm
+    arm.release_hold()  # leave the shared world free to move for the next test
+    wait_applied(arm)
+    arm.close()
+
+
+def test_health_is_serving_once_the_loop_runs(shared_world: World) -> None:
+    with grpc.insecure_channel(shared_world.running.ready["world"]) as channel:
+        reply = health_pb2_grpc.HealthStub(channel).Check(health_pb2.HealthCheckRequest(),
+                                                           timeout=5)
+    assert reply.status == health_pb2.HealthCheckResponse.SERVING
+    link = SharedMemoryArmLink(shared_world.shm_name)
+    assert link.read_loop_stats().steps > 0
+    link.close()
+
+
+def test_a_target_written_through_the_link_is_reached(link) -> None:
+    start = link.read_arm()
+    target = start.joint_targets_rad + MOVE
+    link.write_target(target)
+    wait_applied(link)
+    np.testing.assert_allclose(link.read_arm().joint_targets_rad, target)
+    arrived = wait_for(link, lambda s: np.abs(s.joint_positions_rad - target).max()
+                       < ARRIVAL_TOLERANCE_RAD and at_rest(s), "the arm to arrive")
+    assert arrived.sequence > start.sequence
+    assert not arrived.hold_latched and arrived.fault == ""
+
+
+def test_hold_and_release_through_the_link(link) -> None:
+    start = link.read_arm().joint_positions_rad
+    link.write_target(start - MOVE)
+    wait_for(link, lambda s: not at_rest(s), "the arm to move")
+    link.hold()
+    wait_applied(link)
+    held = wait_for(link, at_rest, "the arm to stop")
+    assert held.hold_latched
+    assert np.abs(held.joint_positions_rad - (start - MOVE)).max() > 0.01  # stopped short
+
+    link.write_target(start)  # ignored while latched
+    wait_applied(link)
+    time.sleep(0.2)
+    still = link.read_arm()
+    assert still.hold_latched
+    np.testing.assert_allclose(still.joint_targets_rad, held.joint_targets_rad)
+    assert np.abs(still.joint_positions_rad - held.joint_positions_rad).max() < 1e-3
+
+    link.release_hold()
+    wait_applied(link)
+    released = link.read_arm()
+    assert not released.hold_latched
+    np.testing.assert_allclose(released.joint_targets_rad, still.joint_positions_rad, atol=1e-3)
+    time.sleep(0.2)
+    assert np.abs(link.read_arm().joint_positions_rad - still.joint_positions_rad).max() < 1e-3
+
+
+def test_the_wrist_sensor_reads_the_peg(shared_world: World) -> None:
+    sensor = SharedMemoryWrenchLink(shared_world.shm_name)
+    first = sensor.read_wrench()
+    time.sleep(0.01)
+    later = sensor.read_wrench()
+    sensor.close()
+    assert later.sequence > first.sequence and later.sample_time_ns > first.sample_time_ns
+    assert np.linalg.norm(later.force_n) == pytest.approx(0.1 * 9.81, rel=0.05)  # N, at rest
+
+
+def test_a_driver_process_exiting_leaves_the_segment(shared_world: World) -> None:
+    driver = textwrap.dedent(f"""
+        from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
+        closed = SharedMemoryArmLink({shared_world.shm_name!r})
+        closed.read_arm()
+        closed.close()
+        left_open = SharedMemoryArmLink({shared_world.shm_name!r})
+        left_open.hold(); left_open.release_hold()
+        SharedMemoryWrenchLink({shared_world.shm_name!r}).read_wrench()
+        print("ok")
+    """)  # exits with links still attached
+    done = subprocess.run([sys.executable, "-c", driver], cwd=REPO, capture_output=True,
+                          text=True, timeout=30)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr
+    assert "leaked" not in done.stderr  # no resource_tracker clean-up of the world's segment
+    time.sleep(0.2)  # the driver's resource tracker would act just after it exits
+    assert segment_exists(shared_world.shm_name)
+    link = SharedMemoryArmLink(shared_world.shm_name)
+    link.read_arm()
+    link.close()
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_stops_the_world_and_removes_its_segment(world_factory, signum) -> None:
+    world = world_factory()
+    link = SharedMemoryArmLink(world.shm_name)
+    link.read_arm()
+    world.running.process.send_signal(signum)
+    assert world.running.process.wait(STOP_LIMIT_S) == 0, world.output()
+    assert not segment_exists(world.shm_name)
+    with pytest.raises(Unavailable, match="shut down"):
+        link.read_arm()
+    link.close()
+    with pytest.raises(Unavailable, match="no world is running"):
+        SharedMemoryArmLink(world.shm_name)
+    assert "loop stats at shutdown" in world.output()
+
+
+def test_a_killed_world_is_stale_and_a_new_one_takes_its_place(world_factory) -> None:
+    world = world_factory()
+    link = SharedMemoryArmLink(world.shm_name)
+    world.running.process.kill()
+    world.running.process.wait(STOP_LIMIT_S)
+    time.sleep(0.2)  # past the 100 ms heartbeat limit
+    with pytest.raises(Unavailable, match="has not stepped|shut down"):
+        link.read_arm()
+    link.close()
+
+    world_factory(world.shm_name)  # replaces the segment if the killed one left it
+    fresh = SharedMemoryArmLink(world.shm_name)
+    assert not fresh.read_arm().hold_latched
+    fresh.close()
+
+
+def test_a_second_world_on_the_same_segment_refuses_to_start(shared_world: World) -> None:
+    second = subprocess.run(
+        [sys.executable, "-m", "services.world", "--address", "127.0.0.1:0",
+         "--shm-name", shared_world.shm_name],
+        cwd=REPO, capture_output=True, text=True, timeout=60)
+    assert second.returncode == 1
+    assert "already running" in second.stderr
+    SharedMemoryArmLink(shared_world.shm_name).close()  # the first is untouched
