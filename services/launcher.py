@@ -31,8 +31,9 @@ from services.runtime.process import PARENT_PID_ENV, READY_LINE_PREFIX
 
 log = logging.getLogger("launcher")
 
-# Start order: dependencies first. Stop order is the reverse.
-STATION = ["proxy_robot", "force_sensor", "stereo_camera", "decision_server"]
+# Start order: dependencies first (the world stands in for the hardware). Stop order is the
+# reverse, so the hardware goes last.
+STATION = ["world", "proxy_robot", "force_sensor", "stereo_camera", "decision_server"]
 STARTUP_TIMEOUT_S = 60.0
 _LOG_TAIL_LINES = 20
 

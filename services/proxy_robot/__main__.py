@@ -1,20 +1,49 @@
-"""python -m services.proxy_robot: the ProxyRobot service process."""
+"""python -m services.proxy_robot: the ProxyRobot service process (the papers' PUMA component).
 
-from services.runtime.placeholder import PlaceholderService
+It reaches the arm through the hardware link: in simulation, the world process's shared memory
+(--shm-name / TELEROBOT_WORLD_SHM). Clients Connect and Initialize before moving the arm.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from services.proxy_robot.core import ProxyRobotCore
+from services.proxy_robot.servicer import ProxyRobotServicer
 from services.runtime.process import run_service
-from services.runtime.server import binding
-from services.runtime.unimplemented import unimplemented_servicer
+from services.runtime.server import ServiceBinding, binding
+from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_link import SharedMemoryArmLink
 from telerobot.v1 import proxy_robot_pb2_grpc
 
 
-def build(_args):
-    servicer = unimplemented_servicer(
-        proxy_robot_pb2_grpc.ProxyRobotServicer,
-        "the simulated PUMA 560 and its proxy come with the slave-station issue",
-    )
-    return PlaceholderService([binding(proxy_robot_pb2_grpc, "ProxyRobot", servicer)])
+@dataclass
+class ProxyRobotService:
+    core: ProxyRobotCore
+
+    def bindings(self) -> Sequence[ServiceBinding]:
+        return [binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(self.core))]
+
+    def start(self) -> None:
+        pass  # the link opens on Connect, as the papers' ConnectRobot does
+
+    def close(self) -> None:
+        self.core.close()  # hold the arm and release the link
+
+
+def _add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
+        help=f"shared-memory segment of the simulated arm's link (env {SHM_NAME_ENV})")
+
+
+def build(args: argparse.Namespace) -> ProxyRobotService:
+    return ProxyRobotService(ProxyRobotCore(lambda: SharedMemoryArmLink(args.shm_name)))
 
 
 if __name__ == "__main__":
-    raise SystemExit(
-        run_service("proxy_robot", "ProxyRobot: the software proxy of the arm.", build))
+    raise SystemExit(run_service("proxy_robot", "ProxyRobot: the software proxy of the arm.",
+                                 build, add_arguments=_add_arguments))

@@ -17,6 +17,7 @@ from services.runtime.lanes import Lane
 DEFAULT_HOST = "127.0.0.1"
 # The operator's one address is the DecisionServer's; the others are the slave station's inside.
 DEFAULT_PORTS = {
+    "world": 50050,  # the simulated hardware; serves only health, its link is shared memory
     "decision_server": 50051,
     "proxy_robot": 50052,
     "force_sensor": 50053,

@@ -18,6 +18,7 @@ from collections.abc import Callable, Sequence
 from typing import Protocol
 
 from services.runtime.config import base_parser, configure_logging
+from services.runtime.errors import TelerobotError
 from services.runtime.server import ServiceBinding, create_server
 
 log = logging.getLogger(__name__)
@@ -68,6 +69,11 @@ def run_service(
     server.start()
     try:
         service.start()
+    except TelerobotError as error:  # an expected refusal, such as "already running"
+        log.error("start-up failed: %s", error.message)
+        server.stop(0)
+        service.close()
+        return 1
     except Exception:
         log.exception("start-up failed; stopping")
         server.stop(0)
@@ -75,7 +81,7 @@ def run_service(
         return 1
     server.set_serving()
     host = args.address.rsplit(":", 1)[0]
-    log.info("serving %s on %s:%d", ", ".join(server.service_names), host, port)
+    log.info("serving %s on %s:%d", ", ".join(server.service_names) or "health only", host, port)
     print(f"{READY_LINE_PREFIX} {name} {host}:{port}", flush=True)
 
     stop.wait()

@@ -49,8 +49,9 @@ class ArmLink(Protocol):
         """Make the servo track a new joint target (6,). Ignored while a hold is latched."""
 
     def hold(self) -> None:
-        """Controlled stop: take the current position as the target and latch it, so later
-        targets are ignored until release_hold()."""
+        """Controlled stop: brake to rest at the acceleration cap and latch there, so later
+        targets are ignored until release_hold(). At rest the arm holds where it is; from full
+        speed it stops within about 0.05 rad."""
 
     def release_hold(self) -> None:
         """Clear the latch. The target stays the current position: nothing starts moving."""

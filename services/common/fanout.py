@@ -1,0 +1,82 @@
+"""One publisher, many subscribers, each with its own bounded queue that drops its oldest.
+
+A slow subscriber never slows the publisher or any other subscriber: its queue overflows, the
+oldest items go, and `dropped` says how many. Nothing here knows about gRPC.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import deque
+from typing import Generic, TypeVar
+
+T = TypeVar("T")
+
+
+class Subscription(Generic[T]):
+    """A subscriber's queue. Read with get(); close() when done."""
+
+    def __init__(self, fanout: Fanout[T], capacity: int):
+        if capacity < 1:
+            raise ValueError("capacity must be at least 1")
+        self._fanout = fanout
+        self._items: deque[T] = deque(maxlen=capacity)
+        self._ready = threading.Condition()
+        self.dropped = 0
+        self.closed = False
+
+    def offer(self, item: T) -> None:
+        with self._ready:
+            if len(self._items) == self._items.maxlen:
+                self.dropped += 1  # deque drops the oldest on append
+            self._items.append(item)
+            self._ready.notify()
+
+    def get(self, timeout_s: float | None = None) -> T | None:
+        """The oldest queued item, waiting up to timeout_s; None on timeout or once closed."""
+        with self._ready:
+            if not self._items and not self.closed:
+                self._ready.wait(timeout_s)
+            return self._items.popleft() if self._items else None
+
+    def close(self) -> None:
+        self._fanout._remove(self)
+        with self._ready:
+            self.closed = True
+            self._ready.notify_all()
+
+    def __enter__(self) -> Subscription[T]:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+class Fanout(Generic[T]):
+    """Delivers every published item to every open subscription."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._subscriptions: tuple[Subscription[T], ...] = ()
+
+    def subscribe(self, capacity: int = 64) -> Subscription[T]:
+        subscription = Subscription(self, capacity)
+        with self._lock:
+            self._subscriptions = (*self._subscriptions, subscription)
+        return subscription
+
+    def publish(self, item: T) -> None:
+        for subscription in self._subscriptions:  # a snapshot: subscribe/close never block this
+            subscription.offer(item)
+
+    def close_all(self) -> None:
+        for subscription in self._subscriptions:
+            subscription.close()
+
+    @property
+    def subscriber_count(self) -> int:
+        return len(self._subscriptions)
+
+    def _remove(self, subscription: Subscription[T]) -> None:
+        with self._lock:
+            self._subscriptions = tuple(s for s in self._subscriptions if s is not subscription)
