@@ -86,3 +86,13 @@ def service_process():
     for running in started:
         if running.process.poll() is None:
             running.stop()
+
+
+@pytest.fixture(scope="session")
+def world():
+    """One real world process for the tests that drive or read the simulated arm."""
+    from tests.world.conftest import _cleanup, start_world  # tests/world imports this module
+
+    running = start_world()
+    yield running
+    _cleanup(running)

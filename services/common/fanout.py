@@ -60,7 +60,11 @@ class Fanout(Generic[T]):
         self._subscriptions: tuple[Subscription[T], ...] = ()
 
     def subscribe(self, capacity: int = 64) -> Subscription[T]:
-        subscription = Subscription(self, capacity)
+        return self.attach(Subscription(self, capacity))
+
+    def attach(self, subscription: Subscription[T]) -> Subscription[T]:
+        """Start delivering to a subscription made here (a Subscription subclass that filters
+        in its offer(), for example)."""
         with self._lock:
             self._subscriptions = (*self._subscriptions, subscription)
         return subscription

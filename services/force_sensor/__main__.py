@@ -1,19 +1,74 @@
-"""python -m services.force_sensor: the ForceSensor service process."""
+"""python -m services.force_sensor: the wrist force/torque sensor service.
 
-from services.runtime.placeholder import PlaceholderService
+The sensor is the simulated one (the world's shared memory) by default, or an ATI Net F/T over
+RDT with --sensor rdt --rdt-address host[:port]. Either way the arm's joint angles come from the
+world's link (read only), to remove the tool's weight in any orientation.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from services.force_sensor.core import ForceSensorCore
+from services.force_sensor.rdt import RDT_PORT, RdtWrenchLink
+from services.force_sensor.servicer import ForceSensorServicer
 from services.runtime.process import run_service
-from services.runtime.server import binding
-from services.runtime.unimplemented import unimplemented_servicer
+from services.runtime.server import ServiceBinding, binding
+from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2_grpc
 
 
-def build(_args):
-    servicer = unimplemented_servicer(
-        force_sensor_pb2_grpc.ForceSensorServicer,
-        "wrench sampling and streaming come with the ForceSensor issue",
-    )
-    return PlaceholderService([binding(force_sensor_pb2_grpc, "ForceSensor", servicer)])
+@dataclass
+class ForceSensorService:
+    core: ForceSensorCore
+
+    def bindings(self) -> Sequence[ServiceBinding]:
+        return [binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(self.core))]
+
+    def start(self) -> None:
+        pass  # sampling starts on StartReading, as in the papers
+
+    def close(self) -> None:
+        self.core.close()
+
+
+def _add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--sensor", choices=["sim", "rdt"],
+                        default=os.environ.get("TELEROBOT_FORCE_SENSOR_SENSOR", "sim"),
+                        help="sim: the world's wrist sensor; rdt: an ATI Net F/T "
+                             "(env TELEROBOT_FORCE_SENSOR_SENSOR)")
+    parser.add_argument("--rdt-address", default=os.environ.get("TELEROBOT_RDT_ADDRESS", ""),
+                        help=f"host[:port] of the Net F/T (port {RDT_PORT} by default; "
+                             "env TELEROBOT_RDT_ADDRESS)")
+    parser.add_argument("--counts-per-force", type=float, default=1e6,
+                        help="the Net F/T's counts per newton (its calibration page)")
+    parser.add_argument("--counts-per-torque", type=float, default=1e6,
+                        help="the Net F/T's counts per newton-metre")
+    parser.add_argument("--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
+                        help=f"the world's shared-memory segment (env {SHM_NAME_ENV})")
+
+
+def build(args: argparse.Namespace) -> ForceSensorService:
+    if args.sensor == "rdt":
+        if not args.rdt_address:
+            raise SystemExit("--sensor rdt needs --rdt-address host[:port]")
+        host, _, port = args.rdt_address.partition(":")
+
+        def wrench_link():
+            return RdtWrenchLink(host, int(port or RDT_PORT), args.counts_per_force,
+                                 args.counts_per_torque)
+    else:
+        def wrench_link():
+            return SharedMemoryWrenchLink(args.shm_name)
+
+    core = ForceSensorCore(wrench_link, lambda: SharedMemoryArmLink(args.shm_name))
+    return ForceSensorService(core)
 
 
 if __name__ == "__main__":
-    raise SystemExit(run_service("force_sensor", "ForceSensor: the wrist F/T sensor.", build))
+    raise SystemExit(run_service("force_sensor", "ForceSensor: the wrist F/T sensor.", build,
+                                 add_arguments=_add_arguments))

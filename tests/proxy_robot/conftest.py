@@ -15,13 +15,6 @@ from services.world.shm_link import SharedMemoryArmLink
 from tests.world.conftest import World, _cleanup, start_world
 
 
-@pytest.fixture(scope="package")
-def world() -> Iterator[World]:
-    world = start_world()
-    yield world
-    _cleanup(world)
-
-
 @pytest.fixture
 def core(world) -> Iterator[ProxyRobotCore]:
     """A fresh proxy on the shared world; leaves the world un-latched for the next test."""

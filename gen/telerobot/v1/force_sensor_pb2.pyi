@@ -120,18 +120,20 @@ class StreamWrenchResponse(_message.Message):
     def __init__(self, samples: _Optional[_Iterable[_Union[WrenchSample, _Mapping]]] = ..., dropped_count: _Optional[int] = ...) -> None: ...
 
 class SensorConfig(_message.Message):
-    __slots__ = ("period", "threshold_force_n", "threshold_torque_nm", "thread_priority", "reading")
+    __slots__ = ("period", "threshold_force_n", "threshold_torque_nm", "thread_priority", "reading", "flange_to_tool")
     PERIOD_FIELD_NUMBER: _ClassVar[int]
     THRESHOLD_FORCE_N_FIELD_NUMBER: _ClassVar[int]
     THRESHOLD_TORQUE_NM_FIELD_NUMBER: _ClassVar[int]
     THREAD_PRIORITY_FIELD_NUMBER: _ClassVar[int]
     READING_FIELD_NUMBER: _ClassVar[int]
+    FLANGE_TO_TOOL_FIELD_NUMBER: _ClassVar[int]
     period: _duration_pb2.Duration
     threshold_force_n: float
     threshold_torque_nm: float
     thread_priority: SensorThreadPriority
     reading: bool
-    def __init__(self, period: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., threshold_force_n: _Optional[float] = ..., threshold_torque_nm: _Optional[float] = ..., thread_priority: _Optional[_Union[SensorThreadPriority, str]] = ..., reading: _Optional[bool] = ...) -> None: ...
+    flange_to_tool: _types_pb2.Pose
+    def __init__(self, period: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., threshold_force_n: _Optional[float] = ..., threshold_torque_nm: _Optional[float] = ..., thread_priority: _Optional[_Union[SensorThreadPriority, str]] = ..., reading: _Optional[bool] = ..., flange_to_tool: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ...) -> None: ...
 
 class WrenchSample(_message.Message):
     __slots__ = ("sequence", "sample_time", "wrench")

@@ -1,0 +1,247 @@
+"""ForceSensorCore: the sampling thread and its subscribers, with no transport code.
+
+Every `period` (TimerValue) the thread reads the sensor, turns the reading into the contact
+wrench at the tool point (wrench_model.py), keeps it as the latest sample, and publishes it to
+the subscribers when it changed by more than the sensor's ThresholdValue. Each subscriber then
+applies its own decimation, change filter and batch size (subscribers.py).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import threading
+import time
+from collections.abc import Callable
+
+import numpy as np
+import pinocchio as pin
+
+from services.common.fanout import Fanout
+from services.force_sensor.settings import SensorSettings, ThreadPriority, exceeds
+from services.force_sensor.subscribers import StreamOptions, WrenchReading, WrenchSubscription
+from services.force_sensor.wrench_model import ContactWrench, Payload, contact_wrench
+from services.robot_model import puma560
+from services.robot_model.kinematics import PumaKinematics
+from services.runtime.errors import (
+    FailedPrecondition,
+    InvalidArgument,
+    ResourceExhausted,
+    Unavailable,
+)
+from services.world.link import ArmLink, WrenchLink
+from services.world.realtime import RealtimeLoop
+
+log = logging.getLogger(__name__)
+
+MAX_TARE_S = 1.0
+MAX_SUBSCRIBERS = 128
+STOP_TIMEOUT_S = 2.0
+
+
+def default_payload() -> Payload:
+    """The shipped peg: a uniform cylinder along the sensor's z axis."""
+    tool = puma560.TOOL
+    return Payload(tool.mass, np.array([0.0, 0.0, tool.length / 2.0]))
+
+
+class ForceSensorCore:
+    """The wrist sensor. Thread-safe."""
+
+    def __init__(self, wrench_link_factory: Callable[[], WrenchLink],
+                 arm_link_factory: Callable[[], ArmLink] | None,
+                 payload: Payload | None = None):
+        self._wrench_link_factory = wrench_link_factory
+        self._arm_link_factory = arm_link_factory
+        self._payload = payload or default_payload()
+        self._kinematics = PumaKinematics()  # used by the sampling thread only
+        home = self._kinematics.home_q  # any configuration: both frames ride on the last link
+        self._flange_to_sensor = self._kinematics.flange_pose(home).actInv(
+            self._kinematics.frame_pose(home, puma560.FT_SITE))
+        self._flange_to_tool = self._kinematics.flange_T_tool
+        self._sensor_to_tool = self._flange_to_sensor.actInv(self._flange_to_tool)
+        self._lock = threading.Lock()
+        self._settings = SensorSettings()
+        self._bias: ContactWrench | None = None
+        self._sequence = 0
+        self._latest: WrenchReading | None = None
+        self._last_published: WrenchReading | None = None
+        self._failure: str | None = None
+        self._wrench_link: WrenchLink | None = None
+        self._arm_link: ArmLink | None = None
+        self._thread: threading.Thread | None = None
+        self._thread_id: int | None = None
+        self._stop = threading.Event()
+        self._loop: RealtimeLoop | None = None
+        self.readings: Fanout[WrenchReading] = Fanout()
+        self._unbiased: Fanout[ContactWrench] = Fanout()  # only while a tare averages
+
+    # -- configuration ----------------------------------------------------------------------
+
+    @property
+    def settings(self) -> SensorSettings:
+        return self._settings
+
+    @property
+    def reading(self) -> bool:
+        return self._thread is not None and self._thread.is_alive()
+
+    @property
+    def failure(self) -> str | None:
+        """Why sampling stopped on its own, until the next StartReading."""
+        return self._failure
+
+    def configure(self, settings: SensorSettings) -> SensorSettings:
+        """Replace the settings, all or none; a new period restarts the sampling loop."""
+        settings.validated()
+        with self._lock:
+            previous, self._settings = self._settings, settings
+            running = self.reading
+        if running and settings.period_s != previous.period_s:
+            self._stop_thread()
+            self._start_thread()
+        elif running and settings.thread_priority != previous.thread_priority:
+            self._apply_priority()
+        return settings
+
+    @property
+    def tool_frame(self) -> pin.SE3:
+        """The tool frame in the flange frame, in which samples are expressed."""
+        return pin.SE3(self._flange_to_tool)
+
+    def set_tool_frame(self, flange_to_tool: pin.SE3) -> None:
+        with self._lock:
+            self._flange_to_tool = pin.SE3(flange_to_tool)
+            self._sensor_to_tool = self._flange_to_sensor.actInv(self._flange_to_tool)
+            self._bias = None  # a bias taken about another tool point means nothing now
+
+    # -- reading ----------------------------------------------------------------------------
+
+    def start_reading(self) -> SensorSettings:
+        """Open the links if needed and start sampling. Unavailable if the sensor is down."""
+        with self._lock:
+            if self.reading:
+                return self._settings
+            self._failure = None
+            if self._wrench_link is None:
+                self._wrench_link = self._wrench_link_factory()
+            if self._arm_link is None and self._arm_link_factory is not None:
+                self._arm_link = self._arm_link_factory()
+            self._sample_once()  # fail here, in the caller, if the sensor does not answer
+        self._start_thread()
+        return self._settings
+
+    def stop_reading(self) -> int:
+        """Stop sampling; returns the last sequence number taken."""
+        self._stop_thread()
+        return self._sequence
+
+    def latest(self) -> WrenchReading:
+        if self._failure:
+            raise Unavailable(f"the sensor stopped: {self._failure}; StartReading again",
+                              reason="SENSOR_DOWN")
+        if self._latest is None:
+            raise FailedPrecondition("no sample yet: call StartReading first",
+                                     reason="NOT_READING")
+        return self._latest
+
+    def tare(self, duration_s: float) -> tuple[ContactWrench, int]:
+        """Average the contact wrench over duration_s (0: the next sample) and subtract it from
+        now on. Returns (bias, samples averaged)."""
+        if not 0 <= duration_s <= MAX_TARE_S:
+            raise InvalidArgument(f"tare duration must be 0..{MAX_TARE_S} s", reason="BAD_TARE")
+        if not self.reading:
+            raise FailedPrecondition("the sensor is not reading: call StartReading first",
+                                     reason="NOT_READING")
+        samples: list[ContactWrench] = []
+        deadline = time.monotonic() + duration_s
+        with self._unbiased.subscribe(capacity=10_000) as unbiased:
+            while not samples or time.monotonic() < deadline:
+                sample = unbiased.get(0.5)
+                if sample is None:
+                    raise Unavailable("no samples arrived while taring", reason="SENSOR_DOWN")
+                samples.append(sample)
+        bias = ContactWrench(np.mean([s.force_n for s in samples], axis=0),
+                             np.mean([s.torque_nm for s in samples], axis=0))
+        with self._lock:
+            self._bias = bias
+        return bias, len(samples)
+
+    def subscribe(self, options: StreamOptions) -> WrenchSubscription:
+        if self.readings.subscriber_count >= MAX_SUBSCRIBERS:
+            raise ResourceExhausted(f"{MAX_SUBSCRIBERS} subscribers already; retry later",
+                                    reason="TOO_MANY_SUBSCRIBERS")
+        return self.readings.attach(WrenchSubscription(self.readings, options))
+
+    def close(self) -> None:
+        self._stop_thread()
+        self.readings.close_all()
+        for link in (self._wrench_link, self._arm_link):
+            if link is not None:
+                link.close()
+        self._wrench_link = self._arm_link = None
+
+    # -- the sampling thread ----------------------------------------------------------------
+
+    def _start_thread(self) -> None:
+        self._stop = threading.Event()
+        self._loop = RealtimeLoop(self._step, period_s=self._settings.period_s,
+                                  max_catch_up_s=0.0)  # a late sample is skipped, not replayed
+        self._thread = threading.Thread(target=self._run, args=(self._loop, self._stop),
+                                        name="force-sampler", daemon=True)
+        self._thread.start()
+
+    def _stop_thread(self) -> None:
+        self._stop.set()
+        thread = self._thread
+        if thread is not None and thread is not threading.current_thread():
+            thread.join(STOP_TIMEOUT_S)
+
+    def _run(self, loop: RealtimeLoop, stop: threading.Event) -> None:
+        self._thread_id = threading.get_native_id()
+        self._apply_priority()
+        try:
+            loop.run(stop)
+        except Unavailable as exc:
+            self._failure = exc.message
+            log.error("sampling stopped: %s", exc.message)
+        log.info("sampling loop: %s", loop.stats().describe())
+
+    def _apply_priority(self) -> None:
+        priority = self._settings.thread_priority
+        if self._thread_id is None:
+            return
+        try:
+            os.setpriority(os.PRIO_PROCESS, self._thread_id, priority.value)
+        except PermissionError:
+            log.warning("no privilege for thread priority %s; the sampler stays NORMAL",
+                        priority.name)
+            os.setpriority(os.PRIO_PROCESS, self._thread_id, ThreadPriority.NORMAL.value)
+
+    def _step(self) -> None:
+        reading = self._sample_once()
+        settings = self._settings
+        last = self._last_published
+        if last is None or exceeds(float(np.max(np.abs(reading.force_n - last.force_n))),
+                                   float(np.max(np.abs(reading.torque_nm - last.torque_nm))),
+                                   settings.threshold_force_n, settings.threshold_torque_nm):
+            self._last_published = reading
+            self.readings.publish(reading)
+
+    def _sample_once(self) -> WrenchReading:
+        raw = self._wrench_link.read_wrench()
+        rotation = np.eye(3)
+        if self._arm_link is not None:
+            q = self._arm_link.read_arm().joint_positions_rad
+            rotation = self._kinematics.frame_pose(q, puma560.FT_SITE).rotation
+        sensor_to_tool, bias = self._sensor_to_tool, self._bias
+        if self._unbiased.subscriber_count:
+            self._unbiased.publish(contact_wrench(raw.force_n, raw.torque_nm, rotation,
+                                                  sensor_to_tool, self._payload))
+        wrench = contact_wrench(raw.force_n, raw.torque_nm, rotation, sensor_to_tool,
+                                self._payload, bias)
+        self._sequence += 1
+        reading = WrenchReading(self._sequence, raw.sample_time_ns, wrench.force_n,
+                                wrench.torque_nm)
+        self._latest = reading
+        return reading

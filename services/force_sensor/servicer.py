@@ -1,0 +1,108 @@
+"""ForceSensor over gRPC: reads requests, calls ForceSensorCore, converts answers and errors."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from google.protobuf import duration_pb2
+
+from services.common import convert
+from services.force_sensor.core import ForceSensorCore
+from services.force_sensor.settings import ThreadPriority
+from services.force_sensor.subscribers import StreamOptions, WrenchReading
+from services.runtime.errors import InvalidArgument, Unavailable
+from telerobot.v1 import force_sensor_pb2 as pb
+from telerobot.v1 import force_sensor_pb2_grpc
+
+STREAM_POLL_S = 0.1  # how often an idle stream checks that its client is still there
+_MASK_PATHS = {"period", "threshold_force_n", "threshold_torque_nm", "thread_priority",
+               "flange_to_tool", "reading"}
+
+
+def reading_to_proto(reading: WrenchReading) -> pb.WrenchSample:
+    return pb.WrenchSample(sequence=reading.sequence,
+                           sample_time=convert.timestamp(reading.sample_time_ns),
+                           wrench=convert.wrench_to_proto(reading.force_n, reading.torque_nm))
+
+
+def priority_from_proto(value: int) -> ThreadPriority:
+    name = pb.SensorThreadPriority.Name(value).removeprefix("SENSOR_THREAD_PRIORITY_")
+    return ThreadPriority[name]
+
+
+class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
+    def __init__(self, core: ForceSensorCore):
+        self._core = core
+
+    def _config(self) -> pb.SensorConfig:
+        settings = self._core.settings
+        period = duration_pb2.Duration()
+        period.FromNanoseconds(round(settings.period_s * 1e9))
+        return pb.SensorConfig(
+            period=period, threshold_force_n=settings.threshold_force_n,
+            threshold_torque_nm=settings.threshold_torque_nm,
+            thread_priority=pb.SensorThreadPriority.Value(
+                f"SENSOR_THREAD_PRIORITY_{settings.thread_priority.name}"),
+            reading=self._core.reading,
+            flange_to_tool=convert.pose_to_proto(self._core.tool_frame))
+
+    def StartReading(self, request, context):
+        self._core.start_reading()
+        return pb.StartReadingResponse(config=self._config())
+
+    def StopReading(self, request, context):
+        return pb.StopReadingResponse(last_sequence=self._core.stop_reading())
+
+    def Tare(self, request, context):
+        bias, count = self._core.tare(convert.seconds(request.duration))
+        return pb.TareResponse(bias=convert.wrench_to_proto(bias.force_n, bias.torque_nm),
+                               sample_count=count)
+
+    def GetSensorConfig(self, request, context):
+        return pb.GetSensorConfigResponse(config=self._config())
+
+    def SetSensorConfig(self, request, context):
+        paths = set(request.update_mask.paths) or _MASK_PATHS
+        unknown = paths - _MASK_PATHS
+        if unknown:
+            raise InvalidArgument(f"unknown update_mask paths {sorted(unknown)}; use "
+                                  f"{sorted(_MASK_PATHS)}", reason="BAD_MASK")
+        config, changes = request.config, {}
+        if "period" in paths and config.HasField("period"):
+            changes["period_s"] = convert.seconds(config.period)
+        for name in ("threshold_force_n", "threshold_torque_nm"):
+            if name in paths:
+                changes[name] = getattr(config, name)
+        if "thread_priority" in paths and config.thread_priority:
+            if config.thread_priority not in pb.SensorThreadPriority.values():
+                raise InvalidArgument(f"unknown thread_priority {config.thread_priority}",
+                                      reason="BAD_PRIORITY")
+            changes["thread_priority"] = priority_from_proto(config.thread_priority)
+        tool_frame = None
+        if "flange_to_tool" in paths and config.HasField("flange_to_tool"):
+            tool_frame = convert.pose_from_proto(config.flange_to_tool, "flange_to_tool")
+        # Validate everything before changing anything: all or none.
+        settings = dataclasses.replace(self._core.settings, **changes).validated()
+        self._core.configure(settings)
+        if tool_frame is not None:
+            self._core.set_tool_frame(tool_frame)
+        return pb.SetSensorConfigResponse(config=self._config())
+
+    def GetWrench(self, request, context):
+        return pb.GetWrenchResponse(sample=reading_to_proto(self._core.latest()))
+
+    def StreamWrench(self, request, context):
+        options = StreamOptions.from_request(
+            request.decimation, request.threshold_force_n, request.threshold_torque_nm,
+            request.batch_size, request.queue_capacity)
+        with self._core.subscribe(options) as subscription:
+            while context.is_active():
+                batch = subscription.get(STREAM_POLL_S)
+                if batch is None:
+                    if self._core.failure:
+                        raise Unavailable(f"the sensor stopped: {self._core.failure}; "
+                                          "StartReading again, then resubscribe",
+                                          reason="SENSOR_DOWN")
+                    continue
+                yield pb.StreamWrenchResponse(samples=[reading_to_proto(r) for r in batch],
+                                              dropped_count=subscription.dropped)
