@@ -25,6 +25,7 @@ import pinocchio as pin
 
 from services.common.fanout import Fanout
 from services.common.geometry import finite_vector, rotation_angle
+from services.proxy_robot.interpolator import SetpointInterpolator
 from services.proxy_robot.status import (
     MOTION_STATUSES,
     Moved,
@@ -58,6 +59,9 @@ ARRIVAL_SPEED_RAD_PER_S = 2e-2
 STATE_PERIOD_S = 0.002
 TOOL_OFFSET_LIMIT_M = 1.0
 RELEASE_TIMEOUT_S = 0.2  # the hardware applies a release within a servo period or two
+# Hold aims where the arm stops braking this hard: the servo's acceleration cap in the
+# simulation (services/world/sim.py); a real controller brakes on its own terms.
+HOLD_DECELERATION_RAD_PER_S2 = 10.0
 
 
 class ProxyRobotCore:
@@ -77,6 +81,7 @@ class ProxyRobotCore:
         self._change_time_ns = time.time_ns()
         self._initialized = False
         self._link: ArmLink | None = None
+        self._interpolator: SetpointInterpolator | None = None
         self._target_q: np.ndarray | None = None
         self._latest: RobotSnapshot | None = None
         self._event_sequence = 0
@@ -119,6 +124,8 @@ class ProxyRobotCore:
             sample, self._latest = self._sample(link, self._monitor_kinematics)
             self._link = link
             self._target_q = sample.joint_targets_rad.copy()
+            self._interpolator = SetpointInterpolator(link.write_target, self._target_q,
+                                                      self._on_setpoint_error)
             self._initialized = False
             self._start_monitor()
             if sample.hold_latched:
@@ -139,9 +146,7 @@ class ProxyRobotCore:
                        else "it is already initialized"),
                     reason="BAD_STATUS")
             self._set_status(RobotStatus.INITIALIZING, "initializing")
-            link = self._require_link()
-            self._target_q = link.read_arm().joint_positions_rad.copy()
-            link.write_target(self._target_q)
+            self._hold_at(self._require_link().read_arm().joint_positions_rad)
             self._initialized = True
             self._set_status(RobotStatus.READY, "initialized; holding position")
             return self._status
@@ -152,7 +157,7 @@ class ProxyRobotCore:
             link = self._link
             if link is not None:
                 try:
-                    link.write_target(link.read_arm().joint_positions_rad)
+                    self._hold_at(link.read_arm().joint_positions_rad)
                 except Unavailable:
                     pass  # nothing to hold: the hardware is already gone
         self._drop_link("disconnected")
@@ -168,12 +173,15 @@ class ProxyRobotCore:
         with self._lock:
             self._monitor_stop.set()
             link, self._link = self._link, None
+            interpolator, self._interpolator = self._interpolator, None
             self._initialized = False
             self._latest = None
             self._set_status(RobotStatus.NOT_CONNECTED, reason)
         monitor = self._monitor
         if monitor is not None and monitor is not threading.current_thread():
             monitor.join(1.0)
+        if interpolator is not None:
+            interpolator.close()
         if link is not None:
             link.close()
 
@@ -331,10 +339,11 @@ class ProxyRobotCore:
             return self._target_q.copy()
 
     def _command(self, target: np.ndarray) -> np.ndarray:
-        """Hand a target to the servo (unless the status changed meanwhile)."""
+        """Hand a target to the servo, interpolated (unless the status changed meanwhile)."""
         with self._lock:
             self._motion_base()  # an e-stop may have landed during the IK
-            self._require_link().write_target(target)
+            self._require_link()
+            self._interpolator.go(target)
             self._target_q = target.copy()
             self._set_status(RobotStatus.MOVING, "moving to a new target")
             return target.copy()
@@ -351,6 +360,12 @@ class ProxyRobotCore:
             return RobotStatus.NOT_CONNECTED, time.time_ns()
         link.hold()  # before any lock: nothing may delay the stop
         stop_time_ns = time.time_ns()
+        interpolator = self._interpolator
+        if interpolator is not None:
+            try:
+                interpolator.stop(link.read_arm().joint_targets_rad)
+            except Unavailable:
+                pass  # the monitor reports the lost link
         with self._lock:
             self._set_status(RobotStatus.ESTOPPED, f"emergency stop: {reason or 'no reason given'}")
             return self._status, stop_time_ns
@@ -363,11 +378,34 @@ class ProxyRobotCore:
                 return self._status
             link.release_hold()
             self._await_release(link)
-            self._target_q = link.read_arm().joint_positions_rad.copy()
-            link.write_target(self._target_q)
+            self._hold_at(link.read_arm().joint_positions_rad)
             after = RobotStatus.READY if self._initialized else RobotStatus.CONNECTED
             self._set_status(after, "reset; holding position")
             return self._status
+
+    def hold(self) -> np.ndarray:
+        """Stop where the arm can, without latching: the target becomes the point where braking
+        at the servo's acceleration cap brings it to rest. Motion commands stay accepted.
+        Returns the new target."""
+        with self._lock:
+            link = self._require_link()
+            sample = link.read_arm()
+            speed = sample.joint_velocities_rad_per_s
+            braking = np.sign(speed) * speed**2 / (2.0 * HOLD_DECELERATION_RAD_PER_S2)
+            lower = self._move_kinematics.lower_limits
+            upper = self._move_kinematics.upper_limits
+            target = np.clip(sample.joint_positions_rad + braking, lower, upper)
+            self._hold_at(target)  # if MOVING, arrival there ends it with a moved event
+            return target.copy()
+
+    def _hold_at(self, target: np.ndarray) -> None:
+        """Send the servo straight to `target`, dropping any segment in progress."""
+        self._interpolator.stop(target)
+        self._require_link().write_target(target)
+        self._target_q = np.asarray(target, float).copy()
+
+    def _on_setpoint_error(self, error: Exception) -> None:
+        self._emit(RobotErrorRaised("SETPOINT_REFUSED", str(error)))
 
     @staticmethod
     def _await_release(link: ArmLink) -> None:

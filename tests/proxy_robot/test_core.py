@@ -12,6 +12,7 @@ import pytest
 from services.proxy_robot import core as core_module
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.status import Moved, RobotErrorRaised, RobotStatus, StatusChanged
+from services.robot_model.puma560 import HOME_Q
 from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.shm_link import SharedMemoryArmLink
 
@@ -280,3 +281,35 @@ def test_tool_frame_is_used_for_tool_poses(ready):
         ready.snapshot().tool_pose.translation - ready.snapshot().flange_pose.translation), 0.2)
     with pytest.raises(InvalidArgument, match="at most 1.0 m"):
         ready.set_tool_frame(pin.SE3(np.eye(3), np.array([0, 0, 1.5])))
+
+
+def test_a_50_hz_command_stream_is_spread_over_the_servo_rate(ready, world):
+    """Each 20 ms command becomes a straight segment of 1 ms setpoints, so the servo's target
+    moves every period instead of jumping every 20 ms."""
+    link = SharedMemoryArmLink(world.shm_name)  # read-only here: the proxy is the driver
+    try:
+        seen = []
+        for _ in range(10):
+            ready.move_joints([0.004, 0, 0, 0, 0, 0])
+            deadline = time.monotonic() + 0.02
+            while time.monotonic() < deadline:
+                seen.append(link.read_arm().joint_targets_rad[0])
+                time.sleep(0.0005)
+    finally:
+        link.close()
+    distinct = np.unique(np.round(seen, 9))
+    assert len(distinct) > 60  # ~20 setpoints per command, not one
+    steps = np.diff(distinct)
+    assert steps.max() < 0.002  # no step anywhere near a whole command's 0.004 rad
+    wait_ready(ready)
+
+
+def test_hold_stops_without_latching(ready):
+    ready.move_joints([0.5, 0, 0, 0, 0, 0])
+    time.sleep(0.15)
+    target = ready.hold()
+    wait_ready(ready)
+    np.testing.assert_allclose(ready.snapshot().joint_positions_rad, target, atol=3e-3)
+    assert abs(target[0] - ready._target_q[0]) < 1e-12  # noqa: SLF001
+    assert target[0] - HOME_Q[0] < 0.45  # it did not go on to the old target
+    ready.move_joints([0.01, 0, 0, 0, 0, 0])  # and motion is accepted at once

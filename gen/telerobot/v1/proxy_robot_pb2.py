@@ -28,7 +28,7 @@ from telerobot.v1 import options_pb2 as telerobot_dot_v1_dot_options__pb2
 from telerobot.v1 import types_pb2 as telerobot_dot_v1_dot_types__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1etelerobot/v1/proxy_robot.proto\x12\x0ctelerobot.v1\x1a\x1egoogle/protobuf/duration.proto\x1a\x1fgoogle/protobuf/timestamp.proto\x1a\x1atelerobot/v1/options.proto\x1a\x18telerobot/v1/types.proto\"\x10\n\x0e\x43onnectRequest\"<\n\x0f\x43onnectResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\"\x13\n\x11InitializeRequest\"?\n\x12InitializeResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\"\x13\n\x11\x44isconnectRequest\"?\n\x12\x44isconnectResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\"\x12\n\x10GetStatusRequest\"\x7f\n\x11GetStatusResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12\x0e\n\x06reason\x18\x02 \x01(\t\x12/\n\x0b\x63hange_time\x18\x03 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\"\x11\n\x0fGetStateRequest\";\n\x10GetStateResponse\x12\'\n\x05state\x18\x01 \x01(\x0b\x32\x18.telerobot.v1.RobotState\"\x15\n\x13GetToolFrameRequest\"B\n\x14GetToolFrameResponse\x12*\n\x0e\x66lange_to_tool\x18\x01 \x01(\x0b\x32\x12.telerobot.v1.Pose\"A\n\x13SetToolFrameRequest\x12*\n\x0e\x66lange_to_tool\x18\x01 \x01(\x0b\x32\x12.telerobot.v1.Pose\"B\n\x14SetToolFrameResponse\x12*\n\x0e\x66lange_to_tool\x18\x01 \x01(\x0b\x32\x12.telerobot.v1.Pose\"A\n\x1cMoveJointsIncrementalRequest\x12!\n\x19\x64\x65lta_joint_positions_rad\x18\x01 \x03(\x01\"q\n\x1dMoveJointsIncrementalResponse\x12\"\n\x1atarget_joint_positions_rad\x18\x01 \x03(\x01\x12,\n\x10target_tool_pose\x18\x02 \x01(\x0b\x32\x12.telerobot.v1.Pose\"\xae\x01\n\x1fMoveCartesianIncrementalRequest\x12/\n\x10\x64\x65lta_position_m\x18\x01 \x01(\x0b\x32\x15.telerobot.v1.Vector3\x12-\n\x0e\x64\x65lta_rotation\x18\x02 \x01(\x0b\x32\x15.telerobot.v1.Matrix3\x12+\n\x05\x66rame\x18\x03 \x01(\x0e\x32\x1c.telerobot.v1.ReferenceFrame\"\x8e\x01\n MoveCartesianIncrementalResponse\x12\"\n\x1atarget_joint_positions_rad\x18\x01 \x03(\x01\x12,\n\x10target_tool_pose\x18\x02 \x01(\x0b\x32\x12.telerobot.v1.Pose\x12\x18\n\x10\x61pplied_fraction\x18\x03 \x01(\x01\"?\n\x12StreamStateRequest\x12)\n\x06period\x18\x01 \x01(\x0b\x32\x19.google.protobuf.Duration\">\n\x13StreamStateResponse\x12\'\n\x05state\x18\x01 \x01(\x0b\x32\x18.telerobot.v1.RobotState\"\x80\x01\n\x18StreamRobotEventsRequest\x12+\n\x05kinds\x18\x01 \x03(\x0e\x32\x1c.telerobot.v1.RobotEventKind\x12\x37\n\x14\x64\x61ta_received_period\x18\x02 \x01(\x0b\x32\x19.google.protobuf.Duration\"\xb7\x02\n\x19StreamRobotEventsResponse\x12\x10\n\x08sequence\x18\x01 \x01(\x03\x12.\n\nevent_time\x18\x02 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\x12\x38\n\rdata_received\x18\x03 \x01(\x0b\x32\x1f.telerobot.v1.DataReceivedEventH\x00\x12.\n\x05\x65rror\x18\x04 \x01(\x0b\x32\x1d.telerobot.v1.RobotErrorEventH\x00\x12)\n\x05moved\x18\x05 \x01(\x0b\x32\x18.telerobot.v1.MovedEventH\x00\x12:\n\x0estatus_changed\x18\x06 \x01(\x0b\x32 .telerobot.v1.StatusChangedEventH\x00\x42\x07\n\x05\x65vent\"<\n\x11\x44\x61taReceivedEvent\x12\'\n\x05state\x18\x01 \x01(\x0b\x32\x18.telerobot.v1.RobotState\"2\n\x0fRobotErrorEvent\x12\x0e\n\x06reason\x18\x01 \x01(\t\x12\x0f\n\x07message\x18\x02 \x01(\t\"P\n\nMovedEvent\x12\x1b\n\x13joint_positions_rad\x18\x01 \x03(\x01\x12%\n\ttool_pose\x18\x02 \x01(\x0b\x32\x12.telerobot.v1.Pose\"\x83\x01\n\x12StatusChangedEvent\x12\x32\n\x0fprevious_status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12)\n\x06status\x18\x02 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12\x0e\n\x06reason\x18\x03 \x01(\t\"&\n\x14\x45mergencyStopRequest\x12\x0e\n\x06reason\x18\x01 \x01(\t\"q\n\x15\x45mergencyStopResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12-\n\tstop_time\x18\x02 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\"\x0e\n\x0cResetRequest\":\n\rResetResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus*\xb3\x01\n\x0eRobotEventKind\x12 \n\x1cROBOT_EVENT_KIND_UNSPECIFIED\x10\x00\x12\"\n\x1eROBOT_EVENT_KIND_DATA_RECEIVED\x10\x01\x12\x1a\n\x16ROBOT_EVENT_KIND_ERROR\x10\x02\x12\x1a\n\x16ROBOT_EVENT_KIND_MOVED\x10\x03\x12#\n\x1fROBOT_EVENT_KIND_STATUS_CHANGED\x10\x04\x32\xd2\t\n\nProxyRobot\x12L\n\x07\x43onnect\x12\x1c.telerobot.v1.ConnectRequest\x1a\x1d.telerobot.v1.ConnectResponse\"\x04\xc8\xf3\x18\x03\x12U\n\nInitialize\x12\x1f.telerobot.v1.InitializeRequest\x1a .telerobot.v1.InitializeResponse\"\x04\xc8\xf3\x18\x03\x12U\n\nDisconnect\x12\x1f.telerobot.v1.DisconnectRequest\x1a .telerobot.v1.DisconnectResponse\"\x04\xc8\xf3\x18\x03\x12R\n\tGetStatus\x12\x1e.telerobot.v1.GetStatusRequest\x1a\x1f.telerobot.v1.GetStatusResponse\"\x04\xc8\xf3\x18\x02\x12O\n\x08GetState\x12\x1d.telerobot.v1.GetStateRequest\x1a\x1e.telerobot.v1.GetStateResponse\"\x04\xc8\xf3\x18\x02\x12[\n\x0cGetToolFrame\x12!.telerobot.v1.GetToolFrameRequest\x1a\".telerobot.v1.GetToolFrameResponse\"\x04\xc8\xf3\x18\x02\x12[\n\x0cSetToolFrame\x12!.telerobot.v1.SetToolFrameRequest\x1a\".telerobot.v1.SetToolFrameResponse\"\x04\xc8\xf3\x18\x03\x12v\n\x15MoveJointsIncremental\x12*.telerobot.v1.MoveJointsIncrementalRequest\x1a+.telerobot.v1.MoveJointsIncrementalResponse\"\x04\xc8\xf3\x18\x02\x12\x7f\n\x18MoveCartesianIncremental\x12-.telerobot.v1.MoveCartesianIncrementalRequest\x1a..telerobot.v1.MoveCartesianIncrementalResponse\"\x04\xc8\xf3\x18\x02\x12Z\n\x0bStreamState\x12 .telerobot.v1.StreamStateRequest\x1a!.telerobot.v1.StreamStateResponse\"\x04\xc8\xf3\x18\x04\x30\x01\x12l\n\x11StreamRobotEvents\x12&.telerobot.v1.StreamRobotEventsRequest\x1a\'.telerobot.v1.StreamRobotEventsResponse\"\x04\xc8\xf3\x18\x04\x30\x01\x12^\n\rEmergencyStop\x12\".telerobot.v1.EmergencyStopRequest\x1a#.telerobot.v1.EmergencyStopResponse\"\x04\xc8\xf3\x18\x01\x12\x46\n\x05Reset\x12\x1a.telerobot.v1.ResetRequest\x1a\x1b.telerobot.v1.ResetResponse\"\x04\xc8\xf3\x18\x02\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1etelerobot/v1/proxy_robot.proto\x12\x0ctelerobot.v1\x1a\x1egoogle/protobuf/duration.proto\x1a\x1fgoogle/protobuf/timestamp.proto\x1a\x1atelerobot/v1/options.proto\x1a\x18telerobot/v1/types.proto\"\x10\n\x0e\x43onnectRequest\"<\n\x0f\x43onnectResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\"\x13\n\x11InitializeRequest\"?\n\x12InitializeResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\"\x13\n\x11\x44isconnectRequest\"?\n\x12\x44isconnectResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\"\x12\n\x10GetStatusRequest\"\x7f\n\x11GetStatusResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12\x0e\n\x06reason\x18\x02 \x01(\t\x12/\n\x0b\x63hange_time\x18\x03 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\"\x11\n\x0fGetStateRequest\";\n\x10GetStateResponse\x12\'\n\x05state\x18\x01 \x01(\x0b\x32\x18.telerobot.v1.RobotState\"\x15\n\x13GetToolFrameRequest\"B\n\x14GetToolFrameResponse\x12*\n\x0e\x66lange_to_tool\x18\x01 \x01(\x0b\x32\x12.telerobot.v1.Pose\"A\n\x13SetToolFrameRequest\x12*\n\x0e\x66lange_to_tool\x18\x01 \x01(\x0b\x32\x12.telerobot.v1.Pose\"B\n\x14SetToolFrameResponse\x12*\n\x0e\x66lange_to_tool\x18\x01 \x01(\x0b\x32\x12.telerobot.v1.Pose\"A\n\x1cMoveJointsIncrementalRequest\x12!\n\x19\x64\x65lta_joint_positions_rad\x18\x01 \x03(\x01\"q\n\x1dMoveJointsIncrementalResponse\x12\"\n\x1atarget_joint_positions_rad\x18\x01 \x03(\x01\x12,\n\x10target_tool_pose\x18\x02 \x01(\x0b\x32\x12.telerobot.v1.Pose\"\xae\x01\n\x1fMoveCartesianIncrementalRequest\x12/\n\x10\x64\x65lta_position_m\x18\x01 \x01(\x0b\x32\x15.telerobot.v1.Vector3\x12-\n\x0e\x64\x65lta_rotation\x18\x02 \x01(\x0b\x32\x15.telerobot.v1.Matrix3\x12+\n\x05\x66rame\x18\x03 \x01(\x0e\x32\x1c.telerobot.v1.ReferenceFrame\"\x8e\x01\n MoveCartesianIncrementalResponse\x12\"\n\x1atarget_joint_positions_rad\x18\x01 \x03(\x01\x12,\n\x10target_tool_pose\x18\x02 \x01(\x0b\x32\x12.telerobot.v1.Pose\x12\x18\n\x10\x61pplied_fraction\x18\x03 \x01(\x01\"\x1d\n\x0bHoldRequest\x12\x0e\n\x06reason\x18\x01 \x01(\t\"2\n\x0cHoldResponse\x12\"\n\x1atarget_joint_positions_rad\x18\x01 \x03(\x01\"?\n\x12StreamStateRequest\x12)\n\x06period\x18\x01 \x01(\x0b\x32\x19.google.protobuf.Duration\">\n\x13StreamStateResponse\x12\'\n\x05state\x18\x01 \x01(\x0b\x32\x18.telerobot.v1.RobotState\"\x80\x01\n\x18StreamRobotEventsRequest\x12+\n\x05kinds\x18\x01 \x03(\x0e\x32\x1c.telerobot.v1.RobotEventKind\x12\x37\n\x14\x64\x61ta_received_period\x18\x02 \x01(\x0b\x32\x19.google.protobuf.Duration\"\xb7\x02\n\x19StreamRobotEventsResponse\x12\x10\n\x08sequence\x18\x01 \x01(\x03\x12.\n\nevent_time\x18\x02 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\x12\x38\n\rdata_received\x18\x03 \x01(\x0b\x32\x1f.telerobot.v1.DataReceivedEventH\x00\x12.\n\x05\x65rror\x18\x04 \x01(\x0b\x32\x1d.telerobot.v1.RobotErrorEventH\x00\x12)\n\x05moved\x18\x05 \x01(\x0b\x32\x18.telerobot.v1.MovedEventH\x00\x12:\n\x0estatus_changed\x18\x06 \x01(\x0b\x32 .telerobot.v1.StatusChangedEventH\x00\x42\x07\n\x05\x65vent\"<\n\x11\x44\x61taReceivedEvent\x12\'\n\x05state\x18\x01 \x01(\x0b\x32\x18.telerobot.v1.RobotState\"2\n\x0fRobotErrorEvent\x12\x0e\n\x06reason\x18\x01 \x01(\t\x12\x0f\n\x07message\x18\x02 \x01(\t\"P\n\nMovedEvent\x12\x1b\n\x13joint_positions_rad\x18\x01 \x03(\x01\x12%\n\ttool_pose\x18\x02 \x01(\x0b\x32\x12.telerobot.v1.Pose\"\x83\x01\n\x12StatusChangedEvent\x12\x32\n\x0fprevious_status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12)\n\x06status\x18\x02 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12\x0e\n\x06reason\x18\x03 \x01(\t\"&\n\x14\x45mergencyStopRequest\x12\x0e\n\x06reason\x18\x01 \x01(\t\"q\n\x15\x45mergencyStopResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus\x12-\n\tstop_time\x18\x02 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\"\x0e\n\x0cResetRequest\":\n\rResetResponse\x12)\n\x06status\x18\x01 \x01(\x0e\x32\x19.telerobot.v1.RobotStatus*\xb3\x01\n\x0eRobotEventKind\x12 \n\x1cROBOT_EVENT_KIND_UNSPECIFIED\x10\x00\x12\"\n\x1eROBOT_EVENT_KIND_DATA_RECEIVED\x10\x01\x12\x1a\n\x16ROBOT_EVENT_KIND_ERROR\x10\x02\x12\x1a\n\x16ROBOT_EVENT_KIND_MOVED\x10\x03\x12#\n\x1fROBOT_EVENT_KIND_STATUS_CHANGED\x10\x04\x32\x97\n\n\nProxyRobot\x12L\n\x07\x43onnect\x12\x1c.telerobot.v1.ConnectRequest\x1a\x1d.telerobot.v1.ConnectResponse\"\x04\xc8\xf3\x18\x03\x12U\n\nInitialize\x12\x1f.telerobot.v1.InitializeRequest\x1a .telerobot.v1.InitializeResponse\"\x04\xc8\xf3\x18\x03\x12U\n\nDisconnect\x12\x1f.telerobot.v1.DisconnectRequest\x1a .telerobot.v1.DisconnectResponse\"\x04\xc8\xf3\x18\x03\x12R\n\tGetStatus\x12\x1e.telerobot.v1.GetStatusRequest\x1a\x1f.telerobot.v1.GetStatusResponse\"\x04\xc8\xf3\x18\x02\x12O\n\x08GetState\x12\x1d.telerobot.v1.GetStateRequest\x1a\x1e.telerobot.v1.GetStateResponse\"\x04\xc8\xf3\x18\x02\x12[\n\x0cGetToolFrame\x12!.telerobot.v1.GetToolFrameRequest\x1a\".telerobot.v1.GetToolFrameResponse\"\x04\xc8\xf3\x18\x02\x12[\n\x0cSetToolFrame\x12!.telerobot.v1.SetToolFrameRequest\x1a\".telerobot.v1.SetToolFrameResponse\"\x04\xc8\xf3\x18\x03\x12v\n\x15MoveJointsIncremental\x12*.telerobot.v1.MoveJointsIncrementalRequest\x1a+.telerobot.v1.MoveJointsIncrementalResponse\"\x04\xc8\xf3\x18\x02\x12\x7f\n\x18MoveCartesianIncremental\x12-.telerobot.v1.MoveCartesianIncrementalRequest\x1a..telerobot.v1.MoveCartesianIncrementalResponse\"\x04\xc8\xf3\x18\x02\x12\x43\n\x04Hold\x12\x19.telerobot.v1.HoldRequest\x1a\x1a.telerobot.v1.HoldResponse\"\x04\xc8\xf3\x18\x02\x12Z\n\x0bStreamState\x12 .telerobot.v1.StreamStateRequest\x1a!.telerobot.v1.StreamStateResponse\"\x04\xc8\xf3\x18\x04\x30\x01\x12l\n\x11StreamRobotEvents\x12&.telerobot.v1.StreamRobotEventsRequest\x1a\'.telerobot.v1.StreamRobotEventsResponse\"\x04\xc8\xf3\x18\x04\x30\x01\x12^\n\rEmergencyStop\x12\".telerobot.v1.EmergencyStopRequest\x1a#.telerobot.v1.EmergencyStopResponse\"\x04\xc8\xf3\x18\x01\x12\x46\n\x05Reset\x12\x1a.telerobot.v1.ResetRequest\x1a\x1b.telerobot.v1.ResetResponse\"\x04\xc8\xf3\x18\x02\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
@@ -53,6 +53,8 @@ if not _descriptor._USE_C_DESCRIPTORS:
   _globals['_PROXYROBOT'].methods_by_name['MoveJointsIncremental']._serialized_options = b'\310\363\030\002'
   _globals['_PROXYROBOT'].methods_by_name['MoveCartesianIncremental']._loaded_options = None
   _globals['_PROXYROBOT'].methods_by_name['MoveCartesianIncremental']._serialized_options = b'\310\363\030\002'
+  _globals['_PROXYROBOT'].methods_by_name['Hold']._loaded_options = None
+  _globals['_PROXYROBOT'].methods_by_name['Hold']._serialized_options = b'\310\363\030\002'
   _globals['_PROXYROBOT'].methods_by_name['StreamState']._loaded_options = None
   _globals['_PROXYROBOT'].methods_by_name['StreamState']._serialized_options = b'\310\363\030\004'
   _globals['_PROXYROBOT'].methods_by_name['StreamRobotEvents']._loaded_options = None
@@ -61,8 +63,8 @@ if not _descriptor._USE_C_DESCRIPTORS:
   _globals['_PROXYROBOT'].methods_by_name['EmergencyStop']._serialized_options = b'\310\363\030\001'
   _globals['_PROXYROBOT'].methods_by_name['Reset']._loaded_options = None
   _globals['_PROXYROBOT'].methods_by_name['Reset']._serialized_options = b'\310\363\030\002'
-  _globals['_ROBOTEVENTKIND']._serialized_start=2514
-  _globals['_ROBOTEVENTKIND']._serialized_end=2693
+  _globals['_ROBOTEVENTKIND']._serialized_start=2597
+  _globals['_ROBOTEVENTKIND']._serialized_end=2776
   _globals['_CONNECTREQUEST']._serialized_start=167
   _globals['_CONNECTREQUEST']._serialized_end=183
   _globals['_CONNECTRESPONSE']._serialized_start=185
@@ -99,30 +101,34 @@ if not _descriptor._USE_C_DESCRIPTORS:
   _globals['_MOVECARTESIANINCREMENTALREQUEST']._serialized_end=1231
   _globals['_MOVECARTESIANINCREMENTALRESPONSE']._serialized_start=1234
   _globals['_MOVECARTESIANINCREMENTALRESPONSE']._serialized_end=1376
-  _globals['_STREAMSTATEREQUEST']._serialized_start=1378
-  _globals['_STREAMSTATEREQUEST']._serialized_end=1441
-  _globals['_STREAMSTATERESPONSE']._serialized_start=1443
-  _globals['_STREAMSTATERESPONSE']._serialized_end=1505
-  _globals['_STREAMROBOTEVENTSREQUEST']._serialized_start=1508
-  _globals['_STREAMROBOTEVENTSREQUEST']._serialized_end=1636
-  _globals['_STREAMROBOTEVENTSRESPONSE']._serialized_start=1639
-  _globals['_STREAMROBOTEVENTSRESPONSE']._serialized_end=1950
-  _globals['_DATARECEIVEDEVENT']._serialized_start=1952
-  _globals['_DATARECEIVEDEVENT']._serialized_end=2012
-  _globals['_ROBOTERROREVENT']._serialized_start=2014
-  _globals['_ROBOTERROREVENT']._serialized_end=2064
-  _globals['_MOVEDEVENT']._serialized_start=2066
-  _globals['_MOVEDEVENT']._serialized_end=2146
-  _globals['_STATUSCHANGEDEVENT']._serialized_start=2149
-  _globals['_STATUSCHANGEDEVENT']._serialized_end=2280
-  _globals['_EMERGENCYSTOPREQUEST']._serialized_start=2282
-  _globals['_EMERGENCYSTOPREQUEST']._serialized_end=2320
-  _globals['_EMERGENCYSTOPRESPONSE']._serialized_start=2322
-  _globals['_EMERGENCYSTOPRESPONSE']._serialized_end=2435
-  _globals['_RESETREQUEST']._serialized_start=2437
-  _globals['_RESETREQUEST']._serialized_end=2451
-  _globals['_RESETRESPONSE']._serialized_start=2453
-  _globals['_RESETRESPONSE']._serialized_end=2511
-  _globals['_PROXYROBOT']._serialized_start=2696
-  _globals['_PROXYROBOT']._serialized_end=3930
+  _globals['_HOLDREQUEST']._serialized_start=1378
+  _globals['_HOLDREQUEST']._serialized_end=1407
+  _globals['_HOLDRESPONSE']._serialized_start=1409
+  _globals['_HOLDRESPONSE']._serialized_end=1459
+  _globals['_STREAMSTATEREQUEST']._serialized_start=1461
+  _globals['_STREAMSTATEREQUEST']._serialized_end=1524
+  _globals['_STREAMSTATERESPONSE']._serialized_start=1526
+  _globals['_STREAMSTATERESPONSE']._serialized_end=1588
+  _globals['_STREAMROBOTEVENTSREQUEST']._serialized_start=1591
+  _globals['_STREAMROBOTEVENTSREQUEST']._serialized_end=1719
+  _globals['_STREAMROBOTEVENTSRESPONSE']._serialized_start=1722
+  _globals['_STREAMROBOTEVENTSRESPONSE']._serialized_end=2033
+  _globals['_DATARECEIVEDEVENT']._serialized_start=2035
+  _globals['_DATARECEIVEDEVENT']._serialized_end=2095
+  _globals['_ROBOTERROREVENT']._serialized_start=2097
+  _globals['_ROBOTERROREVENT']._serialized_end=2147
+  _globals['_MOVEDEVENT']._serialized_start=2149
+  _globals['_MOVEDEVENT']._serialized_end=2229
+  _globals['_STATUSCHANGEDEVENT']._serialized_start=2232
+  _globals['_STATUSCHANGEDEVENT']._serialized_end=2363
+  _globals['_EMERGENCYSTOPREQUEST']._serialized_start=2365
+  _globals['_EMERGENCYSTOPREQUEST']._serialized_end=2403
+  _globals['_EMERGENCYSTOPRESPONSE']._serialized_start=2405
+  _globals['_EMERGENCYSTOPRESPONSE']._serialized_end=2518
+  _globals['_RESETREQUEST']._serialized_start=2520
+  _globals['_RESETREQUEST']._serialized_end=2534
+  _globals['_RESETRESPONSE']._serialized_start=2536
+  _globals['_RESETRESPONSE']._serialized_end=2594
+  _globals['_PROXYROBOT']._serialized_start=2779
+  _globals['_PROXYROBOT']._serialized_end=4082
 # @@protoc_insertion_point(module_scope)

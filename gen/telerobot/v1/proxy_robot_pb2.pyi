@@ -136,6 +136,18 @@ class MoveCartesianIncrementalResponse(_message.Message):
     applied_fraction: float
     def __init__(self, target_joint_positions_rad: _Optional[_Iterable[float]] = ..., target_tool_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ..., applied_fraction: _Optional[float] = ...) -> None: ...
 
+class HoldRequest(_message.Message):
+    __slots__ = ("reason",)
+    REASON_FIELD_NUMBER: _ClassVar[int]
+    reason: str
+    def __init__(self, reason: _Optional[str] = ...) -> None: ...
+
+class HoldResponse(_message.Message):
+    __slots__ = ("target_joint_positions_rad",)
+    TARGET_JOINT_POSITIONS_RAD_FIELD_NUMBER: _ClassVar[int]
+    target_joint_positions_rad: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, target_joint_positions_rad: _Optional[_Iterable[float]] = ...) -> None: ...
+
 class StreamStateRequest(_message.Message):
     __slots__ = ("period",)
     PERIOD_FIELD_NUMBER: _ClassVar[int]

@@ -87,6 +87,11 @@ class ProxyRobotStub:
                 request_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.MoveCartesianIncrementalRequest.SerializeToString,
                 response_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.MoveCartesianIncrementalResponse.FromString,
                 _registered_method=True)
+        self.Hold = channel.unary_unary(
+                '/telerobot.v1.ProxyRobot/Hold',
+                request_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.HoldRequest.SerializeToString,
+                response_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.HoldResponse.FromString,
+                _registered_method=True)
         self.StreamState = channel.unary_stream(
                 '/telerobot.v1.ProxyRobot/StreamState',
                 request_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.StreamStateRequest.SerializeToString,
@@ -207,6 +212,17 @@ class ProxyRobotServicer:
         context.set_details('Method not implemented!')
         raise NotImplementedError('Method not implemented!')
 
+    def Hold(self, request, context):
+        """Hold stops the arm where it can, without latching: the target becomes the point where
+        braking at the servo's acceleration cap brings it to rest (a controlled stop). Motion
+        commands are accepted again at once. The DecisionServer's watchdog uses it.
+        Errors: FAILED_PRECONDITION when NOT_CONNECTED.
+        Lane: high.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
     def StreamState(self, request, context):
         """StreamState sends the robot state at the period the client asks for, until cancelled.
         Errors: INVALID_ARGUMENT for a negative period; FAILED_PRECONDITION when NOT_CONNECTED.
@@ -294,6 +310,11 @@ def add_ProxyRobotServicer_to_server(servicer, server):
                     servicer.MoveCartesianIncremental,
                     request_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.MoveCartesianIncrementalRequest.FromString,
                     response_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.MoveCartesianIncrementalResponse.SerializeToString,
+            ),
+            'Hold': grpc.unary_unary_rpc_method_handler(
+                    servicer.Hold,
+                    request_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.HoldRequest.FromString,
+                    response_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.HoldResponse.SerializeToString,
             ),
             'StreamState': grpc.unary_stream_rpc_method_handler(
                     servicer.StreamState,
@@ -567,6 +588,33 @@ class ProxyRobot:
             '/telerobot.v1.ProxyRobot/MoveCartesianIncremental',
             telerobot_dot_v1_dot_proxy__robot__pb2.MoveCartesianIncrementalRequest.SerializeToString,
             telerobot_dot_v1_dot_proxy__robot__pb2.MoveCartesianIncrementalResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def Hold(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/telerobot.v1.ProxyRobot/Hold',
+            telerobot_dot_v1_dot_proxy__robot__pb2.HoldRequest.SerializeToString,
+            telerobot_dot_v1_dot_proxy__robot__pb2.HoldResponse.FromString,
             options,
             channel_credentials,
             insecure,

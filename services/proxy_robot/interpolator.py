@@ -1,0 +1,82 @@
+"""Spreads each new joint target over the time since the previous one, at the servo rate.
+
+Master commands arrive at 50 Hz or so; handing each target to the servo at once would make the
+arm accelerate and brake between commands. Instead each target becomes a straight joint-space
+segment from the current setpoint, lasting as long as the gap since the last command (at most
+MAX_SEGMENT_S, so one isolated command still moves promptly), and a thread writes the setpoint
+to the hardware link every SETPOINT_PERIOD_S. Commands at the servo rate pass straight through.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+SETPOINT_PERIOD_S = 0.001  # the servo rate
+MAX_SEGMENT_S = 0.05  # a segment never lasts longer: slower senders see 50 ms of smoothing
+
+
+class SetpointInterpolator:
+    """Writes setpoints through `write(q)` (the link's write_target). Thread-safe."""
+
+    def __init__(self, write: Callable[[np.ndarray], None], start: np.ndarray,
+                 on_error: Callable[[Exception], None]):
+        self._write = write
+        self._on_error = on_error
+        self._lock = threading.Lock()
+        self._wake = threading.Condition(self._lock)
+        self._setpoint = np.asarray(start, float).copy()
+        self._segment: tuple[np.ndarray, np.ndarray, float, float] | None = None
+        self._last_command_s = 0.0
+        self._closed = False
+        self._thread = threading.Thread(target=self._run, name="setpoints", daemon=True)
+        self._thread.start()
+
+    def go(self, target: np.ndarray) -> None:
+        """Head for `target`, over the time since the previous call (capped)."""
+        now = time.monotonic()
+        with self._lock:
+            duration = min(max(now - self._last_command_s, 0.0), MAX_SEGMENT_S)
+            self._last_command_s = now
+            if duration <= SETPOINT_PERIOD_S:
+                self._segment = None
+                self._setpoint = np.asarray(target, float).copy()
+                self._write(self._setpoint)
+                return
+            self._segment = (self._setpoint.copy(), np.asarray(target, float).copy(), now,
+                             duration)
+            self._wake.notify()
+
+    def stop(self, setpoint: np.ndarray) -> None:
+        """Abandon the segment; `setpoint` is where the caller has sent the servo instead."""
+        with self._lock:
+            self._segment = None
+            self._setpoint = np.asarray(setpoint, float).copy()
+
+    def close(self) -> None:
+        with self._lock:
+            self._closed = True
+            self._segment = None
+            self._wake.notify()
+        self._thread.join(1.0)
+
+    def _run(self) -> None:
+        with self._lock:
+            while not self._closed:
+                if self._segment is None:
+                    self._wake.wait()
+                    continue
+                start, end, t0, duration = self._segment
+                fraction = min(1.0, (time.monotonic() - t0) / duration)
+                self._setpoint = start + (end - start) * fraction
+                if fraction >= 1.0:
+                    self._segment = None
+                try:
+                    self._write(self._setpoint)
+                except Exception as exc:  # noqa: BLE001 - reported to the owner, which decides
+                    self._segment = None
+                    self._on_error(exc)
+                self._wake.wait(SETPOINT_PERIOD_S)
