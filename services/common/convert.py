@@ -56,3 +56,9 @@ def pose_from_proto(pose: types_pb2.Pose, what: str) -> pin.SE3:
 def wrench_to_proto(force_n, torque_nm) -> types_pb2.Wrench:
     return types_pb2.Wrench(force_n=vector3_to_proto(force_n),
                             torque_nm=vector3_to_proto(torque_nm))
+
+
+def duration(seconds_value: float) -> Duration:
+    value = Duration()
+    value.FromNanoseconds(int(round(seconds_value * 1e9)))
+    return value

@@ -52,3 +52,30 @@ def rotation_matrix(values, what: str) -> np.ndarray:
 def rotation_angle(rotation: np.ndarray) -> float:
     """Angle of a rotation matrix, in radians (0..pi)."""
     return float(np.arccos(np.clip((np.trace(rotation) - 1.0) / 2.0, -1.0, 1.0)))
+
+
+def euler_xyz(rotation: np.ndarray) -> np.ndarray:
+    """(αx, αy, αz) in radians with rotation = Rx(αx) Ry(αy) Rz(αz), the papers' R_xyz⁻¹."""
+    r = rotation
+    beta = np.arcsin(np.clip(r[0, 2], -1.0, 1.0))
+    alpha = np.arctan2(-r[1, 2], r[2, 2])
+    gamma = np.arctan2(-r[0, 1], r[0, 0])
+    return np.array([alpha, beta, gamma])
+
+
+def from_euler_xyz(angles: np.ndarray) -> np.ndarray:
+    """Rx(αx) Ry(αy) Rz(αz), the papers' R_xyz."""
+    ax, ay, az = angles
+    cx, sx, cy, sy, cz, sz = np.cos(ax), np.sin(ax), np.cos(ay), np.sin(ay), np.cos(az), np.sin(az)
+    rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
+    ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
+    rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
+    return rx @ ry @ rz
+
+
+def scale_increment(delta_position: np.ndarray, delta_rotation: np.ndarray,
+                    translation_scale: float, rotation_scale: float
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Eq. 2 of the full paper: ΔX·s, and ΔM rebuilt from its XYZ Euler angles times s."""
+    return (delta_position * translation_scale,
+            from_euler_xyz(euler_xyz(delta_rotation) * rotation_scale))

@@ -1,37 +1,77 @@
 """python -m services.decision_server: the operator's one address.
 
 It serves DecisionServer and, as IDecisionServer inherits IProxyRobot and IForceSensor, the
-ProxyRobot and ForceSensor services too; StereoCamera is served here as well so that one address
-reaches everything.
+ProxyRobot and ForceSensor services too, forwarded to their own processes with the supervisory
+checks in front; StereoCamera is forwarded as well, so one address reaches everything.
 """
 
-from services.runtime.placeholder import PlaceholderService
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import grpc
+
+from services.decision_server.backends import GrpcSlave
+from services.decision_server.servicer import DecisionServerServicer, make_facades
+from services.decision_server.supervisor import DecisionCore, build_core
+from services.runtime.config import address_for
+from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.process import run_service
-from services.runtime.server import binding
-from services.runtime.unimplemented import unimplemented_servicer
-from telerobot.v1 import (
-    decision_server_pb2_grpc,
-    force_sensor_pb2_grpc,
-    proxy_robot_pb2_grpc,
-    stereo_camera_pb2_grpc,
-)
+from services.runtime.server import ServiceBinding, binding
+from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
 
-_NOTE = "forwarding with supervisory checks comes with the DecisionServer issue"
+# Waiting for a lock or at a cobegin barrier holds a medium-lane thread, so give it more.
+LANES = {**DEFAULT_LANES,
+         Lane.MEDIUM: LaneConfig(static_threads=2, max_threads=32, queue_capacity=64)}
+# Busy lane threads hand the GIL over every 1 ms instead of 5 ms, so an emergency stop waits
+# at most about that long for the interpreter.
+GIL_SWITCH_INTERVAL_S = 0.001
 
 
-def build(_args):
-    served = [
-        binding(module, name, unimplemented_servicer(getattr(module, f"{name}Servicer"), _NOTE))
-        for module, name in [
-            (decision_server_pb2_grpc, "DecisionServer"),
-            (proxy_robot_pb2_grpc, "ProxyRobot"),
-            (force_sensor_pb2_grpc, "ForceSensor"),
-            (stereo_camera_pb2_grpc, "StereoCamera"),
-        ]
-    ]
-    return PlaceholderService(served)
+@dataclass
+class DecisionService:
+    args: argparse.Namespace
+    lanes: dict = field(default_factory=lambda: LANES)
+    core: DecisionCore | None = None
+    _stereo_channel: grpc.Channel | None = None
+
+    def bindings(self) -> Sequence[ServiceBinding]:
+        slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address)
+        self.core = build_core(slave, Path(self.args.recordings_dir))
+        self._stereo_channel = grpc.insecure_channel(self.args.stereo_camera_address)
+        stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
+        return [binding(decision_server_pb2_grpc, "DecisionServer",
+                        DecisionServerServicer(self.core)),
+                *(binding(module, name, servicer)
+                  for module, name, servicer in make_facades(self.core, stereo))]
+
+    def start(self) -> None:
+        pass  # the backends are reached per call; their absence is UNAVAILABLE, not a crash
+
+    def close(self) -> None:
+        if self.core is not None:
+            self.core.close()
+            self.core.slave.close()
+        if self._stereo_channel is not None:
+            self._stereo_channel.close()
+
+
+def _add_arguments(parser: argparse.ArgumentParser) -> None:
+    for name in ("proxy_robot", "force_sensor", "stereo_camera"):
+        parser.add_argument(f"--{name.replace('_', '-')}-address", default=address_for(name),
+                            help=f"where {name} listens (env TELEROBOT_{name.upper()}_ADDRESS)")
+    parser.add_argument("--recordings-dir",
+                        default=os.environ.get("TELEROBOT_RECORDINGS_DIR", "var/recordings"),
+                        help="where recordings are kept (env TELEROBOT_RECORDINGS_DIR)")
 
 
 if __name__ == "__main__":
+    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
     raise SystemExit(run_service(
-        "decision_server", "DecisionServer: supervisory control and arbitration.", build))
+        "decision_server", "DecisionServer: supervisory control and arbitration.",
+        DecisionService, add_arguments=_add_arguments))

@@ -76,3 +76,20 @@ class Unimplemented(TelerobotError):
     """The contract exists but this build does not serve it yet."""
 
     status_name = "UNIMPLEMENTED"
+
+
+class Cancelled(TelerobotError):
+    """The caller went away."""
+
+    status_name = "CANCELLED"
+
+
+def error_for_status(status_name: str, message: str, reason: str | None = None) -> TelerobotError:
+    """The domain error for a gRPC status name ("OUT_OF_RANGE"), so an error that came back from
+    another service can be raised again without the domain importing grpc."""
+    for cls in TelerobotError.__subclasses__():
+        if cls.status_name == status_name:
+            return cls(message, reason)
+    error = TelerobotError(message, reason)
+    error.status_name = status_name
+    return error

@@ -70,6 +70,14 @@ DEFAULT_LANES: dict[Lane, LaneConfig] = {
 }
 
 
+_current = threading.local()
+
+
+def current_lane() -> Lane | None:
+    """The lane of the task this thread is running, None outside a lane executor."""
+    return getattr(_current, "lane", None)
+
+
 class LaneFull(Exception):
     """Raised by submit when the lane's queue is at capacity."""
 
@@ -258,6 +266,7 @@ class LaneExecutor:
         if worker.lane != task.lane:
             counters.borrowed += 1
         self._lock.release()
+        _current.lane = task.lane
         try:
             result = task.fn()
         except BaseException as exc:  # noqa: BLE001 - handed to the caller through the future
@@ -265,6 +274,7 @@ class LaneExecutor:
         else:
             task.future.set_result(result)
         finally:
+            _current.lane = None
             self._lock.acquire()
             counters.running -= 1
             counters.served += 1

@@ -64,7 +64,8 @@ def run_service(
 
     service = build(args)
     server, port = create_server(
-        args.address, service.bindings(), client_lane_limit=args.client_lane_limit
+        args.address, service.bindings(), client_lane_limit=args.client_lane_limit,
+        lanes=getattr(service, "lanes", None),  # a service may size its own lanes
     )
     server.start()
     try:

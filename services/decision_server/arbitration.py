@@ -1,0 +1,214 @@
+"""Who may command the arm: the Parma paper's concurrency control, as leases.
+
+EXCLUSIVE control is a write lock: one holder. COLLABORATIVE control is a read lock shared by
+the members of one group. A request that conflicts waits in a fair FIFO queue (no one overtakes
+a waiter) or fails at once, as the caller chooses. Every lock is a lease: it expires unless
+its holder renews it or uses it (each authorized call renews it), so a crashed operator never
+blocks the arm for longer than one lease. No gRPC here.
+"""
+
+from __future__ import annotations
+
+import enum
+import threading
+import time
+import uuid
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from services.runtime.errors import (
+    Aborted,
+    DeadlineExceeded,
+    FailedPrecondition,
+    InvalidArgument,
+    NotFound,
+)
+
+DEFAULT_LEASE_S = 5.0
+MIN_LEASE_S, MAX_LEASE_S = 0.1, 60.0
+MAX_WAIT_S = 3600.0
+REAPER_PERIOD_S = 0.05  # expired leases are noticed this fast even when nobody calls
+
+
+class ControlMode(enum.Enum):
+    EXCLUSIVE = 1
+    COLLABORATIVE = 2
+
+
+@dataclass
+class Lease:
+    lease_id: str
+    operator_id: str
+    mode: ControlMode
+    group: str
+    duration_s: float
+    expires_at: float  # time.monotonic()
+
+
+@dataclass
+class _Waiter:
+    operator_id: str
+    mode: ControlMode
+    group: str
+    duration_s: float
+    deadline: float
+    granted: Lease | None = None
+    ready: threading.Event = field(default_factory=threading.Event)
+
+
+@dataclass(frozen=True)
+class ControlView:
+    """Holders and waiters, first in line first."""
+
+    mode: ControlMode | None
+    holders: tuple[Lease, ...]
+    waiters: tuple[tuple[str, ControlMode, str, float], ...]  # operator, mode, group, deadline
+
+
+class LockManager:
+    """Leases on the control of one arm. `on_change(view, reason)` is told of every change."""
+
+    def __init__(self, on_change: Callable[[ControlView, str], None] | None = None):
+        self._lock = threading.Lock()
+        self._holders: dict[str, Lease] = {}
+        self._queue: list[_Waiter] = []
+        self._on_change = on_change or (lambda view, reason: None)
+        self._closed = threading.Event()
+        threading.Thread(target=self._reap, name="lease-reaper", daemon=True).start()
+
+    def close(self) -> None:
+        self._closed.set()
+
+    # -- requests ---------------------------------------------------------------------------
+
+    def acquire(self, operator_id: str, mode: ControlMode, group: str = "", wait: bool = False,
+                wait_timeout_s: float | None = None, lease_s: float = DEFAULT_LEASE_S) -> Lease:
+        """Grant a lease now, or queue for one (wait=True), or fail with Aborted."""
+        if not operator_id:
+            raise InvalidArgument("operator_id is required: say who you are",
+                                  reason="NO_OPERATOR")
+        if not MIN_LEASE_S <= lease_s <= MAX_LEASE_S:
+            raise InvalidArgument(f"lease must be {MIN_LEASE_S}..{MAX_LEASE_S} s",
+                                  reason="BAD_LEASE")
+        with self._lock:
+            if not self._queue and self._compatible(mode, group):
+                lease = self._grant(operator_id, mode, group, lease_s)
+                changed = True
+            elif not wait:
+                raise Aborted(f"control is held by {self._describe_holders()}; ask with "
+                              "wait=true to queue, or try later", reason="CONTROL_HELD")
+            else:
+                deadline = time.monotonic() + min(wait_timeout_s or MAX_WAIT_S, MAX_WAIT_S)
+                waiter = _Waiter(operator_id, mode, group, lease_s, deadline)
+                self._queue.append(waiter)
+                lease, changed = None, False
+        if lease is not None:
+            self._notify(changed, f"{operator_id} acquired {mode.name} control")
+            return lease
+        self._notify(True, f"{operator_id} waits for {mode.name} control")
+        if waiter.ready.wait(max(0.0, waiter.deadline - time.monotonic())) and waiter.granted:
+            return waiter.granted
+        with self._lock:
+            if waiter.granted:  # granted just as the wait timed out
+                return waiter.granted
+            self._queue.remove(waiter)
+        self._notify(True, f"{operator_id} gave up waiting")
+        raise DeadlineExceeded(f"control did not come free in time; held by "
+                               f"{self.describe_holders()}", reason="WAIT_TIMEOUT")
+
+    def renew(self, lease_id: str) -> Lease:
+        with self._lock:
+            lease = self._holders.get(lease_id)
+            if lease is None:
+                raise NotFound("no such lease (it expired or was released): acquire control "
+                               "again", reason="NO_LEASE")
+            lease.expires_at = time.monotonic() + lease.duration_s
+            return lease
+
+    def release(self, lease_id: str) -> None:
+        with self._lock:
+            lease = self._holders.pop(lease_id, None)
+            if lease is None:
+                raise NotFound("no such lease (it expired or was released)", reason="NO_LEASE")
+            self._promote()
+        self._notify(True, f"{lease.operator_id} released control")
+
+    def require(self, lease_id: str | None) -> Lease:
+        """The caller's lease, renewed; FailedPrecondition naming who holds control if none."""
+        with self._lock:
+            lease = self._holders.get(lease_id or "")
+            if lease is not None:
+                lease.expires_at = time.monotonic() + lease.duration_s
+                return lease
+            holders = self._describe_holders()
+        hint = "send the lease id from AcquireControl in the telerobot-lease-id metadata key"
+        raise FailedPrecondition(
+            f"this call needs the control lock, held by {holders}; {hint}"
+            if holders != "nobody" else f"this call needs the control lock: {hint}",
+            reason="NO_CONTROL")
+
+    def view(self) -> ControlView:
+        with self._lock:
+            return self._view()
+
+    def describe_holders(self) -> str:
+        with self._lock:
+            return self._describe_holders()
+
+    # -- internals (lock held) --------------------------------------------------------------
+
+    def _compatible(self, mode: ControlMode, group: str) -> bool:
+        if not self._holders:
+            return True
+        return mode == ControlMode.COLLABORATIVE and all(
+            h.mode == ControlMode.COLLABORATIVE and h.group == group
+            for h in self._holders.values())
+
+    def _grant(self, operator_id: str, mode: ControlMode, group: str, lease_s: float) -> Lease:
+        lease = Lease(uuid.uuid4().hex, operator_id, mode, group, lease_s,
+                      time.monotonic() + lease_s)
+        self._holders[lease.lease_id] = lease
+        return lease
+
+    def _promote(self) -> None:
+        """Grant waiters from the head of the queue while they fit."""
+        while self._queue and self._compatible(self._queue[0].mode, self._queue[0].group):
+            waiter = self._queue.pop(0)
+            waiter.granted = self._grant(waiter.operator_id, waiter.mode, waiter.group,
+                                         waiter.duration_s)
+            waiter.ready.set()
+
+    def _expire(self) -> list[Lease]:
+        now = time.monotonic()
+        expired = [lease for lease in self._holders.values() if lease.expires_at < now]
+        for lease in expired:
+            del self._holders[lease.lease_id]
+        if expired:
+            self._promote()
+        return expired
+
+    def _describe_holders(self) -> str:
+        if not self._holders:
+            return "nobody"
+        leases = list(self._holders.values())
+        names = ", ".join(f"'{lease.operator_id}'" for lease in leases)
+        if leases[0].mode == ControlMode.EXCLUSIVE:
+            return f"{names} (EXCLUSIVE)"
+        return f"{names} (COLLABORATIVE, group '{leases[0].group}')"
+
+    def _view(self) -> ControlView:
+        holders = tuple(self._holders.values())
+        return ControlView(holders[0].mode if holders else None, holders,
+                           tuple((w.operator_id, w.mode, w.group, w.deadline)
+                                 for w in self._queue))
+
+    def _notify(self, changed: bool, reason: str) -> None:
+        if changed:
+            self._on_change(self.view(), reason)
+
+    def _reap(self) -> None:
+        while not self._closed.wait(REAPER_PERIOD_S):
+            with self._lock:
+                expired = self._expire()
+            for lease in expired:
+                self._notify(True, f"{lease.operator_id}'s lease expired")

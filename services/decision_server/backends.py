@@ -1,0 +1,212 @@
+"""The DecisionServer's side of ProxyRobot and ForceSensor: a gRPC `Slave`, and forwarding
+servicers that put the supervisory checks in front of the dedicated processes."""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from collections.abc import Callable, Iterator
+
+import grpc
+import numpy as np
+import pinocchio as pin
+
+from services.common import convert
+from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
+from services.runtime.errors import TelerobotError, error_for_status
+from telerobot.v1 import (
+    force_sensor_pb2,
+    force_sensor_pb2_grpc,
+    proxy_robot_pb2,
+    proxy_robot_pb2_grpc,
+    types_pb2,
+)
+
+log = logging.getLogger(__name__)
+
+CALL_TIMEOUT_S = 5.0
+MAX_FORWARD_TIMEOUT_S = 60.0
+RETRY_S = 0.5  # background streams reconnect this often after a failure
+STATE_PERIOD_S = 0.01  # the cached pose and wrench in acks are at most this old
+STATE_FRESH_S = 0.1
+_FRAMES = {"BASE": types_pb2.REFERENCE_FRAME_BASE, "WRIST": types_pb2.REFERENCE_FRAME_WRIST,
+           "TOOL": types_pb2.REFERENCE_FRAME_TOOL}
+# Metadata a forwarded call carries on: the lane and the lease, nothing gRPC-internal.
+FORWARDED_METADATA = ("telerobot-lane", "telerobot-lease-id")
+
+
+def domain_error(error: grpc.RpcError) -> TelerobotError:
+    """The error another service answered with, as a domain error with its own message."""
+    return error_for_status(error.code().name, error.details() or error.code().name)
+
+
+def forwarded_metadata(context: grpc.ServicerContext) -> tuple[tuple[str, str], ...]:
+    return tuple((k, v) for k, v in context.invocation_metadata() if k in FORWARDED_METADATA)
+
+
+def forward_timeout(context: grpc.ServicerContext) -> float:
+    """The caller's remaining time (gRPC reports ~9e18 s when there is no deadline), capped."""
+    return min(context.time_remaining(), MAX_FORWARD_TIMEOUT_S)
+
+
+def call(method: Callable, request, metadata=(), timeout: float | None = CALL_TIMEOUT_S):
+    try:
+        return method(request, metadata=metadata, timeout=timeout)
+    except grpc.RpcError as error:
+        raise domain_error(error) from None
+
+
+class GrpcSlave:
+    """The arm and its sensor, behind their own services. Keeps the latest pose and wrench
+    from background streams (for acks) and hands ProxyRobot's events to `on_robot_event`."""
+
+    def __init__(self, proxy_address: str, sensor_address: str):
+        self.robot_channel = grpc.insecure_channel(proxy_address)
+        self.sensor_channel = grpc.insecure_channel(sensor_address)
+        self.robot = proxy_robot_pb2_grpc.ProxyRobotStub(self.robot_channel)
+        self.sensor = force_sensor_pb2_grpc.ForceSensorStub(self.sensor_channel)
+        self.on_robot_event: Callable[[object], None] = lambda message: None
+        self._state: SlaveState | None = None
+        self._wrench: SlaveWrench | None = None
+        self._closed = threading.Event()
+        self._streams: list = []
+        for target, name in ((self._follow_state, "follow-state"),
+                             (self._follow_wrench, "follow-wrench"),
+                             (self._follow_events, "follow-events")):
+            threading.Thread(target=target, name=name, daemon=True).start()
+
+    def close(self) -> None:
+        self._closed.set()
+        for stream in list(self._streams):
+            stream.cancel()
+        self.robot_channel.close()
+        self.sensor_channel.close()
+
+    # -- Slave ------------------------------------------------------------------------------
+
+    def move_cartesian(self, delta_position, delta_rotation, frame: str) -> MoveResult:
+        reply = call(self.robot.MoveCartesianIncremental,
+                     proxy_robot_pb2.MoveCartesianIncrementalRequest(
+                         delta_position_m=convert.vector3_to_proto(delta_position),
+                         delta_rotation=convert.rotation_to_proto(delta_rotation),
+                         frame=_FRAMES[frame]))
+        return MoveResult(convert.pose_from_proto(reply.target_tool_pose, "target_tool_pose"),
+                          reply.applied_fraction)
+
+    def hold(self, reason: str) -> None:
+        call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
+
+    def emergency_stop(self, reason: str) -> None:
+        call(self.robot.EmergencyStop, proxy_robot_pb2.EmergencyStopRequest(reason=reason))
+
+    def reset(self) -> None:
+        call(self.robot.Reset, proxy_robot_pb2.ResetRequest())
+
+    def state(self) -> SlaveState:
+        state = self._state
+        if state is not None and time.time_ns() - state.sample_time_ns < STATE_FRESH_S * 1e9:
+            return state
+        status = call(self.robot.GetStatus, proxy_robot_pb2.GetStatusRequest()).status
+        name = types_pb2.RobotStatus.Name(status).removeprefix("ROBOT_STATUS_")
+        if name == "NOT_CONNECTED":
+            return SlaveState(pin.SE3.Identity(), name, time.time_ns())
+        reply = call(self.robot.GetState, proxy_robot_pb2.GetStateRequest()).state
+        return self._state_from(reply)
+
+    def wrench(self) -> SlaveWrench | None:
+        return self._wrench
+
+    def wrench_stream(self, decimation: int) -> Iterator[SlaveWrench]:
+        """Samples from the sensor every `decimation` readings, until the caller stops."""
+        stream = self.sensor.StreamWrench(force_sensor_pb2.StreamWrenchRequest(
+            decimation=decimation, queue_capacity=4))
+        self._streams.append(stream)
+        try:
+            for message in stream:
+                for sample in message.samples:
+                    yield _wrench_from(sample)
+        except grpc.RpcError as error:
+            if error.code() != grpc.StatusCode.CANCELLED:
+                raise domain_error(error) from None
+        finally:
+            stream.cancel()
+            self._streams.remove(stream)
+
+    # -- background streams -----------------------------------------------------------------
+
+    @staticmethod
+    def _state_from(state: types_pb2.RobotState) -> SlaveState:
+        name = types_pb2.RobotStatus.Name(state.status).removeprefix("ROBOT_STATUS_")
+        return SlaveState(convert.pose_from_proto(state.tool_pose, "tool_pose"), name,
+                          state.sample_time.ToNanoseconds())
+
+    def _follow(self, open_stream: Callable[[], Iterator], on_message: Callable) -> None:
+        while not self._closed.is_set():
+            try:
+                stream = open_stream()
+                self._streams.append(stream)
+                for message in stream:
+                    on_message(message)
+            except grpc.RpcError as error:
+                if self._closed.is_set():
+                    return
+                log.debug("background stream: %s; retrying", error.details())
+            except (TelerobotError, ValueError) as error:
+                log.warning("background stream: %s", error)
+            self._closed.wait(RETRY_S)
+
+    def _follow_state(self) -> None:
+        period = {"nanos": int(STATE_PERIOD_S * 1e9)}
+        self._follow(lambda: self.robot.StreamState(proxy_robot_pb2.StreamStateRequest(
+            period=period)), lambda m: setattr(self, "_state", self._state_from(m.state)))
+
+    def _follow_wrench(self) -> None:
+        decimation = int(STATE_PERIOD_S / 0.001)
+        self._follow(lambda: self.sensor.StreamWrench(force_sensor_pb2.StreamWrenchRequest(
+            decimation=decimation, queue_capacity=4)),
+            lambda m: m.samples and setattr(self, "_wrench", _wrench_from(m.samples[-1])))
+
+    def _follow_events(self) -> None:
+        self._follow(lambda: self.robot.StreamRobotEvents(
+            proxy_robot_pb2.StreamRobotEventsRequest()), lambda m: self.on_robot_event(m))
+
+
+def _wrench_from(sample: force_sensor_pb2.WrenchSample) -> SlaveWrench:
+    f, t = sample.wrench.force_n, sample.wrench.torque_nm
+    return SlaveWrench(np.array([f.x, f.y, f.z]), np.array([t.x, t.y, t.z]), sample.sequence,
+                       sample.sample_time.ToNanoseconds())
+
+
+def forwarding_servicer(servicer_base: type, stub, service_descriptor,
+                        guard: Callable[[str, grpc.ServicerContext], None],
+                        overrides: type | None = None):
+    """A servicer that forwards every RPC of `service_descriptor` to `stub`, after
+    `guard(method_name, context)` (which raises to refuse). Methods of `overrides` win."""
+
+    def unary(name: str):
+        def method(self, request, context):
+            guard(name, context)
+            return call(getattr(stub, name), request, forwarded_metadata(context),
+                        forward_timeout(context))
+        return method
+
+    def server_stream(name: str):
+        def method(self, request, context):
+            guard(name, context)
+            stream = getattr(stub, name)(request, metadata=forwarded_metadata(context))
+            context.add_callback(stream.cancel)
+            try:
+                yield from stream
+            except grpc.RpcError as error:
+                if error.code() != grpc.StatusCode.CANCELLED:
+                    raise domain_error(error) from None
+        return method
+
+    methods = {m.name: (server_stream(m.name) if m.server_streaming else unary(m.name))
+               for m in service_descriptor.methods}
+    bases = (overrides, servicer_base) if overrides else (servicer_base,)
+    for name in vars(overrides or object):
+        methods.pop(name, None)
+    cls = type(f"Forwarding{servicer_base.__name__}", bases, methods)
+    return cls

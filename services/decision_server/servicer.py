@@ -1,0 +1,388 @@
+"""The DecisionServer's contracts over gRPC: DecisionServer itself, and the ProxyRobot,
+ForceSensor and StereoCamera services it forwards (IDecisionServer inherits IProxyRobot and
+IForceSensor). Reads requests, calls DecisionCore, converts answers and errors."""
+
+from __future__ import annotations
+
+import time
+
+import grpc
+import numpy as np
+
+from services.common import convert
+from services.decision_server import assistance as assist
+from services.decision_server.arbitration import ControlMode, ControlView, Lease
+from services.decision_server.backends import call, forwarded_metadata, forwarding_servicer
+from services.decision_server.supervisor import (
+    AssistanceChanged,
+    CommandResult,
+    ControlChanged,
+    DecisionCore,
+    ReplayProgress,
+    RobotEventForwarded,
+    WatchdogHold,
+)
+from services.proxy_robot.servicer import frame_from_proto
+from services.runtime.errors import Aborted, InvalidArgument, TelerobotError
+from services.runtime.lanes import Lane, current_lane
+from services.runtime.rpc import LANE_TO_PROTO
+from telerobot.v1 import (
+    decision_server_pb2 as pb,
+)
+from telerobot.v1 import (
+    decision_server_pb2_grpc,
+    force_sensor_pb2,
+    force_sensor_pb2_grpc,
+    proxy_robot_pb2,
+    proxy_robot_pb2_grpc,
+    stereo_camera_pb2,
+    stereo_camera_pb2_grpc,
+    types_pb2,
+)
+
+LEASE_METADATA_KEY = "telerobot-lease-id"
+STREAM_POLL_S = 0.1
+# Calls through the facades that command the arm or the sensor need the control lock.
+PROXY_COMMANDS = {"Connect", "Initialize", "Disconnect", "SetToolFrame", "MoveJointsIncremental",
+                  "MoveCartesianIncremental", "Hold", "Reset"}
+SENSOR_COMMANDS = {"StartReading", "StopReading", "Tare", "SetSensorConfig"}
+_OUTCOMES = {name: pb.CommandOutcome.Value(f"COMMAND_OUTCOME_{name}")
+             for name in ("APPLIED", "MODIFIED", "INDEXED", "REJECTED", "HEARTBEAT")}
+
+
+def lease_id(context: grpc.ServicerContext) -> str | None:
+    for key, value in context.invocation_metadata():
+        if key == LEASE_METADATA_KEY:
+            return value
+    return None
+
+
+# -- conversions ------------------------------------------------------------------------------
+
+def _mode(mode: ControlMode | None) -> int:
+    return pb.ControlMode.Value(f"CONTROL_MODE_{mode.name}") if mode else 0
+
+
+def _holder(lease: Lease) -> pb.ControlHolder:
+    expires_ns = time.time_ns() + int((lease.expires_at - time.monotonic()) * 1e9)
+    return pb.ControlHolder(operator_id=lease.operator_id, mode=_mode(lease.mode),
+                            group=lease.group, expire_time=convert.timestamp(expires_ns))
+
+
+def control_state(view: ControlView) -> pb.ControlState:
+    now_ns, now = time.time_ns(), time.monotonic()
+    return pb.ControlState(
+        mode=_mode(view.mode), holders=[_holder(h) for h in view.holders],
+        waiters=[pb.ControlHolder(operator_id=o, mode=_mode(m), group=g,
+                                  expire_time=convert.timestamp(now_ns + int((d - now) * 1e9)))
+                 for o, m, g, d in view.waiters])
+
+
+def _axes(selection: pb.AxisSelection) -> np.ndarray:
+    return np.array([selection.x, selection.y, selection.z, selection.rx, selection.ry,
+                     selection.rz], dtype=bool)
+
+
+def assistance_from_proto(config: pb.AssistanceConfig) -> assist.Assistance:
+    mapping = "TOOL" if config.mapping == types_pb2.REFERENCE_FRAME_TOOL else "BASE"
+    if config.mapping == types_pb2.REFERENCE_FRAME_WRIST:
+        raise InvalidArgument("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
+    floating = None
+    if config.floating_tool_frame.enabled:
+        floating = convert.vector3_from_proto(config.floating_tool_frame.point_m, "point_m")
+    constraint = None
+    if config.constraint.type:
+        kind = assist.ConstraintType[pb.ConstraintType.Name(config.constraint.type)
+                                     .removeprefix("CONSTRAINT_TYPE_")]
+        frame = "TOOL" if config.constraint.frame == types_pb2.REFERENCE_FRAME_TOOL else "BASE"
+        axis = convert.vector3_from_proto(config.constraint.axis, "constraint.axis")
+        constraint = assist.Constraint(kind, axis, frame)
+    force = None
+    if config.force_control.enabled:
+        control = config.force_control
+        wrench = control.desired_wrench
+        force = assist.ForceControl(
+            _axes(control.axes), convert.vector3_from_proto(wrench.force_n, "force_n"),
+            convert.vector3_from_proto(wrench.torque_nm, "torque_nm"),
+            control.translation_gain_m_per_n_s, control.rotation_gain_rad_per_nm_s)
+    return assist.Assistance(mapping, floating, constraint, force,
+                             config.scaling.translation_scale or 1.0,
+                             config.scaling.rotation_scale or 1.0)
+
+
+def assistance_to_proto(value: assist.Assistance) -> pb.AssistanceConfig:
+    config = pb.AssistanceConfig(
+        mapping=types_pb2.REFERENCE_FRAME_TOOL if value.mapping == "TOOL"
+        else types_pb2.REFERENCE_FRAME_BASE,
+        scaling=pb.Scaling(translation_scale=value.translation_scale,
+                           rotation_scale=value.rotation_scale))
+    if value.floating_point_m is not None:
+        config.floating_tool_frame.enabled = True
+        config.floating_tool_frame.point_m.CopyFrom(convert.vector3_to_proto(value.floating_point_m))
+    if value.constraint is not None:
+        config.constraint.type = pb.ConstraintType.Value(
+            f"CONSTRAINT_TYPE_{value.constraint.type.name}")
+        config.constraint.axis.CopyFrom(convert.vector3_to_proto(value.constraint.axis))
+        config.constraint.frame = (types_pb2.REFERENCE_FRAME_TOOL if value.constraint.frame ==
+                                   "TOOL" else types_pb2.REFERENCE_FRAME_BASE)
+    if value.force_control is not None:
+        control = value.force_control
+        x, y, z, rx, ry, rz = (bool(a) for a in control.axes)
+        config.force_control.CopyFrom(pb.ForceControl(
+            enabled=True, axes=pb.AxisSelection(x=x, y=y, z=z, rx=rx, ry=ry, rz=rz),
+            desired_wrench=convert.wrench_to_proto(control.desired_force_n,
+                                                   control.desired_torque_nm),
+            translation_gain_m_per_n_s=control.translation_gain_m_per_n_s,
+            rotation_gain_rad_per_nm_s=control.rotation_gain_rad_per_nm_s))
+    return config
+
+
+def recording_to_proto(info) -> pb.Recording:
+    duration = convert.duration(info.duration_s)
+    return pb.Recording(name=info.name, create_time=convert.timestamp(info.create_time_ns),
+                        duration=duration, command_count=info.command_count)
+
+
+def event_to_proto(event) -> pb.StreamEventsResponse:
+    message = pb.StreamEventsResponse(sequence=event.sequence,
+                                      event_time=convert.timestamp(event.time_ns))
+    payload = event.payload
+    if isinstance(payload, RobotEventForwarded):
+        message.robot.CopyFrom(payload.message)
+    elif isinstance(payload, ControlChanged):
+        message.control_changed.CopyFrom(pb.ControlChangedEvent(
+            state=control_state(payload.view), reason=payload.reason))
+    elif isinstance(payload, WatchdogHold):
+        message.watchdog_hold.CopyFrom(pb.WatchdogHoldEvent(
+            session_id=payload.session_id, reason=payload.reason,
+            silence=convert.duration(payload.silence_s)))
+    elif isinstance(payload, AssistanceChanged):
+        message.assistance_changed.CopyFrom(pb.AssistanceChangedEvent(
+            assistance=assistance_to_proto(payload.assistance), operator_id=payload.operator_id))
+    elif isinstance(payload, ReplayProgress):
+        message.replay_progress.CopyFrom(pb.ReplayProgressEvent(
+            name=payload.name, commands_replayed=payload.replayed, command_count=payload.total,
+            state=pb.ReplayState.Value(f"REPLAY_STATE_{payload.state}"), detail=payload.detail))
+    return message
+
+
+# -- DecisionServer ---------------------------------------------------------------------------
+
+class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
+    def __init__(self, core: DecisionCore):
+        self._core = core
+
+    def _ack(self, sequence: int, send_time, result: CommandResult) -> pb.TeleoperateResponse:
+        slave = self._core.slave
+        ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
+                            receive_time=convert.timestamp(result.receive_time_ns),
+                            apply_time=convert.timestamp(result.apply_time_ns),
+                            outcome=_OUTCOMES[result.outcome], detail=result.detail)
+        try:
+            state = slave.state()
+            ack.tool_pose.CopyFrom(convert.pose_to_proto(state.tool_pose))
+            ack.status = types_pb2.RobotStatus.Value(f"ROBOT_STATUS_{state.status}")
+        except TelerobotError:
+            pass  # the ack still says what happened to the command
+        wrench = slave.wrench()
+        if wrench is not None:
+            ack.tool_wrench.CopyFrom(convert.wrench_to_proto(wrench.force_n, wrench.torque_nm))
+        return pb.TeleoperateResponse(ack=ack)
+
+    def Teleoperate(self, request_iterator, context):
+        first = next(request_iterator, None)
+        if first is None or first.WhichOneof("message") != "init":
+            raise InvalidArgument("the first Teleoperate message must be an init",
+                                  reason="NO_INIT")
+        init = first.init
+        mapping = None
+        if init.mapping:
+            mapping = frame_from_proto(init.mapping)
+            if mapping == "WRIST":
+                raise InvalidArgument("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
+        session = self._core.open_session(init.operator_id, init.lease_id, mapping,
+                                          convert.seconds(init.watchdog_timeout))
+        reason = "the stream was cancelled"
+        try:
+            yield pb.TeleoperateResponse(ready=pb.TeleoperateReady(
+                session_id=session.session_id,
+                mapping=types_pb2.ReferenceFrame.Value(
+                    f"REFERENCE_FRAME_{mapping or self._core.assistance.mapping}"),
+                watchdog_timeout=convert.duration(session.watchdog_s),
+                assistance=assistance_to_proto(self._core.assistance)))
+            for request in request_iterator:
+                kind = request.WhichOneof("message")
+                if kind == "command":
+                    command = request.command
+                    delta_x = convert.vector3_from_proto(command.delta_position_m,
+                                                         "delta_position_m")
+                    delta_m = convert.rotation_from_proto(command.delta_rotation,
+                                                          "delta_rotation")
+                    result = session.command(delta_x, delta_m, command.clutch_engaged)
+                    yield self._ack(command.sequence, command.send_time, result)
+                elif kind == "heartbeat":
+                    yield self._ack(0, request.heartbeat.send_time, session.heartbeat())
+                else:
+                    raise InvalidArgument("only commands and heartbeats may follow the init",
+                                          reason="BAD_MESSAGE")
+            reason = "the stream ended"
+        except TelerobotError as error:
+            if error.reason == "NO_CONTROL":
+                raise Aborted(f"control was lost mid-stream: {error.message}",
+                              reason="CONTROL_LOST") from None
+            raise
+        finally:
+            session.close(reason)
+
+    def GetAssistance(self, request, context):
+        return pb.GetAssistanceResponse(assistance=assistance_to_proto(self._core.assistance))
+
+    def SetAssistance(self, request, context):
+        value = self._core.set_assistance(lease_id(context),
+                                          assistance_from_proto(request.assistance))
+        return pb.SetAssistanceResponse(assistance=assistance_to_proto(value))
+
+    def SetIndexing(self, request, context):
+        return pb.SetIndexingResponse(
+            engaged=self._core.set_indexing(lease_id(context), request.engaged))
+
+    def AcquireControl(self, request, context):
+        if not request.mode:
+            raise InvalidArgument("mode must be CONTROL_MODE_EXCLUSIVE or "
+                                  "CONTROL_MODE_COLLABORATIVE", reason="BAD_MODE")
+        mode = ControlMode[pb.ControlMode.Name(request.mode).removeprefix("CONTROL_MODE_")]
+        wait_s = convert.seconds(request.wait_timeout) or context.time_remaining()
+        lease = self._core.locks.acquire(
+            request.operator_id, mode, request.group, request.wait, wait_s,
+            convert.seconds(request.lease_duration) or 5.0)
+        return pb.AcquireControlResponse(lease_id=lease.lease_id,
+                                         expire_time=_holder(lease).expire_time,
+                                         state=control_state(self._core.locks.view()))
+
+    def RenewControl(self, request, context):
+        return pb.RenewControlResponse(
+            expire_time=_holder(self._core.locks.renew(request.lease_id)).expire_time)
+
+    def ReleaseControl(self, request, context):
+        self._core.locks.release(request.lease_id)
+        return pb.ReleaseControlResponse(state=control_state(self._core.locks.view()))
+
+    def GetControlState(self, request, context):
+        return pb.GetControlStateResponse(state=control_state(self._core.locks.view()))
+
+    def StartRecording(self, request, context):
+        info = self._core.start_recording(lease_id(context), request.name)
+        return pb.StartRecordingResponse(recording=recording_to_proto(info))
+
+    def StopRecording(self, request, context):
+        return pb.StopRecordingResponse(recording=recording_to_proto(
+            self._core.recordings.stop()))
+
+    def ListRecordings(self, request, context):
+        return pb.ListRecordingsResponse(
+            recordings=[recording_to_proto(i) for i in self._core.recordings.list()])
+
+    def DeleteRecording(self, request, context):
+        self._core.recordings.delete(request.name)
+        return pb.DeleteRecordingResponse()
+
+    def StartReplay(self, request, context):
+        info = self._core.start_replay(lease_id(context), request.name, request.speed)
+        return pb.StartReplayResponse(recording=recording_to_proto(info))
+
+    def StopReplay(self, request, context):
+        return pb.StopReplayResponse(commands_replayed=self._core.stop_replay(lease_id(context)))
+
+    def BeginCobegin(self, request, context):
+        cobegin_id, timeout_s = self._core.barriers.open(
+            request.action_count, convert.seconds(request.barrier_timeout))
+        return pb.BeginCobeginResponse(
+            cobegin_id=cobegin_id,
+            deadline_time=convert.timestamp(time.time_ns() + int(timeout_s * 1e9)))
+
+    def RunAction(self, request, context):
+        arrive = time.time_ns()
+        lane = current_lane() or Lane.MEDIUM
+        kind = request.WhichOneof("action")
+        if kind is None:
+            raise InvalidArgument("set one action: busy_work, move_joints or move_cartesian",
+                                  reason="NO_ACTION")
+        if kind != "busy_work":
+            self._core.locks.require(lease_id(context))
+        if request.cobegin_id:
+            self._core.barriers.arrive_and_wait(request.cobegin_id)
+        if kind == "busy_work":
+            start, end = self._core.processor.run(int(lane),
+                                                  convert.seconds(request.busy_work.duration))
+        else:
+            start = time.time_ns()
+            robot = self._core.slave.robot
+            method = (robot.MoveJointsIncremental if kind == "move_joints"
+                      else robot.MoveCartesianIncremental)
+            call(method, getattr(request, kind), forwarded_metadata(context))
+            end = time.time_ns()
+        return pb.RunActionResponse(action_id=request.action_id, lane=LANE_TO_PROTO[lane],
+                                    arrive_time=convert.timestamp(arrive),
+                                    start_time=convert.timestamp(start),
+                                    end_time=convert.timestamp(end))
+
+    def StreamEvents(self, request, context):
+        with self._core.events.subscribe(256) as events:
+            while context.is_active():
+                event = events.get(STREAM_POLL_S)
+                if event is None:
+                    continue
+                message = event_to_proto(event)
+                if (message.WhichOneof("event") == "robot" and not request.include_data_received
+                        and message.robot.WhichOneof("event") == "data_received"):
+                    continue
+                yield message
+
+
+# -- the inherited services, forwarded --------------------------------------------------------
+
+def make_facades(core: DecisionCore, stereo_stub) -> list[tuple]:
+    """(grpc module, service name, servicer) for ProxyRobot, ForceSensor and StereoCamera."""
+    slave = core.slave
+
+    def guard_commands(commands: set[str]):
+        def guard(method: str, context) -> None:
+            if method in commands:
+                core.locks.require(lease_id(context))
+        return guard
+
+    class RobotOverrides:
+        def EmergencyStop(self, request, context):
+            core.emergency_stop(request.reason or "emergency stop")
+            status = call(slave.robot.GetStatus, proxy_robot_pb2.GetStatusRequest()).status
+            return proxy_robot_pb2.EmergencyStopResponse(
+                status=status, stop_time=convert.timestamp(time.time_ns()))
+
+        def Reset(self, request, context):
+            core.reset(lease_id(context))
+            status = call(slave.robot.GetStatus, proxy_robot_pb2.GetStatusRequest()).status
+            return proxy_robot_pb2.ResetResponse(status=status)
+
+        def SetToolFrame(self, request, context):
+            core.locks.require(lease_id(context))
+            reply = call(slave.robot.SetToolFrame, request, forwarded_metadata(context))
+            # Keep the sensor's tool frame equal to the arm's, as the contracts promise.
+            call(slave.sensor.SetSensorConfig, force_sensor_pb2.SetSensorConfigRequest(
+                config=force_sensor_pb2.SensorConfig(flange_to_tool=reply.flange_to_tool),
+                update_mask={"paths": ["flange_to_tool"]}))
+            return reply
+
+    robot = forwarding_servicer(
+        proxy_robot_pb2_grpc.ProxyRobotServicer, slave.robot,
+        proxy_robot_pb2.DESCRIPTOR.services_by_name["ProxyRobot"],
+        guard_commands(PROXY_COMMANDS), RobotOverrides)
+    sensor = forwarding_servicer(
+        force_sensor_pb2_grpc.ForceSensorServicer, slave.sensor,
+        force_sensor_pb2.DESCRIPTOR.services_by_name["ForceSensor"],
+        guard_commands(SENSOR_COMMANDS))
+    stereo = forwarding_servicer(
+        stereo_camera_pb2_grpc.StereoCameraServicer, stereo_stub,
+        stereo_camera_pb2.DESCRIPTOR.services_by_name["StereoCamera"], lambda m, c: None)
+    return [(proxy_robot_pb2_grpc, "ProxyRobot", robot()),
+            (force_sensor_pb2_grpc, "ForceSensor", sensor()),
+            (stereo_camera_pb2_grpc, "StereoCamera", stereo())]

@@ -1,0 +1,134 @@
+"""DecisionServer tests: the real world, ProxyRobot and ForceSensor processes, and an in-process
+DecisionServer in front of them (so the tests can look inside its core)."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import grpc
+import numpy as np
+import pytest
+
+from services.decision_server.__main__ import LANES
+from services.decision_server.backends import GrpcSlave
+from services.decision_server.servicer import DecisionServerServicer, make_facades
+from services.decision_server.supervisor import DecisionCore, build_core
+from services.robot_model.puma560 import HOME_Q
+from services.runtime.server import binding, create_server
+from telerobot.v1 import decision_server_pb2 as pb
+from telerobot.v1 import (
+    decision_server_pb2_grpc,
+    force_sensor_pb2,
+    force_sensor_pb2_grpc,
+    proxy_robot_pb2,
+    proxy_robot_pb2_grpc,
+    stereo_camera_pb2_grpc,
+    types_pb2,
+)
+from tests.conftest import RunningProcess, free_port, start_process
+
+
+@dataclass
+class Backends:
+    processes: list[RunningProcess]
+    proxy_address: str
+    sensor_address: str
+
+
+@pytest.fixture(scope="session")
+def backends(world) -> Iterator[Backends]:
+    env = {"TELEROBOT_WORLD_SHM": world.shm_name}
+    proxy = start_process(["-m", "services.proxy_robot", "--address",
+                           f"127.0.0.1:{free_port()}"], env)
+    sensor = start_process(["-m", "services.force_sensor", "--address",
+                            f"127.0.0.1:{free_port()}"], env)
+    proxy.wait_ready(["proxy_robot"])
+    sensor.wait_ready(["force_sensor"])
+    yield Backends([proxy, sensor], proxy.ready["proxy_robot"], sensor.ready["force_sensor"])
+    for process in (proxy, sensor):
+        process.stop()
+
+
+@dataclass
+class Station:
+    core: DecisionCore
+    channel: grpc.Channel
+    decisions: decision_server_pb2_grpc.DecisionServerStub
+    robot: proxy_robot_pb2_grpc.ProxyRobotStub
+    sensor: force_sensor_pb2_grpc.ForceSensorStub
+    address: str
+
+    def acquire(self, operator: str = "alice", **fields) -> tuple[str, list]:
+        """A lease for `operator`; returns (lease id, metadata carrying it)."""
+        fields.setdefault("mode", pb.CONTROL_MODE_EXCLUSIVE)
+        reply = self.decisions.AcquireControl(
+            pb.AcquireControlRequest(operator_id=operator, **fields), timeout=10)
+        return reply.lease_id, [("telerobot-lease-id", reply.lease_id)]
+
+    def ready_at_home(self, metadata) -> None:
+        """Connected, initialized, un-latched, with the arm at home."""
+        self.robot.Connect(proxy_robot_pb2.ConnectRequest(), metadata=metadata)
+        status = self.robot.GetStatus(proxy_robot_pb2.GetStatusRequest()).status
+        if status in (types_pb2.ROBOT_STATUS_ESTOPPED, types_pb2.ROBOT_STATUS_FAULT):
+            self.robot.Reset(proxy_robot_pb2.ResetRequest(), metadata=metadata)
+        if status == types_pb2.ROBOT_STATUS_CONNECTED:
+            self.robot.Initialize(proxy_robot_pb2.InitializeRequest(), metadata=metadata)
+        for _ in range(20):
+            q = np.array(self.robot.GetState(proxy_robot_pb2.GetStateRequest())
+                         .state.joint_positions_rad)
+            delta = HOME_Q - q
+            if np.max(np.abs(delta)) < 1e-4:
+                break
+            step = np.clip(delta, -0.45, 0.45)
+            self.robot.MoveJointsIncremental(proxy_robot_pb2.MoveJointsIncrementalRequest(
+                delta_joint_positions_rad=step.tolist()), metadata=metadata)
+            self.wait_status(types_pb2.ROBOT_STATUS_READY)
+        self.wait_status(types_pb2.ROBOT_STATUS_READY)
+        time.sleep(0.1)
+
+    def wait_status(self, status: int, timeout_s: float = 10.0) -> None:
+        deadline = time.monotonic() + timeout_s
+        while self.robot.GetStatus(proxy_robot_pb2.GetStatusRequest()).status != status:
+            if time.monotonic() > deadline:
+                raise AssertionError(f"status never became {types_pb2.RobotStatus.Name(status)}")
+            time.sleep(0.01)
+
+    def tool_position(self) -> np.ndarray:
+        p = self.robot.GetState(proxy_robot_pb2.GetStateRequest()).state.tool_pose.position_m
+        return np.array([p.x, p.y, p.z])
+
+    def tool_pose(self):
+        from services.common import convert
+
+        state = self.robot.GetState(proxy_robot_pb2.GetStateRequest()).state
+        return convert.pose_from_proto(state.tool_pose, "tool_pose")
+
+
+@pytest.fixture
+def station(backends, tmp_path) -> Iterator[Station]:
+    slave = GrpcSlave(backends.proxy_address, backends.sensor_address)
+    core = build_core(slave, tmp_path / "recordings")
+    stereo_channel = grpc.insecure_channel(f"127.0.0.1:{free_port()}")  # no camera here
+    facades = make_facades(core, stereo_camera_pb2_grpc.StereoCameraStub(stereo_channel))
+    server, port = create_server(
+        "127.0.0.1:0",
+        [binding(decision_server_pb2_grpc, "DecisionServer", DecisionServerServicer(core)),
+         *(binding(module, name, servicer) for module, name, servicer in facades)],
+        lanes=LANES)
+    server.start()
+    channel = grpc.insecure_channel(f"127.0.0.1:{port}")
+    station = Station(core, channel, decision_server_pb2_grpc.DecisionServerStub(channel),
+                      proxy_robot_pb2_grpc.ProxyRobotStub(channel),
+                      force_sensor_pb2_grpc.ForceSensorStub(channel), f"127.0.0.1:{port}")
+    yield station
+    channel.close()
+    server.stop(0)
+    core.close()
+    slave.close()
+    stereo_channel.close()
+    # Leave the sensor stopped and untared for the next test.
+    with grpc.insecure_channel(backends.sensor_address) as direct:
+        force_sensor_pb2_grpc.ForceSensorStub(direct).StopReading(
+            force_sensor_pb2.StopReadingRequest())
