@@ -1,0 +1,168 @@
+"""The simulated stereo rig: the work cell's two MuJoCo cameras, rendered at the arm's live pose.
+
+``SimSource`` renders the scene cameras ``left_eye`` and ``right_eye`` (robot_model/workspace.py)
+with mujoco.Renderer. Each tick reads the arm's joint positions from a callable (in the service,
+``WorldJoints``: the world process's shared memory), poses the model, and renders both eyes
+from that one state: the two virtual shutters are perfectly synchronized, so both eyes carry the
+time the state was read and eye_skew is zero.
+
+The renderer is created, used and closed on the capture thread only (it owns the GL context).
+Offscreen rendering needs MUJOCO_GL=egl (or osmesa) in the environment before mujoco is
+imported; the package sets egl unless told otherwise.
+
+Cost: with Mesa's software EGL, most of a pair's time is the directional light's shadow map
+(4096² by default), not the pixels: about 60-170 ms a pair with shadows at any size up to
+640x480 on a shared 2-core machine, and about 12-30 ms without (``shadows=False``). A GPU
+(EGL on a real driver) makes both a few milliseconds.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import sys
+import threading
+import time
+from collections.abc import Callable
+
+import mujoco
+import mujoco.gl_context as mujoco_gl_context
+import numpy as np
+
+from services.robot_model.loader import load_mujoco_model, mujoco_ids
+from services.runtime.errors import FailedPrecondition, Unavailable
+from services.stereo_camera.calibration import mujoco_stereo
+from services.stereo_camera.source import EyeFrame, SourceGeometry
+from services.world.link import JOINT_COUNT
+from services.world.shm_link import SharedMemoryArmLink
+
+log = logging.getLogger(__name__)
+
+DEFAULT_FPS = 30.0  # a cap; rendering is usually slower (see the module docstring)
+
+JointSource = Callable[[], np.ndarray]
+
+
+def home_joints(model: mujoco.MjModel | None = None) -> np.ndarray:
+    """Joint positions (rad) of the model's ``home`` keyframe: a fixed pose for demos and
+    benchmarks without a world."""
+    model = model if model is not None else load_mujoco_model()
+    ids = mujoco_ids(model)
+    return model.key_qpos[ids.home_key][ids.qpos].copy()
+
+
+def gl_backend_problem() -> str | None:
+    """Why offscreen rendering cannot work in this process, or None. MuJoCo picks its GL
+    backend from MUJOCO_GL when it is first imported; GLFW without a display aborts the whole
+    process when a context is made, so it is refused here instead."""
+    backend = getattr(mujoco_gl_context, "GLContext", None)
+    module = getattr(backend, "__module__", "")
+    if backend is None:
+        return "MuJoCo has no OpenGL backend here (MUJOCO_GL=disable?)"
+    headless = not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+    if module.endswith("glfw") and headless and sys.platform.startswith("linux"):
+        return ("mujoco was imported with GLFW as its OpenGL backend and there is no display; "
+                "start the process with MUJOCO_GL=egl (or osmesa)")
+    return None
+
+
+class SimSource:
+    """The scene's stereo cameras at the joint positions `joints()` returns (rad, 6 values).
+
+    `joints` may raise Unavailable (the world is not running); the pair is then not rendered
+    and the error reaches the clients. Not live: a tick is rendered when one is wanted.
+    """
+
+    live = False
+
+    def __init__(self, joints: JointSource, width_px: int = 640, height_px: int = 480,
+                 fps: float = DEFAULT_FPS, shadows: bool = True,
+                 model: mujoco.MjModel | None = None):
+        if width_px < 1 or height_px < 1 or not fps > 0:
+            raise ValueError(f"the sim cameras need a positive size and fps, got "
+                             f"{width_px}x{height_px} at {fps}")
+        self._joints = joints
+        self._model = model if model is not None else load_mujoco_model()
+        self._ids = mujoco_ids(self._model)
+        self._shadows = shadows
+        self._data = mujoco.MjData(self._model)
+        mujoco.mj_resetDataKeyframe(self._model, self._data, self._ids.home_key)
+        mujoco.mj_kinematics(self._model, self._data)
+        mujoco.mj_camlight(self._model, self._data)
+        calibration = mujoco_stereo(self._model, self._data, self._ids.left_camera,
+                                    self._ids.right_camera, width_px, height_px)
+        self.geometry = SourceGeometry(width_px, height_px, calibration, fps, "sim")
+        self._renderer: mujoco.Renderer | None = None
+
+    def open(self) -> SourceGeometry:
+        if self._renderer is None:
+            problem = gl_backend_problem()
+            if problem:
+                raise FailedPrecondition(f"cannot render the sim cameras: {problem}",
+                                         reason="RENDERER_UNAVAILABLE")
+            global_ = self._model.vis.global_
+            global_.offwidth = max(int(global_.offwidth), self.geometry.width_px)
+            global_.offheight = max(int(global_.offheight), self.geometry.height_px)
+            try:
+                self._renderer = mujoco.Renderer(self._model, self.geometry.height_px,
+                                                 self.geometry.width_px)
+            except Exception as exc:  # mujoco.FatalError, GL errors: no usable context
+                raise FailedPrecondition(
+                    f"cannot create an offscreen OpenGL context for the sim cameras: {exc}. "
+                    "Set MUJOCO_GL=egl (or osmesa) before the process starts",
+                    reason="RENDERER_UNAVAILABLE") from None
+            self._renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = self._shadows
+        return self.geometry
+
+    def grab(self, tick: int) -> tuple[EyeFrame, EyeFrame]:
+        renderer = self._renderer
+        if renderer is None:
+            raise Unavailable("the sim cameras are not open", reason="SOURCE_CLOSED")
+        q = np.asarray(self._joints(), dtype=float)
+        state_time_ns = time.time_ns()
+        if q.shape != (JOINT_COUNT,) or not np.isfinite(q).all():
+            raise Unavailable(f"the world sent joint positions that cannot be rendered: {q!r}",
+                              reason="BAD_JOINT_STATE")
+        self._data.qpos[self._ids.qpos] = q
+        mujoco.mj_kinematics(self._model, self._data)
+        mujoco.mj_camlight(self._model, self._data)
+        frames = []
+        for camera in (self._ids.left_camera, self._ids.right_camera):
+            renderer.update_scene(self._data, camera=camera)
+            frames.append(EyeFrame(tick, renderer.render(), state_time_ns))
+        return frames[0], frames[1]
+
+    def close(self) -> None:
+        renderer, self._renderer = self._renderer, None
+        if renderer is not None:
+            renderer.close()
+
+
+class WorldJoints:
+    """Joint positions of the simulated arm, read from the world process's shared memory.
+
+    Attaches on first use and again after the world restarts; Unavailable (naming what to do)
+    while no world is running. Read-only use of SharedMemoryArmLink: it never commands.
+    """
+
+    def __init__(self, shm_name: str | None = None):
+        self._shm_name = shm_name
+        self._lock = threading.Lock()
+        self._link: SharedMemoryArmLink | None = None
+
+    def __call__(self) -> np.ndarray:
+        with self._lock:
+            if self._link is None:
+                self._link = SharedMemoryArmLink(self._shm_name)  # Unavailable: no world
+            try:
+                return self._link.read_arm().joint_positions_rad
+            except Unavailable:
+                self._link.close()
+                self._link: SharedMemoryArmLink | None = None
+                raise
+
+    def close(self) -> None:
+        with self._lock:
+            link, self._link = self._link, None
+        if link is not None:
+            link.close()
