@@ -2,9 +2,12 @@
 
 Master commands arrive at 50 Hz or so; handing each target to the servo at once would make the
 arm accelerate and brake between commands. Instead each target becomes a straight joint-space
-segment from the current setpoint, lasting as long as the gap since the last command (at most
-MAX_SEGMENT_S, so one isolated command still moves promptly), and a thread writes the setpoint
-to the hardware link every SETPOINT_PERIOD_S. Commands at the servo rate pass straight through.
+segment from the current setpoint, lasting one command interval, and a thread writes the
+setpoint to the hardware link every SETPOINT_PERIOD_S. The interval is a running average of
+the gaps between commands (at most MAX_SEGMENT_S, so one isolated command still moves promptly):
+over a network the gaps jitter, and following each one would turn the jitter into velocity
+steps, which a stiff servo in contact turns into force spikes. Commands at the servo rate pass
+straight through.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import numpy as np
 
 SETPOINT_PERIOD_S = 0.001  # the servo rate
 MAX_SEGMENT_S = 0.05  # a segment never lasts longer: slower senders see 50 ms of smoothing
+INTERVAL_SMOOTHING = 0.1  # weight of the newest gap in the running average
 
 
 class SetpointInterpolator:
@@ -31,6 +35,7 @@ class SetpointInterpolator:
         self._setpoint = np.asarray(start, float).copy()
         self._segment: tuple[np.ndarray, np.ndarray, float, float] | None = None
         self._last_command_s = 0.0
+        self._interval_s = MAX_SEGMENT_S
         self._closed = False
         self._thread = threading.Thread(target=self._run, name="setpoints", daemon=True)
         self._thread.start()
@@ -39,8 +44,10 @@ class SetpointInterpolator:
         """Head for `target`, over the time since the previous call (capped)."""
         now = time.monotonic()
         with self._lock:
-            duration = min(max(now - self._last_command_s, 0.0), MAX_SEGMENT_S)
+            gap = min(max(now - self._last_command_s, 0.0), MAX_SEGMENT_S)
             self._last_command_s = now
+            self._interval_s += INTERVAL_SMOOTHING * (gap - self._interval_s)
+            duration = self._interval_s
             if duration <= SETPOINT_PERIOD_S:
                 self._segment = None
                 self._setpoint = np.asarray(target, float).copy()

@@ -29,6 +29,7 @@ from services.world.link import JOINT_COUNT, ArmSample, RawWrench
 from services.world.trajectory import JointReference
 
 MAX_JOINT_SPEED_RAD_PER_S = 1.0  # every joint; the reference never moves faster
+GOAL_SMOOTHING_S = 0.005  # absorbs jitter in streamed targets (see trajectory.py)
 MAX_JOINT_ACCEL_RAD_PER_S2 = 10.0  # every joint; from 1 rad/s a hold stops in 0.1 s and 0.05 rad
 # Servo tuning: each joint is a critically damped second-order loop around the reference with
 # this natural frequency, given the joint inertia at the home pose (armature included). 80 rad/s
@@ -71,6 +72,7 @@ class ArmSim:
             np.full(JOINT_COUNT, MAX_JOINT_SPEED_RAD_PER_S),
             np.full(JOINT_COUNT, MAX_JOINT_ACCEL_RAD_PER_S2),
             self.period_s,
+            GOAL_SMOOTHING_S,
         )
         self._inertial = np.zeros(self.model.nv)  # scratch for M * reference acceleration
         self._accel = np.zeros(self.model.nv)

@@ -59,6 +59,7 @@ class Station:
     robot: proxy_robot_pb2_grpc.ProxyRobotStub
     sensor: force_sensor_pb2_grpc.ForceSensorStub
     address: str
+    server: object  # the TelerobotServer, for its lane counters
 
     def acquire(self, operator: str = "alice", **fields) -> tuple[str, list]:
         """A lease for `operator`; returns (lease id, metadata carrying it)."""
@@ -121,7 +122,8 @@ def station(backends, tmp_path) -> Iterator[Station]:
     channel = grpc.insecure_channel(f"127.0.0.1:{port}")
     station = Station(core, channel, decision_server_pb2_grpc.DecisionServerStub(channel),
                       proxy_robot_pb2_grpc.ProxyRobotStub(channel),
-                      force_sensor_pb2_grpc.ForceSensorStub(channel), f"127.0.0.1:{port}")
+                      force_sensor_pb2_grpc.ForceSensorStub(channel), f"127.0.0.1:{port}",
+                      server)
     yield station
     channel.close()
     server.stop(0)
