@@ -14,6 +14,10 @@ from pathlib import Path
 
 import pytest
 
+# MuJoCo picks its GL backend at import: headless rendering needs EGL, set before any test
+# module imports mujoco (make does it too, but a bare `pytest` should work the same).
+os.environ.setdefault("MUJOCO_GL", "egl")
+
 from services.runtime.process import READY_LINE_PREFIX
 
 REPO = Path(__file__).resolve().parent.parent

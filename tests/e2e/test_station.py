@@ -123,11 +123,26 @@ def test_drive_the_arm_by_hand_with_buf_curl(station):
     assert _call(address, "Reset") == {"status": "ROBOT_STATUS_READY"}
 
 
-def test_the_operator_address_says_what_is_not_built_yet(station):
+def test_the_operator_address_forwards_with_the_lock_in_front(station):
+    """On the DecisionServer, reads are free and commands need a lease in the metadata."""
     _, env = station
     address = env["TELEROBOT_DECISION_SERVER_ADDRESS"]
-    unbuilt = _buf_curl("-d", "{}", f"http://{address}/telerobot.v1.ProxyRobot/GetState")
-    assert unbuilt.returncode != 0 and '"code": "unimplemented"' in unbuilt.stdout + unbuilt.stderr
+    state = _call(address, "GetState")["state"]
+    assert len(state["jointPositionsRad"]) == 6
+    refused = _buf_curl("-d", '{"delta_joint_positions_rad": [0.05, 0, 0, 0, 0, 0]}',
+                        f"http://{address}/telerobot.v1.ProxyRobot/MoveJointsIncremental")
+    assert refused.returncode != 0 and "control lock" in refused.stdout + refused.stderr
+    granted = _buf_curl("-d", '{"operator_id": "hand", "mode": "CONTROL_MODE_EXCLUSIVE"}',
+                        f"http://{address}/telerobot.v1.DecisionServer/AcquireControl")
+    assert granted.returncode == 0, granted.stderr
+    lease = json.loads(granted.stdout)["leaseId"]
+    moved = _buf_curl("-H", f"telerobot-lease-id: {lease}",
+                      "-d", '{"delta_joint_positions_rad": [0.05, 0, 0, 0, 0, 0]}',
+                      f"http://{address}/telerobot.v1.ProxyRobot/MoveJointsIncremental")
+    assert moved.returncode == 0, moved.stdout + moved.stderr
+    released = _buf_curl("-d", json.dumps({"lease_id": lease}),
+                         f"http://{address}/telerobot.v1.DecisionServer/ReleaseControl")
+    assert released.returncode == 0
 
 
 def test_unknown_method_and_malformed_message_on_a_real_process(station):
@@ -168,8 +183,7 @@ def test_node_client_on_the_operator_address(station):
     _, env = station
     report = _node_client(env["TELEROBOT_DECISION_SERVER_ADDRESS"])
     assert report["health"] == {"(server)": "SERVING", "telerobot.v1.ProxyRobot": "SERVING"}
-    # Forwarding to ProxyRobot comes with the DecisionServer issue; until then it says so.
-    assert report["state"]["code"] == "UNIMPLEMENTED"
+    assert len(report["state"]["reply"]["state"]["joint_positions_rad"]) == 6
 
 
 def test_node_client_reports_an_unreachable_server():

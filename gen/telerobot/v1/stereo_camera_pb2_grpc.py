@@ -78,7 +78,7 @@ class StereoCameraServicer:
     def StreamPairs(self, request, context):
         """StreamPairs sends the header first, exactly once, then pairs until cancelled.
         Errors: INVALID_ARGUMENT for an unknown encoding or transfer mode, a size larger than the
-        source's, a JPEG quality outside 1..100, or max_fps <= 0; FAILED_PRECONDITION when the
+        source's, a JPEG quality outside 1..100, or max_fps < 0; FAILED_PRECONDITION when the
         source cannot be opened (the message names the device).
         Lane: medium.
         """
