@@ -55,15 +55,21 @@ def _buf_curl(*args: str) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=30)
 
 
-@pytest.fixture(scope="module")
-def station():
-    env = _station_env()
+def _start_station(env: dict[str, str]):
+    """The real launcher, once it says the whole station is up."""
     launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=env)
     deadline = time.monotonic() + 90
     while not any("Slave station is up" in line for line in launcher.lines):
         if launcher.process.poll() is not None or time.monotonic() > deadline:
             pytest.fail("launcher did not come up:\n" + "\n".join(launcher.lines[-40:]))
         time.sleep(0.05)
+    return launcher
+
+
+@pytest.fixture(scope="module")
+def station():
+    env = _station_env()
+    launcher = _start_station(env)
     yield launcher, env
     if launcher.process.poll() is None:
         launcher.stop(signal.SIGKILL)
@@ -204,11 +210,7 @@ def test_sigint_stops_the_whole_group_within_5_s_with_no_orphans(station):
 
 
 def test_a_dying_child_stops_the_station_and_is_named():
-    launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=_station_env())
-    deadline = time.monotonic() + 90
-    while not any("Slave station is up" in line for line in launcher.lines):
-        assert launcher.process.poll() is None and time.monotonic() < deadline
-        time.sleep(0.05)
+    launcher = _start_station(_station_env())
     children = _child_pids(launcher.process.pid)
     victim = next(pid for pid in children
                   if "services.force_sensor" in open(f"/proc/{pid}/cmdline").read())
@@ -221,11 +223,7 @@ def test_a_dying_child_stops_the_station_and_is_named():
 
 
 def test_children_stop_by_themselves_when_the_launcher_is_killed():
-    launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=_station_env())
-    deadline = time.monotonic() + 90
-    while not any("Slave station is up" in line for line in launcher.lines):
-        assert launcher.process.poll() is None and time.monotonic() < deadline
-        time.sleep(0.05)
+    launcher = _start_station(_station_env())
     children = _child_pids(launcher.process.pid)
     launcher.stop(signal.SIGKILL)
     deadline = time.monotonic() + 5
