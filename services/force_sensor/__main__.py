@@ -9,31 +9,16 @@ from __future__ import annotations
 
 import argparse
 import os
-from collections.abc import Sequence
-from dataclasses import dataclass
 
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.rdt import RDT_PORT, RdtWrenchLink
 from services.force_sensor.servicer import ForceSensorServicer
+from services.runtime.core_service import CoreService
 from services.runtime.process import run_service
-from services.runtime.server import ServiceBinding, binding
+from services.runtime.server import binding
 from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2_grpc
-
-
-@dataclass
-class ForceSensorService:
-    core: ForceSensorCore
-
-    def bindings(self) -> Sequence[ServiceBinding]:
-        return [binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(self.core))]
-
-    def start(self) -> None:
-        pass  # sampling starts on StartReading, as in the papers
-
-    def close(self) -> None:
-        self.core.close()
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -52,7 +37,7 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"the world's shared-memory segment (env {SHM_NAME_ENV})")
 
 
-def build(args: argparse.Namespace) -> ForceSensorService:
+def build(args: argparse.Namespace) -> CoreService:
     if args.sensor == "rdt":
         if not args.rdt_address:
             raise SystemExit("--sensor rdt needs --rdt-address host[:port]")
@@ -65,8 +50,10 @@ def build(args: argparse.Namespace) -> ForceSensorService:
         def wrench_link():
             return SharedMemoryWrenchLink(args.shm_name)
 
+    # Sampling starts on StartReading, as in the papers; close() releases the links.
     core = ForceSensorCore(wrench_link, lambda: SharedMemoryArmLink(args.shm_name))
-    return ForceSensorService(core)
+    return CoreService([binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(core))],
+                       core.close)
 
 
 if __name__ == "__main__":

@@ -8,30 +8,15 @@ from __future__ import annotations
 
 import argparse
 import os
-from collections.abc import Sequence
-from dataclasses import dataclass
 
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.servicer import ProxyRobotServicer
+from services.runtime.core_service import CoreService
 from services.runtime.process import run_service
-from services.runtime.server import ServiceBinding, binding
+from services.runtime.server import binding
 from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
 from services.world.shm_link import SharedMemoryArmLink
 from telerobot.v1 import proxy_robot_pb2_grpc
-
-
-@dataclass
-class ProxyRobotService:
-    core: ProxyRobotCore
-
-    def bindings(self) -> Sequence[ServiceBinding]:
-        return [binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(self.core))]
-
-    def start(self) -> None:
-        pass  # the link opens on Connect, as the papers' ConnectRobot does
-
-    def close(self) -> None:
-        self.core.close()  # hold the arm and release the link
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -40,8 +25,11 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"shared-memory segment of the simulated arm's link (env {SHM_NAME_ENV})")
 
 
-def build(args: argparse.Namespace) -> ProxyRobotService:
-    return ProxyRobotService(ProxyRobotCore(lambda: SharedMemoryArmLink(args.shm_name)))
+def build(args: argparse.Namespace) -> CoreService:
+    # The link opens on Connect, as the papers' ConnectRobot does; close() holds the arm.
+    core = ProxyRobotCore(lambda: SharedMemoryArmLink(args.shm_name))
+    return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],
+                       core.close)
 
 
 if __name__ == "__main__":

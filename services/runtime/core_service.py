@@ -1,0 +1,26 @@
+"""CoreService: a service process that serves some bindings and releases one core on stop."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from services.runtime.server import ServiceBinding
+
+
+@dataclass
+class CoreService:
+    """What run_service needs from a service whose domain object starts on demand (on Connect,
+    on StartReading) and has one `close()` that releases its hardware."""
+
+    served: Sequence[ServiceBinding]
+    release: Callable[[], None]
+
+    def bindings(self) -> Sequence[ServiceBinding]:
+        return self.served
+
+    def start(self) -> None:
+        pass  # the domain opens its hardware when a client asks, as the papers' components do
+
+    def close(self) -> None:
+        self.release()
