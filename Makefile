@@ -49,8 +49,9 @@ teleop: $(VENV)/.installed
 	@exit 2
 
 bench: $(VENV)/.installed
-	@echo "make bench: the benchmarks are not built yet (issue: Benchmarks)." >&2
-	@exit 2
+	@test $(VENV)/.installed-bench -nt pyproject.toml || { \
+		$(PY) -m pip install --quiet -e '.[dev,bench]' && touch $(VENV)/.installed-bench; }
+	$(PY) -m bench $(if $(filter-out 0,$(QUICK)),--quick)
 
 clean:
 	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache

@@ -1,0 +1,17 @@
+"""`make bench` (`python -m bench`): the papers' figures, measured on real processes on loopback,
+with baselines (pyzmq, a plain TCP socket with struct framing) measured in the same run.
+
+Layout:
+
+- ``__main__.py``    the command line; ``run.py`` the order of scenarios and the station;
+- ``procs.py``       child processes (services, workers, baseline servers) and their clean stop;
+- ``worker.py``      ``python -m bench.worker KIND``: one measuring client process;
+- ``run.py``'s groups: command, force, baselines, observers, estop, decision (Teleoperate and
+  the e-stop through the DecisionServer), closed_loop, stereo (``python -m bench --only``);
+- ``command.py``, ``force.py``, ``estop.py``, ``closed_loop.py``, ``stereo.py``: the scenarios'
+  client code (run inside workers);
+- ``baseline_server.py``: the same domain cores (ProxyRobotCore, ForceSensorCore) behind pyzmq
+  or a plain TCP socket (``framing.py``) instead of gRPC, so a ratio isolates the transport;
+- ``worldwatch.py``  reads the world's shared memory (read only) to see what the servo applied;
+- ``stats.py``, ``report.py``, ``plots.py``: figures, the terminal table, JSON and PNG plots.
+"""

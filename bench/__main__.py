@@ -1,0 +1,31 @@
+"""python -m bench [--quick] [--only GROUP ...]: run the benchmarks (`make bench`).
+
+Starts a slave station of its own on free loopback ports, measures every scenario against its
+baselines in the same run, prints a table, and writes bench/results/latest.json,
+raw_latencies.json and PNG plots. --quick (`make bench QUICK=1`) shortens every scenario so the
+whole run takes under 3 minutes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from pathlib import Path
+
+from bench.run import GROUPS, RESULTS_DIR, Plan, run
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true",
+                        default=os.environ.get("QUICK", "") not in ("", "0"),
+                        help="shorter scenarios, the whole run under 3 minutes (env QUICK=1)")
+    parser.add_argument("--only", nargs="+", choices=GROUPS, default=(),
+                        help="run only these groups of scenarios")
+    parser.add_argument("--out", default=str(RESULTS_DIR), help="where results go")
+    args = parser.parse_args(argv)
+    return run(Plan(quick=args.quick, only=tuple(args.only)), Path(args.out))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,180 @@
+"""force_<rate> and observers_<n>: wrench samples from the sensor to the operator.
+
+The sensor samples every 1 ms (its default TimerValue); a subscriber asks for every Nth sample
+with StreamWrench's per-subscriber `decimation` (1 for 1 kHz; 8 for the papers' ~120 Hz, i.e.
+125 Hz), one sample per message (batch_size 1). A sample's `sample_time` is the world's servo
+step time (time.time_ns() in the world process); latency is time.time_ns() when the client has
+the decoded message, minus that. It so includes the sensor thread's phase against the world's
+step (0 to 1 ms: both run 1 kHz loops, unsynchronized), for the project and the baselines alike
+(the baselines run the same ForceSensorCore).
+
+`dropped` is what the server's per-subscriber queue dropped (`dropped_count`) plus gaps in the
+kept samples' sequence numbers. A sampler that is late skips the tick (it takes no sample), so
+that shows as a delivered rate under the offered one, not as drops.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Iterator
+
+import grpc
+
+from bench import framing
+from bench.stats import interarrival, summary
+from telerobot.v1 import force_sensor_pb2, force_sensor_pb2_grpc
+
+SENSOR_RATE_HZ = 1000.0
+WARMUP_S = 0.3
+POLL_MS = 100
+
+
+def _grpc_messages(address: str, decimation: int, timeout_s: float, stop: threading.Event
+                   ) -> Iterator[force_sensor_pb2.StreamWrenchResponse]:
+    # A channel of its own (and its own connection): observers are separate clients.
+    channel = grpc.insecure_channel(address, options=[("grpc.use_local_subchannel_pool", 1)])
+    stub = force_sensor_pb2_grpc.ForceSensorStub(channel)
+    stream = stub.StreamWrench(
+        force_sensor_pb2.StreamWrenchRequest(decimation=decimation, batch_size=1),
+        timeout=timeout_s)
+    try:
+        for message in stream:
+            yield message
+            if stop.is_set():
+                return
+    except grpc.RpcError as error:
+        if error.code() not in (grpc.StatusCode.CANCELLED, grpc.StatusCode.DEADLINE_EXCEEDED):
+            raise
+    finally:
+        stream.cancel()
+        channel.close()
+
+
+def _zmq_messages(address: str, decimation: int, timeout_s: float, stop: threading.Event
+                  ) -> Iterator[force_sensor_pb2.StreamWrenchResponse]:
+    import zmq
+
+    context = zmq.Context()
+    socket = context.socket(zmq.SUB)
+    socket.setsockopt(zmq.LINGER, 0)
+    socket.connect(f"tcp://{address}")
+    socket.subscribe(f"d{decimation}|".encode())
+    deadline = time.monotonic() + timeout_s
+    try:
+        while not stop.is_set() and time.monotonic() < deadline:
+            if socket.poll(POLL_MS):
+                _, payload = socket.recv_multipart()
+                yield force_sensor_pb2.StreamWrenchResponse.FromString(payload)
+    finally:
+        socket.close()
+        context.term()
+
+
+def _tcp_messages(address: str, decimation: int, timeout_s: float, stop: threading.Event
+                  ) -> Iterator[force_sensor_pb2.StreamWrenchResponse]:
+    sock = framing.connect(address)
+    sock.settimeout(POLL_MS / 1000)
+    sock.sendall(framing.MODE_FORCE + framing.DECIMATION.pack(decimation))
+    deadline = time.monotonic() + timeout_s
+    try:
+        while not stop.is_set() and time.monotonic() < deadline:
+            try:
+                payload = framing.recv_frame(sock)
+            except TimeoutError:
+                continue
+            yield force_sensor_pb2.StreamWrenchResponse.FromString(payload)
+    finally:
+        sock.close()
+
+
+STREAMS: dict[str, Callable] = {"grpc": _grpc_messages, "zmq": _zmq_messages,
+                                "tcp": _tcp_messages}
+TRANSPORT_NAMES = {"grpc": "grpc-stream", "zmq": "zmq-pubsub", "tcp": "tcp-struct"}
+
+
+def measure_stream(transport: str, address: str, decimation: int, duration_s: float,
+                   on_first: Callable[[], None] | None = None) -> dict:
+    """Receive the wrench stream for WARMUP_S + duration_s; the scenario's summary."""
+    stop = threading.Event()
+    latencies, arrivals = [], []
+    server_dropped = gaps = 0
+    first_dropped = None
+    last_sequence = None
+    window_start = window_end = None
+    started = time.monotonic()
+    timeout_s = WARMUP_S + duration_s + 10.0
+    for message in STREAMS[transport](address, decimation, timeout_s, stop):
+        now_ns = time.time_ns()
+        now = time.monotonic()
+        if on_first is not None:
+            on_first()
+            on_first = None
+        if now - started < WARMUP_S:
+            continue
+        if window_start is None:
+            window_start = now
+            first_dropped = message.dropped_count
+        for sample in message.samples:
+            latencies.append((now_ns - sample.sample_time.ToNanoseconds()) / 1e6)
+            if last_sequence is not None and sample.sequence - last_sequence > decimation:
+                gaps += (sample.sequence - last_sequence) // decimation - 1
+            last_sequence = sample.sequence
+        arrivals.append(now_ns)
+        server_dropped = message.dropped_count - (first_dropped or 0)
+        window_end = now
+        if now - window_start >= duration_s:
+            stop.set()
+            break
+    if window_start is None:
+        raise RuntimeError(f"no wrench samples arrived over {transport} from {address}")
+    elapsed = max(window_end - window_start, 1e-9)
+    rate = SENSOR_RATE_HZ / decimation
+    # The first message opens the window: count the ones after it over the time they took.
+    result = summary(latencies, rate, len(latencies) - 1, elapsed, server_dropped + gaps,
+                     transport=TRANSPORT_NAMES[transport], decimation=decimation,
+                     duration_s=round(elapsed, 3), server_dropped=server_dropped,
+                     sequence_gaps=gaps, **interarrival(arrivals, 1000.0 / rate))
+    result["latencies_ms"] = [round(v, 4) for v in latencies]
+    return result
+
+
+def observe(address: str, count: int, decimation: int, max_s: float,
+            ready: Callable[[], None], stop: threading.Event) -> dict:
+    """`count` observers, one thread and one connection each, streaming until `stop` (or
+    max_s); calls ready() once every one has its first sample. Counts per observer."""
+    counts = [0] * count
+    first = [threading.Event() for _ in range(count)]
+    errors: list[str] = []
+
+    def run(index: int):
+        try:
+            for message in _grpc_messages(address, decimation, max_s, stop):
+                counts[index] += len(message.samples)
+                first[index].set()
+        except Exception as error:  # reported with the result, not raised from a thread
+            errors.append(f"observer {index}: {error}")
+            first[index].set()
+
+    threads = [threading.Thread(target=run, args=(i,), name=f"observer-{i}", daemon=True)
+               for i in range(count)]
+    started = time.monotonic()
+    for thread in threads:
+        thread.start()
+    for event in first:
+        event.wait(max(0.0, max_s - (time.monotonic() - started)))
+    ready()
+    marks = list(counts)
+    mark_time = time.monotonic()
+    stop.wait(max(0.0, max_s - (mark_time - started)))
+    elapsed = time.monotonic() - mark_time
+    delivered = [c - m for c, m in zip(counts, marks, strict=True)]
+    stop.set()
+    for thread in threads:
+        thread.join(2.0)
+    total = sum(delivered)
+    return {"observers": count, "observer_rate_hz": SENSOR_RATE_HZ / decimation,
+            "observer_delivered_hz_mean": round(total / elapsed / count, 2) if count else None,
+            "observer_delivered_hz_min": (round(min(delivered) / elapsed, 2) if count
+                                          else None),
+            "errors": errors[:5]}

@@ -1,0 +1,724 @@
+"""The bench run: start a slave station of its own, run the scenarios in order, stop it all.
+
+The station (world, proxy_robot, force_sensor; stereo_camera per source when its scenarios
+run) listens on free loopback ports with a shared-memory name of its own, so it never meets a
+`make serve` or a test. Every measuring client is a separate worker process (worker.py); the
+baselines' servers are separate processes too (baseline_server.py). Baselines run right after
+the project's scenarios they are compared with, in the same run.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import grpc
+
+from bench import plots, report, stereo
+from bench.procs import ChildFailed, ProcessSet, free_port, unique_shm_name
+from bench.stats import ratio
+from services.world.shm_layout import SHM_NAME_ENV
+from telerobot.v1 import (
+    force_sensor_pb2,
+    force_sensor_pb2_grpc,
+    proxy_robot_pb2,
+    proxy_robot_pb2_grpc,
+    types_pb2,
+)
+
+RESULTS_DIR = Path(__file__).resolve().parent / "results"
+SETUP_TIMEOUT_S = 10.0
+OBSERVERS_PER_PROCESS = 8
+
+
+@dataclass(frozen=True)
+class Plan:
+    """How long each scenario runs; `quick` shortens all (`make bench QUICK=1`)."""
+
+    quick: bool
+    command_rates: tuple[int, ...] = (50, 500, 1000)
+    force_rates: tuple[tuple[int, int], ...] = ((1000, 1), (120, 8))  # (name, decimation)
+    observer_counts: tuple[int, ...] = (0, 1, 4, 16, 32)
+    observer_decimation: int = 10
+    load_concurrency: int = 200
+    stereo_sources: tuple[str, ...] = ("pattern", "sim")
+    stereo_modes: tuple[str, ...] = ("single", "double")
+    stereo_source_fps: float = 30.0
+    only: tuple[str, ...] = field(default_factory=tuple)
+
+    @property
+    def command_s(self) -> float:
+        return 2.0 if self.quick else 8.0
+
+    @property
+    def force_s(self) -> float:
+        return 2.5 if self.quick else 10.0
+
+    @property
+    def observers_s(self) -> float:
+        return 2.0 if self.quick else 8.0
+
+    @property
+    def estop_trials(self) -> int:
+        return 12 if self.quick else 50
+
+    @property
+    def closed_loop_trials(self) -> int:
+        return 8 if self.quick else 30
+
+    @property
+    def stereo_pairs(self) -> int:
+        return 20 if self.quick else 120
+
+    def wants(self, group: str) -> bool:
+        return not self.only or group in self.only
+
+
+GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
+          "stereo")
+
+
+class Progress:
+    """One line per step on stderr: [step/total elapsed] what, then its headline figure."""
+
+    def __init__(self, total: int):
+        self.total, self.index, self.started = total, 0, time.monotonic()
+
+    def step(self, text: str) -> None:
+        self.index += 1
+        elapsed = time.monotonic() - self.started
+        print(f"[{self.index:2d}/{self.total} {elapsed:5.0f}s] {text} ...", end="",
+              file=sys.stderr, flush=True)
+
+    def done(self, text: str) -> None:
+        print(f" {text}", file=sys.stderr, flush=True)
+
+    def note(self, text: str) -> None:
+        print(f"            {text}", file=sys.stderr, flush=True)
+
+
+def _headline(result: dict) -> str:
+    if result.get("status") in ("pending", "failed"):
+        return f"{result['status']}: {result.get('reason', '')[:200]}"
+    parts = []
+    if result.get("delivered_hz") is not None:
+        parts.append(f"{result['delivered_hz']:.1f} Hz")
+    if result.get("p99_ms") is not None:
+        parts.append(f"p50 {result['p50_ms']:.3f} / p99 {result['p99_ms']:.3f} ms")
+    return ", ".join(parts) or "done"
+
+
+class Station:
+    """The slave station's processes for this run, and the set-up calls the bench makes."""
+
+    def __init__(self, procs: ProcessSet, shm_name: str):
+        self.procs = procs
+        self.shm = shm_name
+        self.address = {name: f"127.0.0.1:{free_port()}"
+                        for name in ("world", "proxy_robot", "force_sensor")}
+
+    def start(self) -> None:
+        self.procs.start_service("world", self.address["world"])
+        self.proxy = self.procs.start("proxy_robot", self._service_args("proxy_robot"))
+        sensor = self.procs.start("force_sensor", self._service_args("force_sensor"))
+        for child in (self.proxy, sensor):
+            child.wait_service_ready(child.name, 60.0)
+
+    def _service_args(self, name: str) -> list[str]:
+        return ["-m", f"services.{name}", "--address", self.address[name], "--grace-s", "0.5"]
+
+    def restart_proxy(self, switch_interval_s: float | None = None) -> None:
+        """A new proxy_robot process on the same address, connected and initialized; with
+        `switch_interval_s`, its interpreter hands the GIL over at that interval (a diagnostic:
+        the service keeps CPython's default of 5 ms; the DecisionServer sets 1 ms)."""
+        self.procs.stop(self.proxy)
+        args = self._service_args("proxy_robot")
+        if switch_interval_s is not None:
+            args = ["-c", "import runpy, sys; "
+                    f"sys.setswitchinterval({switch_interval_s}); "
+                    "runpy.run_module('services.proxy_robot', run_name='__main__')", *args[2:]]
+        self.proxy = self.procs.start("proxy_robot", args)
+        self.proxy.wait_service_ready("proxy_robot", 60.0)
+        self.arm_ready()
+
+    def arm_ready(self) -> None:
+        """ProxyRobot connected, initialized and not stopped; the sensor reading. Also brings
+        them back after a hiccup (on an overloaded machine a world that has not stepped for
+        100 ms counts as gone: the proxy drops its link, the sensor stops sampling)."""
+        for child in self.procs.children:
+            if child.name in ("world", "proxy_robot", "force_sensor") and (
+                    child.process.poll() is not None):
+                raise ChildFailed(f"a station process died: {child.describe()}")
+        with grpc.insecure_channel(self.address["proxy_robot"]) as channel:
+            robot = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+            status = robot.GetStatus(proxy_robot_pb2.GetStatusRequest(),
+                                     timeout=SETUP_TIMEOUT_S).status
+            if status == types_pb2.ROBOT_STATUS_NOT_CONNECTED:
+                status = robot.Connect(proxy_robot_pb2.ConnectRequest(),
+                                       timeout=SETUP_TIMEOUT_S).status
+            if status in (types_pb2.ROBOT_STATUS_ESTOPPED, types_pb2.ROBOT_STATUS_FAULT):
+                status = robot.Reset(proxy_robot_pb2.ResetRequest(),
+                                     timeout=SETUP_TIMEOUT_S).status
+            if status == types_pb2.ROBOT_STATUS_CONNECTED:
+                robot.Initialize(proxy_robot_pb2.InitializeRequest(), timeout=SETUP_TIMEOUT_S)
+        with grpc.insecure_channel(self.address["force_sensor"]) as channel:
+            sensor = force_sensor_pb2_grpc.ForceSensorStub(channel)
+            sensor.StartReading(force_sensor_pb2.StartReadingRequest(), timeout=SETUP_TIMEOUT_S)
+
+    def release(self) -> None:
+        """ProxyRobot disconnected (the world's command record is free for another driver)
+        and the sensor stopped (one sampler at a time)."""
+        with grpc.insecure_channel(self.address["proxy_robot"]) as channel:
+            proxy_robot_pb2_grpc.ProxyRobotStub(channel).Disconnect(
+                proxy_robot_pb2.DisconnectRequest(), timeout=SETUP_TIMEOUT_S)
+        with grpc.insecure_channel(self.address["force_sensor"]) as channel:
+            force_sensor_pb2_grpc.ForceSensorStub(channel).StopReading(
+                force_sensor_pb2.StopReadingRequest(), timeout=SETUP_TIMEOUT_S)
+
+
+class Bench:
+    def __init__(self, plan: Plan, out_dir: Path):
+        self.plan = plan
+        self.out_dir = out_dir
+        self.shm = unique_shm_name()
+        self.procs = ProcessSet({SHM_NAME_ENV: self.shm})
+        self.station = Station(self.procs, self.shm)
+        self.results: dict[str, dict] = {}
+        self.raw: dict[str, list[float]] = {}
+        self.progress = Progress(self._count_steps())
+        self.load_at_start = list(os.getloadavg())
+
+    def _count_steps(self) -> int:
+        p = self.plan
+        counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
+                  "observers": len(p.observer_counts), "estop": 4, "decision": 3,
+                  "closed_loop": 1,
+                  "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
+        return 1 + sum(n for group, n in counts.items() if p.wants(group))
+
+    # -- running ----------------------------------------------------------------------------
+
+    def run(self) -> dict[str, dict]:
+        started = time.monotonic()
+        try:
+            self.progress.step(f"starting the station (world, proxy_robot, force_sensor; "
+                               f"shared memory {self.shm})")
+            self.station.start()
+            self.station.arm_ready()
+            self.progress.done("up")
+            steps: list[tuple[str, Callable[[], None]]] = [
+                ("command", self.commands), ("force", self.force),
+                ("baselines", self.baselines), ("observers", self.observers),
+                ("estop", self.estop), ("decision", self.decision),
+                ("closed_loop", self.closed_loop),
+                ("stereo", self.stereo)]
+            for group, step in steps:
+                if self.plan.wants(group):
+                    step()
+        finally:
+            self.procs.stop_all()
+            _remove_segment(self.shm)
+        self.elapsed_s = time.monotonic() - started
+        return self.results
+
+    def _record(self, name: str, result: dict) -> None:
+        raw = result.pop("latencies_ms", None)
+        result.pop("ack_latencies_ms", None)
+        if raw:
+            self.raw[name] = raw
+        self.results[name] = result
+
+    def _fail(self, names: list[str], error: Exception) -> None:
+        for name in names:
+            self.results[name] = _missing("failed", _reason(error))
+        self.progress.done(f"FAILED: {_reason(error)}")
+        print(str(error), file=sys.stderr)
+        try:
+            self.station.arm_ready()  # for the scenarios after this one
+        except (ChildFailed, grpc.RpcError) as problem:
+            print(f"the station did not come back: {problem}", file=sys.stderr)
+
+    def _worker(self, kind: str, params: dict, timeout_s: float, retry: bool = True) -> dict:
+        """Run a worker; if it fails, bring the station back and try once more, noting why
+        (`retried_after` in the result)."""
+        try:
+            return self.procs.run_worker(kind, params, timeout_s)
+        except ChildFailed as error:
+            if not retry:
+                raise
+            why = _reason(error)
+            self.progress.note(f"{kind} worker failed ({why}); retrying once")
+            self.station.arm_ready()
+            result = self.procs.run_worker(kind, params, timeout_s)
+            for entry in (result.values() if kind == "command" else [result]):
+                entry["retried_after"] = why
+            return result
+
+    def commands(self) -> None:
+        plan = self.plan
+        names = [f"command_{rate}" for rate in plan.command_rates]
+        self.progress.step(f"{', '.join(names)}: ProxyRobot.MoveJointsIncremental unary calls, "
+                           f"lockstep, {plan.command_s:.0f} s each")
+        try:
+            results = self._worker("command", {
+                "transport": "grpc", "address": self.station.address["proxy_robot"],
+                "shm": self.shm, "rates": list(plan.command_rates),
+                "duration_s": plan.command_s}, 60 + 3 * plan.command_s * len(names))
+        except ChildFailed as error:
+            return self._fail(names, error)
+        for rate in plan.command_rates:
+            self._record(f"command_{rate}", results[str(rate)])
+        self.progress.done("; ".join(f"{r}: {_headline(self.results[f'command_{r}'])}"
+                                     for r in plan.command_rates))
+        self._command_diagnostic()
+
+    def _command_diagnostic(self) -> None:
+        """command_1000_gil1ms: command_1000 against a proxy whose interpreter hands the GIL
+        over every 1 ms (CPython's default is 5 ms; the world sets 0.5 ms, the DecisionServer
+        1 ms, proxy_robot nothing): does its setpoint thread wait for the GIL?"""
+        plan = self.plan
+        name = "command_1000_gil1ms"
+        self.progress.step(f"{name} (diagnostic): command_1000 with proxy_robot restarted with "
+                           "a 1 ms GIL switch interval")
+        try:
+            self.station.restart_proxy(0.001)
+            result = self._worker("command", {
+                "transport": "grpc", "address": self.station.address["proxy_robot"],
+                "shm": self.shm, "rates": [1000], "duration_s": plan.command_s},
+                60 + 3 * plan.command_s)["1000"]
+            result["diagnostic"] = "proxy_robot with sys.setswitchinterval(0.001)"
+            self._record(name, result)
+            self.progress.done(_headline(result))
+        except ChildFailed as error:
+            self._fail([name], error)
+        finally:
+            self.station.restart_proxy()
+
+    def force(self) -> None:
+        for rate, decimation in self.plan.force_rates:
+            name = f"force_{rate}"
+            self.progress.step(f"{name}: StreamWrench, sensor period 1 ms, decimation "
+                               f"{decimation} ({1000 / decimation:.0f} Hz)")
+            try:
+                result = self._worker("force", {
+                    "transport": "grpc", "address": self.station.address["force_sensor"],
+                    "decimation": decimation, "duration_s": self.plan.force_s},
+                    60 + 3 * self.plan.force_s)
+            except ChildFailed as error:
+                self._fail([name], error)
+                continue
+            self._record(name, result)
+            self.progress.done(_headline(result))
+
+    def baselines(self) -> None:
+        """The command round trip and the force stream over pyzmq and over plain TCP, with the
+        same payloads and the same domain cores (baseline_server.py)."""
+        plan = self.plan
+        self.station.release()
+        try:
+            for transport in ("zmq", "tcp"):
+                names = ([f"command_{r}_{transport}" for r in plan.command_rates]
+                         + [f"force_{r}_{transport}" for r, _ in plan.force_rates])
+                label = "pyzmq REQ/REP + PUB/SUB" if transport == "zmq" else "TCP struct framing"
+                self.progress.step(f"baselines over {label}: {', '.join(names)}")
+                try:
+                    try:
+                        self._baseline(transport)
+                    except ChildFailed as error:  # once more, with a fresh baseline server
+                        why = _reason(error)
+                        self.progress.note(f"failed ({why}); retrying once")
+                        self._baseline(transport)
+                        for name in names:
+                            self.results[name]["retried_after"] = why
+                except ChildFailed as error:
+                    for name in names:
+                        self.results[name] = _missing("failed", _reason(error))
+                    self.progress.done(f"FAILED: {_reason(error)}")
+                    continue
+                self.progress.done("; ".join(f"{n}: {_headline(self.results[n])}"
+                                             for n in names if n in self.results))
+        finally:
+            self.station.arm_ready()
+
+    def _baseline(self, transport: str) -> None:
+        plan = self.plan
+        server = self.procs.start(f"baseline_{transport}", [
+            "-m", "bench.baseline_server", "--transport", transport, "--shm-name", self.shm])
+        try:
+            command_address = server.wait_service_ready("baseline_command", 60.0)
+            force_address = server.wait_service_ready("baseline_force", 10.0)
+            results = self._worker("command", {
+                "transport": transport, "address": command_address, "shm": self.shm,
+                "rates": list(plan.command_rates), "duration_s": plan.command_s},
+                60 + 3 * plan.command_s * len(plan.command_rates), retry=False)
+            for rate in plan.command_rates:
+                self._record(f"command_{rate}_{transport}", results[str(rate)])
+            for rate, decimation in plan.force_rates:
+                self._record(f"force_{rate}_{transport}", self._worker("force", {
+                    "transport": transport, "address": force_address,
+                    "decimation": decimation, "duration_s": plan.force_s},
+                    60 + 3 * plan.force_s, retry=False))
+        finally:
+            self.procs.stop(server)
+
+    def observers(self) -> None:
+        plan = self.plan
+        for count in plan.observer_counts:
+            name = f"observers_{count}"
+            self.progress.step(f"{name}: operator at 1 kHz with {count} observers at "
+                               f"{1000 / plan.observer_decimation:.0f} Hz "
+                               f"(in {-(-count // OBSERVERS_PER_PROCESS)} processes)")
+            retried = None
+            try:
+                try:
+                    result = self._observers_once(count)
+                except ChildFailed as error:  # once more, from a fresh start
+                    retried = _reason(error)
+                    self.progress.note(f"failed ({retried}); retrying once")
+                    self.station.arm_ready()
+                    result = self._observers_once(count)
+            except ChildFailed as error:
+                self._fail([name], error)
+                continue
+            if retried:
+                result["retried_after"] = retried
+            self._record(name, result)
+            self.progress.done(_headline(result) + f", jitter {result.get('jitter_ms')} ms")
+
+    def _observers_once(self, count: int) -> dict:
+        """Observer processes streaming, then the operator's 1 kHz stream measured."""
+        plan = self.plan
+        address = self.station.address["force_sensor"]
+        groups = []
+        try:
+            left = count
+            while left > 0:
+                size = min(OBSERVERS_PER_PROCESS, left)
+                left -= size
+                groups.append(self.procs.start_worker("observers", {
+                    "address": address, "count": size,
+                    "decimation": plan.observer_decimation, "max_s": plan.observers_s + 60}))
+            for group in groups:
+                group.wait_worker_ready(60.0)
+            result = self.procs.run_worker("force", {
+                "transport": "grpc", "address": address, "decimation": 1,
+                "duration_s": plan.observers_s}, 60 + 3 * plan.observers_s)
+            observed = []
+            for group in groups:
+                group.stop(5.0)
+                observed.append(self.procs.finish_worker(group, 10.0))
+        finally:
+            for group in groups:
+                if group.process.poll() is None:
+                    self.procs.stop(group)
+        result["observers"] = count
+        result["observer_rate_hz"] = 1000 / plan.observer_decimation
+        if observed:
+            means = [o["observer_delivered_hz_mean"] for o in observed]
+            sizes = [o["observers"] for o in observed]
+            result["observer_delivered_hz_mean"] = round(
+                sum(m * s for m, s in zip(means, sizes, strict=True)) / sum(sizes), 2)
+            result["observer_delivered_hz_min"] = min(o["observer_delivered_hz_min"]
+                                                      for o in observed)
+            result["observer_errors"] = [e for o in observed for e in o["errors"]][:5]
+        return result
+
+    def estop(self) -> None:
+        plan = self.plan
+        address = self.station.address["proxy_robot"]
+        params = {"address": address, "shm": self.shm, "trials": plan.estop_trials}
+        timeout = 60 + plan.estop_trials * 3
+        self.progress.step(f"estop_idle: EmergencyStop of a moving arm -> hold latched, "
+                           f"{plan.estop_trials} trials")
+        try:
+            idle = self._worker("estop", {**params, "label": "idle"}, timeout)
+            self._record("estop_idle", idle)
+            self.progress.done(_headline(idle))
+        except ChildFailed as error:
+            self._fail(["estop_idle"], error)
+        self.progress.step(f"estop_under_load: the same with {plan.load_concurrency} "
+                           "concurrent GetState calls on the low lane")
+        load = None
+        try:
+            load = self.procs.start_worker("load", {
+                "address": address, "concurrency": plan.load_concurrency,
+                "max_s": timeout + 30})
+            load.wait_worker_ready(60.0)
+            time.sleep(0.5)  # let the low lane fill up
+            loaded = self._worker("estop", {**params, "label": "under load"}, timeout)
+            load.stop(10.0)
+            load_result = self.procs.finish_worker(load, 10.0)
+            load = None
+        except ChildFailed as error:
+            if load is not None:
+                self.procs.stop(load)
+            self._fail(["estop_under_load"], error)
+            loaded = None
+        if loaded is not None:
+            self._record_loaded(loaded, load_result)
+        self._estop_diagnostic("estop_under_load_elsewhere", "force_sensor", None)
+        self._estop_diagnostic("estop_under_load_gil1ms", "proxy_robot", 0.001)
+
+    def _record_loaded(self, loaded: dict, load_result: dict) -> None:
+        loaded.update(load_calls_per_s=load_result["calls_per_s"],
+                      load_codes=load_result["codes"],
+                      load="200 concurrent ProxyRobot.GetState, telerobot-lane: low "
+                           "(DecisionServer RunAction BusyWork, the intended load, is not "
+                           "built yet)")
+        idle = self.results.get("estop_idle", {})
+        loaded["vs_idle"] = {"p50": ratio(loaded.get("p50_ms"), idle.get("p50_ms")),
+                             "p99": ratio(loaded.get("p99_ms"), idle.get("p99_ms"))}
+        self._record("estop_under_load", loaded)
+        self.progress.done(_headline(loaded) + f" (load {load_result['calls_per_s']:.0f} "
+                           "calls/s)")
+
+    def _estop_diagnostic(self, name: str, load_target: str,
+                          switch_interval_s: float | None) -> None:
+        """Diagnostics of estop_under_load: the same load on another process (force_sensor's
+        GetWrench, low lane): CPU contention on the machine without load in the proxy; or the
+        same load on a proxy restarted with a 1 ms GIL switch interval (from CPython's 5 ms)."""
+        plan = self.plan
+        what = ("200 GetWrench on force_sensor instead" if load_target == "force_sensor"
+                else f"proxy_robot restarted with a {switch_interval_s * 1e3:g} ms GIL switch "
+                     "interval")
+        self.progress.step(f"{name} (diagnostic): {what}")
+        load = None
+        try:
+            if switch_interval_s is not None:
+                self.station.restart_proxy(switch_interval_s)
+            address = self.station.address["proxy_robot"]
+            load = self.procs.start_worker("load", {
+                "address": self.station.address[load_target], "target": load_target,
+                "concurrency": plan.load_concurrency,
+                "max_s": 60 + plan.estop_trials * 3 + 30})
+            load.wait_worker_ready(60.0)
+            time.sleep(0.5)
+            result = self._worker("estop", {"address": address, "shm": self.shm,
+                                            "trials": plan.estop_trials, "label": name},
+                                  60 + plan.estop_trials * 3)
+            load.stop(10.0)
+            load_result = self.procs.finish_worker(load, 10.0)
+            load = None
+        except ChildFailed as error:
+            if load is not None:
+                self.procs.stop(load)
+            self._fail([name], error)
+        else:
+            result.update(load_calls_per_s=load_result["calls_per_s"],
+                          load_codes=load_result["codes"], diagnostic=what)
+            self._record(name, result)
+            self.progress.done(_headline(result) + f" (load {load_result['calls_per_s']:.0f} "
+                               "calls/s)")
+        finally:
+            if switch_interval_s is not None:
+                self.station.restart_proxy()
+
+    def decision(self) -> None:
+        """Through the DecisionServer, the operator's one address: teleop_<rate> (master
+        commands on the Teleoperate stream) and the emergency stop under its intended load
+        (200 RunAction BusyWork on the low lane), against the same stop through it idle."""
+        plan = self.plan
+        address = f"127.0.0.1:{free_port()}"
+        names = [f"teleop_{rate}" for rate in plan.command_rates]
+        self.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate stream, lockstep, "
+                           f"{plan.command_s:.0f} s each")
+        try:
+            server = self.procs.start("decision_server", [
+                "-m", "services.decision_server", "--address", address, "--grace-s", "0.5",
+                "--proxy-robot-address", self.station.address["proxy_robot"],
+                "--force-sensor-address", self.station.address["force_sensor"],
+                "--stereo-camera-address", f"127.0.0.1:{free_port()}",
+                "--recordings-dir", str(self.procs.scratch / "recordings")])
+            server.wait_service_ready("decision_server", 60.0)
+        except ChildFailed as error:
+            self._fail(names + ["estop_ds_idle", "estop_ds_busywork"], error)
+            return
+        try:
+            self._teleop(address, names)
+            self._estop_ds(address)
+        finally:
+            self.procs.stop(server)
+
+    def _teleop(self, address: str, names: list[str]) -> None:
+        plan = self.plan
+        try:
+            results = self._worker("command", {
+                "transport": "teleop", "address": address, "shm": self.shm,
+                "rates": list(plan.command_rates), "duration_s": plan.command_s},
+                60 + 3 * plan.command_s * len(names))
+        except ChildFailed as error:
+            return self._fail(names, error)
+        for rate in plan.command_rates:
+            self._record(f"teleop_{rate}", results[str(rate)])
+        self.progress.done("; ".join(f"{r}: {_headline(self.results[f'teleop_{r}'])}"
+                                     for r in plan.command_rates))
+
+    def _estop_ds(self, address: str) -> None:
+        plan = self.plan
+        params = {"address": address, "shm": self.shm, "trials": plan.estop_trials,
+                  "decision_server": True}
+        timeout = 60 + plan.estop_trials * 3
+        self.progress.step("estop_ds_idle: EmergencyStop through the DecisionServer, idle")
+        try:
+            result = self._worker("estop", {**params, "label": "ds idle"}, timeout)
+            self._record("estop_ds_idle", result)
+            self.progress.done(_headline(result))
+        except ChildFailed as error:
+            self._fail(["estop_ds_idle"], error)
+        self.progress.step(f"estop_ds_busywork: the same with {plan.load_concurrency} "
+                           "concurrent RunAction BusyWork (20 ms each) on the low lane")
+        load = None
+        try:
+            load = self.procs.start_worker("load", {
+                "address": address, "target": "decision_server",
+                "concurrency": plan.load_concurrency, "max_s": timeout + 30})
+            load.wait_worker_ready(60.0)
+            time.sleep(0.5)
+            result = self._worker("estop", {**params, "label": "ds busywork"}, timeout)
+            load.stop(10.0)
+            load_result = self.procs.finish_worker(load, 10.0)
+            load = None
+        except ChildFailed as error:
+            if load is not None:
+                self.procs.stop(load)
+            return self._fail(["estop_ds_busywork"], error)
+        idle = self.results.get("estop_ds_idle", {})
+        result.update(load_calls_per_s=load_result["calls_per_s"],
+                      load_codes=load_result["codes"],
+                      load="200 concurrent DecisionServer.RunAction BusyWork (20 ms), "
+                           "telerobot-lane: low",
+                      vs_idle={"p50": ratio(result.get("p50_ms"), idle.get("p50_ms")),
+                               "p99": ratio(result.get("p99_ms"), idle.get("p99_ms"))})
+        self._record("estop_ds_busywork", result)
+        self.progress.done(_headline(result) + f" (load {load_result['calls_per_s']:.0f} "
+                           "calls/s)")
+
+    def closed_loop(self) -> None:
+        plan = self.plan
+        self.progress.step(f"closed_loop: move 5 mm down into the table -> force > 2 N at the "
+                           f"operator, {plan.closed_loop_trials} trials")
+        try:
+            result = self._worker("closed_loop", {
+                "proxy_address": self.station.address["proxy_robot"],
+                "force_address": self.station.address["force_sensor"],
+                "trials": plan.closed_loop_trials}, 90 + plan.closed_loop_trials * 5)
+        except ChildFailed as error:
+            return self._fail(["closed_loop"], error)
+        self._record("closed_loop", result)
+        self.progress.done(_headline(result))
+
+    def stereo(self) -> None:
+        plan = self.plan
+        names = [f"stereo_{s}_{m}" for s in plan.stereo_sources for m in plan.stereo_modes]
+        reason = stereo.available()
+        if reason:
+            for name in names:
+                self.progress.step(name)
+                self.results[name] = _missing("pending", reason)
+                self.progress.done("pending")
+            return
+        for source in plan.stereo_sources:
+            address = f"127.0.0.1:{free_port()}"
+            service = None
+            try:
+                service = self.procs.start("stereo_camera", [
+                    "-m", "services.stereo_camera", "--address", address, "--grace-s", "0.5",
+                    "--source", source, "--width", str(stereo.WIDTH_PX),
+                    "--height", str(stereo.HEIGHT_PX), "--fps", str(plan.stereo_source_fps)])
+                service.wait_service_ready("stereo_camera", 60.0)
+            except ChildFailed as error:
+                if service is not None:
+                    self.procs.stop(service)
+                for mode in plan.stereo_modes:
+                    self.progress.step(f"stereo_{source}_{mode}")
+                    self._fail([f"stereo_{source}_{mode}"], error)
+                continue
+            try:
+                for mode in plan.stereo_modes:
+                    name = f"stereo_{source}_{mode}"
+                    self.progress.step(f"{name}: {stereo.WIDTH_PX}x{stereo.HEIGHT_PX} JPEG, "
+                                       f"{plan.stereo_pairs} pairs")
+                    try:
+                        result = self._worker("stereo", {
+                            "address": address, "mode": mode, "pairs": plan.stereo_pairs,
+                            "source_fps": plan.stereo_source_fps}, 180)
+                    except ChildFailed as error:
+                        self._fail([name], error)
+                        continue
+                    self._record(name, result)
+                    self.progress.done(_headline(result))
+            finally:
+                self.procs.stop(service)
+
+    # -- output -----------------------------------------------------------------------------
+
+    def write(self) -> list[Path]:
+        self.out_dir.mkdir(parents=True, exist_ok=True)
+        ratios = report.add_verdicts_and_ratios(self.results)
+        machine = report.machine()
+        machine["load_avg_at_end"] = list(os.getloadavg())
+        machine["load_avg_at_start"] = self.load_at_start
+        info = {"machine": machine, "quick": self.plan.quick,
+                "run_s": round(self.elapsed_s, 1), "world_shm": self.shm}
+        latest = self.out_dir / "latest.json"
+        report.write_json(latest, self.results, ratios, info)
+        raw = self.out_dir / "raw_latencies.json"
+        raw.write_text(json.dumps(self.raw))
+        return [latest, raw, *plots.write_plots(self.out_dir, self.results, self.raw)]
+
+
+def _reason(error: Exception) -> str:
+    """The most telling line of a worker's failure: a gRPC status' details, else the last."""
+    lines = [line.strip() for line in str(error).splitlines() if line.strip()]
+    for line in lines:
+        if line.startswith("details = "):
+            return line.removeprefix("details = ").strip('"')
+    return lines[-1] if lines else type(error).__name__
+
+
+def _missing(status: str, reason: str) -> dict:
+    return {"rate_hz": None, "delivered_hz": None, "p50_ms": None, "p99_ms": None,
+            "max_ms": None, "dropped": None, "status": status, "reason": reason}
+
+
+def _remove_segment(name: str) -> None:
+    """A world that had to be killed leaves its segment behind: remove it."""
+    path = Path("/dev/shm") / name
+    if path.exists():
+        try:
+            path.unlink()
+        except OSError:
+            pass
+
+
+def run(plan: Plan, out_dir: Path = RESULTS_DIR) -> int:
+    def on_sigterm(signum, _frame):
+        raise KeyboardInterrupt(f"signal {signum}")
+
+    signal.signal(signal.SIGTERM, on_sigterm)
+    signal.signal(signal.SIGINT, signal.default_int_handler)  # even if started with it ignored
+    bench = Bench(plan, out_dir)
+    try:
+        results = bench.run()
+    except KeyboardInterrupt:
+        print("\ninterrupted: the station and every worker were stopped", file=sys.stderr)
+        return 130
+    except ChildFailed as error:
+        print(f"\nthe station did not start: {error}", file=sys.stderr)
+        return 1
+    files = bench.write()
+    print()
+    print(f"telerobot bench ({'quick' if plan.quick else 'full'} run, "
+          f"{bench.elapsed_s:.0f} s, {report.machine()['cores']} cores, "
+          f"{report.machine()['cpu_model']})")
+    print(report.table(results))
+    print()
+    for path in files:
+        print(f"wrote {path.relative_to(Path.cwd()) if path.is_relative_to(Path.cwd()) else path}")
+    return 0

@@ -1,0 +1,117 @@
+"""python -m bench.worker KIND PARAMS_JSON OUT_PATH: one measuring client, in its own process.
+
+Every client of the bench runs here, apart from the orchestrator, so the orchestrator's own
+threads never share an interpreter (and its GIL) with a measurement. Kinds and their
+parameters are in KINDS below. A long-running worker (observers, load) prints BENCH_READY once
+it is up and runs until SIGTERM or its `max_s`. The result is written as JSON to OUT_PATH.
+
+Every worker sets the interpreter's switch interval to 0.5 ms (from 5 ms), as the world process
+does, so a thread woken by the network gets the GIL back soon: the same for the project's
+clients and the baselines' clients.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import sys
+import threading
+import time
+
+from bench.procs import WORKER_READY
+from services.runtime.process import PARENT_PID_ENV
+
+SWITCH_INTERVAL_S = 0.0005
+
+
+def _ready() -> None:
+    print(WORKER_READY, flush=True)
+
+
+def _stop_on_signal() -> threading.Event:
+    stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    return stop
+
+
+def _command(p: dict) -> dict:
+    from bench.command import measure
+
+    return measure(p["transport"], p["address"], p["shm"], p["rates"], p["duration_s"])
+
+
+def _force(p: dict) -> dict:
+    from bench.force import measure_stream
+
+    return measure_stream(p["transport"], p["address"], p["decimation"], p["duration_s"])
+
+
+def _observers(p: dict) -> dict:
+    from bench.force import observe
+
+    stop = _stop_on_signal()
+    return observe(p["address"], p["count"], p["decimation"], p["max_s"], _ready, stop)
+
+
+def _estop(p: dict) -> dict:
+    from bench.estop import run_estop
+
+    return run_estop(p["address"], p["shm"], p["trials"], p["label"],
+                     p.get("decision_server", False))
+
+
+def _load(p: dict) -> dict:
+    from bench.estop import run_load
+
+    return run_load(p["address"], p["concurrency"], p["max_s"], _ready,
+                    p.get("target", "proxy_robot"))
+
+
+def _closed_loop(p: dict) -> dict:
+    from bench.closed_loop import run_closed_loop
+
+    return run_closed_loop(p["proxy_address"], p["force_address"], p["trials"])
+
+
+def _stereo(p: dict) -> dict:
+    from bench.stereo import run_stereo
+
+    return run_stereo(p["address"], p["mode"], p["pairs"], p["source_fps"])
+
+
+KINDS = {"command": _command, "force": _force, "observers": _observers, "estop": _estop,
+         "load": _load, "closed_loop": _closed_loop, "stereo": _stereo}
+
+
+def _exit_when_parent_exits() -> None:
+    parent = os.environ.get(PARENT_PID_ENV)
+    if not parent:
+        return
+
+    def watch():
+        while True:
+            time.sleep(0.25)
+            if os.getppid() != int(parent):
+                os._exit(3)  # the bench is gone: nobody wants the result
+
+    threading.Thread(target=watch, name="parent-watch", daemon=True).start()
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 3 or argv[0] not in KINDS:
+        print(f"usage: python -m bench.worker {{{','.join(KINDS)}}} PARAMS_JSON OUT_PATH",
+              file=sys.stderr)
+        return 2
+    kind, params, out = argv[0], json.loads(argv[1]), argv[2]
+    sys.setswitchinterval(SWITCH_INTERVAL_S)
+    _exit_when_parent_exits()
+    result = KINDS[kind](params)
+    with open(out, "w") as handle:
+        json.dump(result, handle)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
