@@ -1,0 +1,83 @@
+"""Typed Python clients for the telerobot services (see README.md in this folder).
+
+One module per service plus the shared base:
+
+* ``proxy_robot``    -- `ProxyRobotClient`, `AsyncProxyRobotClient`
+* ``force_sensor``   -- `ForceSensorClient`, `AsyncForceSensorClient`
+* ``stereo_camera``  -- `StereoCameraClient`, `AsyncStereoCameraClient`
+* ``decision_server``-- `DecisionClient`, `AsyncDecisionClient`, `TeleopSession`,
+  `AsyncTeleopSession` (the lease and the Teleoperate stream)
+* ``base``           -- channels, metadata (lease, lane), timeouts, streams
+* ``errors``         -- `TelerobotRpcError` and one subclass per status code
+* ``values``         -- the dataclasses and enums the calls return
+"""
+
+from clients.python.base import DEFAULT_TIMEOUT_S, LANE_METADATA_KEY, LEASE_METADATA_KEY
+from clients.python.decision_server import (
+    AsyncDecisionClient,
+    AsyncTeleopSession,
+    DecisionClient,
+    TeleopSession,
+)
+from clients.python.errors import (
+    AbortedError,
+    AlreadyExistsError,
+    DeadlineExceededError,
+    FailedPreconditionError,
+    InternalError,
+    InvalidArgumentError,
+    NotFoundError,
+    OutOfRangeError,
+    PermissionDeniedError,
+    ResourceExhaustedError,
+    RpcCancelledError,
+    TelerobotRpcError,
+    UnavailableError,
+    UnimplementedError,
+)
+from clients.python.force_sensor import AsyncForceSensorClient, ForceSensorClient
+from clients.python.proxy_robot import AsyncProxyRobotClient, ProxyRobotClient
+from clients.python.stereo_camera import AsyncStereoCameraClient, StereoCameraClient
+from clients.python.values import (
+    Ack,
+    ActionRun,
+    BusyWork,
+    CartesianIncrement,
+    Cobegin,
+    CommandOutcome,
+    ControlMode,
+    ImageEncoding,
+    JointIncrement,
+    Lane,
+    Lease,
+    MoveResult,
+    Recording,
+    ReferenceFrame,
+    ReplayState,
+    RobotState,
+    RobotStatus,
+    SensorConfig,
+    SensorThreadPriority,
+    StatusInfo,
+    StereoFrame,
+    TareResult,
+    TransferMode,
+    WrenchBatch,
+    WrenchSample,
+)
+
+__all__ = [
+    "DEFAULT_TIMEOUT_S", "LANE_METADATA_KEY", "LEASE_METADATA_KEY",
+    "AsyncDecisionClient", "AsyncForceSensorClient", "AsyncProxyRobotClient",
+    "AsyncStereoCameraClient", "AsyncTeleopSession", "DecisionClient", "ForceSensorClient",
+    "ProxyRobotClient", "StereoCameraClient", "TeleopSession",
+    "AbortedError", "AlreadyExistsError", "DeadlineExceededError", "FailedPreconditionError",
+    "InternalError", "InvalidArgumentError", "NotFoundError", "OutOfRangeError",
+    "PermissionDeniedError", "ResourceExhaustedError", "RpcCancelledError", "TelerobotRpcError",
+    "UnavailableError", "UnimplementedError",
+    "Ack", "ActionRun", "BusyWork", "CartesianIncrement", "Cobegin", "CommandOutcome",
+    "ControlMode", "ImageEncoding", "JointIncrement", "Lane", "Lease", "MoveResult",
+    "Recording", "ReferenceFrame", "ReplayState", "RobotState", "RobotStatus", "SensorConfig",
+    "SensorThreadPriority", "StatusInfo", "StereoFrame", "TareResult", "TransferMode",
+    "WrenchBatch", "WrenchSample",
+]
