@@ -11,6 +11,8 @@ from collections.abc import Callable, Iterator
 import grpc
 import numpy as np
 import pinocchio as pin
+from google.rpc import error_details_pb2
+from grpc_status import rpc_status
 
 from services.common import convert
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
@@ -37,8 +39,15 @@ FORWARDED_METADATA = ("telerobot-lane", "telerobot-lease-id")
 
 
 def domain_error(error: grpc.RpcError) -> TelerobotError:
-    """The error another service answered with, as a domain error with its own message."""
-    return error_for_status(error.code().name, error.details() or error.code().name)
+    """The error another service answered with, as a domain error with its own message and
+    ErrorInfo reason, so forwarding loses nothing."""
+    reason = None
+    status = rpc_status.from_call(error) if hasattr(error, "trailing_metadata") else None
+    for detail in status.details if status else ():
+        info = error_details_pb2.ErrorInfo()
+        if detail.Unpack(info):
+            reason = info.reason
+    return error_for_status(error.code().name, error.details() or error.code().name, reason)
 
 
 def forwarded_metadata(context: grpc.ServicerContext) -> tuple[tuple[str, str], ...]:

@@ -27,28 +27,7 @@ from telerobot.v1 import (
     stereo_camera_pb2_grpc,
     types_pb2,
 )
-from tests.conftest import RunningProcess, free_port, start_process
-
-
-@dataclass
-class Backends:
-    processes: list[RunningProcess]
-    proxy_address: str
-    sensor_address: str
-
-
-@pytest.fixture(scope="session")
-def backends(world) -> Iterator[Backends]:
-    env = {"TELEROBOT_WORLD_SHM": world.shm_name}
-    proxy = start_process(["-m", "services.proxy_robot", "--address",
-                           f"127.0.0.1:{free_port()}"], env)
-    sensor = start_process(["-m", "services.force_sensor", "--address",
-                            f"127.0.0.1:{free_port()}"], env)
-    proxy.wait_ready(["proxy_robot"])
-    sensor.wait_ready(["force_sensor"])
-    yield Backends([proxy, sensor], proxy.ready["proxy_robot"], sensor.ready["force_sensor"])
-    for process in (proxy, sensor):
-        process.stop()
+from tests.conftest import free_port
 
 
 @dataclass

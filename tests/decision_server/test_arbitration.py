@@ -154,3 +154,18 @@ def test_lock_errors(station):
 def test_require_without_a_lease_explains(locks):
     with pytest.raises(FailedPrecondition, match="telerobot-lease-id"):
         locks.require(None)
+
+
+def test_forwarded_errors_keep_their_reason(station):
+    from google.rpc import error_details_pb2
+    from grpc_status import rpc_status
+
+    _, metadata = station.acquire("alice")
+    station.ready_at_home(metadata)
+    with pytest.raises(grpc.RpcError) as error:
+        station.robot.MoveJointsIncremental(proxy_robot_pb2.MoveJointsIncrementalRequest(
+            delta_joint_positions_rad=[2.0, 0, 0, 0, 0, 0]), metadata=metadata)
+    assert error.value.code() is grpc.StatusCode.OUT_OF_RANGE
+    info = error_details_pb2.ErrorInfo()
+    assert rpc_status.from_call(error.value).details[0].Unpack(info)
+    assert info.reason == "INCREMENT_CAP"
