@@ -44,9 +44,10 @@ test: install
 serve: $(VENV)/.installed
 	$(PY) -m services.launcher
 
+# A scripted peg-in-hole session, with and without server-side compliance; starts a local
+# station if none answers. Artifacts land in runs/teleop-<time>/.
 teleop: $(VENV)/.installed
-	@echo "make teleop: the operator station is not built yet (issue: Operator station)." >&2
-	@exit 2
+	$(PY) -m clients.teleop $(TELEOP_ARGS)
 
 bench: $(VENV)/.installed
 	@test $(VENV)/.installed-bench -nt pyproject.toml || { \

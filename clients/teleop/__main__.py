@@ -1,0 +1,143 @@
+"""python -m clients.teleop (`make teleop`): a whole operator session on the slave station.
+
+It connects to the DecisionServer at TELEROBOT_DECISION_SERVER_ADDRESS (default
+127.0.0.1:50051), starting a local station first if nothing answers there; takes control;
+runs the scripted peg-in-hole task with force feedback to the operator, then with active
+compliance on the server; shows a live status line; and leaves in runs/teleop-<time>/ the
+stereo video with the AR overlay (stereo.mp4), plots (force.png, tool_path.png, latency.png)
+and summary.json, then prints a summary table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from clients.ar import RobotModel
+from clients.python.decision_server import DecisionClient
+from clients.teleop.artifacts import plot, write_summary
+from clients.teleop.stack import station_at
+from clients.teleop.task import PegInHole, Result
+from clients.teleop.video import StereoView
+from services.runtime.config import address_for
+
+MODES = ("feedback", "compliance")
+RETRACT_STEP_M = 0.04
+
+
+class StatusLine:
+    """One terminal line, rewritten four times a second."""
+
+    def __init__(self, stream=sys.stdout):
+        self._stream = stream
+        self._last = 0.0
+        self._started = time.monotonic()
+        self._count = 0
+
+    def __call__(self, *, mode, clutch, force, commands, acks, round_trips) -> None:
+        now = time.monotonic()
+        if now - self._last < 0.25:
+            return
+        elapsed = max(now - self._started, 1e-6)
+        recent = round_trips[-50:] or [0.0]
+        line = (f"[{mode:10}] {'CLUTCH ' if clutch else 'engaged'}  cmd {commands / elapsed:5.1f}/s"
+                f"  acks {acks / elapsed:5.1f}/s  rtt p50 {np.median(recent):5.1f} ms"
+                f"  F {force:6.2f} N  lock held")
+        self._stream.write("\r" + line)
+        self._stream.flush()
+        self._last = now
+
+    def restart(self) -> None:
+        self._started = time.monotonic()
+        self._stream.write("\n")
+
+
+def retract(client: DecisionClient, height_z: float) -> None:
+    """Back up out of the hole to the start height, in straight steps."""
+    while True:
+        z = client.robot.get_state().tool_pose.translation[2]
+        if z >= height_z - 1e-4:
+            return
+        client.robot.move_cartesian([0, 0, min(RETRACT_STEP_M, height_z - z)])
+        deadline = time.monotonic() + 10
+        while client.robot.get_status().status.name != "READY" and time.monotonic() < deadline:
+            time.sleep(0.02)
+
+
+def table(results: list[Result]) -> str:
+    rows = [("mode", "success", "time s", "depth mm", "peak N", "final N", "rtt p50", "rtt p99")]
+    rows += [(r.mode, "yes" if r.success else "NO", f"{r.duration_s:.1f}", f"{r.depth_m * 1e3:.1f}",
+              f"{r.peak_force_n:.1f}", f"{r.final_force_n:.1f}", f"{r.round_trip_p50_ms:.2f}",
+              f"{r.round_trip_p99_ms:.2f}") for r in results]
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True))
+                     for row in rows)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m clients.teleop", description=__doc__)
+    parser.add_argument("--address", default=address_for("decision_server"))
+    parser.add_argument("--modes", nargs="+", choices=MODES, default=list(MODES))
+    parser.add_argument("--out", type=Path, default=None,
+                        help="artifacts folder (default runs/teleop-<time>)")
+    parser.add_argument("--calibration", type=Path, default=Path("var/cameras.json"),
+                        help="saved camera identification (made on the first run)")
+    parser.add_argument("--no-video", action="store_true", help="skip the stereo video")
+    args = parser.parse_args(argv)
+    out = args.out or Path("runs") / time.strftime("teleop-%Y%m%d-%H%M%S")
+    out.mkdir(parents=True, exist_ok=True)
+    args.calibration.parent.mkdir(parents=True, exist_ok=True)
+
+    with station_at(args.address) as started:
+        client = DecisionClient(args.address, default_timeout=10.0)
+        with client:
+            client.acquire_control("teleop", lease_duration_s=30.0)
+            client.robot.connect()
+            if client.robot.get_status().status.name == "ESTOPPED":
+                client.robot.reset()
+            if client.robot.get_status().status.name == "CONNECTED":
+                client.robot.initialize()
+            client.sensor.start_reading()
+            client.sensor.tare(0.2)
+            start_z = client.robot.get_state().tool_pose.translation[2]
+            model = RobotModel(client.robot.get_state().tool_pose)
+            view = None
+            if not args.no_video:
+                view = StereoView(client.camera, model, out, args.calibration)
+                view.start()
+            status, results, traces = StatusLine(), [], []
+            for mode in args.modes:
+                retract(client, start_z)
+                status.restart()
+                run = PegInHole(client, mode, model, status)
+                results.append(run.run())
+                traces.append(run.trace)
+                client.renew_control()
+            print()
+            retract(client, start_z)
+            if view is not None:
+                view.stop()
+    artifacts = plot(traces, out)
+    summary = {
+        "station": "started locally" if started else f"found at {args.address}",
+        "runs": [dataclasses.asdict(result) for result in results],
+        "video": str(out / "stereo.mp4") if view and view.recorder else None,
+        "video_frames": view.recorder.frames if view and view.recorder else 0,
+        "video_error": view.error if view else None,
+        "cameras_identified_now": bool(view and view.identified_now),
+        "plots": [str(path) for path in artifacts],
+    }
+    write_summary(summary, out)
+    print(table(results))
+    print(f"\nartifacts in {out}/: stereo.mp4, force.png, tool_path.png, latency.png, "
+          "summary.json")
+    return 0 if all(result.success for result in results) else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

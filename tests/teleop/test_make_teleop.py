@@ -1,0 +1,46 @@
+"""`make teleop`'s program end to end: it starts its own station, runs the peg-in-hole task both
+ways, and leaves its video, plots and summary."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import cv2
+import pytest
+
+from tests.conftest import REPO, free_port
+from tests.world.conftest import unique_shm_name
+
+pytestmark = pytest.mark.e2e
+
+STATION = ["world", "proxy_robot", "force_sensor", "stereo_camera", "decision_server"]
+
+
+def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path):
+    env = {f"TELEROBOT_{name.upper()}_ADDRESS": f"127.0.0.1:{free_port()}" for name in STATION}
+    env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
+    out = tmp_path / "run"
+    result = subprocess.run(
+        [sys.executable, "-m", "clients.teleop", "--out", str(out),
+         "--calibration", str(tmp_path / "cameras.json")],
+        cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True,
+        timeout=400)
+    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+    assert "started locally" in (out / "summary.json").read_text()
+    summary = json.loads((out / "summary.json").read_text())
+    runs = {run["mode"]: run for run in summary["runs"]}
+    assert runs["feedback"]["success"] and runs["compliance"]["success"]
+    # With compliance the floor pushes back with the desired 5 N, give or take 10 %.
+    assert abs(runs["compliance"]["final_force_n"] - 5.0) < 0.5
+    assert summary["cameras_identified_now"] and (tmp_path / "cameras.json").exists()
+    for name in ("force.png", "tool_path.png", "latency.png"):
+        assert (out / name).stat().st_size > 10_000
+    video = cv2.VideoCapture(str(out / "stereo.mp4"))
+    frames = 0
+    while video.read()[0]:
+        frames += 1
+    assert frames == summary["video_frames"] > 50
+    assert "compliance" in result.stdout and "success" in result.stdout
