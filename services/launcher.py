@@ -76,12 +76,14 @@ def main(argv: list[str] | None = None) -> int:
 
     children: list[Child] = []
     try:
+        # One at a time: a service starts once the ones it depends on answer, so its first
+        # calls to them do not fail and leave its channels backing off.
         for name in STATION:
             children.append(_start(name, args))
-        failed = _wait_until_serving(children, stop)
-        if failed:
-            log.error("start-up failed: %s", failed)
-            return 1
+            failed = _wait_until_serving(children[-1:], stop)
+            if failed:
+                log.error("start-up failed: %s", failed)
+                return 1
         if stop.is_set():
             return 0
         _print_banner(children)

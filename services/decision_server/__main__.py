@@ -16,7 +16,7 @@ from pathlib import Path
 
 import grpc
 
-from services.decision_server.backends import GrpcSlave
+from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
 from services.decision_server.servicer import DecisionServerServicer, make_facades
 from services.decision_server.supervisor import DecisionCore, build_core
 from services.runtime.config import address_for
@@ -43,7 +43,8 @@ class DecisionService:
     def bindings(self) -> Sequence[ServiceBinding]:
         slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address)
         self.core = build_core(slave, Path(self.args.recordings_dir))
-        self._stereo_channel = grpc.insecure_channel(self.args.stereo_camera_address)
+        self._stereo_channel = grpc.insecure_channel(self.args.stereo_camera_address,
+                                                     options=RECONNECT_OPTIONS)
         stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
         return [binding(decision_server_pb2_grpc, "DecisionServer",
                         DecisionServerServicer(self.core)),

@@ -29,6 +29,11 @@ log = logging.getLogger(__name__)
 
 CALL_TIMEOUT_S = 5.0
 MAX_FORWARD_TIMEOUT_S = 60.0
+# A backend that restarts is reachable again within a second, not after gRPC's default
+# reconnect back-off (which grows to two minutes); calls meanwhile fail fast with UNAVAILABLE.
+RECONNECT_OPTIONS = [("grpc.initial_reconnect_backoff_ms", 100),
+                     ("grpc.min_reconnect_backoff_ms", 100),
+                     ("grpc.max_reconnect_backoff_ms", 1000)]
 RETRY_S = 0.5  # background streams reconnect this often after a failure
 STATE_PERIOD_S = 0.01  # the cached pose and wrench in acks are at most this old
 STATE_FRESH_S = 0.1
@@ -71,8 +76,8 @@ class GrpcSlave:
     from background streams (for acks) and hands ProxyRobot's events to `on_robot_event`."""
 
     def __init__(self, proxy_address: str, sensor_address: str):
-        self.robot_channel = grpc.insecure_channel(proxy_address)
-        self.sensor_channel = grpc.insecure_channel(sensor_address)
+        self.robot_channel = grpc.insecure_channel(proxy_address, options=RECONNECT_OPTIONS)
+        self.sensor_channel = grpc.insecure_channel(sensor_address, options=RECONNECT_OPTIONS)
         self.robot = proxy_robot_pb2_grpc.ProxyRobotStub(self.robot_channel)
         self.sensor = force_sensor_pb2_grpc.ForceSensorStub(self.sensor_channel)
         self.on_robot_event: Callable[[object], None] = lambda message: None

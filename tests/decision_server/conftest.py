@@ -55,18 +55,26 @@ class Station:
             self.robot.Reset(proxy_robot_pb2.ResetRequest(), metadata=metadata)
         if status == types_pb2.ROBOT_STATUS_CONNECTED:
             self.robot.Initialize(proxy_robot_pb2.InitializeRequest(), metadata=metadata)
-        for _ in range(20):
+        # Increments add to the joint target, so steer the target (a zero move reports it),
+        # then let the servo settle there.
+        move = self.robot.MoveJointsIncremental
+        target = np.array(move(proxy_robot_pb2.MoveJointsIncrementalRequest(
+            delta_joint_positions_rad=[0.0] * 6), metadata=metadata).target_joint_positions_rad)
+        while np.max(np.abs(HOME_Q - target)) > 1e-12:
+            step = np.clip(HOME_Q - target, -0.45, 0.45)
+            target = np.array(move(proxy_robot_pb2.MoveJointsIncrementalRequest(
+                delta_joint_positions_rad=step.tolist()), metadata=metadata)
+                .target_joint_positions_rad)
+            self.wait_status(types_pb2.ROBOT_STATUS_READY)
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline:
             q = np.array(self.robot.GetState(proxy_robot_pb2.GetStateRequest())
                          .state.joint_positions_rad)
-            delta = HOME_Q - q
-            if np.max(np.abs(delta)) < 1e-4:
-                break
-            step = np.clip(delta, -0.45, 0.45)
-            self.robot.MoveJointsIncremental(proxy_robot_pb2.MoveJointsIncrementalRequest(
-                delta_joint_positions_rad=step.tolist()), metadata=metadata)
-            self.wait_status(types_pb2.ROBOT_STATUS_READY)
-        self.wait_status(types_pb2.ROBOT_STATUS_READY)
-        time.sleep(0.1)
+            if np.max(np.abs(HOME_Q - q)) < 1e-4:
+                self.wait_status(types_pb2.ROBOT_STATUS_READY)
+                return
+            time.sleep(0.01)
+        raise AssertionError(f"the arm did not settle at home: {q}")
 
     def wait_status(self, status: int, timeout_s: float = 10.0) -> None:
         deadline = time.monotonic() + timeout_s
