@@ -1,6 +1,7 @@
 """python -m services.launcher (`make serve`): start the slave station, one process per service.
 
-It starts every service, waits until each answers its health check with SERVING, prints the
+It starts every service in turn, each once the one before answers its health check with
+SERVING (dependencies first), prints the
 addresses, and supervises them. On Ctrl-C or SIGTERM it stops them all (SIGTERM, then SIGKILL
 after a deadline) and exits. If a child dies on its own, the launcher says which and how, shows
 its last log lines, and stops the whole station: a slave station with a part missing is not safe
