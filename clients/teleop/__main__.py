@@ -57,13 +57,18 @@ class StatusLine:
         self._stream.write("\n")
 
 
-def retract(client: DecisionClient, height_z: float) -> None:
-    """Back up out of the hole to the start height, in straight steps."""
-    while True:
-        z = client.robot.get_state().tool_pose.translation[2]
-        if z >= height_z - 1e-4:
+def retract(client: DecisionClient, start: np.ndarray) -> None:
+    """Back up out of the hole, then to the start position, in straight steps of at most
+    RETRACT_STEP_M (up first, so the peg clears the hole before it moves sideways)."""
+    for _ in range(50):
+        here = client.robot.get_state().tool_pose.translation
+        error = start - here
+        if np.max(np.abs(error)) < 2e-4:
             return
-        client.robot.move_cartesian([0, 0, min(RETRACT_STEP_M, height_z - z)])
+        if here[2] < start[2] - 2e-4:
+            error[:2] = 0.0  # straight up first
+        step = error * min(1.0, RETRACT_STEP_M / np.linalg.norm(error))
+        client.robot.move_cartesian(step)
         deadline = time.monotonic() + 10
         while client.robot.get_status().status.name != "READY" and time.monotonic() < deadline:
             time.sleep(0.02)
@@ -104,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
                 client.robot.initialize()
             client.sensor.start_reading()
             client.sensor.tare(0.2)
-            start_z = client.robot.get_state().tool_pose.translation[2]
+            start = client.robot.get_state().tool_pose.translation.copy()
             model = RobotModel(client.robot.get_state().tool_pose)
             view = None
             if not args.no_video:
@@ -112,14 +117,14 @@ def main(argv: list[str] | None = None) -> int:
                 view.start()
             status, results, traces = StatusLine(), [], []
             for mode in args.modes:
-                retract(client, start_z)
+                retract(client, start)
                 status.restart()
                 run = PegInHole(client, mode, model, status)
                 results.append(run.run())
                 traces.append(run.trace)
                 client.renew_control()
             print()
-            retract(client, start_z)
+            retract(client, start)
             if view is not None:
                 view.stop()
     artifacts = plot(traces, out)

@@ -6,7 +6,9 @@ bring the hand back up between strokes, as a person would with a small master an
 approach. Then:
 
 - `feedback`: force feedback to the operator only. The operator keeps pushing the peg into the
-  hole until the force it feels (the acks' wrench) passes FEEL_N, then lets go.
+  hole until the force it feels (the acks' wrench) passes FEEL_N, then backs off until it
+  falls under half that: with a stiff position-controlled slave the force peaks before the
+  operator can react, which is what the comparison shows.
 - `compliance`: active compliance on the server. Once the peg is in the hole's mouth the
   operator holds still and the DecisionServer's force control pushes along the peg to
   DESIRED_FORCE_N and holds it.
@@ -42,6 +44,8 @@ DESIRED_FORCE_N = 5.0
 COMPLIANCE_GAIN_M_PER_N_S = 3e-4  # stable with the arm's ~1e5 N/m contact stiffness
 SETTLE_S = 2.0
 OVERREACH_M = 0.01  # the feedback operator aims past the floor and stops when it feels it
+BACK_OFF_STEP_M = 0.0002  # then raises the peg this much per command
+BACK_OFF_TICKS = 100
 HAND_INSERT_M = 0.03  # the compliance operator's own share of the 40 mm insertion
 HOLE_DEPTH_M = workspace.FIXTURE_HEIGHT
 MOUTH_Z = workspace.TABLE_TOP_Z + workspace.FIXTURE_HEIGHT
@@ -167,10 +171,21 @@ class PegInHole:
             if self.mode == "compliance":
                 self._comply(session, period)
             else:
+                self._back_off(session, period)
                 self._hold(session, period, SETTLE_S / 2)
         finally:
             session.close()
         return self._result(start)
+
+    def _back_off(self, session, period: float) -> None:
+        """Raise the peg a little at a time until the felt force is under half of FEEL_N."""
+        for _ in range(BACK_OFF_TICKS):
+            if self._contact_force() < FEEL_N / 2:
+                return
+            session.send_nowait([0.0, 0.0, BACK_OFF_STEP_M])
+            self.model.command([0.0, 0.0, BACK_OFF_STEP_M])
+            self._commands += 1
+            time.sleep(period)
 
     def _hold(self, session, period: float, seconds: float) -> None:
         """Heartbeats only: the operator holds still while the arm settles."""
