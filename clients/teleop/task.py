@@ -42,7 +42,8 @@ RETURN_S = 0.6  # clutch engaged while the hand goes back up
 FEEL_N = 8.0  # the operator stops pushing once it feels this much
 DESIRED_FORCE_N = 5.0
 COMPLIANCE_GAIN_M_PER_N_S = 3e-4  # stable with the arm's ~1e5 N/m contact stiffness
-SETTLE_S = 2.0
+SETTLE_S = 3.0
+FINAL_WINDOW_S = 1.0  # the final force is the mean over the run's last second
 OVERREACH_M = 0.01  # the feedback operator aims past the floor and stops when it feels it
 BACK_OFF_STEP_M = 0.0002  # then raises the peg this much per command
 BACK_OFF_TICKS = 100
@@ -218,9 +219,11 @@ class PegInHole:
         depth = MOUTH_Z - end[2]
         lateral = float(np.hypot(end[0] - x, end[1] - y))
         forces = [-f[2] for f in self.trace.force_n] or [0.0]
+        times = self.trace.force_time_s or [0.0]
+        final = [f for f, t in zip(forces, times, strict=False) if t >= times[-1] - FINAL_WINDOW_S]
         trips = self.trace.round_trip_ms or [0.0]
         return Result(
             self.mode, bool(depth > HOLE_DEPTH_M - 0.005 and lateral < workspace.HOLE_HALF_WIDTH),
             self._elapsed(), float(depth), lateral, float(max(forces)),
-            float(np.mean(forces[-10:])), self._commands, len(self._acks),
+            float(np.mean(final)), self._commands, len(self._acks),
             float(np.percentile(trips, 50)), float(np.percentile(trips, 99)))
