@@ -35,6 +35,9 @@ from services.world.realtime import RealtimeLoop
 log = logging.getLogger(__name__)
 
 MAX_TARE_S = 1.0
+# The sensor may miss samples for this long (a busy machine, a stalled link) before sampling
+# stops and streams end with UNAVAILABLE; shorter gaps just show in the sequence numbers.
+SENSOR_DOWN_AFTER_S = 0.5
 MAX_SUBSCRIBERS = 128
 STOP_TIMEOUT_S = 2.0
 
@@ -73,6 +76,7 @@ class ForceSensorCore:
         self._thread_id: int | None = None
         self._stop = threading.Event()
         self._loop: RealtimeLoop | None = None
+        self._failing_since: float | None = None
         self.readings: Fanout[WrenchReading] = Fanout()
         self._unbiased: Fanout[ContactWrench] = Fanout()  # only while a tare averages
 
@@ -219,7 +223,15 @@ class ForceSensorCore:
             os.setpriority(os.PRIO_PROCESS, self._thread_id, ThreadPriority.NORMAL.value)
 
     def _step(self) -> None:
-        reading = self._sample_once()
+        try:
+            reading = self._sample_once()
+        except Unavailable:
+            now = time.monotonic()
+            self._failing_since = self._failing_since or now
+            if now - self._failing_since > SENSOR_DOWN_AFTER_S:
+                raise
+            return  # skip this sample; the sequence numbers show the gap
+        self._failing_since = None
         settings = self._settings
         last = self._last_published
         if last is None or exceeds(float(np.max(np.abs(reading.force_n - last.force_n))),

@@ -45,7 +45,9 @@ from services.world.shm_layout import (
 
 log = logging.getLogger(__name__)
 
-STALE_AFTER_S = 0.1  # a world that has not stepped for this long counts as gone
+# A world that has not stepped for this long counts as gone. Long enough that a busy 2-core
+# machine's scheduling stalls (tens of ms seen) are not taken for a dead world.
+STALE_AFTER_S = 0.25
 TORN_READ_TIMEOUT_S = 0.05  # how long a reader waits for a writer stuck mid-write
 # A stale segment (its world killed) is replaced; one whose world stepped this recently, or whose
 # pid is alive, belongs to a running world and is left alone.

@@ -15,7 +15,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.runtime.errors import Unavailable
 from services.world.link import ArmSample
-from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
+from services.world.shm_link import STALE_AFTER_S, SharedMemoryArmLink, SharedMemoryWrenchLink
 from tests.conftest import REPO
 from tests.world.conftest import World, segment_exists
 
@@ -160,7 +160,7 @@ def test_a_killed_world_is_stale_and_a_new_one_takes_its_place(world_factory) ->
     link = SharedMemoryArmLink(world.shm_name)
     world.running.process.kill()
     world.running.process.wait(STOP_LIMIT_S)
-    time.sleep(0.2)  # past the 100 ms heartbeat limit
+    time.sleep(STALE_AFTER_S + 0.1)  # past the heartbeat limit
     with pytest.raises(Unavailable, match="has not stepped|shut down"):
         link.read_arm()
     link.close()
