@@ -37,6 +37,7 @@ log = logging.getLogger(__name__)
 DEFAULT_WATCHDOG_S = 0.1
 MIN_WATCHDOG_S, MAX_WATCHDOG_S = 0.01, 5.0
 MIN_REPLAY_SPEED, MAX_REPLAY_SPEED = 0.1, 10.0
+FORCE_LOOP_RETRY_S = 0.2
 FORCE_LOOP_DECIMATION = 5  # the force loop acts on every 5th 1 kHz sample: 200 Hz
 
 
@@ -376,33 +377,42 @@ class DecisionCore:
                 loop[0].join(2.0)
 
     def _run_force_loop(self, assistance: Assistance, stop: threading.Event) -> None:
-        """ΔT = A·(F_t − F_d), ΔM = B·(C_t − C_d) on the selected tool axes, per sample."""
+        while not stop.is_set():
+            try:
+                self._force_control_steps(assistance, stop)
+            except Unavailable as error:  # the sensor stalled: subscribe again once it is back
+                log.warning("force control paused: %s", error.message)
+                stop.wait(FORCE_LOOP_RETRY_S)
+            except TelerobotError as error:
+                log.warning("force control stopped: %s", error.message)
+                return
+
+    def _force_control_steps(self, assistance: Assistance, stop: threading.Event) -> None:
+        """ΔT = A·(F_t − F_d), ΔM = B·(C_t − C_d) on the selected tool axes, per sample, until
+        stopped; Unavailable when the sensor's stream ends."""
         control = assistance.force_control
         axes = control.axes
         previous_ns = None
-        try:
-            for sample in self._wrench_stream(FORCE_LOOP_DECIMATION):
-                if stop.is_set():
-                    return
-                if previous_ns is None:
-                    previous_ns = sample.sample_time_ns
-                    continue
-                dt = min((sample.sample_time_ns - previous_ns) * 1e-9, 0.05)
+        for sample in self._wrench_stream(FORCE_LOOP_DECIMATION):
+            if stop.is_set():
+                return
+            if previous_ns is None:
                 previous_ns = sample.sample_time_ns
-                if dt <= 0 or self.estopped:
-                    continue
-                force_error = (sample.force_n - control.desired_force_n) * axes[:3]
-                torque_error = (sample.torque_nm - control.desired_torque_nm) * axes[3:]
-                delta_x = control.translation_gain_m_per_n_s * force_error * dt
-                delta_m = pin.exp3(control.rotation_gain_rad_per_nm_s * torque_error * dt)
-                try:
-                    self.slave.move_cartesian(delta_x, delta_m, "TOOL")
-                except TelerobotError as error:
-                    if isinstance(error, Unavailable):
-                        raise
-                    log.debug("force control step refused: %s", error.message)
-        except TelerobotError as error:
-            log.warning("force control stopped: %s", error.message)
+                continue
+            dt = min((sample.sample_time_ns - previous_ns) * 1e-9, 0.05)
+            previous_ns = sample.sample_time_ns
+            if dt <= 0 or self.estopped:
+                continue
+            force_error = (sample.force_n - control.desired_force_n) * axes[:3]
+            torque_error = (sample.torque_nm - control.desired_torque_nm) * axes[3:]
+            delta_x = control.translation_gain_m_per_n_s * force_error * dt
+            delta_m = pin.exp3(control.rotation_gain_rad_per_nm_s * torque_error * dt)
+            try:
+                self.slave.move_cartesian(delta_x, delta_m, "TOOL")
+            except TelerobotError as error:
+                if isinstance(error, Unavailable):
+                    raise
+                log.debug("force control step refused: %s", error.message)
 
 
 def build_core(slave, recordings_dir) -> DecisionCore:

@@ -35,9 +35,11 @@ from services.world.realtime import RealtimeLoop
 log = logging.getLogger(__name__)
 
 MAX_TARE_S = 1.0
-# The sensor may miss samples for this long (a busy machine, a stalled link) before sampling
-# stops and streams end with UNAVAILABLE; shorter gaps just show in the sequence numbers.
+# A stalled sensor (a busy machine, a world that stopped stepping) may miss samples for this
+# long before it is reported down: GetWrench and streams then answer UNAVAILABLE, while the
+# sampler keeps trying and recovers by itself. A sensor that shut down stops sampling at once.
 SENSOR_DOWN_AFTER_S = 0.5
+_STALLED = "WORLD_STALE"
 MAX_SUBSCRIBERS = 128
 STOP_TIMEOUT_S = 2.0
 
@@ -225,13 +227,16 @@ class ForceSensorCore:
     def _step(self) -> None:
         try:
             reading = self._sample_once()
-        except Unavailable:
+        except Unavailable as error:
+            if error.reason != _STALLED:
+                raise  # gone for good: the loop ends and the failure is reported
             now = time.monotonic()
             self._failing_since = self._failing_since or now
             if now - self._failing_since > SENSOR_DOWN_AFTER_S:
-                raise
+                self._failure = error.message
             return  # skip this sample; the sequence numbers show the gap
         self._failing_since = None
+        self._failure = None
         settings = self._settings
         last = self._last_published
         if last is None or exceeds(float(np.max(np.abs(reading.force_n - last.force_n))),
