@@ -146,9 +146,9 @@ class TeleopSession:
         dx, dm, modified = apply_assistance(assistance, delta_position, delta_rotation, tool)
         try:
             result = self.core.slave.move_cartesian(dx, dm, mapping)
-        except (InvalidArgument, FailedPrecondition, TelerobotError) as error:
-            if isinstance(error, Unavailable):
-                raise
+        except Unavailable:
+            raise  # the arm is unreachable: the stream ends, it is not one refused command
+        except TelerobotError as error:
             return CommandResult("REJECTED", error.message, receive, time.time_ns())
         applied = time.time_ns()
         self._target = result.target_tool_pose

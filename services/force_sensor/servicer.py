@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 
-from google.protobuf import duration_pb2
-
 from services.common import convert
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.settings import ThreadPriority
@@ -36,10 +34,9 @@ class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
 
     def _config(self) -> pb.SensorConfig:
         settings = self._core.settings
-        period = duration_pb2.Duration()
-        period.FromNanoseconds(round(settings.period_s * 1e9))
         return pb.SensorConfig(
-            period=period, threshold_force_n=settings.threshold_force_n,
+            period=convert.duration(settings.period_s),
+            threshold_force_n=settings.threshold_force_n,
             threshold_torque_nm=settings.threshold_torque_nm,
             thread_priority=pb.SensorThreadPriority.Value(
                 f"SENSOR_THREAD_PRIORITY_{settings.thread_priority.name}"),
