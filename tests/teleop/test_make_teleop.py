@@ -46,5 +46,6 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path):
     frames = 0
     while video.read()[0]:
         frames += 1
-    assert frames == summary["video_frames"] > 50, (frames, summary)
+    # One ~15 s run, rendered in software at 3–10 fps depending on the machine's load.
+    assert frames == summary["video_frames"] > 20, (frames, summary)
     assert "feedback" in result.stdout and "success" in result.stdout
