@@ -175,16 +175,18 @@ class TeleopSession:
         self._activity.set()
 
     def _watch(self) -> None:
-        while not self._closed.is_set():
-            deadline = self._last_activity + self.watchdog_s
-            remaining = deadline - time.monotonic()
+        while True:
+            # Clear before reading the state, so a command or a close that lands in between
+            # still wakes the wait below instead of being missed.
+            self._activity.clear()
+            if self._closed.is_set():
+                return
+            remaining = self._last_activity + self.watchdog_s - time.monotonic()
             if remaining > 0:
-                self._activity.clear()
                 self._activity.wait(remaining)
                 continue
             if not self._held:
                 self._hold("watchdog timeout: no command or heartbeat")
-            self._activity.clear()
             self._activity.wait()
 
     def _hold(self, reason: str) -> None:

@@ -171,7 +171,8 @@ def test_watchdog_holds_the_arm_when_commands_stop(driven):
             event = item
             break
     assert event is not None and "watchdog timeout" in event.payload.reason
-    assert 0.05 <= event.payload.silence_s < 0.05 + 0.02
+    # Never before the timeout; the upper bound leaves room for a loaded machine's scheduling.
+    assert 0.05 <= event.payload.silence_s < 0.05 + 0.1
     station.wait_status(types_pb2.ROBOT_STATUS_READY)
     operator.close()
 

@@ -140,7 +140,7 @@ def test_a_silent_sensor_is_unavailable_quickly_and_nothing_hangs(responder_fact
         started = time.monotonic()
         with pytest.raises(Unavailable, match="has sent nothing for"):
             link.read_wrench()
-        assert time.monotonic() - started < 0.05
+        assert time.monotonic() - started < 0.5  # no waiting on the socket (loose: shared CPUs)
     finally:
         link.close()
 

@@ -186,12 +186,14 @@ def test_a_new_period_takes_effect(sensor):
     sensor.StartReading(pb.StartReadingRequest())
     sensor.SetSensorConfig(pb.SetSensorConfigRequest(
         config=pb.SensorConfig(period={"nanos": 10_000_000}), update_mask={"paths": ["period"]}))
-    samples = [s for m in collect(sensor.StreamWrench(pb.StreamWrenchRequest(), timeout=10), 21)
+    samples = [s for m in collect(sensor.StreamWrench(pb.StreamWrenchRequest(), timeout=10), 41)
                for s in m.samples]
     times = [s.sample_time.seconds + s.sample_time.nanos * 1e-9 for s in samples]
     gaps = np.diff(times)
-    # Sample times are the world's 1 ms ticks, so single gaps jitter by a tick.
-    assert 0.0095 < np.mean(gaps) < 0.0105 and np.min(gaps) > 0.005, gaps
+    # Sample times are the world's 1 ms ticks, so single gaps jitter by a tick, and a loaded
+    # machine can delay one sample (shortening the next gap): judge the typical gap, not each.
+    assert 0.009 <= np.median(gaps) <= 0.011, gaps
+    assert 0.009 < np.mean(gaps) < 0.011, gaps  # the old 1 ms period would give 0.001
 
 
 @pytest.mark.skipif(os.geteuid() != 0, reason="raising a thread's priority needs privilege")

@@ -299,8 +299,9 @@ def test_a_50_hz_command_stream_is_spread_over_the_servo_rate(ready, world):
         link.close()
     distinct = np.unique(np.round(seen, 9))
     assert len(distinct) > 60  # ~20 setpoints per command, not one
-    steps = np.diff(distinct)
-    assert steps.max() < 0.002  # no step anywhere near a whole command's 0.004 rad
+    # The median, not the max: when this reading thread is descheduled on a loaded machine it
+    # misses setpoints, which shows up as one large step that the servo never took.
+    assert np.median(np.diff(distinct)) < 0.001  # a whole command would be a 0.004 rad step
     wait_ready(ready)
 
 
