@@ -39,6 +39,11 @@ MIN_WATCHDOG_S, MAX_WATCHDOG_S = 0.01, 5.0
 MIN_REPLAY_SPEED, MAX_REPLAY_SPEED = 0.1, 10.0
 FORCE_LOOP_RETRY_S = 0.2
 FORCE_LOOP_DECIMATION = 5  # the force loop acts on every 5th 1 kHz sample: 200 Hz
+# A sample older than this is history, not feedback: the loop skips it to catch up. Acting on
+# a backlog (gRPC's transport buffers hold seconds of samples when the loop falls behind on a
+# loaded machine) would add that whole delay to the loop, and a contact loop with K ≈ 1e5 N/m
+# goes unstable once A·K·delay nears π/2.
+FORCE_LOOP_MAX_SAMPLE_AGE_NS = 50_000_000
 
 
 # -- events -------------------------------------------------------------------------------
@@ -398,6 +403,9 @@ class DecisionCore:
         for sample in self._wrench_stream(FORCE_LOOP_DECIMATION):
             if stop.is_set():
                 return
+            if time.time_ns() - sample.sample_time_ns > FORCE_LOOP_MAX_SAMPLE_AGE_NS:
+                previous_ns = None  # the target did not move meanwhile: integrate nothing
+                continue
             if previous_ns is None:
                 previous_ns = sample.sample_time_ns
                 continue

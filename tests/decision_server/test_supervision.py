@@ -3,6 +3,7 @@ compliance and the event stream, on the real simulated arm."""
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 import time
 
@@ -213,6 +214,38 @@ def test_active_compliance_brings_the_contact_force_to_its_target(driven):
     assert abs(np.mean(forces) - desired) < 0.1 * abs(desired), np.mean(forces)
     deviation = np.abs(np.array(forces) - desired)
     assert np.percentile(deviation, 99) < 0.25 * abs(desired), (np.min(forces), np.max(forces))
+
+
+def test_force_control_acts_on_fresh_samples_only(driven, monkeypatch):
+    """Samples that arrive late (a backlog on a loaded machine) are skipped, not acted on."""
+    station, lease, metadata = driven
+    station.sensor.StartReading(force_sensor_pb2.StartReadingRequest(), metadata=metadata)
+    live = station.core._wrench_stream  # noqa: SLF001 - the sensor stream the loop reads
+
+    def delivered_late(decimation):  # the real samples, as if each took 100 ms to arrive
+        for sample in live(decimation):
+            yield dataclasses.replace(sample, sample_time_ns=sample.sample_time_ns - 100_000_000)
+
+    # In free space the force is ~0, so a -10 N target drives the tool at A·10 N = 10 mm/s.
+    control = pb.AssistanceConfig(force_control=pb.ForceControl(
+        enabled=True, axes=pb.AxisSelection(z=True),
+        desired_wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(z=-10.0)),
+        translation_gain_m_per_n_s=1e-3))
+
+    def travel_in(seconds: float) -> float:
+        before = station.tool_position()
+        station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=control),
+                                        metadata=metadata)
+        time.sleep(seconds)
+        station.decisions.SetAssistance(pb.SetAssistanceRequest(
+            assistance=pb.AssistanceConfig()), metadata=metadata)
+        time.sleep(0.1)
+        return float(np.linalg.norm(station.tool_position() - before))
+
+    monkeypatch.setattr(station.core, "_wrench_stream", delivered_late)
+    assert travel_in(0.5) < 1e-4
+    monkeypatch.setattr(station.core, "_wrench_stream", live)
+    assert travel_in(0.5) > 0.002
 
 
 def test_events_report_locks_assistance_and_holds(station):
