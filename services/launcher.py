@@ -34,7 +34,8 @@ log = logging.getLogger("launcher")
 
 # Start order: dependencies first (the world stands in for the hardware). Stop order is the
 # reverse, so the hardware goes last.
-STATION = ["world", "proxy_robot", "force_sensor", "stereo_camera", "decision_server"]
+STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
+           "decision_server"]
 STARTUP_TIMEOUT_S = 60.0
 _LOG_TAIL_LINES = 20
 

@@ -107,19 +107,20 @@ class Backends:
     processes: list[RunningProcess]
     proxy_address: str
     sensor_address: str
+    emergency_address: str
 
 
 @pytest.fixture(scope="session")
 def backends(world):
-    """Real ProxyRobot and ForceSensor processes on the shared world, for the tests that put a
-    DecisionServer or a client in front of them."""
+    """Real ProxyRobot, ForceSensor and emergency-stop band processes on the shared world, for
+    the tests that put a DecisionServer or a client in front of them."""
     env = {"TELEROBOT_WORLD_SHM": world.shm_name}
-    proxy = start_process(["-m", "services.proxy_robot", "--address",
-                           f"127.0.0.1:{free_port()}"], env)
-    sensor = start_process(["-m", "services.force_sensor", "--address",
-                            f"127.0.0.1:{free_port()}"], env)
-    proxy.wait_ready(["proxy_robot"])
-    sensor.wait_ready(["force_sensor"])
-    yield Backends([proxy, sensor], proxy.ready["proxy_robot"], sensor.ready["force_sensor"])
-    for process in (proxy, sensor):
+    names = ["proxy_robot", "force_sensor", "emergency_stop"]
+    running = [start_process(["-m", f"services.{name}", "--address",
+                              f"127.0.0.1:{free_port()}"], env) for name in names]
+    for process, name in zip(running, names, strict=True):
+        process.wait_ready([name])
+    yield Backends(running, *(process.ready[name]
+                              for process, name in zip(running, names, strict=True)))
+    for process in running:
         process.stop()

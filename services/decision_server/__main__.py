@@ -41,7 +41,8 @@ class DecisionService:
     _stereo_channel: grpc.Channel | None = None
 
     def bindings(self) -> Sequence[ServiceBinding]:
-        slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address)
+        slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address,
+                          self.args.emergency_stop_address or None)
         self.core = build_core(slave, Path(self.args.recordings_dir))
         self._stereo_channel = grpc.insecure_channel(self.args.stereo_camera_address,
                                                      options=RECONNECT_OPTIONS)
@@ -63,9 +64,11 @@ class DecisionService:
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
-    for name in ("proxy_robot", "force_sensor", "stereo_camera"):
+    for name in ("proxy_robot", "force_sensor", "stereo_camera", "emergency_stop"):
         parser.add_argument(f"--{name.replace('_', '-')}-address", default=address_for(name),
-                            help=f"where {name} listens (env TELEROBOT_{name.upper()}_ADDRESS)")
+                            help=f"where {name} listens (env TELEROBOT_{name.upper()}_ADDRESS)"
+                                 + ("; empty: stop through ProxyRobot only"
+                                    if name == "emergency_stop" else ""))
     parser.add_argument("--recordings-dir",
                         default=os.environ.get("TELEROBOT_RECORDINGS_DIR", "var/recordings"),
                         help="where recordings are kept (env TELEROBOT_RECORDINGS_DIR)")

@@ -75,11 +75,19 @@ class GrpcSlave:
     """The arm and its sensor, behind their own services. Keeps the latest pose and wrench
     from background streams (for acks) and hands ProxyRobot's events to `on_robot_event`."""
 
-    def __init__(self, proxy_address: str, sensor_address: str):
+    def __init__(self, proxy_address: str, sensor_address: str,
+                 emergency_stop_address: str | None = None):
         self.robot_channel = grpc.insecure_channel(proxy_address, options=RECONNECT_OPTIONS)
         self.sensor_channel = grpc.insecure_channel(sensor_address, options=RECONNECT_OPTIONS)
         self.robot = proxy_robot_pb2_grpc.ProxyRobotStub(self.robot_channel)
         self.sensor = force_sensor_pb2_grpc.ForceSensorStub(self.sensor_channel)
+        # The emergency-stop band (services/emergency_stop): the same EmergencyStop contract,
+        # in a process that no ProxyRobot load can delay.
+        self.emergency_channel = (grpc.insecure_channel(emergency_stop_address,
+                                                        options=RECONNECT_OPTIONS)
+                                  if emergency_stop_address else None)
+        self.emergency = (proxy_robot_pb2_grpc.ProxyRobotStub(self.emergency_channel)
+                          if self.emergency_channel is not None else None)
         self.on_robot_event: Callable[[object], None] = lambda message: None
         self._state: SlaveState | None = None
         self._wrench: SlaveWrench | None = None
@@ -96,6 +104,8 @@ class GrpcSlave:
             stream.cancel()
         self.robot_channel.close()
         self.sensor_channel.close()
+        if self.emergency_channel is not None:
+            self.emergency_channel.close()
 
     # -- Slave ------------------------------------------------------------------------------
 
@@ -112,7 +122,24 @@ class GrpcSlave:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
 
     def emergency_stop(self, reason: str) -> None:
-        call(self.robot.EmergencyStop, proxy_robot_pb2.EmergencyStopRequest(reason=reason))
+        """Latch through the band first (fast under any ProxyRobot load), then through
+        ProxyRobot too: it records the reason and stops its interpolator, and it is the path
+        left when the band is down. Raises only when neither path latched the stop."""
+        request = proxy_robot_pb2.EmergencyStopRequest(reason=reason)
+        latched = False
+        if self.emergency is not None:
+            try:
+                call(self.emergency.EmergencyStop, request)
+                latched = True
+            except TelerobotError as error:
+                log.error("the emergency-stop band failed (%s); stopping through ProxyRobot",
+                          error.message)
+        try:
+            call(self.robot.EmergencyStop, request)
+        except TelerobotError as error:
+            if not latched:
+                raise
+            log.warning("stop latched by the band; ProxyRobot did not confirm: %s", error.message)
 
     def reset(self) -> None:
         call(self.robot.Reset, proxy_robot_pb2.ResetRequest())

@@ -22,6 +22,7 @@ DEFAULT_PORTS = {
     "proxy_robot": 50052,
     "force_sensor": 50053,
     "stereo_camera": 50054,
+    "emergency_stop": 50055,  # the emergency-stop band: ProxyRobot.EmergencyStop past the driver
 }
 DEFAULT_GRACE_S = 2.0
 

@@ -60,6 +60,19 @@ class ArmLink(Protocol):
         """Detach from the hardware. The arm keeps holding its last target."""
 
 
+class EmergencyStopLink(Protocol):
+    """The arm's emergency-stop input, reached without the driver: on a real arm, a safety
+    relay or the controller's own stop interface. It works while the driver process is busy or
+    stuck, so the stop never queues behind that process's work."""
+
+    def stop(self) -> int:
+        """Latch the same controlled stop as ArmLink.hold(); returns when it was requested
+        (time.time_ns()). Cleared only through the driver's release_hold()."""
+
+    def close(self) -> None:
+        """Detach. A latched stop stays latched."""
+
+
 class WrenchLink(Protocol):
     """Access to a six-axis force/torque sensor."""
 

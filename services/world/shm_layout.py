@@ -7,11 +7,17 @@ cache line, so the world's writes and the driver's writes never share a line:
     header   written once by the world at creation, except `status` and `heartbeat_ns`
     state    seqlock record, written by the world every servo step (arm sample + wrench + loop)
     command  seqlock record, written by the driver (target, hold, release)
+    emergency one aligned word, written by any emergency-stop device (see below)
 
 Commands are numbered: every command a driver issues takes the next `command_sequence`, and the
 record keeps the number of the latest target, hold and release. The world applies new ones in
 number order, so a hold and a release issued within one servo period are neither lost nor
 reordered (edge-triggered), and repeating one is harmless (holding twice is holding).
+
+The emergency word is the stop button wired past the driver: a second process (the emergency-stop
+service) writes the time of its request there, and the world latches a hold whenever the word
+changes, after that step's driver commands, so a release in the same step cannot undo it. One
+aligned 8-byte store needs no seqlock, and there may be several writers.
 """
 
 from __future__ import annotations
@@ -28,7 +34,7 @@ SHM_NAME_ENV = "TELEROBOT_WORLD_SHM"
 DEFAULT_SHM_NAME = "telerobot_world"
 
 MAGIC = 0x5445_4C45_5752_4C44  # "TELEWRLD": set last at creation, so a half-made segment is seen
-LAYOUT_VERSION = 1
+LAYOUT_VERSION = 2
 CACHE_LINE = 64
 FAULT_BYTES = 240  # UTF-8, truncated
 
@@ -78,6 +84,11 @@ COMMAND_DTYPE = np.dtype([
 ], align=True)
 
 
+EMERGENCY_DTYPE = np.dtype([
+    ("stop_request_ns", "i8"),  # time.time_ns() of the latest emergency stop request (0: none)
+], align=True)
+
+
 def _aligned(size: int) -> int:
     return -(-size // CACHE_LINE) * CACHE_LINE
 
@@ -85,7 +96,8 @@ def _aligned(size: int) -> int:
 HEADER_OFFSET = 0
 STATE_OFFSET = _aligned(HEADER_DTYPE.itemsize)
 COMMAND_OFFSET = STATE_OFFSET + _aligned(SeqlockRecord.size(STATE_DTYPE))
-SEGMENT_SIZE = COMMAND_OFFSET + _aligned(SeqlockRecord.size(COMMAND_DTYPE))
+EMERGENCY_OFFSET = COMMAND_OFFSET + _aligned(SeqlockRecord.size(COMMAND_DTYPE))
+SEGMENT_SIZE = EMERGENCY_OFFSET + _aligned(EMERGENCY_DTYPE.itemsize)
 
 
 def segment_name(name: str | None = None) -> str:
@@ -102,6 +114,7 @@ class WorldSegment:
         self.header = np.ndarray((1,), HEADER_DTYPE, shm.buf, HEADER_OFFSET)
         self.state = SeqlockRecord(shm.buf, STATE_OFFSET, STATE_DTYPE)
         self.command = SeqlockRecord(shm.buf, COMMAND_OFFSET, COMMAND_DTYPE)
+        self.emergency = np.ndarray((1,), EMERGENCY_DTYPE, shm.buf, EMERGENCY_OFFSET)
 
     @property
     def status(self) -> int:
@@ -129,7 +142,7 @@ class WorldSegment:
 
     def release(self) -> None:
         """Drop the views into the buffer (needed before the mapping can be closed)."""
-        del self.header
+        del self.header, self.emergency
         self.state.release()
         self.command.release()
 

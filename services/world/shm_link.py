@@ -4,8 +4,9 @@ World side: ``WorldPublisher`` creates the segment (see shm_layout.py), publishe
 and one wrench per servo step with a heartbeat, hands out the drivers' commands in the order they
 were issued, and unlinks the segment on close.
 
-Driver side: ``SharedMemoryArmLink`` (ArmLink) and ``SharedMemoryWrenchLink`` (WrenchLink).
-They raise Unavailable when the world is not running, has shut down, or has not stepped for
+Driver side: ``SharedMemoryArmLink`` (ArmLink), ``SharedMemoryWrenchLink`` (WrenchLink) and
+``SharedMemoryEmergencyStop`` (EmergencyStopLink: the stop button wired past the driver). They
+raise Unavailable when the world is not running, has shut down, or has not stepped for
 ``stale_after_s``. One driver process commands a world at a time (the command record has a
 single writer); within that process the links are thread-safe.
 """
@@ -91,6 +92,7 @@ class WorldPublisher:
         header["joint_upper"] = joint_upper
         header["magic"] = MAGIC  # last: the segment is complete
         self._applied = 0
+        self._emergency_seen = 0  # the stop_request_ns already latched
         self._running = False
         self._state = np.zeros(1, STATE_DTYPE)  # filled here, then copied in one go
 
@@ -124,8 +126,17 @@ class WorldPublisher:
             self._running = True
 
     def poll_commands(self) -> list[Command]:
-        """Commands issued since the last poll, oldest first. They count as applied from the
-        next publish on. Empty while the driver is mid-write (they come next step)."""
+        """Commands issued since the last poll, oldest first, and a hold last when an
+        emergency stop was requested. Driver commands count as applied from the next publish
+        on; they are left for the next step while the driver is mid-write."""
+        commands = self._poll_driver()
+        requested = int(self._segment.emergency["stop_request_ns"][0])
+        if requested != self._emergency_seen:
+            self._emergency_seen = requested
+            commands.append(Command(self._applied, _HOLD))
+        return commands
+
+    def _poll_driver(self) -> list[Command]:
         try:
             record = self._segment.command.read(timeout_s=0.0)[0]
         except TornRead:
@@ -385,6 +396,39 @@ class SharedMemoryArmLink:
                 record["driver_pid"] = os.getpid()
                 record["command_sequence"] = number
             self._issued = number
+
+
+class SharedMemoryEmergencyStop:
+    """EmergencyStopLink through the world's emergency word: it never touches the driver's
+    command record, so any number of these may sit beside the one driver. Thread-safe."""
+
+    def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S):
+        self._lock = threading.Lock()
+        self._connection = _WorldConnection(name, stale_after_s)
+        self._last_request_ns = 0
+
+    @property
+    def name(self) -> str:
+        """The shared-memory segment name."""
+        return self._connection.name
+
+    def stop(self) -> int:
+        """Latch a controlled stop. Unavailable when the world is gone or stale (the stop
+        could not be delivered)."""
+        with self._lock:
+            connection = self._connection
+            segment = connection.require()
+            connection.check_alive(segment.heartbeat_ns)
+            # Strictly new, even within one clock tick, so the world always sees a change.
+            requested = max(time.time_ns(), self._last_request_ns + 1)
+            segment.emergency["stop_request_ns"] = requested
+            self._last_request_ns = requested
+            return requested
+
+    def close(self) -> None:
+        """Detach; a latched stop stays latched."""
+        with self._lock:
+            self._connection.close()
 
 
 class SharedMemoryWrenchLink:

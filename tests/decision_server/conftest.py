@@ -96,7 +96,7 @@ class Station:
 
 @pytest.fixture
 def station(backends, tmp_path) -> Iterator[Station]:
-    slave = GrpcSlave(backends.proxy_address, backends.sensor_address)
+    slave = GrpcSlave(backends.proxy_address, backends.sensor_address, backends.emergency_address)
     core = build_core(slave, tmp_path / "recordings")
     stereo_channel = grpc.insecure_channel(f"127.0.0.1:{free_port()}")  # no camera here
     facades = make_facades(core, stereo_camera_pb2_grpc.StereoCameraStub(stereo_channel))

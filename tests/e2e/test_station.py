@@ -13,12 +13,12 @@ import grpc
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
+from services.launcher import STATION
 from tests.conftest import BUF, REPO, free_port, start_process
 from tests.world.conftest import unique_shm_name
 
 pytestmark = pytest.mark.e2e
 
-STATION = ["world", "proxy_robot", "force_sensor", "stereo_camera", "decision_server"]
 SERVICES = ["ProxyRobot", "ForceSensor", "StereoCamera", "DecisionServer"]
 
 

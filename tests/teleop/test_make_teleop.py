@@ -15,12 +15,12 @@ import sys
 import cv2
 import pytest
 
+from services.launcher import STATION
 from tests.conftest import REPO, free_port
 from tests.world.conftest import unique_shm_name
 
 pytestmark = pytest.mark.e2e
 
-STATION = ["world", "proxy_robot", "force_sensor", "stereo_camera", "decision_server"]
 
 
 def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path):

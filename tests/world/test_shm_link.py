@@ -17,6 +17,7 @@ from services.world.shm_layout import STATUS_RUNNING, WorldSegment, attach_untra
 from services.world.shm_link import (
     Command,
     SharedMemoryArmLink,
+    SharedMemoryEmergencyStop,
     SharedMemoryWrenchLink,
     WorldPublisher,
 )
@@ -101,6 +102,35 @@ def test_no_edge_is_lost_between_two_polls(publisher, link) -> None:
     # Repeats collapse (holding twice is holding), but the latest of each kind is there and in
     # order: held, then the final hold after the last release.
     assert kinds(publisher.poll_commands()) == ["release", "hold"]
+
+
+def test_an_emergency_stop_beside_the_driver_latches_after_its_commands(publisher, link) -> None:
+    button = SharedMemoryEmergencyStop(publisher.name)
+    try:
+        link.hold()
+        first = button.stop()
+        link.release_hold()  # issued after the stop, but in the same step: the stop still wins
+        assert kinds(publisher.poll_commands()) == ["hold", "release", "hold"]
+        assert publisher.poll_commands() == []  # one request, one hold
+        assert button.stop() > first  # strictly new, even within one clock tick
+        assert button.stop() > first
+        assert kinds(publisher.poll_commands()) == ["hold"]
+        link.write_target(link.read_arm().joint_targets_rad)  # the driver goes on numbering
+        assert kinds(publisher.poll_commands()) == ["target"]
+    finally:
+        button.close()
+
+
+def test_an_emergency_stop_into_a_stale_world_is_unavailable(publisher, sim) -> None:
+    button = SharedMemoryEmergencyStop(publisher.name, stale_after_s=0.05)
+    try:
+        time.sleep(0.1)
+        with pytest.raises(Unavailable, match="has not stepped"):
+            button.stop()  # not delivered, and the caller is told so
+        publisher.publish(sim.arm_sample(), sim.wrench_sample())
+        button.stop()
+    finally:
+        button.close()
 
 
 def test_the_driver_sees_when_its_commands_are_applied(publisher, link, sim: ArmSim) -> None:

@@ -1,0 +1,35 @@
+"""python -m services.emergency_stop: the emergency-stop band (see __init__.py).
+
+It reaches the arm through the world's shared memory (--shm-name / TELEROBOT_WORLD_SHM), beside
+ProxyRobot and without going through it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+from services.emergency_stop.servicer import EmergencyStopServicer
+from services.runtime.core_service import CoreService
+from services.runtime.process import run_service
+from services.runtime.server import binding
+from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_link import SharedMemoryEmergencyStop
+from telerobot.v1 import proxy_robot_pb2_grpc
+
+
+def _add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
+        help=f"shared-memory segment of the simulated arm's link (env {SHM_NAME_ENV})")
+
+
+def build(args: argparse.Namespace) -> CoreService:
+    servicer = EmergencyStopServicer(lambda: SharedMemoryEmergencyStop(args.shm_name))
+    return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", servicer)], servicer.close)
+
+
+if __name__ == "__main__":
+    raise SystemExit(run_service(
+        "emergency_stop", "The emergency-stop band: ProxyRobot.EmergencyStop past the driver.",
+        build, add_arguments=_add_arguments))
