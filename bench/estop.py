@@ -8,7 +8,8 @@ every joint is slower than HALT_SPEED_RAD_PER_S is reported too (`stopped_*`), a
 own return (`ack_*`).
 
 Each trial: Reset (if stopped), a 0.15 rad move of joint 1 (alternating sign, so the arm stays
-near where it was), MOVING_S for the arm to pick up speed, then EmergencyStop (emergency lane).
+near where it was), MOVING_S for the arm to pick up speed, then EmergencyStop (emergency lane),
+sent to the emergency-stop band (services/emergency_stop) or to ProxyRobot itself.
 
 The load (run_load, in its own process): 200 concurrent ProxyRobot.GetState calls asking for
 the low lane (`telerobot-lane: low` metadata), each re-issued as soon as it returns, from one
@@ -56,12 +57,19 @@ def _ensure_ready(stub, metadata=()) -> bool:
 
 
 def run_estop(address: str, shm_name: str, trials: int, label: str,
-              decision_server: bool = False) -> dict:
+              decision_server: bool = False, stop_address: str | None = None) -> dict:
     """`trials` emergency stops of a moving arm; the scenario's summary and raw latencies.
     With `decision_server`, `address` is the DecisionServer's: the calls go through its
-    ProxyRobot facade, with a control lease for the moves and resets."""
+    ProxyRobot facade, with a control lease for the moves and resets. With `stop_address`
+    (the emergency-stop band's), the stops go there and everything else to `address`."""
     channel = grpc.insecure_channel(address)
     stub = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+    stop_channel = (grpc.insecure_channel(stop_address)
+                    if stop_address and stop_address != address else channel)
+    stopper = proxy_robot_pb2_grpc.ProxyRobotStub(stop_channel)
+    # Connected before the first trial, as the move channel is by its calls: a stop that has
+    # to open its TCP connection first would time the handshake, not the stop.
+    grpc.channel_ready_future(stop_channel).result(timeout=CALL_TIMEOUT_S)
     metadata: tuple = ()
     lease = decision = None
     if decision_server:
@@ -93,7 +101,7 @@ def run_estop(address: str, shm_name: str, trials: int, label: str,
             speeds.append(float(np.max(np.abs(watch.read()["qd"]))))
             done: dict[str, int] = {}
             sent_ns = time.time_ns()
-            future = stub.EmergencyStop.future(pb.EmergencyStopRequest(reason=f"bench {label}"),
+            future = stopper.EmergencyStop.future(pb.EmergencyStopRequest(reason=f"bench {label}"),
                                                timeout=CALL_TIMEOUT_S)
             future.add_done_callback(lambda _f, d=done: d.setdefault("at", time.time_ns()))
             record, _, gap = watch.wait_until(lambda r: bool(r["hold_latched"]), WAIT_S)
@@ -119,6 +127,7 @@ def run_estop(address: str, shm_name: str, trials: int, label: str,
             from bench.command import release_control
 
             release_control(decision, lease)
+        stop_channel.close()
         channel.close()
     elapsed = time.monotonic() - started
     ack = summary(acks, None, 0, 1, 0)
@@ -126,7 +135,8 @@ def run_estop(address: str, shm_name: str, trials: int, label: str,
     result = summary(
         latched, None, len(latched), elapsed, failed, trials=trials,
         transport=("grpc-unary DecisionServer's ProxyRobot.EmergencyStop (forwarded)"
-                   if decision_server else "grpc-unary ProxyRobot.EmergencyStop"),
+                   if decision_server else "grpc-unary ProxyRobot.EmergencyStop"
+                   + (" on the emergency-stop band" if stop_channel is not channel else "")),
         halted_means="world hold latched (first servo step showing it)",
         ack_p50_ms=ack["p50_ms"], ack_p99_ms=ack["p99_ms"], ack_max_ms=ack["max_ms"],
         stopped_p50_ms=stop["p50_ms"], stopped_p99_ms=stop["p99_ms"],

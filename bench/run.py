@@ -121,13 +121,14 @@ class Station:
         self.procs = procs
         self.shm = shm_name
         self.address = {name: f"127.0.0.1:{free_port()}"
-                        for name in ("world", "proxy_robot", "force_sensor")}
+                        for name in ("world", "proxy_robot", "force_sensor", "emergency_stop")}
 
     def start(self) -> None:
         self.procs.start_service("world", self.address["world"])
         self.proxy = self.procs.start("proxy_robot", self._service_args("proxy_robot"))
         sensor = self.procs.start("force_sensor", self._service_args("force_sensor"))
-        for child in (self.proxy, sensor):
+        band = self.procs.start("emergency_stop", self._service_args("emergency_stop"))
+        for child in (self.proxy, sensor, band):
             child.wait_service_ready(child.name, 60.0)
 
     def _service_args(self, name: str) -> list[str]:
@@ -430,94 +431,55 @@ class Bench:
         return result
 
     def estop(self) -> None:
+        """estop_idle and estop_under_load through the emergency-stop band (the framework's
+        stop path), and estop_under_load_proxy: ProxyRobot's own EmergencyStop under the same
+        load, the path the band exists to avoid."""
+        proxy = self.station.address["proxy_robot"]
+        band = self.station.address["emergency_stop"]
+        self._estop_trials("estop_idle", "EmergencyStop on the band of a moving arm -> hold "
+                           "latched", proxy, band, loaded=False)
+        self._estop_trials("estop_under_load", "the same with "
+                           f"{self.plan.load_concurrency} concurrent GetState calls on "
+                           "ProxyRobot's low lane", proxy, band, loaded=True)
+        self._estop_trials("estop_under_load_proxy", "the same load, the stop sent to "
+                           "ProxyRobot itself", proxy, proxy, loaded=True)
+
+    def _estop_trials(self, name: str, what: str, proxy: str, stop_address: str,
+                      loaded: bool) -> None:
         plan = self.plan
-        address = self.station.address["proxy_robot"]
-        params = {"address": address, "shm": self.shm, "trials": plan.estop_trials}
         timeout = 60 + plan.estop_trials * 3
-        self.progress.step(f"estop_idle: EmergencyStop of a moving arm -> hold latched, "
-                           f"{plan.estop_trials} trials")
-        try:
-            idle = self._worker("estop", {**params, "label": "idle"}, timeout)
-            self._record("estop_idle", idle)
-            self.progress.done(_headline(idle))
-        except ChildFailed as error:
-            self._fail(["estop_idle"], error)
-        self.progress.step(f"estop_under_load: the same with {plan.load_concurrency} "
-                           "concurrent GetState calls on the low lane")
+        self.progress.step(f"{name}: {what}, {plan.estop_trials} trials")
         load = None
         try:
-            load = self.procs.start_worker("load", {
-                "address": address, "concurrency": plan.load_concurrency,
-                "max_s": timeout + 30})
-            load.wait_worker_ready(60.0)
-            time.sleep(0.5)  # let the low lane fill up
-            loaded = self._worker("estop", {**params, "label": "under load"}, timeout)
-            load.stop(10.0)
-            load_result = self.procs.finish_worker(load, 10.0)
-            load = None
+            if loaded:
+                load = self.procs.start_worker("load", {
+                    "address": proxy, "concurrency": plan.load_concurrency,
+                    "max_s": timeout + 30})
+                load.wait_worker_ready(60.0)
+                time.sleep(0.5)  # let the low lane fill up
+            result = self._worker("estop", {"address": proxy, "stop_address": stop_address,
+                                            "shm": self.shm, "trials": plan.estop_trials,
+                                            "label": name}, timeout)
+            if load is not None:
+                load.stop(10.0)
+                load_result = self.procs.finish_worker(load, 10.0)
+                load = None
         except ChildFailed as error:
             if load is not None:
                 self.procs.stop(load)
-            self._fail(["estop_under_load"], error)
-            loaded = None
-        if loaded is not None:
-            self._record_loaded(loaded, load_result)
-        self._estop_diagnostic("estop_under_load_elsewhere", "force_sensor", None)
-        self._estop_diagnostic("estop_under_load_gil1ms", "proxy_robot", 0.001)
-
-    def _record_loaded(self, loaded: dict, load_result: dict) -> None:
-        loaded.update(load_calls_per_s=load_result["calls_per_s"],
-                      load_codes=load_result["codes"],
-                      load="200 concurrent ProxyRobot.GetState, telerobot-lane: low "
-                           "(DecisionServer RunAction BusyWork, the intended load, is not "
-                           "built yet)")
-        idle = self.results.get("estop_idle", {})
-        loaded["vs_idle"] = {"p50": ratio(loaded.get("p50_ms"), idle.get("p50_ms")),
-                             "p99": ratio(loaded.get("p99_ms"), idle.get("p99_ms"))}
-        self._record("estop_under_load", loaded)
-        self.progress.done(_headline(loaded) + f" (load {load_result['calls_per_s']:.0f} "
-                           "calls/s)")
-
-    def _estop_diagnostic(self, name: str, load_target: str,
-                          switch_interval_s: float | None) -> None:
-        """Diagnostics of estop_under_load: the same load on another process (force_sensor's
-        GetWrench, low lane): CPU contention on the machine without load in the proxy; or the
-        same load on a proxy restarted with a 1 ms GIL switch interval (from CPython's 5 ms)."""
-        plan = self.plan
-        what = ("200 GetWrench on force_sensor instead" if load_target == "force_sensor"
-                else f"proxy_robot restarted with a {switch_interval_s * 1e3:g} ms GIL switch "
-                     "interval")
-        self.progress.step(f"{name} (diagnostic): {what}")
-        load = None
-        try:
-            if switch_interval_s is not None:
-                self.station.restart_proxy(switch_interval_s)
-            address = self.station.address["proxy_robot"]
-            load = self.procs.start_worker("load", {
-                "address": self.station.address[load_target], "target": load_target,
-                "concurrency": plan.load_concurrency,
-                "max_s": 60 + plan.estop_trials * 3 + 30})
-            load.wait_worker_ready(60.0)
-            time.sleep(0.5)
-            result = self._worker("estop", {"address": address, "shm": self.shm,
-                                            "trials": plan.estop_trials, "label": name},
-                                  60 + plan.estop_trials * 3)
-            load.stop(10.0)
-            load_result = self.procs.finish_worker(load, 10.0)
-            load = None
-        except ChildFailed as error:
-            if load is not None:
-                self.procs.stop(load)
-            self._fail([name], error)
-        else:
+            return self._fail([name], error)
+        headline = _headline(result)
+        if loaded:
+            idle = self.results.get("estop_idle", {})
             result.update(load_calls_per_s=load_result["calls_per_s"],
-                          load_codes=load_result["codes"], diagnostic=what)
-            self._record(name, result)
-            self.progress.done(_headline(result) + f" (load {load_result['calls_per_s']:.0f} "
-                               "calls/s)")
-        finally:
-            if switch_interval_s is not None:
-                self.station.restart_proxy()
+                          load_codes=load_result["codes"],
+                          load=f"{plan.load_concurrency} concurrent ProxyRobot.GetState, "
+                               "telerobot-lane: low",
+                          vs_idle={"p50": ratio(result.get("p50_ms"), idle.get("p50_ms")),
+                                   "p99": ratio(result.get("p99_ms"), idle.get("p99_ms"))})
+            headline += f" (load {load_result['calls_per_s']:.0f} calls/s)"
+        self._record(name, result)
+        self.progress.done(headline)
 
     def decision(self) -> None:
         """Through the DecisionServer, the operator's one address: teleop_<rate> (master
@@ -534,6 +496,7 @@ class Bench:
                 "--proxy-robot-address", self.station.address["proxy_robot"],
                 "--force-sensor-address", self.station.address["force_sensor"],
                 "--stereo-camera-address", f"127.0.0.1:{free_port()}",
+                "--emergency-stop-address", self.station.address["emergency_stop"],
                 "--recordings-dir", str(self.procs.scratch / "recordings")])
             server.wait_service_ready("decision_server", 60.0)
         except ChildFailed as error:

@@ -58,7 +58,7 @@ def _estop(p: dict) -> dict:
     from bench.estop import run_estop
 
     return run_estop(p["address"], p["shm"], p["trials"], p["label"],
-                     p.get("decision_server", False))
+                     p.get("decision_server", False), p.get("stop_address"))
 
 
 def _load(p: dict) -> dict:

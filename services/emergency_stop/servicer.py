@@ -27,6 +27,16 @@ class EmergencyStopServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
         self._link: EmergencyStopLink | None = None
         self._lock = threading.Lock()
 
+    def open(self) -> None:
+        """Attach now, so the first stop does not pay for it; if the arm is not there yet,
+        the first stop attaches (or says UNAVAILABLE)."""
+        with self._lock:
+            try:
+                self._link = self._link or self._open_link()
+            except Unavailable as error:
+                log.warning("no arm to stop yet (%s); trying again on the first stop",
+                            error.message)
+
     def EmergencyStop(self, request, context):
         with self._lock:
             try:

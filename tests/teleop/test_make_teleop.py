@@ -46,6 +46,7 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path):
     frames = 0
     while video.read()[0]:
         frames += 1
-    # One ~15 s run, rendered in software at 3–10 fps depending on the machine's load.
-    assert frames == summary["video_frames"] > 20, (frames, summary)
+    # One ~15 s run, rendered in software at 1–10 fps depending on the machine's load: the
+    # file holds every frame the summary counts.
+    assert frames == summary["video_frames"] >= 10, (frames, summary)
     assert "feedback" in result.stdout and "success" in result.stdout
