@@ -1,7 +1,8 @@
 """ProxyRobot clients: the slave arm's status machine, tool frame, moves, e-stop and streams.
 
 Use `ProxyRobotClient` on ProxyRobot's own port (50052), or on the DecisionServer's (50051)
-with a lease: ``DecisionClient.robot`` is one already sharing its channel and lease.
+with a lease: ``DecisionClient.robot`` is one already sharing its channel and lease. On the
+emergency-stop band's port (50055) only `emergency_stop` works: the stop no load can delay.
 
 Returns: `StatusInfo`, `RobotState`, `MoveResult` (``values.py``), `RobotStatus` for the
 life-cycle calls, ``pin.SE3`` for tool frames, joint arrays as ``numpy``. Event streams give the

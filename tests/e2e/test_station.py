@@ -127,6 +127,15 @@ def test_drive_the_arm_by_hand_with_buf_curl(station):
                         f"http://{address}/telerobot.v1.ProxyRobot/MoveJointsIncremental")
     assert refused.returncode != 0 and "failed_precondition" in refused.stdout + refused.stderr
     assert _call(address, "Reset") == {"status": "ROBOT_STATUS_READY"}
+    # The same stop through the emergency-stop band, as the README shows it.
+    band = env["TELEROBOT_EMERGENCY_STOP_ADDRESS"]
+    assert _call(band, "EmergencyStop", '{"reason": "by hand"}')["status"] == (
+        "ROBOT_STATUS_ESTOPPED")
+    deadline = time.monotonic() + 5
+    while _call(address, "GetStatus")["status"] != "ROBOT_STATUS_ESTOPPED":
+        assert time.monotonic() < deadline, "ProxyRobot never saw the band's latch"
+        time.sleep(0.05)
+    assert _call(address, "Reset") == {"status": "ROBOT_STATUS_READY"}
 
 
 def test_the_operator_address_forwards_with_the_lock_in_front(station):

@@ -8,6 +8,9 @@ import grpc
 import numpy as np
 import pytest
 
+from clients.python import ProxyRobotClient
+from clients.python.errors import UnimplementedError
+from clients.python.values import RobotStatus
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
 from tests.conftest import free_port, start_process
@@ -67,6 +70,16 @@ def test_the_band_halts_a_moving_arm_and_proxy_robot_reports_the_latch(stubs):
     assert robot.Reset(pb.ResetRequest(), timeout=5).status == types_pb2.ROBOT_STATUS_READY
     time.sleep(0.1)
     assert np.max(np.abs(joints(robot)[0] - halted)) < 1e-3
+
+
+def test_the_python_client_stops_through_the_band(stubs, backends):
+    robot, _ = stubs
+    with ProxyRobotClient(backends.emergency_address) as band:
+        assert band.emergency_stop("client test") == RobotStatus.ESTOPPED
+        with pytest.raises(UnimplementedError):
+            band.get_status()
+    wait_for(lambda: robot.GetStatus(pb.GetStatusRequest()).status
+             == types_pb2.ROBOT_STATUS_ESTOPPED, what="ProxyRobot to see the latch")
 
 
 def test_the_band_serves_only_emergency_stop(stubs):
