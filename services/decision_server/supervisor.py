@@ -216,8 +216,9 @@ class DecisionCore:
         self._lock = threading.Lock()
         self._event_sequence = itertools.count(1)
         self.events: Fanout[DecisionEvent] = Fanout()
-        self.locks = LockManager(lambda view, reason: self.emit(ControlChanged(view, reason)))
+        self.locks = LockManager(self._on_control_change)
         self.assistance = Assistance()
+        self._force_lease: Lease | None = None  # the lease that switched force control on
         self.indexing = False
         self.estopped = False
         self._sessions: dict[str, TeleopSession] = {}
@@ -228,6 +229,20 @@ class DecisionCore:
 
     def emit(self, payload) -> None:
         self.events.publish(DecisionEvent(next(self._event_sequence), time.time_ns(), payload))
+
+    def _on_control_change(self, view: ControlView, reason: str) -> None:
+        """Force control moves the arm by itself, so it lives only as long as the lease that
+        switched it on: released or lapsed (a crashed operator), it stops and the arm holds
+        where it is. The next holder switches it on again if they want it."""
+        self.emit(ControlChanged(view, reason))
+        owner = self._force_lease
+        if owner is None or any(lease.lease_id == owner.lease_id for lease in view.holders):
+            return
+        self._force_lease = None
+        self._stop_force_loop()
+        self.assistance = dataclasses.replace(self.assistance, force_control=None)
+        log.warning("force control switched off: %s", reason)
+        self.emit(AssistanceChanged(self.assistance, owner.operator_id))
 
     def close(self) -> None:
         self._stop_replay("the server is stopping")
@@ -272,6 +287,7 @@ class DecisionCore:
                 assistance, constraint=dataclasses.replace(constraint, anchor_m=anchor))
         self.assistance = assistance
         self._stop_force_loop()
+        self._force_lease = lease if assistance.force_control is not None else None
         if assistance.force_control is not None:
             self._start_force_loop(assistance)
         self.emit(AssistanceChanged(assistance, lease.operator_id))

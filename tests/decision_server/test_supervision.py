@@ -248,6 +248,31 @@ def test_force_control_acts_on_fresh_samples_only(driven, monkeypatch):
     assert travel_in(0.5) > 0.002
 
 
+def test_force_control_ends_when_its_lease_lapses(station):
+    """A crashed operator's force control does not go on moving the arm."""
+    lease, metadata = station.acquire(lease_duration=convert.duration(0.5))
+    station.ready_at_home(metadata)
+    station.sensor.StartReading(force_sensor_pb2.StartReadingRequest(), metadata=metadata)
+    events = station.core.events.subscribe(256)
+    # In free space a -10 N target drives the tool at A·10 N = 5 mm/s until someone stops it.
+    station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=pb.AssistanceConfig(
+        force_control=pb.ForceControl(
+            enabled=True, axes=pb.AxisSelection(z=True),
+            desired_wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(z=-10.0)),
+            translation_gain_m_per_n_s=5e-4))), metadata=metadata)
+    start = station.tool_position()
+    time.sleep(1.0)  # nobody renews: the lease lapses after 0.5 s
+    lapsed = station.tool_position()
+    time.sleep(0.5)
+    assert np.linalg.norm(lapsed - start) > 5e-4  # it did move while the lease lived
+    assert np.linalg.norm(station.tool_position() - lapsed) < 1e-4  # and stopped with it
+    assert station.core.assistance.force_control is None
+    seen = []
+    while (event := events.get(0)) is not None:
+        seen.append(type(event.payload).__name__)
+    assert "AssistanceChanged" in seen[seen.index("ControlChanged"):], seen
+
+
 def test_events_report_locks_assistance_and_holds(station):
     events = station.core.events.subscribe(256)
     stream = station.decisions.StreamEvents(pb.StreamEventsRequest(), timeout=10)
