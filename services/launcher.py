@@ -37,6 +37,8 @@ log = logging.getLogger("launcher")
 STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
            "decision_server"]
 STARTUP_TIMEOUT_S = 60.0
+# The banner's first line: whoever starts a launcher (`make teleop`, the tests) waits for it.
+UP_LINE = "Slave station is up"
 _LOG_TAIL_LINES = 20
 
 
@@ -181,7 +183,7 @@ def _stop_all(children: list[Child], grace_s: float) -> None:
 def _print_banner(children: list[Child]) -> None:
     operator = address_for("decision_server")
     width = max(len(c.name) for c in children)
-    lines = ["", "Slave station is up. Ctrl-C stops it.", ""]
+    lines = ["", f"{UP_LINE}. Ctrl-C stops it.", ""]
     lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.process.pid})" for c in children]
     lines += [
         "",

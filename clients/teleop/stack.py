@@ -14,8 +14,9 @@ from collections.abc import Iterator
 import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
+from services.launcher import UP_LINE
+
 STARTUP_TIMEOUT_S = 90.0
-UP_LINE = "Slave station is up"
 
 
 def serving(address: str, timeout_s: float = 1.0) -> bool:

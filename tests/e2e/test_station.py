@@ -13,7 +13,7 @@ import grpc
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import STATION
+from services.launcher import STATION, UP_LINE
 from tests.conftest import BUF, REPO, free_port, start_process
 from tests.world.conftest import unique_shm_name
 
@@ -59,7 +59,7 @@ def _start_station(env: dict[str, str]):
     """The real launcher, once it says the whole station is up."""
     launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=env)
     deadline = time.monotonic() + 90
-    while not any("Slave station is up" in line for line in launcher.lines):
+    while not any(UP_LINE in line for line in launcher.lines):
         if launcher.process.poll() is not None or time.monotonic() > deadline:
             pytest.fail("launcher did not come up:\n" + "\n".join(launcher.lines[-40:]))
         time.sleep(0.05)
