@@ -1,5 +1,5 @@
-"""estop_idle and estop_under_load: EmergencyStop call -> arm halted, idle and with the low
-lane saturated.
+"""estop_idle, estop_under_load and estop_under_load_proxy: EmergencyStop call -> arm halted,
+idle and with ProxyRobot's low lane saturated (estop_ds_*: the same through the DecisionServer).
 
 "Arm halted" is the world's hold latched: the first servo step whose state record shows
 `hold_latched` (read through the shared memory, read only), at that step's time. From then the
@@ -13,8 +13,8 @@ sent to the emergency-stop band (services/emergency_stop) or to ProxyRobot itsel
 
 The load (run_load, in its own process): 200 concurrent ProxyRobot.GetState calls asking for
 the low lane (`telerobot-lane: low` metadata), each re-issued as soon as it returns, from one
-grpc.aio client. The low lane (1-4 threads, 256 queued) is then always full. ProxyRobot has no
-long low-lane RPC; the intended load is the DecisionServer's RunAction BusyWork, not built yet.
+grpc.aio client. The low lane (1-4 threads, 256 queued) is then always full. For estop_ds_busywork
+the load is 200 DecisionServer.RunAction BusyWork calls instead (Parma's workload).
 """
 
 from __future__ import annotations
@@ -30,9 +30,8 @@ from google.protobuf import duration_pb2
 
 from bench.stats import summary
 from bench.worldwatch import WorldWatch
-from telerobot.v1 import force_sensor_pb2 as fpb
-from telerobot.v1 import force_sensor_pb2_grpc, proxy_robot_pb2_grpc, types_pb2
 from telerobot.v1 import proxy_robot_pb2 as pb
+from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
 
 MOVE_RAD = 0.15
 MOVING_S = 0.08
@@ -150,9 +149,9 @@ def run_estop(address: str, shm_name: str, trials: int, label: str,
 
 def run_load(address: str, concurrency: int, max_s: float, ready,
              target: str = "proxy_robot") -> dict:
-    """`concurrency` GetState calls (GetWrench when `target` is "force_sensor") on the low
-    lane, re-issued as each returns, until SIGTERM or max_s. Calls ready() after the first
-    `concurrency` completions."""
+    """`concurrency` GetState calls (RunAction BusyWork when `target` is "decision_server") on
+    the low lane, re-issued as each returns, until SIGTERM or max_s. Calls ready() after the
+    first `concurrency` completions."""
     return asyncio.run(_load(address, concurrency, max_s, ready, target))
 
 
@@ -180,10 +179,7 @@ async def _load(address: str, concurrency: int, max_s: float, ready, target: str
                 ready()
 
     async with grpc.aio.insecure_channel(address) as channel:
-        if target == "force_sensor":  # the diagnostic: the same load on another process
-            stub = force_sensor_pb2_grpc.ForceSensorStub(channel)
-            call, request = stub.GetWrench, fpb.GetWrenchRequest()
-        elif target == "decision_server":  # the intended load: Parma's workload
+        if target == "decision_server":  # the intended load: Parma's workload
             from telerobot.v1 import decision_server_pb2 as dpb
             from telerobot.v1 import decision_server_pb2_grpc
 

@@ -1,10 +1,10 @@
 """The bench run: start a slave station of its own, run the scenarios in order, stop it all.
 
-The station (world, proxy_robot, force_sensor; stereo_camera per source when its scenarios
-run) listens on free loopback ports with a shared-memory name of its own, so it never meets a
-`make serve` or a test. Every measuring client is a separate worker process (worker.py); the
-baselines' servers are separate processes too (baseline_server.py). Baselines run right after
-the project's scenarios they are compared with, in the same run.
+The station (world, proxy_robot, force_sensor, emergency_stop; stereo_camera per source when
+its scenarios run) listens on free loopback ports with a shared-memory name of its own, so it
+never meets a `make serve` or a test. Every measuring client is a separate worker process
+(worker.py); the baselines' servers are separate processes too (baseline_server.py). Baselines
+run right after the project's scenarios they are compared with, in the same run.
 """
 
 from __future__ import annotations
