@@ -291,6 +291,7 @@ def test_events_report_locks_assistance_and_holds(station):
     assert kinds == ["control_changed", "assistance_changed", "control_changed"]
     assert received[0].control_changed.state.holders[0].operator_id == "eve"
     assert received[1].assistance_changed.assistance.scaling.translation_scale == 0.5
-    assert [m.sequence for m in received] == list(range(received[0].sequence,
-                                                        received[0].sequence + 3))
+    # In order; gaps are ProxyRobot's DATA_RECEIVED events, which this stream leaves out.
+    sequences = [m.sequence for m in received]
+    assert sequences == sorted(set(sequences)), sequences
     events.close()
