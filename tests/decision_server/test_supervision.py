@@ -245,7 +245,8 @@ def test_force_control_acts_on_fresh_samples_only(driven, monkeypatch):
     monkeypatch.setattr(station.core, "_wrench_stream", delivered_late)
     assert travel_in(0.5) < 1e-4
     monkeypatch.setattr(station.core, "_wrench_stream", live)
-    assert travel_in(0.5) > 0.002
+    # About 5 mm on a quiet machine; a loaded one makes live samples late too, and fewer count.
+    assert travel_in(0.5) > 5e-4
 
 
 def test_force_control_ends_when_its_lease_lapses(station):
@@ -254,12 +255,12 @@ def test_force_control_ends_when_its_lease_lapses(station):
     station.ready_at_home(metadata)
     station.sensor.StartReading(force_sensor_pb2.StartReadingRequest(), metadata=metadata)
     events = station.core.events.subscribe(256)
-    # In free space a -10 N target drives the tool at A·10 N = 5 mm/s until someone stops it.
+    # In free space a -10 N target drives the tool at A·10 N = 10 mm/s until someone stops it.
     station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=pb.AssistanceConfig(
         force_control=pb.ForceControl(
             enabled=True, axes=pb.AxisSelection(z=True),
             desired_wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(z=-10.0)),
-            translation_gain_m_per_n_s=5e-4))), metadata=metadata)
+            translation_gain_m_per_n_s=1e-3))), metadata=metadata)
     start = station.tool_position()
     time.sleep(1.0)  # nobody renews: the lease lapses after 0.5 s
     lapsed = station.tool_position()
