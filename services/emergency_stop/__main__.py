@@ -15,15 +15,13 @@ from services.emergency_stop.servicer import EmergencyStopServicer
 from services.runtime.core_service import CoreService
 from services.runtime.process import run_service
 from services.runtime.server import binding
-from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryEmergencyStop
 from telerobot.v1 import proxy_robot_pb2_grpc
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
-        help=f"shared-memory segment of the simulated arm's link (env {SHM_NAME_ENV})")
+    add_shm_name_argument(parser, "shared-memory segment of the simulated arm's link")
 
 
 def build(args: argparse.Namespace) -> CoreService:

@@ -16,7 +16,7 @@ from services.force_sensor.servicer import ForceSensorServicer
 from services.runtime.core_service import CoreService
 from services.runtime.process import run_service
 from services.runtime.server import binding
-from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2_grpc
 
@@ -33,8 +33,7 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the Net F/T's counts per newton (its calibration page)")
     parser.add_argument("--counts-per-torque", type=float, default=1e6,
                         help="the Net F/T's counts per newton-metre")
-    parser.add_argument("--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
-                        help=f"the world's shared-memory segment (env {SHM_NAME_ENV})")
+    add_shm_name_argument(parser, "the world's shared-memory segment")
 
 
 def build(args: argparse.Namespace) -> CoreService:

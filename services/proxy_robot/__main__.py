@@ -7,22 +7,19 @@ It reaches the arm through the hardware link: in simulation, the world process's
 from __future__ import annotations
 
 import argparse
-import os
 
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.servicer import ProxyRobotServicer
 from services.runtime.core_service import CoreService
 from services.runtime.process import run_service
 from services.runtime.server import binding
-from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink
 from telerobot.v1 import proxy_robot_pb2_grpc
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
-        help=f"shared-memory segment of the simulated arm's link (env {SHM_NAME_ENV})")
+    add_shm_name_argument(parser, "shared-memory segment of the simulated arm's link")
 
 
 def build(args: argparse.Namespace) -> CoreService:

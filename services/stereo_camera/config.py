@@ -17,7 +17,7 @@ from services.stereo_camera.pattern import PatternSource
 from services.stereo_camera.sim import SimSource, WorldJoints, home_joints
 from services.stereo_camera.source import StereoSource
 from services.stereo_camera.video import DEVICE, FILE, VideoSource
-from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_layout import add_shm_name_argument
 
 SERVICE = "stereo_camera"
 SOURCES = ("sim", "pattern", "device", "file")
@@ -91,9 +91,7 @@ def add_source_arguments(parser: argparse.ArgumentParser) -> None:
         "--sim-shadows", type=_on_off, default=_on_off(_env("sim_shadows", "on")),
         help="render shadows (on or off, default on); off is several times faster on "
              "software rendering")
-    group.add_argument(
-        "--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
-        help=f"shared memory of the world process, for --sim-joints world (env {SHM_NAME_ENV})")
+    add_shm_name_argument(group, "shared memory of the world process, for --sim-joints world")
 
 
 @dataclass

@@ -13,7 +13,7 @@ import sys
 
 from services.runtime.process import run_service
 from services.world.service import WorldService
-from services.world.shm_layout import DEFAULT_SHM_NAME, SHM_NAME_ENV
+from services.world.shm_layout import add_shm_name_argument
 
 # The physics thread must get the GIL back soon after its sleep ends, even if a gRPC thread is
 # running Python code: 0.5 ms instead of CPython's default 5 ms bounds that wait.
@@ -21,10 +21,7 @@ GIL_SWITCH_INTERVAL_S = 0.0005
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--shm-name", default=os.environ.get(SHM_NAME_ENV, DEFAULT_SHM_NAME),
-        help=f"shared-memory segment of the hardware link (env {SHM_NAME_ENV})",
-    )
+    add_shm_name_argument(parser, "shared-memory segment of the hardware link")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -105,6 +105,12 @@ def segment_name(name: str | None = None) -> str:
     return name or os.environ.get(SHM_NAME_ENV) or DEFAULT_SHM_NAME
 
 
+def add_shm_name_argument(parser, what: str) -> None:
+    """The --shm-name flag every process on the link takes: `what` the segment is to it, and
+    the default segment_name() gives (env TELEROBOT_WORLD_SHM, else the default name)."""
+    parser.add_argument("--shm-name", default=segment_name(), help=f"{what} (env {SHM_NAME_ENV})")
+
+
 class WorldSegment:
     """Numpy views of one attached (or created) segment."""
 
