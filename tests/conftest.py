@@ -24,6 +24,18 @@ REPO = Path(__file__).resolve().parent.parent
 BUF = REPO / "node_modules" / ".bin" / "buf"
 
 
+def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
+    """Poll `predicate` every 5 ms until it returns something true, and return that; fail the
+    test after `timeout_s`."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(0.005)
+    raise AssertionError(f"timed out waiting for {what}")
+
+
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))

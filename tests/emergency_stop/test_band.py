@@ -13,7 +13,7 @@ from clients.python.errors import UnimplementedError
 from clients.python.values import RobotStatus
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
-from tests.conftest import free_port, start_process
+from tests.conftest import free_port, start_process, wait_for
 from tests.world.conftest import unique_shm_name
 
 
@@ -36,14 +36,6 @@ def stubs(backends):
 def joints(robot) -> tuple[np.ndarray, np.ndarray]:
     state = robot.GetState(pb.GetStateRequest()).state
     return np.array(state.joint_positions_rad), np.array(state.joint_velocities_rad_per_s)
-
-
-def wait_for(condition, timeout_s: float = 5.0, what: str = "") -> None:
-    deadline = time.monotonic() + timeout_s
-    while not condition():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.005)
 
 
 def test_the_band_halts_a_moving_arm_and_proxy_robot_reports_the_latch(stubs):

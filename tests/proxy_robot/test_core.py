@@ -15,18 +15,9 @@ from services.proxy_robot.status import Moved, RobotErrorRaised, RobotStatus, St
 from services.robot_model.puma560 import HOME_Q
 from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.shm_link import SharedMemoryArmLink
+from tests.conftest import wait_for
 
 S = RobotStatus
-
-
-def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        time.sleep(0.005)
-    raise AssertionError(f"timed out waiting for {what}")
 
 
 def wait_ready(core: ProxyRobotCore, timeout_s: float = 10.0) -> None:
