@@ -407,11 +407,6 @@ class SharedMemoryEmergencyStop:
         self._connection = _WorldConnection(name, stale_after_s)
         self._last_request_ns = 0
 
-    @property
-    def name(self) -> str:
-        """The shared-memory segment name."""
-        return self._connection.name
-
     def stop(self) -> int:
         """Latch a controlled stop. Unavailable when the world is gone or stale (the stop
         could not be delivered)."""
