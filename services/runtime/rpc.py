@@ -5,8 +5,9 @@
   client asks for in the `telerobot-lane` metadata key, clamped to the server's limit;
 - streaming calls keep their gRPC thread (a stream would pin a lane thread for its whole life)
   but count against a cap on open streams;
-- requests are decoded here, so a malformed message gets INVALID_ARGUMENT instead of the
-  INTERNAL that grpcio gives by default;
+- requests are decoded and checked here (services/runtime/validation.py), so a malformed
+  message, an unknown enum value or an over-long string gets INVALID_ARGUMENT naming the
+  field, instead of grpcio's INTERNAL or a handler's UNKNOWN;
 - `TelerobotError`s raised by servicers become their status code with a google.rpc.ErrorInfo.
 """
 
@@ -20,12 +21,13 @@ from concurrent.futures import CancelledError
 
 import grpc
 from google.protobuf import descriptor_pool
-from google.protobuf.message import DecodeError
+from google.protobuf.message import DecodeError, Message
 from google.rpc import code_pb2, error_details_pb2, status_pb2
 from grpc_status import rpc_status
 
 from services.runtime.errors import TelerobotError
 from services.runtime.lanes import Lane, LaneExecutor, LaneExecutorClosed, LaneFull
+from services.runtime.validation import check_request
 from telerobot.v1 import options_pb2
 
 log = logging.getLogger(__name__)
@@ -213,10 +215,16 @@ def _requested_lane(metadata) -> str | None:
 
 def _decode_or_abort(decode: Callable, raw: bytes, context):
     try:
-        return decode(raw)
+        request = decode(raw)
     except (DecodeError, ValueError, TypeError) as exc:
         abort(context, grpc.StatusCode.INVALID_ARGUMENT,
               f"the request is not a valid message for this method: {exc}", "MALFORMED_REQUEST")
+    if isinstance(request, Message):
+        try:
+            check_request(request)
+        except TelerobotError as error:
+            abort_with_error(context, error)
+    return request
 
 
 def _decoded(raw_iterator: Iterator[bytes], decode: Callable, context) -> Iterator:

@@ -19,3 +19,5 @@ LANE_MEDIUM: Lane
 LANE_LOW: Lane
 DEFAULT_LANE_FIELD_NUMBER: _ClassVar[int]
 default_lane: _descriptor.FieldDescriptor
+MAX_LENGTH_FIELD_NUMBER: _ClassVar[int]
+max_length: _descriptor.FieldDescriptor
