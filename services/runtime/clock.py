@@ -1,0 +1,33 @@
+"""Time as the domain reads it: one small port, so tests can drive timers and watchdogs
+with a fake clock instead of the wall clock."""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import Protocol
+
+
+class Clock(Protocol):
+    def monotonic(self) -> float:
+        """Seconds on a clock that never goes back, for intervals and deadlines."""
+
+    def time_ns(self) -> int:
+        """Wall-clock time in ns since the epoch, for timestamps."""
+
+    def wait(self, event: threading.Event, timeout_s: float | None) -> bool:
+        """Block until `event` is set (True) or `timeout_s` of this clock passed (False)."""
+
+
+class SystemClock:
+    """The real clock."""
+
+    monotonic = staticmethod(time.monotonic)
+    time_ns = staticmethod(time.time_ns)
+
+    @staticmethod
+    def wait(event: threading.Event, timeout_s: float | None) -> bool:
+        return event.wait(timeout_s)
+
+
+SYSTEM_CLOCK = SystemClock()

@@ -1,0 +1,1 @@
+"""Fakes of the ports, with honest physics, for in-process deterministic tests."""
