@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import pickle
 import threading
-import time
 
 import grpc
 import numpy as np
@@ -36,7 +35,7 @@ from services.stereo_camera.pattern import read_tick
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
 from tests.clients.conftest import CAMERA_HEIGHT_PX, CAMERA_WIDTH_PX
-from tests.conftest import free_port
+from tests.conftest import free_port, wait_for
 
 
 def lease_metadata(client: DecisionClient) -> list[tuple[str, str]]:
@@ -205,12 +204,13 @@ def test_events_stream_sees_the_lock_change(station):
 
     def change_hands(client: DecisionClient) -> None:
         # Until the watcher has seen it: its subscription may reach the server after the
-        # first change.
+        # first change, and the client cannot see when it does, so the change is repeated
+        # every 50 ms (Event.wait: no later than the watcher has seen it).
         while not stop.is_set():
             client.acquire_control("ann")
-            time.sleep(0.05)
+            stop.wait(0.05)
             client.release_control()
-            time.sleep(0.05)
+            stop.wait(0.05)
 
     with DecisionClient(station.address) as watcher, DecisionClient(station.address) as ann:
         with watcher.stream_events(timeout=20) as events:
@@ -235,10 +235,8 @@ def test_teleoperate_session_sends_commands_and_gets_acks(station, operator):
     with operator.teleoperate(watchdog_timeout_s=0.5, on_ack=received.append) as session:
         assert session.session_id and session.mapping is ReferenceFrame.BASE
         assert session.watchdog_timeout_s == pytest.approx(0.5)
-        deadline = time.monotonic() + 5
-        while session.heartbeat().force is None:  # until the server has a fresh wrench
-            assert time.monotonic() < deadline, "the acks never carried a wrench"
-            time.sleep(0.02)
+        wait_for(lambda: session.heartbeat().force is not None, 5,
+                 "the acks to carry a wrench (the server to have a fresh one)")
         received.clear()
         ack = session.send((0, 0, 0.003))
         assert ack.sequence == 1 and ack.outcome is CommandOutcome.APPLIED and ack.applied
