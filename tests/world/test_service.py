@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import threading
-import time
 
 import pytest
 
 from services.world.service import WorldService
 from services.world.shm_link import SharedMemoryArmLink
 from services.world.sim import ArmSim
+from tests.conftest import wait_for
 from tests.world.conftest import segment_exists, unique_shm_name
 
 
@@ -28,8 +28,7 @@ def test_runs_publishes_and_cleans_up() -> None:
     try:
         link = SharedMemoryArmLink(service.publisher.name)
         first = link.read_arm().sequence
-        time.sleep(0.02)
-        assert link.read_arm().sequence > first
+        wait_for(lambda: link.read_arm().sequence > first, 5.0, "the world to publish a step")
         link.close()
     finally:
         name = service.publisher.name
