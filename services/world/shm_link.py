@@ -9,6 +9,9 @@ Driver side: ``SharedMemoryArmLink`` (ArmLink), ``SharedMemoryWrenchLink`` (Wren
 raise Unavailable when the world is not running, has shut down, or has not stepped for
 ``stale_after_s``. One driver process commands a world at a time (the command record has a
 single writer); within that process the links are thread-safe.
+
+The heartbeat is time.monotonic_ns, which every process on the machine shares; a test may give
+a world and its drivers one clock of its own (``clock``) to make the world go stale at will.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import logging
 import os
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from multiprocessing import shared_memory
 
@@ -73,11 +77,13 @@ class Command:
 
 
 class WorldPublisher:
-    """The world's end of the link. Single-threaded: the servo thread calls everything."""
+    """The world's end of the link. Single-threaded: the servo thread calls everything.
+    ``clock`` (monotonic ns) stamps the heartbeat."""
 
     def __init__(self, joint_lower: np.ndarray, joint_upper: np.ndarray, period_s: float,
-                 name: str | None = None):
+                 name: str | None = None, clock: Callable[[], int] = time.monotonic_ns):
         self.name = segment_name(name)
+        self._clock = clock
         if not ORDERING_GUARANTEED:
             log.warning("this CPU is not x86: the seqlock has no memory fences here, so a "
                         "driver may (rarely) read a torn sample")
@@ -86,7 +92,7 @@ class WorldPublisher:
         header["layout_version"] = LAYOUT_VERSION
         header["world_pid"] = os.getpid()
         header["status"] = STATUS_STARTING  # RUNNING from the first publish on
-        header["heartbeat_ns"] = time.monotonic_ns()
+        header["heartbeat_ns"] = clock()
         header["period_ns"] = round(period_s * 1e9)
         header["joint_lower"] = joint_lower
         header["joint_upper"] = joint_upper
@@ -98,7 +104,7 @@ class WorldPublisher:
 
     def publish(self, arm: ArmSample, wrench: RawWrench, loop: LoopStats | None = None) -> None:
         """Publish one step's samples and beat the heartbeat."""
-        now = time.monotonic_ns()
+        now = self._clock()
         loop = loop or LoopStats()
         record = self._state
         record["heartbeat_ns"] = now
@@ -207,9 +213,10 @@ def _live_owner(shm: shared_memory.SharedMemory) -> int | None:
 class _WorldConnection:
     """An attachment to a running world's segment, with the liveness checks every read makes."""
 
-    def __init__(self, name: str | None, stale_after_s: float):
+    def __init__(self, name: str | None, stale_after_s: float, clock: Callable[[], int]):
         self.name = segment_name(name)
         self._stale_after_ns = round(stale_after_s * 1e9)
+        self._clock = clock
         try:
             shm = attach_untracked(self.name)
         except FileNotFoundError:
@@ -250,7 +257,7 @@ class _WorldConnection:
         if status != STATUS_RUNNING:
             raise Unavailable(f"the world (pid {segment.world_pid}) is starting; try again",
                               reason="WORLD_STARTING")
-        age_ns = time.monotonic_ns() - heartbeat_ns
+        age_ns = self._clock() - heartbeat_ns
         if age_ns > self._stale_after_ns:
             raise Unavailable(
                 f"the world (pid {segment.world_pid}) has not stepped for {age_ns / 1e6:.0f} ms "
@@ -279,13 +286,15 @@ class SharedMemoryArmLink:
     """ArmLink to the simulated arm through the world's shared memory.
 
     Unavailable on open and on every call when the world is not running, has shut down or has
-    not stepped for ``stale_after_s`` (s). Thread-safe.
+    not stepped for ``stale_after_s`` (s). ``clock`` (monotonic ns) must be the one that stamps
+    the world's heartbeat. Thread-safe.
     """
 
-    def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S):
+    def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S,
+                 clock: Callable[[], int] = time.monotonic_ns):
         self._state_lock = threading.Lock()
         self._command_lock = threading.Lock()
-        self._connection = _WorldConnection(name, stale_after_s)
+        self._connection = _WorldConnection(name, stale_after_s, clock)
         segment = self._connection.require()
         self.joint_lower = segment.header["joint_lower"][0].copy()  # rad
         self.joint_upper = segment.header["joint_upper"][0].copy()  # rad
@@ -400,11 +409,13 @@ class SharedMemoryArmLink:
 
 class SharedMemoryEmergencyStop:
     """EmergencyStopLink through the world's emergency word: it never touches the driver's
-    command record, so any number of these may sit beside the one driver. Thread-safe."""
+    command record, so any number of these may sit beside the one driver. ``stale_after_s`` and
+    ``clock`` as for SharedMemoryArmLink. Thread-safe."""
 
-    def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S):
+    def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S,
+                 clock: Callable[[], int] = time.monotonic_ns):
         self._lock = threading.Lock()
-        self._connection = _WorldConnection(name, stale_after_s)
+        self._connection = _WorldConnection(name, stale_after_s, clock)
         self._last_request_ns = 0
 
     def stop(self) -> int:
@@ -435,7 +446,7 @@ class SharedMemoryWrenchLink:
 
     def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S):
         self._lock = threading.Lock()
-        self._connection = _WorldConnection(name, stale_after_s)
+        self._connection = _WorldConnection(name, stale_after_s, time.monotonic_ns)
 
     def read_wrench(self) -> RawWrench:
         """The latest sensor sample (N, N*m, sensor frame). Unavailable when the world is gone."""

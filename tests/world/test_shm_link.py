@@ -47,6 +47,34 @@ def link(publisher: WorldPublisher):
     arm.close()
 
 
+class ManualClock:
+    """Monotonic ns that pass only when the test advances them."""
+
+    def __init__(self):
+        self.now_ns = 5_000_000_000
+
+    def __call__(self) -> int:
+        return self.now_ns
+
+    def advance(self, seconds: float) -> None:
+        self.now_ns += round(seconds * 1e9)
+
+
+@pytest.fixture
+def clock() -> ManualClock:
+    return ManualClock()
+
+
+@pytest.fixture
+def paused_publisher(sim: ArmSim, clock: ManualClock):
+    """A world whose heartbeat comes from `clock`: it goes stale only when the test says so."""
+    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name(),
+                           clock=clock)
+    world.publish(sim.arm_sample(), sim.wrench_sample())
+    yield world
+    world.close()
+
+
 def kinds(commands: list[Command]) -> list[str]:
     return [command.kind for command in commands]
 
@@ -121,13 +149,16 @@ def test_an_emergency_stop_beside_the_driver_latches_after_its_commands(publishe
         button.close()
 
 
-def test_an_emergency_stop_into_a_stale_world_is_unavailable(publisher, sim) -> None:
-    button = SharedMemoryEmergencyStop(publisher.name, stale_after_s=0.05)
+def test_an_emergency_stop_into_a_stale_world_is_unavailable(paused_publisher, clock,
+                                                              sim) -> None:
+    button = SharedMemoryEmergencyStop(paused_publisher.name, stale_after_s=0.05, clock=clock)
     try:
-        time.sleep(0.1)
+        clock.advance(0.04)
+        button.stop()  # within the limit: delivered
+        clock.advance(0.02)  # no publish meanwhile: the world is stuck
         with pytest.raises(Unavailable, match="has not stepped"):
             button.stop()  # not delivered, and the caller is told so
-        publisher.publish(sim.arm_sample(), sim.wrench_sample())
+        paused_publisher.publish(sim.arm_sample(), sim.wrench_sample())
         button.stop()
     finally:
         button.close()
@@ -198,17 +229,19 @@ def test_opening_with_no_world_is_unavailable() -> None:
         SharedMemoryWrenchLink(unique_shm_name())
 
 
-def test_a_world_that_stops_stepping_is_unavailable(publisher, sim: ArmSim) -> None:
-    link = SharedMemoryArmLink(publisher.name, stale_after_s=0.05)
-    link.read_arm()
-    time.sleep(0.1)  # no publish meanwhile: the world is stuck
+def test_a_world_that_stops_stepping_is_unavailable(paused_publisher, clock,
+                                                    sim: ArmSim) -> None:
+    link = SharedMemoryArmLink(paused_publisher.name, stale_after_s=0.05, clock=clock)
+    clock.advance(0.04)
+    link.read_arm()  # within the limit: alive
+    clock.advance(0.02)  # no publish meanwhile: the world is stuck
     with pytest.raises(Unavailable, match="has not stepped"):
         link.read_arm()
     with pytest.raises(Unavailable, match="has not stepped"):
         link.hold()
     with pytest.raises(Unavailable, match="has not stepped"):
-        SharedMemoryArmLink(publisher.name, stale_after_s=0.05)
-    publisher.publish(sim.arm_sample(), sim.wrench_sample())
+        SharedMemoryArmLink(paused_publisher.name, stale_after_s=0.05, clock=clock)
+    paused_publisher.publish(sim.arm_sample(), sim.wrench_sample())
     link.read_arm()  # it is back
     link.close()
 
