@@ -1,52 +1,19 @@
-"""Checks and repairs for vectors and rotations received from outside (no transport code)."""
+"""Rotation helpers of the domain: angles, XYZ Euler angles, scaled increments.
+
+The checks and repairs of values received from outside (`finite_vector`, `rotation_matrix`,
+`gram_schmidt`) live in ``wire.checks``, shared with the clients; they are re-exported here.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
-from services.runtime.errors import InvalidArgument
+from wire.checks import ROTATION_TOLERANCE, finite_vector, gram_schmidt, rotation_matrix
 
-# How far from orthonormal a received rotation may be before it is refused rather than repaired.
-# Loose enough for matrices typed by hand or sent as 6-digit JSON; Gram-Schmidt fixes the rest.
-ROTATION_TOLERANCE = 1e-3
-
-
-def finite_vector(values, length: int, what: str) -> np.ndarray:
-    """`values` as a float array of `length`; InvalidArgument for a wrong length, NaN or Inf."""
-    array = np.asarray(list(values), dtype=float)
-    if array.shape != (length,):
-        raise InvalidArgument(f"{what} needs {length} values, got {array.size}",
-                              reason="BAD_LENGTH")
-    if not np.all(np.isfinite(array)):
-        raise InvalidArgument(f"{what} contains NaN or Inf: {array.tolist()}",
-                              reason="NOT_FINITE")
-    return array
-
-
-def gram_schmidt(matrix: np.ndarray) -> np.ndarray:
-    """The orthonormal matrix nearest in the Gram-Schmidt sense: columns normalized in order,
-    the third taken as the cross product so the result is a proper rotation."""
-    x = matrix[:, 0] / np.linalg.norm(matrix[:, 0])
-    y = matrix[:, 1] - (x @ matrix[:, 1]) * x
-    y /= np.linalg.norm(y)
-    return np.column_stack([x, y, np.cross(x, y)])
-
-
-def rotation_matrix(values, what: str) -> np.ndarray:
-    """A 3x3 rotation from nine row-major values (none: identity), re-orthonormalized.
-
-    InvalidArgument when it is not within ROTATION_TOLERANCE of a rotation (det +1)."""
-    values = list(values)
-    if not values:
-        return np.eye(3)
-    matrix = finite_vector(values, 9, what).reshape(3, 3)
-    error = np.abs(matrix.T @ matrix - np.eye(3)).max()
-    if error > ROTATION_TOLERANCE or np.linalg.det(matrix) <= 0:
-        raise InvalidArgument(
-            f"{what} is not a rotation matrix (|MᵀM − I| = {error:.2g}, det = "
-            f"{np.linalg.det(matrix):.3g}); send an orthonormal row-major 3x3 with det +1, "
-            "or leave it empty for no rotation", reason="NOT_A_ROTATION")
-    return gram_schmidt(matrix)
+__all__ = [
+    "ROTATION_TOLERANCE", "euler_xyz", "finite_vector", "from_euler_xyz", "gram_schmidt",
+    "rotation_angle", "rotation_matrix", "scale_increment",
+]
 
 
 def rotation_angle(rotation: np.ndarray) -> float:

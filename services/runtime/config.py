@@ -2,7 +2,8 @@
 
 Each service listens on loopback by default. `TELEROBOT_<NAME>_ADDRESS` (for example
 TELEROBOT_PROXY_ROBOT_ADDRESS=0.0.0.0:50052) or the `--address` flag changes it; the launcher and
-the clients read the same variables, so they always agree on where a service is.
+the clients read the same variables, so they always agree on where a service is. The
+addresses are defined in ``wire.addresses`` (the clients' side too) and re-exported here.
 """
 
 from __future__ import annotations
@@ -13,32 +14,11 @@ import os
 import sys
 
 from services.runtime.lanes import Lane
+from wire.addresses import DEFAULT_HOST as DEFAULT_HOST  # re-exported
+from wire.addresses import DEFAULT_PORTS as DEFAULT_PORTS  # re-exported
+from wire.addresses import address_for, env_name
 
-DEFAULT_HOST = "127.0.0.1"
-# The operator's one address is the DecisionServer's; the others are the slave station's inside.
-DEFAULT_PORTS = {
-    "world": 50050,  # the simulated hardware; serves only health, its link is shared memory
-    "decision_server": 50051,
-    "proxy_robot": 50052,
-    "force_sensor": 50053,
-    "stereo_camera": 50054,
-    "emergency_stop": 50055,  # the emergency-stop band: ProxyRobot.EmergencyStop past the driver
-}
 DEFAULT_GRACE_S = 2.0
-
-
-def env_name(service: str, setting: str) -> str:
-    """Environment variable for a service's setting: ("proxy_robot", "address") ->
-    TELEROBOT_PROXY_ROBOT_ADDRESS."""
-    return f"TELEROBOT_{service.upper()}_{setting.upper()}"
-
-
-def address_for(service: str) -> str:
-    """host:port where `service` listens, from its environment variable or the default."""
-    if service not in DEFAULT_PORTS:
-        raise KeyError(f"unknown service {service!r}; known: {', '.join(DEFAULT_PORTS)}")
-    default = f"{DEFAULT_HOST}:{DEFAULT_PORTS[service]}"
-    return os.environ.get(env_name(service, "address"), default)
 
 
 def base_parser(service: str, description: str) -> argparse.ArgumentParser:

@@ -4,7 +4,8 @@ Each client picks its own encoding, JPEG quality, size (at most the source's) an
 capture is shared. ``EncodeCache`` keeps the latest encoded pairs, so clients with the same
 settings encode each pair once between them.
 
-``decode_image`` is the client side: bytes of a StereoPair image back to an RGB8 array.
+``decode_image`` is the client side (``wire.stereo``, re-exported here): bytes of a StereoPair
+image back to an RGB8 array.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import numpy as np
 from services.runtime.errors import InvalidArgument
 from services.stereo_camera.source import SourceGeometry, StereoFrame
 from telerobot.v1 import stereo_camera_pb2 as pb
+from wire.stereo import decode_image as decode_image  # re-exported: the client side
 
 DEFAULT_JPEG_QUALITY = 90
 PNG_COMPRESSION = 1  # zlib level: fast; PNG stays lossless at every level
@@ -137,22 +139,6 @@ def encode_image(image: np.ndarray, encoding: int, jpeg_quality: int = DEFAULT_J
     if not ok:
         raise RuntimeError(f"OpenCV could not encode a {image.shape} image as {encoding}")
     return data.tobytes()
-
-
-def decode_image(data: bytes, encoding: int, width_px: int, height_px: int) -> np.ndarray:
-    """The bytes of a StereoPair image back to RGB8 (height, width, 3); ValueError if they do
-    not hold a width_px x height_px image."""
-    if encoding == pb.IMAGE_ENCODING_RAW_RGB8:
-        expected = width_px * height_px * 3
-        if len(data) != expected:
-            raise ValueError(f"a raw {width_px}x{height_px} image has {expected} bytes, "
-                             f"not {len(data)}")
-        return np.frombuffer(data, dtype=np.uint8).reshape(height_px, width_px, 3)
-    bgr = cv2.imdecode(np.frombuffer(data, dtype=np.uint8), cv2.IMREAD_COLOR)
-    if bgr is None or bgr.shape[:2] != (height_px, width_px):
-        got = "nothing" if bgr is None else f"{bgr.shape[1]}x{bgr.shape[0]}"
-        raise ValueError(f"expected a {width_px}x{height_px} image, decoded {got}")
-    return cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)
 
 
 class EncodeCache:

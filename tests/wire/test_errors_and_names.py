@@ -1,0 +1,53 @@
+"""wire.errors, wire.metadata and wire.addresses: the names both sides must agree on."""
+
+from __future__ import annotations
+
+import pytest
+
+from services.runtime import errors as runtime_errors
+from services.runtime import rpc
+from services.runtime.config import address_for as runtime_address_for
+from services.runtime.lanes import Lane
+from wire import errors
+from wire.addresses import DEFAULT_HOST, DEFAULT_PORTS, address_for, env_name
+from wire.metadata import LANE_METADATA_KEY, LANES, LEASE_METADATA_KEY
+
+STATUS_CLASSES = errors.TelerobotError.__subclasses__()
+
+
+def test_the_runtime_errors_are_the_wire_errors():
+    assert runtime_errors.TelerobotError is errors.TelerobotError
+    assert runtime_errors.InvalidArgument is errors.InvalidArgument
+    assert runtime_errors.error_for_status is errors.error_for_status
+
+
+@pytest.mark.parametrize("cls", STATUS_CLASSES, ids=lambda cls: cls.__name__)
+def test_error_for_status_gives_the_class_of_each_status(cls):
+    error = errors.error_for_status(cls.status_name, "try again", "SOME_REASON")
+    assert type(error) is cls and error.message == "try again"
+    assert error.reason == "SOME_REASON" and str(error) == "try again"
+    assert errors.error_for_status(cls.status_name, "m").reason == cls.status_name
+
+
+def test_status_names_are_unique_and_an_unknown_one_is_kept():
+    names = [cls.status_name for cls in STATUS_CLASSES]
+    assert len(names) == len(set(names))
+    error = errors.error_for_status("DATA_LOSS", "lost")
+    assert type(error) is errors.TelerobotError and error.status_name == "DATA_LOSS"
+
+
+def test_metadata_names_match_the_services():
+    assert LANES == tuple(lane.name.lower() for lane in sorted(Lane))
+    assert rpc.LANE_METADATA_KEY == LANE_METADATA_KEY == "telerobot-lane"
+    assert LEASE_METADATA_KEY == "telerobot-lease-id"
+
+
+def test_addresses_default_to_loopback_and_follow_the_environment(monkeypatch):
+    assert env_name("proxy_robot", "address") == "TELEROBOT_PROXY_ROBOT_ADDRESS"
+    monkeypatch.delenv("TELEROBOT_FORCE_SENSOR_ADDRESS", raising=False)
+    assert address_for("force_sensor") == f"{DEFAULT_HOST}:{DEFAULT_PORTS['force_sensor']}"
+    monkeypatch.setenv("TELEROBOT_FORCE_SENSOR_ADDRESS", "10.0.0.2:6000")
+    assert address_for("force_sensor") == runtime_address_for("force_sensor") == "10.0.0.2:6000"
+    with pytest.raises(KeyError, match="known: world"):
+        address_for("nonsense")
+    assert len(set(DEFAULT_PORTS.values())) == len(DEFAULT_PORTS)

@@ -1,0 +1,35 @@
+"""Where each service listens: its default port, or ``TELEROBOT_<SERVICE>_ADDRESS``.
+
+Each service listens on loopback by default. The variable (for example
+TELEROBOT_PROXY_ROBOT_ADDRESS=0.0.0.0:50052) or a service's ``--address`` flag changes it; the
+launcher and the clients read the same variables, so they always agree on where a service is.
+"""
+
+from __future__ import annotations
+
+import os
+
+DEFAULT_HOST = "127.0.0.1"
+# The operator's one address is the DecisionServer's; the others are the slave station's inside.
+DEFAULT_PORTS = {
+    "world": 50050,  # the simulated hardware; serves only health, its link is shared memory
+    "decision_server": 50051,
+    "proxy_robot": 50052,
+    "force_sensor": 50053,
+    "stereo_camera": 50054,
+    "emergency_stop": 50055,  # the emergency-stop band: ProxyRobot.EmergencyStop past the driver
+}
+
+
+def env_name(service: str, setting: str) -> str:
+    """Environment variable for a service's setting: ("proxy_robot", "address") ->
+    TELEROBOT_PROXY_ROBOT_ADDRESS."""
+    return f"TELEROBOT_{service.upper()}_{setting.upper()}"
+
+
+def address_for(service: str) -> str:
+    """host:port where `service` listens, from its environment variable or the default."""
+    if service not in DEFAULT_PORTS:
+        raise KeyError(f"unknown service {service!r}; known: {', '.join(DEFAULT_PORTS)}")
+    default = f"{DEFAULT_HOST}:{DEFAULT_PORTS[service]}"
+    return os.environ.get(env_name(service, "address"), default)
