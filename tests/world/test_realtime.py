@@ -9,6 +9,7 @@ from __future__ import annotations
 import threading
 
 from services.world.realtime import LoopStats, RealtimeLoop
+from tests.conftest import wait_for
 
 PERIOD_NS = 1_000_000
 STEP_NS = 100_000  # each step takes 0.1 ms
@@ -81,7 +82,7 @@ def test_runs_on_the_real_clock_until_stopped() -> None:
     loop = RealtimeLoop(lambda: steps.append(1))
     thread = threading.Thread(target=loop.run, args=(stop,))
     thread.start()
-    stop.wait(0.05)
+    wait_for(lambda: len(steps) >= 10, 5.0, "ten steps on the real clock")
     stop.set()
     thread.join(2.0)
     assert not thread.is_alive()

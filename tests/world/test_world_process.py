@@ -6,7 +6,6 @@ import signal
 import subprocess
 import sys
 import textwrap
-import time
 
 import grpc
 import numpy as np
@@ -16,7 +15,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from services.runtime.errors import Unavailable
 from services.world.link import ArmSample
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryArmLink, SharedMemoryWrenchLink
-from tests.conftest import REPO
+from tests.conftest import REPO, wait_for
 from tests.world.conftest import World, segment_exists
 
 pytestmark = pytest.mark.e2e
@@ -26,16 +25,31 @@ AT_REST_RAD_PER_S = 1e-2
 MOVE = np.array([0.2, -0.1, 0.15, 0.3, 0.2, -0.3])  # rad, 0.3 s at the speed cap
 WAIT_S = 10.0  # generous: the machine may be busy; nothing here measures speed
 STOP_LIMIT_S = 3.0
+WATCH_STEPS = 200  # world steps (1 ms each) to watch an arm that must not move
 
 
-def wait_for(link: SharedMemoryArmLink, condition, what: str) -> ArmSample:
-    deadline = time.monotonic() + WAIT_S
-    while time.monotonic() < deadline:
+def arm_reaches(link: SharedMemoryArmLink, condition, what: str) -> ArmSample:
+    """The first sample that meets `condition`."""
+    def met() -> ArmSample | None:
         sample = link.read_arm()
-        if condition(sample):
-            return sample
-        time.sleep(0.005)
-    pytest.fail(f"timed out waiting for {what}; last sample {sample}")
+        return sample if condition(sample) else None
+    return wait_for(met, WAIT_S, what)
+
+
+def steps_later(link: SharedMemoryArmLink, steps: int) -> ArmSample:
+    """A sample taken `steps` world steps after the latest one (the world ran that long)."""
+    first = link.read_arm().sequence
+    return arm_reaches(link, lambda sample: sample.sequence >= first + steps,
+                       f"{steps} more world steps")
+
+
+def unavailable(link: SharedMemoryArmLink) -> Unavailable | None:
+    """Why the link cannot read the arm, or None while it can."""
+    try:
+        link.read_arm()
+    except Unavailable as error:
+        return error
+    return None
 
 
 def at_rest(sample: ArmSample) -> bool:
@@ -43,10 +57,7 @@ def at_rest(sample: ArmSample) -> bool:
 
 
 def wait_applied(link: SharedMemoryArmLink) -> None:
-    deadline = time.monotonic() + WAIT_S
-    while not link.commands_applied():
-        assert time.monotonic() < deadline, "the world did not apply the command"
-        time.sleep(0.001)
+    wait_for(link.commands_applied, WAIT_S, "the world to apply the command")
 
 
 @pytest.fixture
@@ -74,8 +85,8 @@ def test_a_target_written_through_the_link_is_reached(link) -> None:
     link.write_target(target)
     wait_applied(link)
     np.testing.assert_allclose(link.read_arm().joint_targets_rad, target)
-    arrived = wait_for(link, lambda s: np.abs(s.joint_positions_rad - target).max()
-                       < ARRIVAL_TOLERANCE_RAD and at_rest(s), "the arm to arrive")
+    arrived = arm_reaches(link, lambda s: np.abs(s.joint_positions_rad - target).max()
+                          < ARRIVAL_TOLERANCE_RAD and at_rest(s), "the arm to arrive")
     assert arrived.sequence > start.sequence
     assert not arrived.hold_latched and arrived.fault == ""
 
@@ -83,17 +94,16 @@ def test_a_target_written_through_the_link_is_reached(link) -> None:
 def test_hold_and_release_through_the_link(link) -> None:
     start = link.read_arm().joint_positions_rad
     link.write_target(start - MOVE)
-    wait_for(link, lambda s: not at_rest(s), "the arm to move")
+    arm_reaches(link, lambda s: not at_rest(s), "the arm to move")
     link.hold()
     wait_applied(link)
-    held = wait_for(link, at_rest, "the arm to stop")
+    held = arm_reaches(link, at_rest, "the arm to stop")
     assert held.hold_latched
     assert np.abs(held.joint_positions_rad - (start - MOVE)).max() > 0.01  # stopped short
 
     link.write_target(start)  # ignored while latched
     wait_applied(link)
-    time.sleep(0.2)
-    still = link.read_arm()
+    still = steps_later(link, WATCH_STEPS)
     assert still.hold_latched
     np.testing.assert_allclose(still.joint_targets_rad, held.joint_targets_rad)
     assert np.abs(still.joint_positions_rad - held.joint_positions_rad).max() < 1e-3
@@ -103,17 +113,17 @@ def test_hold_and_release_through_the_link(link) -> None:
     released = link.read_arm()
     assert not released.hold_latched
     np.testing.assert_allclose(released.joint_targets_rad, still.joint_positions_rad, atol=1e-3)
-    time.sleep(0.2)
-    assert np.abs(link.read_arm().joint_positions_rad - still.joint_positions_rad).max() < 1e-3
+    later = steps_later(link, WATCH_STEPS)
+    assert np.abs(later.joint_positions_rad - still.joint_positions_rad).max() < 1e-3
 
 
 def test_the_wrist_sensor_reads_the_peg(shared_world: World) -> None:
     sensor = SharedMemoryWrenchLink(shared_world.shm_name)
     first = sensor.read_wrench()
-    time.sleep(0.01)
-    later = sensor.read_wrench()
+    later = wait_for(lambda: (sample := sensor.read_wrench()).sequence > first.sequence
+                     and sample, WAIT_S, "a newer wrench sample")
     sensor.close()
-    assert later.sequence > first.sequence and later.sample_time_ns > first.sample_time_ns
+    assert later.sample_time_ns > first.sample_time_ns
     assert np.linalg.norm(later.force_n) == pytest.approx(0.1 * 9.81, rel=0.05)  # N, at rest
 
 
@@ -131,8 +141,10 @@ def test_a_driver_process_exiting_leaves_the_segment(shared_world: World) -> Non
     done = subprocess.run([sys.executable, "-c", driver], cwd=REPO, capture_output=True,
                           text=True, timeout=30)
     assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr
-    assert "leaked" not in done.stderr  # no resource_tracker clean-up of the world's segment
-    time.sleep(0.2)  # the driver's resource tracker would act just after it exits
+    # No resource_tracker clean-up of the world's segment. The driver's tracker (Python < 3.13)
+    # acts when the driver exits, and holds the driver's stderr open until it has: run() read
+    # that to its end, so whatever the tracker would do is done by now.
+    assert "leaked" not in done.stderr
     assert segment_exists(shared_world.shm_name)
     link = SharedMemoryArmLink(shared_world.shm_name)
     link.read_arm()
@@ -160,9 +172,9 @@ def test_a_killed_world_is_stale_and_a_new_one_takes_its_place(world_factory) ->
     link = SharedMemoryArmLink(world.shm_name)
     world.running.process.kill()
     world.running.process.wait(STOP_LIMIT_S)
-    time.sleep(STALE_AFTER_S + 0.1)  # past the heartbeat limit
-    with pytest.raises(Unavailable, match="has not stepped|shut down"):
-        link.read_arm()
+    gone = wait_for(lambda: unavailable(link), STALE_AFTER_S + WAIT_S,
+                    "the link to see the heartbeat stop")
+    assert gone.reason in ("WORLD_STALE", "WORLD_STOPPED"), gone
     link.close()
 
     world_factory(world.shm_name)  # replaces the segment if the killed one left it
