@@ -23,12 +23,28 @@ from services.runtime.server import ServiceBinding, create_server
 
 log = logging.getLogger(__name__)
 
-# What a process prints on stdout once it is SERVING; the launcher and tests wait for it.
+# What a process prints on stdout once it is SERVING, with the address it actually bound (so a
+# service started on port 0 tells its supervisor where it listens):
+#     TELEROBOT_READY <name> <host:port>
+# The supervisor (services.runtime.children) waits for it.
 READY_LINE_PREFIX = "TELEROBOT_READY"
 # Set by a supervisor to its pid: the process then stops cleanly when that parent goes away,
 # even if the parent was killed without a chance to stop it (no orphans).
 PARENT_PID_ENV = "TELEROBOT_PARENT_PID"
 _PARENT_POLL_S = 0.25
+
+
+def ready_line(name: str, address: str) -> str:
+    """The line a process prints once `name` serves on `address` (host:port)."""
+    return f"{READY_LINE_PREFIX} {name} {address}"
+
+
+def parse_ready_line(line: str) -> tuple[str, str] | None:
+    """(name, host:port) from a ready line; None for any other line."""
+    fields = line.split()
+    if len(fields) != 3 or fields[0] != READY_LINE_PREFIX:
+        return None
+    return fields[1], fields[2]
 
 
 class Service(Protocol):
@@ -60,7 +76,7 @@ def run_service(
 
     stop = threading.Event()
     _install_signal_handlers(stop)
-    _stop_when_parent_exits(stop)
+    watch_parent(stop.set, stop)
 
     service = build(args)
     server, port = create_server(
@@ -83,7 +99,7 @@ def run_service(
     server.set_serving()
     host = args.address.rsplit(":", 1)[0]
     log.info("serving %s on %s:%d", ", ".join(server.service_names) or "health only", host, port)
-    print(f"{READY_LINE_PREFIX} {name} {host}:{port}", flush=True)
+    print(ready_line(name, f"{host}:{port}"), flush=True)
 
     stop.wait()
     log.info("stopping: draining calls for up to %.1f s", args.grace_s)
@@ -103,15 +119,20 @@ def _install_signal_handlers(stop: threading.Event) -> None:
     signal.signal(signal.SIGTERM, on_signal)
 
 
-def _stop_when_parent_exits(stop: threading.Event) -> None:
+def watch_parent(on_gone: Callable[[], None], stop: threading.Event | None = None) -> bool:
+    """If a supervisor set PARENT_PID_ENV, call `on_gone` (once, on a daemon thread) when that
+    parent goes away, checking every 0.25 s until `stop` is set. Returns whether it watches."""
     parent = os.environ.get(PARENT_PID_ENV)
     if not parent:
-        return
+        return False
+    stop = stop or threading.Event()
 
     def watch():
         while not stop.wait(_PARENT_POLL_S):
             if os.getppid() != int(parent):
                 log.warning("parent %s is gone; stopping", parent)
-                stop.set()
+                on_gone()
+                return
 
     threading.Thread(target=watch, name="parent-watch", daemon=True).start()
+    return True
