@@ -12,8 +12,14 @@ class Clock(Protocol):
     def monotonic(self) -> float:
         """Seconds on a clock that never goes back, for intervals and deadlines."""
 
+    def monotonic_ns(self) -> int:
+        """The same clock in ns."""
+
     def time_ns(self) -> int:
         """Wall-clock time in ns since the epoch, for timestamps."""
+
+    def sleep(self, seconds: float) -> None:
+        """Let `seconds` of this clock pass."""
 
     def wait(self, event: threading.Event, timeout_s: float | None) -> bool:
         """Block until `event` is set (True) or `timeout_s` of this clock passed (False)."""
@@ -23,7 +29,9 @@ class SystemClock:
     """The real clock."""
 
     monotonic = staticmethod(time.monotonic)
+    monotonic_ns = staticmethod(time.monotonic_ns)
     time_ns = staticmethod(time.time_ns)
+    sleep = staticmethod(time.sleep)
 
     @staticmethod
     def wait(event: threading.Event, timeout_s: float | None) -> bool:
