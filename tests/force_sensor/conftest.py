@@ -1,1 +1,1 @@
-from tests.proxy_robot.conftest import world_factory  # noqa: F401 - shared fixture
+from tests.world.conftest import world_factory  # noqa: F401 - shared fixture

@@ -17,6 +17,7 @@ from services.runtime.server import binding, create_server
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2 as pb
 from telerobot.v1 import force_sensor_pb2_grpc
+from tests.conftest import wait_for
 from tests.proxy_robot.conftest import send_home
 
 
@@ -58,23 +59,35 @@ def collect(stream, count: int) -> list[pb.StreamWrenchResponse]:
     return messages
 
 
-def test_start_read_stop_and_resume(sensor):
+def newer_sample(sensor, sequence: int) -> pb.WrenchSample:
+    """The sensor's first sample after `sequence` (fails if none comes)."""
+    def newer() -> pb.WrenchSample | None:
+        sample = sensor.GetWrench(pb.GetWrenchRequest()).sample
+        return sample if sample.sequence > sequence else None
+    return wait_for(newer, 5.0, f"a sample after {sequence}")
+
+
+def test_start_read_stop_and_resume(sensor, world):
     assert code_of(lambda: sensor.GetWrench(pb.GetWrenchRequest())) == (
         grpc.StatusCode.FAILED_PRECONDITION)
     started = sensor.StartReading(pb.StartReadingRequest(), timeout=5)
     assert started.config.reading and started.config.period.nanos == 1_000_000
     first = sensor.GetWrench(pb.GetWrenchRequest()).sample
-    time.sleep(0.05)
-    second = sensor.GetWrench(pb.GetWrenchRequest()).sample
-    assert second.sequence > first.sequence
+    second = newer_sample(sensor, first.sequence)
     # No contact: the tool's weight is removed without any tare.
     assert np.linalg.norm(force(second)) < 0.01
     last = sensor.StopReading(pb.StopReadingRequest()).last_sequence
-    time.sleep(0.05)
+    # While the world makes 50 new sensor readings (50 ms at 1 kHz), the stopped sensor takes
+    # none of them.
+    raw = SharedMemoryWrenchLink(world.shm_name)
+    try:
+        since = raw.read_wrench().sequence
+        wait_for(lambda: raw.read_wrench().sequence >= since + 50, 5.0, "50 more world steps")
+    finally:
+        raw.close()
     assert sensor.GetWrench(pb.GetWrenchRequest()).sample.sequence == last
     sensor.StartReading(pb.StartReadingRequest())
-    time.sleep(0.05)
-    assert sensor.GetWrench(pb.GetWrenchRequest()).sample.sequence > last
+    newer_sample(sensor, last)
 
 
 def test_tare_reads_near_zero_while_the_arm_moves_slowly(sensor, world):
@@ -98,11 +111,14 @@ def test_tare_reads_near_zero_while_the_arm_moves_slowly(sensor, world):
         for _ in range(500):
             target += step
             link.write_target(target)
+            # The fake operator's pace (1 kHz), as a teleoperation client would send: it sets
+            # the ramp's speed and orders nothing (the reader ends after its 60 messages).
             time.sleep(0.001)
         moved = link.read_arm().joint_positions_rad - HOME_Q
     finally:
         link.close()
     reader.join(5)
+    assert not reader.is_alive()  # all its samples are in peaks
     assert moved[3] > 0.02  # it did move
     # What is left is the tool's own inertia: well under a tenth of its 0.98 N weight.
     assert max(peaks) < 0.1, max(peaks)
@@ -224,7 +240,7 @@ def test_sensor_down_ends_streams_with_unavailable(world_factory):
             stub.StartReading(pb.StartReadingRequest())
             stream = stub.StreamWrench(pb.StreamWrenchRequest(), timeout=10)
             next(stream)
-            threading.Timer(0.1, world.running.stop).start()
+            world.running.stop()  # returns once the world has exited
             with pytest.raises(grpc.RpcError) as ended:
                 for _ in stream:
                     pass
