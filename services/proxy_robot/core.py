@@ -11,6 +11,11 @@ Cartesian increments, by frame (the increment is (ΔM, ΔX) as a rigid transform
 - WRIST: flange⁺ = flange · (ΔM, ΔX), the tool follows rigidly;
 - BASE:  translate along the base axes and rotate about the tool point in base axes
   (R⁺ = ΔM · R, p⁺ = p + ΔX).
+
+Time comes from an injectable Clock. In service two threads run beside the calls: the monitor
+samples the link every STATE_PERIOD_S (`sample_once`) and the setpoint interpolator writes every
+millisecond (`write_setpoint`). With ``threads=False`` neither starts and the caller runs both
+itself, so a test on a fake clock and a fake link decides exactly when each happens.
 """
 
 from __future__ import annotations
@@ -19,6 +24,7 @@ import logging
 import threading
 import time
 from collections.abc import Callable
+from typing import Protocol
 
 import numpy as np
 import pinocchio as pin
@@ -62,15 +68,43 @@ RELEASE_TIMEOUT_S = 0.2  # the hardware applies a release within a servo period 
 # Hold aims where the arm stops braking this hard: the servo's acceleration cap in the
 # simulation (services/world/sim.py); a real controller brakes on its own terms.
 HOLD_DECELERATION_RAD_PER_S2 = 10.0
+RELEASE_POLL_S = 0.0005
+
+
+class Clock(Protocol):
+    """Where the proxy reads time."""
+
+    def monotonic_ns(self) -> int:
+        """For intervals and deadlines."""
+
+    def time_ns(self) -> int:
+        """Wall clock, for the times the proxy reports (status changes, events, stops)."""
+
+    def sleep(self, seconds: float) -> None:
+        """Let `seconds` pass (a fake clock advances)."""
+
+
+class SystemClock:
+    """The real clock."""
+
+    monotonic_ns = staticmethod(time.monotonic_ns)
+    time_ns = staticmethod(time.time_ns)
+    sleep = staticmethod(time.sleep)
 
 
 class ProxyRobotCore:
-    """The arm proxy. Thread-safe; `close()` stops its monitor thread."""
+    """The arm proxy. Thread-safe; `close()` stops its monitor thread.
+
+    ``threads=False`` starts no monitor and no setpoint thread: the caller calls `sample_once()`
+    every STATE_PERIOD_S and `write_setpoint()` every millisecond of its clock instead."""
 
     def __init__(self, link_factory: Callable[[], ArmLink],
-                 state_period_s: float = STATE_PERIOD_S):
+                 state_period_s: float = STATE_PERIOD_S, *, clock: Clock | None = None,
+                 threads: bool = True):
         self._link_factory = link_factory
         self._state_period_s = state_period_s
+        self._clock: Clock = clock if clock is not None else SystemClock()
+        self._threads = threads
         self._lock = threading.RLock()  # status, target, link, tool frame
         self._move_lock = threading.Lock()  # one move computation at a time (kinematics buffers)
         self._move_kinematics = PumaKinematics()
@@ -78,7 +112,7 @@ class ProxyRobotCore:
         self._tool_frame = self._move_kinematics.flange_T_tool
         self._status = RobotStatus.NOT_CONNECTED
         self._reason = "not connected yet"
-        self._change_time_ns = time.time_ns()
+        self._change_time_ns = self._clock.time_ns()
         self._initialized = False
         self._link: ArmLink | None = None
         self._interpolator: SetpointInterpolator | None = None
@@ -103,14 +137,15 @@ class ProxyRobotCore:
             previous = self._status
             if previous == status:
                 return
-            self._status, self._reason, self._change_time_ns = status, reason, time.time_ns()
+            self._status, self._reason, self._change_time_ns = (status, reason,
+                                                                 self._clock.time_ns())
             self._emit(StatusChanged(previous, status, reason))
         log.info("status %s -> %s: %s", previous.name, status.name, reason)
 
     def _emit(self, payload) -> None:
         with self._lock:
             self._event_sequence += 1
-            event = RobotEvent(self._event_sequence, time.time_ns(), payload)
+            event = RobotEvent(self._event_sequence, self._clock.time_ns(), payload)
         self.events.publish(event)
 
     # -- life cycle -------------------------------------------------------------------------
@@ -124,8 +159,9 @@ class ProxyRobotCore:
             sample, self._latest = self._sample(link, self._monitor_kinematics)
             self._link = link
             self._target_q = sample.joint_targets_rad.copy()
-            self._interpolator = SetpointInterpolator(link.write_target, self._target_q,
-                                                      self._on_setpoint_error)
+            self._interpolator = SetpointInterpolator(
+                link.write_target, self._target_q, self._on_setpoint_error,
+                self._clock.monotonic_ns, thread=self._threads)
             self._initialized = False
             self._start_monitor()
             if sample.hold_latched:
@@ -357,9 +393,9 @@ class ProxyRobotCore:
         """Latch a controlled stop at the hardware first, then in the status. Idempotent."""
         link = self._link
         if link is None:
-            return RobotStatus.NOT_CONNECTED, time.time_ns()
+            return RobotStatus.NOT_CONNECTED, self._clock.time_ns()
         link.hold()  # before any lock: nothing may delay the stop
-        stop_time_ns = time.time_ns()
+        stop_time_ns = self._clock.time_ns()
         interpolator = self._interpolator
         if interpolator is not None:
             try:
@@ -407,41 +443,60 @@ class ProxyRobotCore:
     def _on_setpoint_error(self, error: Exception) -> None:
         self._emit(RobotErrorRaised("SETPOINT_REFUSED", str(error)))
 
-    @staticmethod
-    def _await_release(link: ArmLink) -> None:
+    def _await_release(self, link: ArmLink) -> None:
         """Wait until the hardware reports the hold released, so the monitor does not read the
         old latch as a new stop."""
-        deadline = time.monotonic() + RELEASE_TIMEOUT_S
+        clock = self._clock
+        deadline_ns = clock.monotonic_ns() + round(RELEASE_TIMEOUT_S * 1e9)
         while link.read_arm().hold_latched:
-            if time.monotonic() > deadline:
+            if clock.monotonic_ns() > deadline_ns:
                 raise Unavailable("the hardware did not release its hold; check it and Reset "
                                   "again", reason="HOLD_STUCK")
-            time.sleep(0.0005)
+            clock.sleep(RELEASE_POLL_S)
 
     # -- monitor ----------------------------------------------------------------------------
 
+    def sample_once(self) -> bool:
+        """The monitor's work for one period: sample the link; note arrival, faults and latched
+        stops; publish the state. False when there is no link (any more)."""
+        return self._sample_once(self._monitor_stop)
+
+    def write_setpoint(self) -> None:
+        """The setpoint thread's work for one period: the next setpoint of a move in progress."""
+        with self._lock:
+            interpolator = self._interpolator
+        if interpolator is not None:
+            interpolator.step()
+
     def _start_monitor(self) -> None:
         self._monitor_stop = threading.Event()
+        if not self._threads:
+            return
         self._monitor = threading.Thread(target=self._run_monitor, args=(self._monitor_stop,),
                                          name="arm-monitor", daemon=True)
         self._monitor.start()
 
     def _run_monitor(self, stop: threading.Event) -> None:
         while not stop.wait(self._state_period_s):
-            with self._lock:
-                link = self._link
-            if link is None:
+            if not self._sample_once(stop):
                 return
-            try:
-                sample, snapshot = self._sample(link, self._monitor_kinematics)
-            except Unavailable as exc:
-                self._emit(RobotErrorRaised("LINK_LOST", str(exc)))
-                self._drop_link(f"hardware link lost: {exc}")
-                return
-            if stop.is_set():
-                return
-            self._observe(sample, snapshot)
-            self.states.publish(snapshot)
+
+    def _sample_once(self, stop: threading.Event) -> bool:
+        with self._lock:
+            link = self._link
+        if link is None:
+            return False
+        try:
+            sample, snapshot = self._sample(link, self._monitor_kinematics)
+        except Unavailable as exc:
+            self._emit(RobotErrorRaised("LINK_LOST", str(exc)))
+            self._drop_link(f"hardware link lost: {exc}")
+            return False
+        if stop.is_set():
+            return False
+        self._observe(sample, snapshot)
+        self.states.publish(snapshot)
+        return True
 
     def _sample(self, link: ArmLink, kinematics: PumaKinematics) -> tuple[ArmSample,
                                                                              RobotSnapshot]:

@@ -27,24 +27,32 @@ class SetpointInterpolator:
     """Writes setpoints through `write(q)` (the link's write_target). Thread-safe."""
 
     def __init__(self, write: Callable[[np.ndarray], None], start: np.ndarray,
-                 on_error: Callable[[Exception], None]):
+                 on_error: Callable[[Exception], None],
+                 monotonic_ns: Callable[[], int] = time.monotonic_ns, thread: bool = True):
         self._write = write
         self._on_error = on_error
+        self._monotonic_ns = monotonic_ns
         self._lock = threading.Lock()
         self._wake = threading.Condition(self._lock)
         self._setpoint = np.asarray(start, float).copy()
         self._segment: tuple[np.ndarray, np.ndarray, float, float] | None = None
-        self._last_command_s = 0.0
+        self._last_command_s: float | None = None  # the first command's gap is MAX_SEGMENT_S
         self._interval_s = MAX_SEGMENT_S
         self._closed = False
-        self._thread = threading.Thread(target=self._run, name="setpoints", daemon=True)
-        self._thread.start()
+        self._thread: threading.Thread | None = None
+        if thread:
+            self._thread = threading.Thread(target=self._run, name="setpoints", daemon=True)
+            self._thread.start()
+
+    def _now_s(self) -> float:
+        return self._monotonic_ns() * 1e-9
 
     def go(self, target: np.ndarray) -> None:
         """Head for `target`, over the time since the previous call (capped)."""
-        now = time.monotonic()
+        now = self._now_s()
         with self._lock:
-            gap = min(max(now - self._last_command_s, 0.0), MAX_SEGMENT_S)
+            last = self._last_command_s
+            gap = MAX_SEGMENT_S if last is None else min(max(now - last, 0.0), MAX_SEGMENT_S)
             self._last_command_s = now
             self._interval_s += INTERVAL_SMOOTHING * (gap - self._interval_s)
             duration = self._interval_s
@@ -68,7 +76,14 @@ class SetpointInterpolator:
             self._closed = True
             self._segment = None
             self._wake.notify()
-        self._thread.join(1.0)
+        if self._thread is not None:
+            self._thread.join(1.0)
+
+    def step(self) -> None:
+        """Write the setpoint for now, if a segment is in progress: the thread's work for one
+        period."""
+        with self._lock:
+            self._advance()
 
     def _run(self) -> None:
         with self._lock:
@@ -76,14 +91,20 @@ class SetpointInterpolator:
                 if self._segment is None:
                     self._wake.wait()
                     continue
-                start, end, t0, duration = self._segment
-                fraction = min(1.0, (time.monotonic() - t0) / duration)
-                self._setpoint = start + (end - start) * fraction
-                if fraction >= 1.0:
-                    self._segment = None
-                try:
-                    self._write(self._setpoint)
-                except Exception as exc:  # noqa: BLE001 - reported to the owner, which decides
-                    self._segment = None
-                    self._on_error(exc)
+                self._advance()
                 self._wake.wait(SETPOINT_PERIOD_S)
+
+    def _advance(self) -> None:
+        """One setpoint along the segment (the lock is held)."""
+        if self._segment is None:
+            return
+        start, end, t0, duration = self._segment
+        fraction = min(1.0, (self._now_s() - t0) / duration)
+        self._setpoint = start + (end - start) * fraction
+        if fraction >= 1.0:
+            self._segment = None
+        try:
+            self._write(self._setpoint)
+        except Exception as exc:  # noqa: BLE001 - reported to the owner, which decides
+            self._segment = None
+            self._on_error(exc)

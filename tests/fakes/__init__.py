@@ -1,1 +1,1 @@
-"""Fakes of the ports, with honest physics, for in-process deterministic tests."""
+"""Fakes of the ports the cores talk through: a few lines of honest physics on a fake clock."""
