@@ -9,7 +9,10 @@ One module per service plus the shared base:
   `AsyncTeleopSession` (the lease and the Teleoperate stream)
 * ``base``           -- channels, metadata (lease, lane), timeouts, streams
 * ``errors``         -- `TelerobotRpcError` and one subclass per status code
-* ``values``         -- the dataclasses and enums the calls return
+* ``values``         -- the dataclasses and enums the calls return; poses are `Pose`
+
+The package needs only grpcio, protobuf, numpy, the generated ``telerobot.v1`` code and
+``wire`` (the contracts' Python side); OpenCV only to decode JPEG or PNG stereo frames.
 """
 
 from clients.python.base import DEFAULT_TIMEOUT_S, LANE_METADATA_KEY, LEASE_METADATA_KEY
@@ -65,6 +68,7 @@ from clients.python.values import (
     WrenchBatch,
     WrenchSample,
 )
+from wire.pose import Pose
 
 __all__ = [
     "DEFAULT_TIMEOUT_S", "LANE_METADATA_KEY", "LEASE_METADATA_KEY",
@@ -76,7 +80,7 @@ __all__ = [
     "PermissionDeniedError", "ResourceExhaustedError", "RpcCancelledError", "TelerobotRpcError",
     "UnavailableError", "UnimplementedError",
     "Ack", "ActionRun", "BusyWork", "CartesianIncrement", "Cobegin", "CommandOutcome",
-    "ControlMode", "ImageEncoding", "JointIncrement", "Lane", "Lease", "MoveResult",
+    "ControlMode", "ImageEncoding", "JointIncrement", "Lane", "Lease", "MoveResult", "Pose",
     "Recording", "ReferenceFrame", "ReplayState", "RobotState", "RobotStatus", "SensorConfig",
     "SensorThreadPriority", "StatusInfo", "StereoFrame", "TareResult", "TransferMode",
     "WrenchBatch", "WrenchSample",

@@ -41,11 +41,9 @@ from typing import Any
 import grpc
 
 from clients.python.errors import UnavailableError, from_rpc_error
-from services.runtime.config import address_for
+from wire.addresses import address_for
+from wire.metadata import LANE_METADATA_KEY, LANES, LEASE_METADATA_KEY
 
-LEASE_METADATA_KEY = "telerobot-lease-id"
-LANE_METADATA_KEY = "telerobot-lane"
-LANES = ("emergency", "high", "medium", "low")
 DEFAULT_TIMEOUT_S = 5.0
 # No retries of any kind: a motion command must never be sent twice behind the caller's back.
 CHANNEL_OPTIONS: tuple[tuple[str, Any], ...] = (("grpc.enable_retries", 0),)

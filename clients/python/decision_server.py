@@ -81,9 +81,9 @@ from clients.python.values import (
     seconds,
     time_ns,
 )
-from services.common import convert
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
+from wire import convert
 
 log = logging.getLogger(__name__)
 

@@ -9,13 +9,13 @@ Returns: `WrenchSample`, `WrenchBatch`, `TareResult`, `SensorConfig` (``values.p
 
 from __future__ import annotations
 
-import pinocchio as pin
-
 from clients.python.base import AsyncClient, SyncClient
-from clients.python.values import SensorConfig, TareResult, WrenchBatch, WrenchSample, vector
-from services.common import convert
+from clients.python.values import SensorConfig, TareResult, WrenchBatch, WrenchSample
 from telerobot.v1 import force_sensor_pb2 as pb
 from telerobot.v1 import force_sensor_pb2_grpc
+from wire import convert
+from wire.convert import vector3_value
+from wire.pose import Pose
 
 
 def _batch(response: pb.StreamWrenchResponse) -> WrenchBatch:
@@ -45,8 +45,9 @@ class _ForceSensorMethods:
              lane: str | None = None) -> TareResult:
         """Take the reading averaged over `duration_s` (0: the latest sample) as the zero."""
         return self._unary("Tare", pb.TareRequest(duration=convert.duration(duration_s)),
-                           lambda r: TareResult(vector(r.bias.force_n), vector(r.bias.torque_nm),
-                                                r.sample_count), timeout, lane)
+                           lambda r: TareResult(vector3_value(r.bias.force_n),
+                                                vector3_value(r.bias.torque_nm), r.sample_count),
+                           timeout, lane)
 
     def get_sensor_config(self, *, timeout: float | None = None, lane: str | None = None
                           ) -> SensorConfig:
@@ -57,7 +58,7 @@ class _ForceSensorMethods:
                           threshold_force_n: float | None = None,
                           threshold_torque_nm: float | None = None,
                           thread_priority: int | None = None,
-                          flange_to_tool: pin.SE3 | None = None,
+                          flange_to_tool: Pose | None = None,
                           timeout: float | None = None, lane: str | None = None
                           ) -> SensorConfig:
         """Change the given fields only (the update mask is built from the arguments that are

@@ -5,7 +5,8 @@ with a lease: ``DecisionClient.robot`` is one already sharing its channel and le
 emergency-stop band's port (50055) only `emergency_stop` works: the stop no load can delay.
 
 Returns: `StatusInfo`, `RobotState`, `MoveResult` (``values.py``), `RobotStatus` for the
-life-cycle calls, ``pin.SE3`` for tool frames, joint arrays as ``numpy``. Event streams give the
+life-cycle calls, `Pose` for tool frames (``set_tool_frame`` also takes a ``pin.SE3``), joint
+arrays as ``numpy``. Event streams give the
 proto ``StreamRobotEventsResponse`` (its oneof says which event), state streams `RobotState`.
 """
 
@@ -14,7 +15,6 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 
 import numpy as np
-import pinocchio as pin
 
 from clients.python.base import AsyncClient, SyncClient
 from clients.python.values import (
@@ -24,12 +24,12 @@ from clients.python.values import (
     RobotStatus,
     StatusInfo,
     enum_value,
-    pose,
-    time_ns,
 )
-from services.common import convert
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc
+from wire import convert
+from wire.convert import pose_value, time_ns
+from wire.pose import Pose
 
 
 def _status(response) -> RobotStatus:
@@ -85,17 +85,18 @@ class _ProxyRobotMethods:
                            lambda r: RobotState.from_proto(r.state), timeout, lane)
 
     def get_tool_frame(self, *, timeout: float | None = None, lane: str | None = None
-                       ) -> pin.SE3:
+                       ) -> Pose:
         """The tool frame in the flange frame (T_t, M_e^t)."""
         return self._unary("GetToolFrame", pb.GetToolFrameRequest(),
-                           lambda r: pose(r.flange_to_tool), timeout, lane)
+                           lambda r: pose_value(r.flange_to_tool), timeout, lane)
 
-    def set_tool_frame(self, flange_to_tool: pin.SE3, *, timeout: float | None = None,
-                       lane: str | None = None) -> pin.SE3:
-        """Set the tool frame (in the flange frame); returns the one now in force."""
+    def set_tool_frame(self, flange_to_tool: Pose, *, timeout: float | None = None,
+                       lane: str | None = None) -> Pose:
+        """Set the tool frame (in the flange frame: a `Pose`, a ``pin.SE3`` or anything with
+        ``rotation`` and ``translation``); returns the one now in force."""
         return self._unary("SetToolFrame", pb.SetToolFrameRequest(
             flange_to_tool=convert.pose_to_proto(flange_to_tool)),
-            lambda r: pose(r.flange_to_tool), timeout, lane)
+            lambda r: pose_value(r.flange_to_tool), timeout, lane)
 
     def move_joints(self, delta: Sequence[float] | np.ndarray, *, timeout: float | None = None,
                     lane: str | None = None) -> MoveResult:
@@ -103,7 +104,7 @@ class _ProxyRobotMethods:
         nothing moved, and the client does not resend it."""
         return self._unary("MoveJointsIncremental", joints_request(delta),
                            lambda r: MoveResult(np.asarray(r.target_joint_positions_rad),
-                                                pose(r.target_tool_pose)), timeout, lane)
+                                                pose_value(r.target_tool_pose)), timeout, lane)
 
     def move_cartesian(self, delta_position: Sequence[float] | np.ndarray,
                        delta_rotation: np.ndarray | None = None,
@@ -113,7 +114,7 @@ class _ProxyRobotMethods:
         return self._unary("MoveCartesianIncremental",
                            cartesian_request(delta_position, delta_rotation, frame),
                            lambda r: MoveResult(np.asarray(r.target_joint_positions_rad),
-                                                pose(r.target_tool_pose), r.applied_fraction),
+                                                pose_value(r.target_tool_pose), r.applied_fraction),
                            timeout, lane)
 
     def hold(self, reason: str = "", *, timeout: float | None = None, lane: str | None = None

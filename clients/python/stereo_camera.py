@@ -1,7 +1,8 @@
 """StereoCamera clients: stream info, snapshots and synchronized pair streams.
 
 Channels opened by these clients use the camera's ``LOW_LATENCY_OPTIONS`` (see
-``services/stereo_camera/client.py``): a slow reader gets the newest pair, not a backlog.
+``wire/stereo.py``): a slow reader gets the newest pair, not a backlog. Raw RGB8 frames decode
+with numpy alone; OpenCV is imported the first time a JPEG or PNG frame is decoded.
 
 Returns: the proto ``StereoHeader`` for stream info (it is a calibration record; the proto is
 the clearest form), `StereoFrame` for pairs: header, the proto ``StereoPair`` (bytes, timing) and
@@ -13,9 +14,9 @@ from __future__ import annotations
 
 from clients.python.base import _SKIP, AsyncClient, SyncClient
 from clients.python.values import StereoFrame
-from services.stereo_camera.client import LOW_LATENCY_OPTIONS, decode_pair
 from telerobot.v1 import stereo_camera_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2_grpc
+from wire.stereo import LOW_LATENCY_OPTIONS, decode_pair
 
 
 def _frame(header: pb.StereoHeader, pair: pb.StereoPair, decode: bool) -> StereoFrame:

@@ -2,7 +2,8 @@
 
 Units are the contracts' units: metres, radians, newtons, newton-metres, seconds; timestamps are
 integers in nanoseconds since the Unix epoch (``*_time_ns``), the server's clock. Poses are
-``pin.SE3`` (the child frame in the parent frame), vectors ``numpy`` float arrays.
+`Pose` (``wire.pose``: the child frame in the parent frame, with a ``pin.SE3``'s ``rotation``,
+``translation`` and ``homogeneous``), vectors ``numpy`` float arrays.
 
 The enums are built from the generated proto enums, without their prefix, so they never drift:
 ``RobotStatus.READY == types_pb2.ROBOT_STATUS_READY``. They are ``IntEnum``s: a proto field
@@ -15,12 +16,13 @@ import enum
 from dataclasses import dataclass, field
 
 import numpy as np
-import pinocchio as pin
 
 from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import options_pb2, types_pb2
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
+from wire.convert import pose_value, seconds, time_ns, vector3_value
+from wire.pose import Pose
 
 
 def _proto_enum(name: str, proto_enum, prefix: str) -> type[enum.IntEnum]:
@@ -48,31 +50,6 @@ def enum_value(cls, value: int):
         return int(value)
 
 
-# -- proto -> value helpers (server data, trusted: no rotation checks) ------------------------
-
-def vector(message: types_pb2.Vector3) -> np.ndarray:
-    return np.array([message.x, message.y, message.z], dtype=float)
-
-
-def rotation(message: types_pb2.Matrix3) -> np.ndarray:
-    """Nine row-major values as a 3x3 array; the identity when empty."""
-    if not message.row_major:
-        return np.eye(3)
-    return np.asarray(message.row_major, dtype=float).reshape(3, 3)
-
-
-def pose(message: types_pb2.Pose) -> pin.SE3:
-    return pin.SE3(rotation(message.rotation), vector(message.position_m))
-
-
-def time_ns(stamp) -> int:
-    return int(stamp.ToNanoseconds())
-
-
-def seconds(duration) -> float:
-    return duration.seconds + duration.nanos * 1e-9
-
-
 # -- ProxyRobot -------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
@@ -93,8 +70,8 @@ class RobotState:
     status: RobotStatus
     joint_positions: np.ndarray  # rad, (6,)
     joint_velocities: np.ndarray  # rad/s, (6,)
-    flange_pose: pin.SE3  # in the base frame
-    tool_pose: pin.SE3  # in the base frame
+    flange_pose: Pose  # in the base frame
+    tool_pose: Pose  # in the base frame
 
     @classmethod
     def from_proto(cls, state: types_pb2.RobotState) -> RobotState:
@@ -102,7 +79,7 @@ class RobotState:
                    enum_value(RobotStatus, state.status),
                    np.asarray(state.joint_positions_rad, dtype=float),
                    np.asarray(state.joint_velocities_rad_per_s, dtype=float),
-                   pose(state.flange_pose), pose(state.tool_pose))
+                   pose_value(state.flange_pose), pose_value(state.tool_pose))
 
 
 @dataclass(frozen=True)
@@ -113,7 +90,7 @@ class MoveResult:
     singularity."""
 
     target_joint_positions: np.ndarray  # rad, (6,)
-    target_tool_pose: pin.SE3
+    target_tool_pose: Pose
     applied_fraction: float = 1.0
 
 
@@ -132,7 +109,7 @@ class WrenchSample:
     @classmethod
     def from_proto(cls, sample: fs_pb.WrenchSample) -> WrenchSample:
         return cls(sample.sequence, time_ns(sample.sample_time),
-                   vector(sample.wrench.force_n), vector(sample.wrench.torque_nm))
+                   vector3_value(sample.wrench.force_n), vector3_value(sample.wrench.torque_nm))
 
     @property
     def wrench(self) -> np.ndarray:
@@ -164,13 +141,13 @@ class SensorConfig:
     threshold_torque_nm: float
     thread_priority: SensorThreadPriority
     reading: bool
-    flange_to_tool: pin.SE3
+    flange_to_tool: Pose
 
     @classmethod
     def from_proto(cls, config: fs_pb.SensorConfig) -> SensorConfig:
         return cls(seconds(config.period), config.threshold_force_n, config.threshold_torque_nm,
                    enum_value(SensorThreadPriority, config.thread_priority), config.reading,
-                   pose(config.flange_to_tool))
+                   pose_value(config.flange_to_tool))
 
 
 # -- StereoCamera -----------------------------------------------------------------------------
@@ -273,7 +250,7 @@ class Ack:
     receive_time_ns: int  # the server's clock
     apply_time_ns: int  # the server's clock
     received_time_ns: int  # the client's clock, when the ack arrived
-    tool_pose: pin.SE3 | None
+    tool_pose: Pose | None
     force: np.ndarray | None
     torque: np.ndarray | None
     status: RobotStatus
@@ -285,9 +262,9 @@ class Ack:
         return cls(ack.sequence, enum_value(CommandOutcome, ack.outcome), ack.detail,
                    time_ns(ack.command_send_time), time_ns(ack.receive_time),
                    time_ns(ack.apply_time), received_time_ns,
-                   pose(ack.tool_pose) if ack.HasField("tool_pose") else None,
-                   vector(ack.tool_wrench.force_n) if has_wrench else None,
-                   vector(ack.tool_wrench.torque_nm) if has_wrench else None,
+                   pose_value(ack.tool_pose) if ack.HasField("tool_pose") else None,
+                   vector3_value(ack.tool_wrench.force_n) if has_wrench else None,
+                   vector3_value(ack.tool_wrench.torque_nm) if has_wrench else None,
                    enum_value(RobotStatus, ack.status), ack)
 
     @property

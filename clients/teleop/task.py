@@ -33,6 +33,7 @@ from clients.teleop.artifacts import Trace
 from services.robot_model import workspace
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
+from wire.pose import Pose
 
 COMMAND_RATE_HZ = 50.0
 SCALE = 0.5  # eq. 2: the slave moves half as far as the hand
@@ -213,7 +214,7 @@ class PegInHole:
         finally:
             self.client.set_assistance(pb.AssistanceConfig())
 
-    def _result(self, start: pin.SE3) -> Result:
+    def _result(self, start: Pose) -> Result:
         end = self.client.robot.get_state().tool_pose.translation
         x, y = workspace.FIXTURE_CENTER_XY
         depth = MOUTH_Z - end[2]

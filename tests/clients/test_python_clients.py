@@ -20,6 +20,7 @@ from clients.python import (
     InvalidArgumentError,
     MoveResult,
     OutOfRangeError,
+    Pose,
     ProxyRobotClient,
     ReferenceFrame,
     RobotState,
@@ -102,8 +103,10 @@ def test_proxy_robot_client_on_its_own_port(station, backends):
         state = robot.get_state()
         assert isinstance(state, RobotState) and state.joint_positions.shape == (6,)
         np.testing.assert_allclose(state.joint_positions, HOME_Q, atol=1e-3)
-        assert isinstance(state.tool_pose, pin.SE3)
-        assert isinstance(robot.get_tool_frame(), pin.SE3)
+        assert isinstance(state.tool_pose, Pose) and isinstance(state.flange_pose, Pose)
+        frame = robot.get_tool_frame()
+        assert isinstance(frame, Pose)
+        assert robot.set_tool_frame(frame).isclose(frame, atol=1e-12)  # a Pose goes out too
         with pytest.raises(InvalidArgumentError) as error:
             robot.move_joints([0.1, 0.0, 0.0])
         assert error.value.code is grpc.StatusCode.INVALID_ARGUMENT
@@ -240,7 +243,7 @@ def test_teleoperate_session_sends_commands_and_gets_acks(station, operator):
         received.clear()
         ack = session.send((0, 0, 0.003))
         assert ack.sequence == 1 and ack.outcome is CommandOutcome.APPLIED and ack.applied
-        assert isinstance(ack.tool_pose, pin.SE3) and ack.force.shape == (3,)
+        assert isinstance(ack.tool_pose, Pose) and ack.force.shape == (3,)
         assert ack.status in (RobotStatus.MOVING, RobotStatus.READY)
         assert ack.round_trip_s > 0 and ack.receive_time_ns <= ack.apply_time_ns
         indexed = session.send((0, 0, 0.003), clutch=True)
