@@ -3,16 +3,20 @@ tick drawn in each eye tells which capture tick an image came from."""
 
 from __future__ import annotations
 
+import contextlib
 import time
+from collections.abc import Callable, Iterator
 
 import cv2
 import numpy as np
 import pytest
 
+from services.stereo_camera.capture import CaptureHub
 from services.stereo_camera.client import decode_pair
 from services.stereo_camera.pattern import PatternSource, pattern_image, read_tick
 from services.stereo_camera.source import LEFT, RIGHT
 from telerobot.v1 import stereo_camera_pb2 as pb
+from tests.conftest import wait_for
 from tests.stereo_camera.conftest import psnr
 
 SINGLE = pb.TRANSFER_MODE_SINGLE_BUFFER_SERIALIZED
@@ -28,6 +32,32 @@ def pattern(serve):
 
 def _pairs(messages):
     return [message.pair for message in messages[1:]]
+
+
+@contextlib.contextmanager
+def metronome(fps: float) -> Iterator[Callable[[], int]]:
+    """Another pattern source, kept capturing at `fps`: its tick count is the clock by which a
+    test watches a hub that must stay idle (a busy machine slows both alike)."""
+    hub = CaptureHub(PatternSource(W, H, fps=fps))
+    hub.start()
+    try:
+        with hub.view(free_run=True):
+            yield lambda: hub.stats.ticks
+    finally:
+        hub.close()
+
+
+def idle_for(hub: CaptureHub, beats: Callable[[], int], count: int) -> Callable[[], bool]:
+    """For wait_for: true once `hub` has started no tick while the metronome made `count`."""
+    last = {"ticks": hub.stats.ticks, "beat": beats()}
+
+    def idle() -> bool:
+        ticks, beat = hub.stats.ticks, beats()
+        if ticks != last["ticks"]:
+            last.update(ticks=ticks, beat=beat)
+            return False
+        return beat - last["beat"] >= count
+    return idle
 
 
 @pytest.mark.parametrize("mode", MODES)
@@ -93,7 +123,8 @@ def test_a_single_buffer_client_alone_triggers_each_capture(serve):
     sequences = [pair.sequence for pair in _pairs(messages)]
     # capture, send, capture the next: no tick is captured while a pair is being sent
     assert sequences == list(range(sequences[0], sequences[0] + 8))
-    time.sleep(0.2)
+    with metronome(200) as beats:  # 0.2 s of ticks at the source's rate
+        wait_for(idle_for(camera.hub, beats, 40), 10.0, "the source to stop capturing")
     assert camera.hub.stats.ticks <= sequences[-1] + 1  # and nothing runs ahead
 
 
@@ -108,20 +139,22 @@ def test_a_slow_client_gets_the_newest_pair_and_sees_the_gaps(serve):
         received = []
         for _ in range(8):
             pair = next(call).pair
-            age_s = (time.time_ns() - pair.left_capture_time.ToNanoseconds()) / 1e9
-            received.append((pair.sequence, age_s))
+            ticks = camera.hub.stats.ticks
+            received.append((pair.sequence, ticks - pair.sequence))  # its age, in ticks
             left = np.frombuffer(pair.left_image, np.uint8).reshape(H, W, 3)
             assert read_tick(left) == pair.sequence
-            time.sleep(0.25)  # a slow client: the source makes ~12 pairs meanwhile
+            # A slow client: it reads again once the source has made 12 pairs (0.24 s).
+            wait_for(lambda since=ticks: camera.hub.stats.ticks >= since + 12, 10.0,
+                     "12 more ticks")
     finally:
         call.cancel()
     sequences = [sequence for sequence, _ in received]
     gaps = np.diff(sequences)
     assert (gaps >= 1).all()
     assert np.median(gaps) >= 4, sequences  # the pairs it could not take are skipped
-    # No backlog: with one, each read would be a pair older than the one before by 0.25 s.
+    # No backlog: with one, each read would be a pair older than the one before by 12 ticks.
     ages = [age for _, age in received[2:]]
-    assert max(ages) < 1.0, received
+    assert max(ages) < 50, received  # 1 s at 50 fps
 
 
 def test_a_serialized_client_beside_a_free_running_one_waits_for_a_new_capture(serve):
@@ -201,7 +234,6 @@ def test_many_clients_share_one_capture(serve):
 
 def test_the_source_idles_without_clients(pattern):
     pattern.stream(2)
-    time.sleep(0.1)  # the stream's end reaches the server
-    ticks = pattern.hub.stats.ticks
-    time.sleep(0.3)
-    assert pattern.hub.stats.ticks == ticks
+    # Once the stream's end reaches the server, no tick for 0.3 s of the source's 100 fps.
+    with metronome(100) as beats:
+        wait_for(idle_for(pattern.hub, beats, 30), 10.0, "the source to stop capturing")
