@@ -1,34 +1,41 @@
 """python -m services.launcher (`make serve`): start the slave station, one process per service.
 
 It starts every service in turn, each once the one before answers its health check with
-SERVING (dependencies first), prints the
-addresses, and supervises them. On Ctrl-C or SIGTERM it stops them all (SIGTERM, then SIGKILL
-after a deadline) and exits. If a child dies on its own, the launcher says which and how, shows
-its last log lines, and stops the whole station: a slave station with a part missing is not safe
-to operate, and a supervisor above (systemd, a shell loop) can restart the group cleanly.
+SERVING (dependencies first), prints the addresses, and supervises them. On Ctrl-C or SIGTERM
+it stops them all (SIGTERM, then SIGKILL after a deadline) and exits. If a child dies on its
+own, the launcher says which and how, shows its last log lines, and stops the whole station: a
+slave station with a part missing is not safe to operate, and a supervisor above (systemd, a
+shell loop) can restart the group cleanly.
 
 Children run in their own process group, so a terminal's Ctrl-C reaches only the launcher, which
 then drains each child once; each child also stops by itself if the launcher is killed.
+
+Each service listens where its TELEROBOT_<NAME>_ADDRESS says (default: config.DEFAULT_PORTS).
+A port 0 there picks a free port: the launcher reads the one bound from the child's ready line
+and hands it to the services started after it through the same variable. Once a service is
+SERVING the launcher prints its ready line, `TELEROBOT_READY <name> <host:port>`, on stdout,
+so whoever started the launcher (`make teleop`, the tests) learns every address; the station is
+up once decision_server's line is out, and then the banner follows. The children are supervised
+by services.runtime.children.
 """
 
 from __future__ import annotations
 
 import argparse
-import collections
 import logging
 import os
 import signal
-import subprocess
 import sys
 import threading
 import time
-from dataclasses import dataclass, field
 
 import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.runtime.config import DEFAULT_GRACE_S, address_for, configure_logging, env_name
-from services.runtime.process import PARENT_PID_ENV, READY_LINE_PREFIX
+from services.runtime import children
+from services.runtime.children import Child, ChildFailed
+from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
+from services.runtime.process import parse_ready_line, ready_line
 
 log = logging.getLogger("launcher")
 
@@ -37,27 +44,11 @@ log = logging.getLogger("launcher")
 STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
            "decision_server"]
 STARTUP_TIMEOUT_S = 60.0
-# The banner's first line: whoever starts a launcher (`make teleop`, the tests) waits for it.
+# The banner's first line.
 UP_LINE = "Slave station is up"
+# After SIGTERM, a child has its grace period to drain and this long on top to exit.
+STOP_MARGIN_S = 1.5
 _LOG_TAIL_LINES = 20
-
-
-@dataclass
-class Child:
-    """One supervised service process."""
-
-    name: str
-    address: str
-    process: subprocess.Popen
-    ready: threading.Event = field(default_factory=threading.Event)
-    log_tail: collections.deque = field(
-        default_factory=lambda: collections.deque(maxlen=_LOG_TAIL_LINES))
-
-    def describe_exit(self) -> str:
-        code = self.process.returncode
-        how = f"was killed by signal {-code}" if code < 0 else f"exited with code {code}"
-        tail = "\n    ".join(self.log_tail) or "(no output)"
-        return f"{self.name} ({self.address}) {how}; its last lines:\n    {tail}"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -68,81 +59,75 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
 
-    stop = threading.Event()
+    stop = threading.Event()  # SIGINT or SIGTERM
+    wake = threading.Event()  # a stop request, or a child ended
     stop_reason: list[str] = []
 
     def on_signal(signum, _frame):
         stop_reason.append(signal.Signals(signum).name)
         stop.set()
+        wake.set()
 
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
 
-    children: list[Child] = []
+    env = {"TELEROBOT_GRACE_S": str(args.grace_s)}
+    station: list[Child] = []
     try:
         # One at a time: a service starts once the ones it depends on answer, so its first
         # calls to them do not fail and leave its channels backing off.
         for name in STATION:
-            children.append(_start(name, args))
-            failed = _wait_until_serving(children[-1:], stop)
-            if failed:
+            child = children.start(name, ["-m", f"services.{name}"], env=env,
+                                   max_lines=_LOG_TAIL_LINES, on_line=_forward,
+                                   on_exit=lambda _child: wake.set())
+            station.append(child)
+            try:
+                address = _wait_until_serving(child, stop)
+            except ChildFailed as failed:
                 log.error("start-up failed: %s", failed)
                 return 1
+            if address is None:  # stopped during start-up
+                break
+            # The address it bound (a port 0 becomes a real one): the services started after
+            # it, which may call it, find it through its variable.
+            env[env_name(name, "address")] = address
+            print(ready_line(name, address), flush=True)
         if stop.is_set():
             return 0
-        _print_banner(children)
-        dead = _supervise(children, stop)
+        _print_banner(station)
+        dead = _supervise(station, stop, wake)
         if dead is not None:
             log.error("%s\nstopping the whole station (see the launcher's docstring for why)",
-                      dead.describe_exit())
+                      dead.describe())
             return 1
         log.info("%s received; stopping the station", stop_reason[0] if stop_reason else "stop")
         return 0
     finally:
-        _stop_all(children, args.grace_s)
+        children.stop_all(reversed(station), args.grace_s + STOP_MARGIN_S)
 
 
-def _start(name: str, args) -> Child:
-    env = dict(os.environ, **{PARENT_PID_ENV: str(os.getpid()),
-                              "TELEROBOT_GRACE_S": str(args.grace_s),
-                              "PYTHONUNBUFFERED": "1"})
-    process = subprocess.Popen(
-        [sys.executable, "-m", f"services.{name}"],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
-        process_group=0,
-    )
-    child = Child(name, address_for(name), process)
-    threading.Thread(target=_pump_output, args=(child,), name=f"out-{name}", daemon=True).start()
-    return child
-
-
-def _pump_output(child: Child) -> None:
-    """Forward a child's output, keep its tail, and notice its ready line."""
-    for line in child.process.stdout:
-        line = line.rstrip("\n")
-        if line.startswith(READY_LINE_PREFIX):
-            child.ready.set()
-            continue
-        child.log_tail.append(line)
+def _forward(_child: Child, line: str) -> None:
+    """A child's log line, to the launcher's stderr (its ready line is the launcher's to say)."""
+    if parse_ready_line(line) is None:
         print(line, file=sys.stderr, flush=True)
 
 
-def _wait_until_serving(children: list[Child], stop: threading.Event) -> str | None:
-    """None once every child answers SERVING; else why not."""
+def _wait_until_serving(child: Child, stop: threading.Event) -> str | None:
+    """The child's address once it printed its ready line and answers its health check with
+    SERVING; None if a stop was requested first; ChildFailed if it died or took too long."""
     deadline = time.monotonic() + STARTUP_TIMEOUT_S
-    pending = list(children)
-    while pending and not stop.is_set():
-        for child in list(pending):
-            if child.process.poll() is not None:
-                return child.describe_exit()
-            if child.ready.is_set() and _is_serving(child.address):
-                log.info("%s is serving on %s", child.name, child.address)
-                pending.remove(child)
+    address = child.wait_ready(timeout_s=STARTUP_TIMEOUT_S, cancel=stop)
+    while address is not None and not _is_serving(address):
+        if child.returncode is not None:
+            raise ChildFailed(child.describe())
         if time.monotonic() > deadline:
-            names = ", ".join(c.name for c in pending)
-            return f"{names} not serving after {STARTUP_TIMEOUT_S:.0f} s"
-        stop.wait(0.05)
-    return None
+            raise ChildFailed(f"{child.name} not serving after {STARTUP_TIMEOUT_S:.0f} s: "
+                              f"{child.describe()}")
+        if stop.wait(0.05):
+            return None
+    if address is not None:
+        log.info("%s is serving on %s", child.name, address)
+    return address
 
 
 def _is_serving(address: str) -> bool:
@@ -155,36 +140,24 @@ def _is_serving(address: str) -> bool:
         return False
 
 
-def _supervise(children: list[Child], stop: threading.Event) -> Child | None:
-    """Wait for a stop request (None) or the first child that dies (that child)."""
-    while not stop.wait(0.1):
-        for child in children:
-            if child.process.poll() is not None:
-                child.ready.clear()
-                return child
-    return None
+def _supervise(station: list[Child], stop: threading.Event,
+               wake: threading.Event) -> Child | None:
+    """Wait for a stop request (None) or the first child that ends (that child)."""
+    while True:
+        wake.wait(1.0)
+        wake.clear()
+        if stop.is_set():
+            return None
+        dead = next((child for child in station if child.exited.is_set()), None)
+        if dead is not None:
+            return dead
 
 
-def _stop_all(children: list[Child], grace_s: float) -> None:
-    """SIGTERM every live child (reverse start order), SIGKILL what outlives the deadline."""
-    for child in reversed(children):
-        if child.process.poll() is None:
-            child.process.send_signal(signal.SIGTERM)
-    deadline = time.monotonic() + grace_s + 1.5
-    for child in reversed(children):
-        try:
-            child.process.wait(max(0.0, deadline - time.monotonic()))
-        except subprocess.TimeoutExpired:
-            log.warning("%s did not stop in time; killing it", child.name)
-            child.process.kill()
-            child.process.wait()
-
-
-def _print_banner(children: list[Child]) -> None:
-    operator = address_for("decision_server")
-    width = max(len(c.name) for c in children)
+def _print_banner(station: list[Child]) -> None:
+    operator = next(c.address for c in station if c.name == "decision_server")
+    width = max(len(c.name) for c in station)
     lines = ["", f"{UP_LINE}. Ctrl-C stops it.", ""]
-    lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.process.pid})" for c in children]
+    lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.pid})" for c in station]
     lines += [
         "",
         f"The operator's address is {operator} (set {env_name('decision_server', 'address')} "

@@ -1,15 +1,11 @@
-"""Helpers shared by the tests: real service processes on free loopback ports."""
+"""Helpers shared by the tests: real service processes on port 0, supervised by
+services.runtime.children (each reports the port it bound on its ready line)."""
 
 from __future__ import annotations
 
 import os
-import signal
-import socket
-import subprocess
-import sys
-import threading
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -18,10 +14,16 @@ import pytest
 # module imports mujoco (make does it too, but a bare `pytest` should work the same).
 os.environ.setdefault("MUJOCO_GL", "egl")
 
-from services.runtime.process import READY_LINE_PREFIX
+from services.runtime import children
+from services.runtime.children import Child, refused_address
 
 REPO = Path(__file__).resolve().parent.parent
 BUF = REPO / "node_modules" / ".bin" / "buf"
+
+# A started process: .process, .lines, .ready (name -> host:port), .wait_ready(names),
+# .wait_line(text), .stop(sig), .describe(); see services.runtime.children.Child.
+RunningProcess = Child
+STOP_GRACE_S = 10.0  # a test's process gets this long to stop on SIGTERM before SIGKILL
 
 
 def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
@@ -37,71 +39,47 @@ def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
 
 
 def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
+    """Deprecated, for the callers outside the supervised tests that want an address where
+    nothing listens: a port that refuses connections for the whole session (held, never
+    listened on, so never handed to anyone else). Use `refused_address()` instead; a service
+    gets its port by listening on port 0 (`start_service`)."""
+    return int(refused_address().rsplit(":", 1)[1])
 
 
-@dataclass
-class RunningProcess:
-    """A real service (or launcher) process with its output collected."""
-
-    process: subprocess.Popen
-    lines: list[str] = field(default_factory=list)
-    ready: dict[str, str] = field(default_factory=dict)  # service name -> host:port
-
-    def wait_ready(self, names: list[str], timeout_s: float = 60.0) -> None:
-        deadline = time.monotonic() + timeout_s
-        while time.monotonic() < deadline:
-            if all(name in self.ready for name in names):
-                return
-            if self.process.poll() is not None:
-                break
-            time.sleep(0.02)
-        output = "\n".join(self.lines[-40:])
-        raise AssertionError(f"{names} not ready (exit {self.process.poll()}):\n{output}")
-
-    def stop(self, sig: int = signal.SIGTERM, timeout_s: float = 10.0) -> int:
-        if self.process.poll() is None:
-            self.process.send_signal(sig)
-        return self.process.wait(timeout_s)
+def start_process(args: list[str], env: dict[str, str] | None = None,
+                  name: str | None = None) -> Child:
+    """Start `python <args>` from the repo root, every output line kept (stderr merged)."""
+    if name is None:
+        name = args[1].rsplit(".", 1)[-1] if args[:1] == ["-m"] else "python"
+    return children.start(name, args, env=env, cwd=REPO, own_group=False, max_lines=None,
+                          stop_grace_s=STOP_GRACE_S)
 
 
-def start_process(args: list[str], env: dict[str, str] | None = None) -> RunningProcess:
-    """Start `python <args>` from the repo root, merging stderr into the collected lines."""
-    process = subprocess.Popen(
-        [sys.executable, *args], cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-        text=True, env={**os.environ, "PYTHONUNBUFFERED": "1", **(env or {})},
-    )
-    running = RunningProcess(process)
-
-    def pump():
-        for line in process.stdout:
-            line = line.rstrip("\n")
-            running.lines.append(line)
-            if line.startswith(READY_LINE_PREFIX):
-                _, name, address = line.split()
-                running.ready[name] = address
-
-    threading.Thread(target=pump, daemon=True).start()
+def start_service(name: str, *args: str, env: dict[str, str] | None = None) -> Child:
+    """`python -m services.<name>` on 127.0.0.1:0 (plus `args`), once it printed its ready
+    line; its address is `.address`."""
+    running = start_process(["-m", f"services.{name}", "--address", "127.0.0.1:0", *args],
+                            env, name)
+    try:
+        running.wait_ready(timeout_s=60.0)
+    except children.ChildFailed:
+        running.stop()
+        raise
     return running
 
 
 @pytest.fixture
 def service_process():
-    """Factory: start `python -m services.<name>` on a free port and wait until SERVING."""
-    started: list[RunningProcess] = []
+    """Factory: start `python -m services.<name>` on port 0 and wait until SERVING; returns
+    its address."""
+    started: list[Child] = []
 
     def start(name: str) -> str:
-        running = start_process(["-m", f"services.{name}", "--address", f"127.0.0.1:{free_port()}"])
-        started.append(running)
-        running.wait_ready([name])
-        return running.ready[name]
+        started.append(start_service(name))
+        return started[-1].address
 
     yield start
-    for running in started:
-        if running.process.poll() is None:
-            running.stop()
+    children.stop_all(started)
 
 
 @pytest.fixture(scope="session")
@@ -116,7 +94,7 @@ def world():
 
 @dataclass
 class Backends:
-    processes: list[RunningProcess]
+    processes: list[Child]
     proxy_address: str
     sensor_address: str
     emergency_address: str
@@ -128,11 +106,12 @@ def backends(world):
     the tests that put a DecisionServer or a client in front of them."""
     env = {"TELEROBOT_WORLD_SHM": world.shm_name}
     names = ["proxy_robot", "force_sensor", "emergency_stop"]
-    running = [start_process(["-m", f"services.{name}", "--address",
-                              f"127.0.0.1:{free_port()}"], env) for name in names]
-    for process, name in zip(running, names, strict=True):
-        process.wait_ready([name])
-    yield Backends(running, *(process.ready[name]
-                              for process, name in zip(running, names, strict=True)))
-    for process in running:
-        process.stop()
+    running = [start_process(["-m", f"services.{name}", "--address", "127.0.0.1:0"], env)
+               for name in names]  # started together, waited for together
+    try:
+        addresses = [process.wait_ready(timeout_s=60.0) for process in running]
+    except children.ChildFailed:
+        children.stop_all(running)
+        raise
+    yield Backends(running, *addresses)
+    children.stop_all(running)

@@ -54,9 +54,10 @@ class Child:
 
     def __init__(self, name: str, process: subprocess.Popen, max_lines: int | None,
                  on_line: Callable[[Child, str], None] | None,
-                 on_exit: Callable[[Child], None] | None):
+                 on_exit: Callable[[Child], None] | None, stop_grace_s: float = STOP_GRACE_S):
         self.name = name
         self.process = process
+        self.stop_grace_s = stop_grace_s  # stop()'s default
         self.ready: dict[str, str] = {}  # name -> host:port, from the ready lines seen
         self.exited = threading.Event()  # set once the process ended and its output is read
         self._lines: collections.deque[str] = collections.deque(maxlen=max_lines)
@@ -171,9 +172,10 @@ class Child:
             except ProcessLookupError:
                 pass
 
-    def stop(self, sig: int = signal.SIGTERM, grace_s: float = STOP_GRACE_S) -> int:
-        """Send `sig` (SIGTERM: a service drains and exits), SIGKILL after `grace_s`; returns
-        the exit code (negative: the signal that ended it)."""
+    def stop(self, sig: int = signal.SIGTERM, grace_s: float | None = None) -> int:
+        """Send `sig` (SIGTERM: a service drains and exits), SIGKILL after `grace_s` (default:
+        the child's stop_grace_s); returns the exit code (negative: the signal that ended it)."""
+        grace_s = self.stop_grace_s if grace_s is None else grace_s
         self.send_signal(sig)
         try:
             return self.process.wait(grace_s)
@@ -211,7 +213,8 @@ class Child:
 def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = None,
           cwd: str | Path | None = None, own_group: bool = True, watch_parent: bool = True,
           max_lines: int | None = 200, on_line: Callable[[Child, str], None] | None = None,
-          on_exit: Callable[[Child], None] | None = None) -> Child:
+          on_exit: Callable[[Child], None] | None = None,
+          stop_grace_s: float = STOP_GRACE_S) -> Child:
     """Start `python <args>` (this interpreter) as the child `name`.
 
     env: added to this process' environment (PYTHONUNBUFFERED=1 always, so lines arrive as
@@ -219,6 +222,7 @@ def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = Non
     Ctrl-C. watch_parent: sets PARENT_PID_ENV to this process, so a service stops by itself if
     this process dies. max_lines: how many output lines to keep (None: all). on_line(child,
     line) is called on the reading thread for every line, on_exit(child) once the child ended.
+    stop_grace_s: how long Child.stop() waits after its signal before SIGKILL, by default.
     """
     full_env = {**os.environ, "PYTHONUNBUFFERED": "1", **(env or {})}
     if watch_parent:
@@ -227,7 +231,7 @@ def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = Non
         [sys.executable, *args], cwd=cwd, env=full_env, stdin=subprocess.DEVNULL,
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
         process_group=0 if own_group else None)
-    return Child(name, process, max_lines, on_line, on_exit)
+    return Child(name, process, max_lines, on_line, on_exit, stop_grace_s)
 
 
 def start_service(service: str, args: Sequence[str] = (), *, address: str = "127.0.0.1:0",
@@ -238,10 +242,13 @@ def start_service(service: str, args: Sequence[str] = (), *, address: str = "127
     return start(service, ["-m", f"services.{service}", "--address", address, *args], **options)
 
 
-def stop_all(children: Iterable[Child], grace_s: float = STOP_GRACE_S) -> list[Child]:
+def stop_all(children: Iterable[Child], grace_s: float | None = None) -> list[Child]:
     """SIGTERM every live child (in the order given) at once, then SIGKILL whatever is still
-    running `grace_s` later; returns the ones that had to be killed."""
+    running `grace_s` later (default: the longest stop_grace_s among them); returns the ones
+    that had to be killed."""
     live = [child for child in children if child.returncode is None]
+    if grace_s is None:
+        grace_s = max((child.stop_grace_s for child in live), default=STOP_GRACE_S)
     for child in live:
         child.send_signal(signal.SIGTERM)
     deadline = time.monotonic() + grace_s

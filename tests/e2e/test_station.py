@@ -7,14 +7,14 @@ import json
 import os
 import signal
 import subprocess
-import time
 
 import grpc
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.launcher import STATION, UP_LINE
-from tests.conftest import BUF, REPO, free_port, start_process
+from services.runtime.children import refused_address
+from tests.conftest import BUF, REPO, start_process, wait_for
 from tests.world.conftest import unique_shm_name
 
 pytestmark = pytest.mark.e2e
@@ -23,8 +23,9 @@ SERVICES = ["ProxyRobot", "ForceSensor", "StereoCamera", "DecisionServer"]
 
 
 def _station_env() -> dict[str, str]:
-    """Addresses and a shared-memory name of this test's own, so stations never collide."""
-    env = {f"TELEROBOT_{name.upper()}_ADDRESS": f"127.0.0.1:{free_port()}" for name in STATION}
+    """Every service on port 0 (the launcher reports the ports bound) and a shared-memory name
+    of this test's own, so stations never collide."""
+    env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
     env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
     return env
 
@@ -56,35 +57,39 @@ def _buf_curl(*args: str) -> subprocess.CompletedProcess:
 
 
 def _start_station(env: dict[str, str]):
-    """The real launcher, once it says the whole station is up."""
+    """The real launcher, once it reported every service's address and said the station is
+    up; `.ready` maps each service to its address."""
     launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=env)
-    deadline = time.monotonic() + 90
-    while not any(UP_LINE in line for line in launcher.lines):
-        if launcher.process.poll() is not None or time.monotonic() > deadline:
-            pytest.fail("launcher did not come up:\n" + "\n".join(launcher.lines[-40:]))
-        time.sleep(0.05)
+    try:
+        launcher.wait_ready(STATION, timeout_s=90)
+        launcher.wait_line(UP_LINE, timeout_s=10)
+    except Exception:
+        launcher.stop(signal.SIGINT)
+        raise
     return launcher
 
 
 @pytest.fixture(scope="module")
 def station():
-    env = _station_env()
-    launcher = _start_station(env)
-    yield launcher, env
+    launcher = _start_station(_station_env())
+    yield launcher, launcher.ready
     if launcher.process.poll() is None:
         launcher.stop(signal.SIGKILL)
 
 
-def test_every_process_is_serving(station):
-    _, env = station
+def test_every_process_is_serving_where_the_launcher_says(station):
+    launcher, addresses = station
+    assert sorted(addresses) == sorted(STATION)
     for name in STATION:
-        address = env[f"TELEROBOT_{name.upper()}_ADDRESS"]
-        assert _serving(address) == health_pb2.HealthCheckResponse.SERVING, name
+        assert not addresses[name].endswith(":0"), addresses
+        assert _serving(addresses[name]) == health_pb2.HealthCheckResponse.SERVING, name
+    banner = "\n".join(launcher.lines)
+    assert f"The operator's address is {addresses['decision_server']}" in banner
 
 
 def test_buf_curl_lists_every_rpc_of_all_four_services_on_the_operator_address(station):
-    _, env = station
-    address = env["TELEROBOT_DECISION_SERVER_ADDRESS"]
+    _, addresses = station
+    address = addresses["decision_server"]
     listing = _buf_curl("--list-methods", f"http://{address}")
     assert listing.returncode == 0, listing.stderr
     listed = set(listing.stdout.split())
@@ -108,8 +113,8 @@ def _call(address: str, method: str, body: str = "{}") -> dict:
 
 def test_drive_the_arm_by_hand_with_buf_curl(station):
     """The README's session: connect, initialize, move, read, stop, reset."""
-    _, env = station
-    address = env["TELEROBOT_PROXY_ROBOT_ADDRESS"]
+    _, addresses = station
+    address = addresses["proxy_robot"]
     health = _buf_curl(f"http://{address}/grpc.health.v1.Health/Check")
     assert health.returncode == 0 and json.loads(health.stdout) == {"status": "SERVING"}
     assert _call(address, "Connect") == {"status": "ROBOT_STATUS_CONNECTED"}
@@ -128,20 +133,18 @@ def test_drive_the_arm_by_hand_with_buf_curl(station):
     assert refused.returncode != 0 and "failed_precondition" in refused.stdout + refused.stderr
     assert _call(address, "Reset") == {"status": "ROBOT_STATUS_READY"}
     # The same stop through the emergency-stop band, as the README shows it.
-    band = env["TELEROBOT_EMERGENCY_STOP_ADDRESS"]
+    band = addresses["emergency_stop"]
     assert _call(band, "EmergencyStop", '{"reason": "by hand"}')["status"] == (
         "ROBOT_STATUS_ESTOPPED")
-    deadline = time.monotonic() + 5
-    while _call(address, "GetStatus")["status"] != "ROBOT_STATUS_ESTOPPED":
-        assert time.monotonic() < deadline, "ProxyRobot never saw the band's latch"
-        time.sleep(0.05)
+    wait_for(lambda: _call(address, "GetStatus")["status"] == "ROBOT_STATUS_ESTOPPED",
+             timeout_s=5, what="ProxyRobot to see the band's latch")
     assert _call(address, "Reset") == {"status": "ROBOT_STATUS_READY"}
 
 
 def test_the_operator_address_forwards_with_the_lock_in_front(station):
     """On the DecisionServer, reads are free and commands need a lease in the metadata."""
-    _, env = station
-    address = env["TELEROBOT_DECISION_SERVER_ADDRESS"]
+    _, addresses = station
+    address = addresses["decision_server"]
     state = _call(address, "GetState")["state"]
     assert len(state["jointPositionsRad"]) == 6
     refused = _buf_curl("-d", '{"delta_joint_positions_rad": [0.05, 0, 0, 0, 0, 0]}',
@@ -161,8 +164,8 @@ def test_the_operator_address_forwards_with_the_lock_in_front(station):
 
 
 def test_unknown_method_and_malformed_message_on_a_real_process(station):
-    _, env = station
-    address = env["TELEROBOT_DECISION_SERVER_ADDRESS"]
+    _, addresses = station
+    address = addresses["decision_server"]
     with grpc.insecure_channel(address) as channel:
         with pytest.raises(grpc.RpcError) as unknown:
             channel.unary_unary("/telerobot.v1.DecisionServer/Fly")(b"", timeout=5)
@@ -182,8 +185,8 @@ def _node_client(address: str) -> dict:
 
 
 def test_node_client_built_from_the_protos_reads_the_robot(station):
-    _, env = station
-    address = env["TELEROBOT_PROXY_ROBOT_ADDRESS"]
+    _, addresses = station
+    address = addresses["proxy_robot"]
     _call(address, "Connect")  # a no-op if the by-hand test already connected
     report = _node_client(address)
     assert report["health"] == {"(server)": "SERVING", "telerobot.v1.ProxyRobot": "SERVING"}
@@ -195,14 +198,14 @@ def test_node_client_built_from_the_protos_reads_the_robot(station):
 
 
 def test_node_client_on_the_operator_address(station):
-    _, env = station
-    report = _node_client(env["TELEROBOT_DECISION_SERVER_ADDRESS"])
+    _, addresses = station
+    report = _node_client(addresses["decision_server"])
     assert report["health"] == {"(server)": "SERVING", "telerobot.v1.ProxyRobot": "SERVING"}
     assert len(report["state"]["reply"]["state"]["joint_positions_rad"]) == 6
 
 
 def test_node_client_reports_an_unreachable_server():
-    result = subprocess.run(["node", "clients/node/client.js", f"127.0.0.1:{free_port()}"],
+    result = subprocess.run(["node", "clients/node/client.js", refused_address()],
                             cwd=REPO, capture_output=True, text=True, timeout=30)
     assert result.returncode == 1 and "cannot reach" in result.stdout
 
@@ -211,10 +214,8 @@ def test_sigint_stops_the_whole_group_within_5_s_with_no_orphans(station):
     launcher, _ = station
     children = _child_pids(launcher.process.pid)
     assert len(children) == len(STATION)
-    started = time.monotonic()
-    code = launcher.stop(signal.SIGINT, timeout_s=5)
-    elapsed = time.monotonic() - started
-    assert code == 0 and elapsed < 5.0
+    launcher.process.send_signal(signal.SIGINT)
+    assert launcher.wait(timeout_s=5.0) == 0  # TimeoutExpired if it takes longer
     assert not [pid for pid in children if _pid_alive(pid)]
 
 
@@ -224,10 +225,11 @@ def test_a_dying_child_stops_the_station_and_is_named():
     victim = next(pid for pid in children
                   if "services.force_sensor" in open(f"/proc/{pid}/cmdline").read())
     os.kill(victim, signal.SIGKILL)
-    assert launcher.process.wait(10) == 1
+    assert launcher.wait(timeout_s=10) == 1
+    launcher.exited.wait(5)  # every line read
     output = "\n".join(launcher.lines)
     assert "force_sensor" in output and "was killed by signal 9" in output
-    time.sleep(0.2)
+    # The launcher stopped and reaped every other child before it exited.
     assert not [pid for pid in children if _pid_alive(pid)]
 
 
@@ -235,7 +237,5 @@ def test_children_stop_by_themselves_when_the_launcher_is_killed():
     launcher = _start_station(_station_env())
     children = _child_pids(launcher.process.pid)
     launcher.stop(signal.SIGKILL)
-    deadline = time.monotonic() + 5
-    while any(_pid_alive(pid) for pid in children) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert not [pid for pid in children if _pid_alive(pid)]
+    wait_for(lambda: not any(_pid_alive(pid) for pid in children), timeout_s=5,
+             what="every child to notice and stop")

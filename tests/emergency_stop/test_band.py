@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import time
-
 import grpc
 import numpy as np
 import pytest
@@ -13,7 +11,7 @@ from clients.python.errors import UnimplementedError
 from clients.python.values import RobotStatus
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
-from tests.conftest import free_port, start_process, wait_for
+from tests.conftest import start_service, wait_for
 from tests.world.conftest import unique_shm_name
 
 
@@ -60,8 +58,14 @@ def test_the_band_halts_a_moving_arm_and_proxy_robot_reports_the_latch(stubs):
     assert refused.value.code() == grpc.StatusCode.FAILED_PRECONDITION
     # Cleared as ever, through ProxyRobot: the arm stays where it stopped.
     assert robot.Reset(pb.ResetRequest(), timeout=5).status == types_pb2.ROBOT_STATUS_READY
-    time.sleep(0.1)
-    assert np.max(np.abs(joints(robot)[0] - halted)) < 1e-3
+    reset_at_ns = robot.GetState(pb.GetStateRequest()).state.sample_time.ToNanoseconds()
+
+    def state_100_ms_later():
+        state = robot.GetState(pb.GetStateRequest()).state
+        return state if state.sample_time.ToNanoseconds() >= reset_at_ns + 100_000_000 else None
+
+    later = wait_for(state_100_ms_later, what="the arm's samples 100 ms after the reset")
+    assert np.max(np.abs(np.array(later.joint_positions_rad) - halted)) < 1e-3
 
 
 def test_the_python_client_stops_through_the_band(stubs, backends):
@@ -86,11 +90,9 @@ def test_the_band_serves_only_emergency_stop(stubs):
 
 
 def test_a_stop_that_cannot_reach_the_arm_is_unavailable():
-    band = start_process(["-m", "services.emergency_stop", "--address",
-                          f"127.0.0.1:{free_port()}", "--shm-name", unique_shm_name()])
+    band = start_service("emergency_stop", "--shm-name", unique_shm_name())
     try:
-        band.wait_ready(["emergency_stop"])
-        with grpc.insecure_channel(band.ready["emergency_stop"]) as channel:
+        with grpc.insecure_channel(band.address) as channel:
             with pytest.raises(grpc.RpcError) as error:
                 proxy_robot_pb2_grpc.ProxyRobotStub(channel).EmergencyStop(
                     pb.EmergencyStopRequest(reason="nothing there"), timeout=5)
