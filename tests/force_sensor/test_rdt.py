@@ -20,6 +20,7 @@ from services.force_sensor.rdt import (
     RdtWrenchLink,
 )
 from services.runtime.errors import Unavailable
+from tests.conftest import start_service, wait_for
 
 COUNTS = 1_000_000
 
@@ -67,7 +68,7 @@ class RdtResponder:
                     if held:
                         self.socket.sendto(held, client)
                         held = None
-                time.sleep(0.001)
+                self._stop.wait(0.001)  # the sensor's sample period
                 try:  # a stop command ends the stream
                     packet, _ = self.socket.recvfrom(64)
                     self.commands.append(REQUEST.unpack(packet)[1])
@@ -99,9 +100,8 @@ def responder_factory():
 
 def test_parses_real_format_records_into_newtons(responder_factory):
     responder = responder_factory()
-    link = RdtWrenchLink("127.0.0.1", responder.port)
+    link = RdtWrenchLink("127.0.0.1", responder.port)  # returns once a record arrived
     try:
-        time.sleep(0.05)
         sample = link.read_wrench()
         np.testing.assert_allclose(sample.force_n, [1.5, -2.0, 10.25])
         np.testing.assert_allclose(sample.torque_nm, [0.1, 0.0, -0.05])
@@ -109,10 +109,9 @@ def test_parses_real_format_records_into_newtons(responder_factory):
     finally:
         link.close()
     assert responder.commands[0] == CMD_START_STREAMING
-    deadline = time.monotonic() + 1.0
-    while responder.commands[-1] != CMD_STOP_STREAMING and time.monotonic() < deadline:
-        time.sleep(0.01)  # the responder reads the stop command on its own thread
-    assert responder.commands[-1] == CMD_STOP_STREAMING
+    # The responder reads the stop command on its own thread.
+    wait_for(lambda: responder.commands[-1] == CMD_STOP_STREAMING, timeout_s=1.0,
+             what="the stop command")
 
 
 def test_counts_lost_and_drops_reordered_packets(responder_factory):
@@ -120,12 +119,13 @@ def test_counts_lost_and_drops_reordered_packets(responder_factory):
     link = RdtWrenchLink("127.0.0.1", responder.port)
     try:
         sequences = []
-        deadline = time.monotonic() + 0.3
-        while time.monotonic() < deadline:
+
+        def lost_and_reordered_seen() -> bool:
             sequences.append(link.read_wrench().sequence)
-            time.sleep(0.0005)
+            return link.stats.lost > 5 and link.stats.reordered > 5
+
+        wait_for(lost_and_reordered_seen, what="more than 5 lost and 5 reordered packets")
         assert sequences == sorted(sequences)  # never goes back in time
-        assert link.stats.lost > 5 and link.stats.reordered > 5
     finally:
         link.close()
 
@@ -136,23 +136,33 @@ def test_a_silent_sensor_is_unavailable_quickly_and_nothing_hangs(responder_fact
     try:
         link.read_wrench()
         responder.silent.set()
-        time.sleep(0.1)
-        started = time.monotonic()
-        with pytest.raises(Unavailable, match="has sent nothing for"):
-            link.read_wrench()
-        assert time.monotonic() - started < 0.5  # no waiting on the socket (loose: shared CPUs)
+
+        def silence_reported() -> tuple[Unavailable, float] | None:
+            started = time.monotonic()
+            try:
+                link.read_wrench()
+            except Unavailable as error:
+                return error, time.monotonic() - started
+            return None
+
+        error, took = wait_for(silence_reported, timeout_s=2.0, what="the silence reported")
+        assert "has sent nothing for" in str(error)
+        assert took < 0.5  # no waiting on the socket (loose: shared CPUs)
     finally:
         link.close()
 
 
 def test_no_sensor_at_all_fails_at_open():
-    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as unused:
-        unused.bind(("127.0.0.1", 0))
-        port = unused.getsockname()[1]
-    started = time.monotonic()
-    with pytest.raises(Unavailable, match=f"no RDT data from the Net F/T at 127.0.0.1:{port}"):
-        RdtWrenchLink("127.0.0.1", port, connect_timeout_s=0.3)
-    assert time.monotonic() - started < 1.0
+    # A port of our own that never answers: a Net F/T that is off (the link treats an ICMP
+    # "port unreachable" from an address with nothing bound the same way).
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as mute:
+        mute.bind(("127.0.0.1", 0))
+        port = mute.getsockname()[1]
+        started = time.monotonic()
+        with pytest.raises(Unavailable,
+                           match=f"no RDT data from the Net F/T at 127.0.0.1:{port}"):
+            RdtWrenchLink("127.0.0.1", port, connect_timeout_s=0.3)
+        assert time.monotonic() - started < 1.0
 
 
 def test_a_sensor_reporting_an_error_status_is_unavailable(responder_factory):
@@ -183,16 +193,12 @@ def test_the_service_process_reads_a_net_ft_when_configured(responder_factory, w
 
     from telerobot.v1 import force_sensor_pb2 as pb
     from telerobot.v1 import force_sensor_pb2_grpc
-    from tests.conftest import free_port, start_process
-
     responder = responder_factory()
-    process = start_process(
-        ["-m", "services.force_sensor", "--address", f"127.0.0.1:{free_port()}",
-         "--sensor", "rdt", "--rdt-address", f"127.0.0.1:{responder.port}"],
-        env={"TELEROBOT_WORLD_SHM": world.shm_name})
+    process = start_service("force_sensor", "--sensor", "rdt",
+                            "--rdt-address", f"127.0.0.1:{responder.port}",
+                            env={"TELEROBOT_WORLD_SHM": world.shm_name})
     try:
-        process.wait_ready(["force_sensor"])
-        with grpc.insecure_channel(process.ready["force_sensor"]) as channel:
+        with grpc.insecure_channel(process.address) as channel:
             sensor = force_sensor_pb2_grpc.ForceSensorStub(channel)
             sensor.StartReading(pb.StartReadingRequest(), timeout=5)
             sample = sensor.GetWrench(pb.GetWrenchRequest(), timeout=5).sample
