@@ -17,8 +17,9 @@ from pathlib import Path
 import grpc
 
 from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
+from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
-from services.decision_server.supervisor import DecisionCore, build_core
+from services.decision_server.supervisor import DecisionCore
 from services.runtime.config import address_for
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.process import run_service
@@ -43,14 +44,15 @@ class DecisionService:
     def bindings(self) -> Sequence[ServiceBinding]:
         slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address,
                           self.args.emergency_stop_address or None)
-        self.core = build_core(slave, Path(self.args.recordings_dir))
+        self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir)))
         self._stereo_channel = grpc.insecure_channel(self.args.stereo_camera_address,
                                                      options=RECONNECT_OPTIONS)
         stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
         return [binding(decision_server_pb2_grpc, "DecisionServer",
                         DecisionServerServicer(self.core)),
                 *(binding(module, name, servicer)
-                  for module, name, servicer in make_facades(self.core, stereo))]
+                  for module, name, servicer in make_facades(self.core, slave.robot,
+                                                             slave.sensor, stereo))]
 
     def start(self) -> None:
         pass  # the backends are reached per call; their absence is UNAVAILABLE, not a crash

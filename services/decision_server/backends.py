@@ -3,6 +3,7 @@ servicers that put the supervisory checks in front of the dedicated processes.""
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import threading
 import time
@@ -16,7 +17,7 @@ from grpc_status import rpc_status
 
 from services.common import convert
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
-from services.runtime.errors import TelerobotError, error_for_status
+from services.runtime.errors import TelerobotError, Unavailable, error_for_status
 from telerobot.v1 import (
     force_sensor_pb2,
     force_sensor_pb2_grpc,
@@ -35,8 +36,11 @@ RECONNECT_OPTIONS = [("grpc.initial_reconnect_backoff_ms", 100),
                      ("grpc.min_reconnect_backoff_ms", 100),
                      ("grpc.max_reconnect_backoff_ms", 1000)]
 RETRY_S = 0.5  # background streams reconnect this often after a failure
-STATE_PERIOD_S = 0.01  # the cached pose and wrench in acks are at most this old
-STATE_FRESH_S = 0.1
+STATE_PERIOD_S = 0.01  # the pose and wrench in acks come from 100 Hz streams
+STATE_FRESH_S = 0.1  # an older cached pose is fetched anew
+# An older cached wrench is left out of acks: the sensor stopped reading or its stream stalled,
+# and a stale force shown as current is worse than none.
+WRENCH_FRESH_S = 0.05
 _FRAMES = {"BASE": types_pb2.REFERENCE_FRAME_BASE, "WRIST": types_pb2.REFERENCE_FRAME_WRIST,
            "TOOL": types_pb2.REFERENCE_FRAME_TOOL}
 # Metadata a forwarded call carries on: the lane and the lease, nothing gRPC-internal.
@@ -72,8 +76,9 @@ def call(method: Callable, request, metadata=(), timeout: float | None = CALL_TI
 
 
 class GrpcSlave:
-    """The arm and its sensor, behind their own services. Keeps the latest pose and wrench
-    from background streams (for acks) and hands ProxyRobot's events to `on_robot_event`."""
+    """The `Slave` port over gRPC: the arm and its sensor behind their own services. Follows
+    ProxyRobot's state and events and the sensor's wrench on background streams, handing
+    each state sample to `on_state` and each event to `on_robot_event`."""
 
     def __init__(self, proxy_address: str, sensor_address: str,
                  emergency_stop_address: str | None = None):
@@ -88,19 +93,24 @@ class GrpcSlave:
                                   if emergency_stop_address else None)
         self.emergency = (proxy_robot_pb2_grpc.ProxyRobotStub(self.emergency_channel)
                           if self.emergency_channel is not None else None)
+        self.on_state: Callable[[SlaveState], None] = lambda state: None
         self.on_robot_event: Callable[[object], None] = lambda message: None
         self._state: SlaveState | None = None
         self._wrench: SlaveWrench | None = None
         self._closed = threading.Event()
-        self._streams: list = []
-        for target, name in ((self._follow_state, "follow-state"),
-                             (self._follow_wrench, "follow-wrench"),
-                             (self._follow_events, "follow-events")):
-            threading.Thread(target=target, name=name, daemon=True).start()
+        self._streams_lock = threading.Lock()
+        self._streams: set = set()  # open calls, cancelled on close
+        self._stream_errors: dict[str, str] = {}  # background stream -> why it is down
+        for target, name in ((self._follow_state, "proxy_robot"),
+                             (self._follow_wrench, "force_sensor"),
+                             (self._follow_events, "proxy_robot events")):
+            threading.Thread(target=target, name=f"follow-{name}", daemon=True).start()
 
     def close(self) -> None:
         self._closed.set()
-        for stream in list(self._streams):
+        with self._streams_lock:
+            streams = list(self._streams)
+        for stream in streams:
             stream.cancel()
         self.robot_channel.close()
         self.sensor_channel.close()
@@ -118,10 +128,17 @@ class GrpcSlave:
         return MoveResult(convert.pose_from_proto(reply.target_tool_pose, "target_tool_pose"),
                           reply.applied_fraction)
 
+    def move_joints(self, delta_joints_rad) -> MoveResult:
+        reply = call(self.robot.MoveJointsIncremental,
+                     proxy_robot_pb2.MoveJointsIncrementalRequest(
+                         delta_joint_positions_rad=[float(v) for v in delta_joints_rad]))
+        return MoveResult(convert.pose_from_proto(reply.target_tool_pose, "target_tool_pose"),
+                          1.0)
+
     def hold(self, reason: str) -> None:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
 
-    def emergency_stop(self, reason: str) -> None:
+    def emergency_stop(self, reason: str) -> str:
         """Latch through the band first (fast under any ProxyRobot load), then through
         ProxyRobot too: it records the reason and stops its interpolator, and it is the path
         left when the band is down. Raises only when neither path latched the stop."""
@@ -135,82 +152,134 @@ class GrpcSlave:
                 log.error("the emergency-stop band failed (%s); stopping through ProxyRobot",
                           error.message)
         try:
-            call(self.robot.EmergencyStop, request)
+            return _status_name(call(self.robot.EmergencyStop, request).status)
         except TelerobotError as error:
             if not latched:
                 raise
             log.warning("stop latched by the band; ProxyRobot did not confirm: %s", error.message)
+            return "ESTOPPED"
 
-    def reset(self) -> None:
-        call(self.robot.Reset, proxy_robot_pb2.ResetRequest())
+    def reset(self) -> str:
+        return _status_name(call(self.robot.Reset, proxy_robot_pb2.ResetRequest()).status)
+
+    def set_tool_frame(self, flange_to_tool: pin.SE3) -> pin.SE3:
+        reply = call(self.robot.SetToolFrame, proxy_robot_pb2.SetToolFrameRequest(
+            flange_to_tool=convert.pose_to_proto(flange_to_tool)))
+        # Keep the sensor's tool frame equal to the arm's, as the contracts promise.
+        call(self.sensor.SetSensorConfig, force_sensor_pb2.SetSensorConfigRequest(
+            config=force_sensor_pb2.SensorConfig(flange_to_tool=reply.flange_to_tool),
+            update_mask={"paths": ["flange_to_tool"]}))
+        return convert.pose_from_proto(reply.flange_to_tool, "flange_to_tool")
 
     def state(self) -> SlaveState:
         state = self._state
         if state is not None and time.time_ns() - state.sample_time_ns < STATE_FRESH_S * 1e9:
             return state
-        status = call(self.robot.GetStatus, proxy_robot_pb2.GetStatusRequest()).status
-        name = types_pb2.RobotStatus.Name(status).removeprefix("ROBOT_STATUS_")
+        reply = call(self.robot.GetStatus, proxy_robot_pb2.GetStatusRequest())
+        name = _status_name(reply.status)
         if name == "NOT_CONNECTED":
-            return SlaveState(pin.SE3.Identity(), name, time.time_ns())
-        reply = call(self.robot.GetState, proxy_robot_pb2.GetStateRequest()).state
-        return self._state_from(reply)
+            return SlaveState(pin.SE3.Identity(), name, time.time_ns(), reply.reason)
+        return self._state_from(call(self.robot.GetState, proxy_robot_pb2.GetStateRequest())
+                                .state)
 
     def wrench(self) -> SlaveWrench | None:
-        return self._wrench
+        wrench = self._wrench
+        if wrench is None or time.time_ns() - wrench.sample_time_ns > WRENCH_FRESH_S * 1e9:
+            return None  # the sensor stopped reading, or its stream stalled: say nothing
+        return wrench
 
-    def wrench_stream(self, decimation: int) -> Iterator[SlaveWrench]:
-        """Samples from the sensor every `decimation` readings, until the caller stops."""
-        stream = self.sensor.StreamWrench(force_sensor_pb2.StreamWrenchRequest(
-            decimation=decimation, queue_capacity=4))
-        self._streams.append(stream)
-        try:
-            for message in stream:
-                for sample in message.samples:
-                    yield _wrench_from(sample)
-        except grpc.RpcError as error:
-            if error.code() != grpc.StatusCode.CANCELLED:
-                raise domain_error(error) from None
-        finally:
-            stream.cancel()
-            self._streams.remove(stream)
+    def wrench_stream(self, decimation: int) -> _WrenchStream:
+        """Samples from the sensor every `decimation` readings, until cancelled."""
+        return _WrenchStream(self, self.sensor.StreamWrench(
+            force_sensor_pb2.StreamWrenchRequest(decimation=decimation, queue_capacity=4)))
+
+    def health(self) -> dict[str, str]:
+        errors = dict(self._stream_errors)
+        return {"proxy_robot": errors.get("proxy_robot", "ok"),
+                "force_sensor": errors.get("force_sensor", "ok")}
 
     # -- background streams -----------------------------------------------------------------
 
+    @contextlib.contextmanager
+    def _opened(self, stream):
+        """Track an open call so close() can cancel it; forget it when it ends."""
+        with self._streams_lock:
+            self._streams.add(stream)
+        try:
+            yield stream
+        finally:
+            stream.cancel()
+            with self._streams_lock:
+                self._streams.discard(stream)
+
     @staticmethod
     def _state_from(state: types_pb2.RobotState) -> SlaveState:
-        name = types_pb2.RobotStatus.Name(state.status).removeprefix("ROBOT_STATUS_")
-        return SlaveState(convert.pose_from_proto(state.tool_pose, "tool_pose"), name,
-                          state.sample_time.ToNanoseconds())
+        return SlaveState(convert.pose_from_proto(state.tool_pose, "tool_pose"),
+                          _status_name(state.status), state.sample_time.ToNanoseconds())
 
-    def _follow(self, open_stream: Callable[[], Iterator], on_message: Callable) -> None:
+    def _follow(self, name: str, open_stream: Callable[[], Iterator],
+                on_message: Callable) -> None:
         while not self._closed.is_set():
             try:
-                stream = open_stream()
-                self._streams.append(stream)
-                for message in stream:
-                    on_message(message)
+                with self._opened(open_stream()) as stream:
+                    for message in stream:
+                        self._stream_errors.pop(name, None)
+                        on_message(message)
             except grpc.RpcError as error:
                 if self._closed.is_set():
                     return
-                log.debug("background stream: %s; retrying", error.details())
+                self._stream_errors[name] = f"{error.code().name}: {error.details()}"
+                log.debug("%s stream: %s; retrying", name, error.details())
             except (TelerobotError, ValueError) as error:
-                log.warning("background stream: %s", error)
+                self._stream_errors[name] = str(error)
+                log.warning("%s stream: %s", name, error)
             self._closed.wait(RETRY_S)
+
+    def _on_state_message(self, message) -> None:
+        self._state = self._state_from(message.state)
+        self.on_state(self._state)
 
     def _follow_state(self) -> None:
         period = {"nanos": int(STATE_PERIOD_S * 1e9)}
-        self._follow(lambda: self.robot.StreamState(proxy_robot_pb2.StreamStateRequest(
-            period=period)), lambda m: setattr(self, "_state", self._state_from(m.state)))
+        self._follow("proxy_robot", lambda: self.robot.StreamState(
+            proxy_robot_pb2.StreamStateRequest(period=period)), self._on_state_message)
 
     def _follow_wrench(self) -> None:
         decimation = int(STATE_PERIOD_S / 0.001)
-        self._follow(lambda: self.sensor.StreamWrench(force_sensor_pb2.StreamWrenchRequest(
-            decimation=decimation, queue_capacity=4)),
+        self._follow("force_sensor", lambda: self.sensor.StreamWrench(
+            force_sensor_pb2.StreamWrenchRequest(decimation=decimation, queue_capacity=4)),
             lambda m: m.samples and setattr(self, "_wrench", _wrench_from(m.samples[-1])))
 
     def _follow_events(self) -> None:
-        self._follow(lambda: self.robot.StreamRobotEvents(
+        self._follow("proxy_robot events", lambda: self.robot.StreamRobotEvents(
             proxy_robot_pb2.StreamRobotEventsRequest()), lambda m: self.on_robot_event(m))
+
+
+class _WrenchStream:
+    """One StreamWrench call as a `WrenchStream`."""
+
+    def __init__(self, slave: GrpcSlave, call):
+        self._slave = slave
+        self._call = call
+
+    def __iter__(self) -> Iterator[SlaveWrench]:
+        with self._slave._opened(self._call):  # noqa: SLF001 - the slave's stream registry
+            try:
+                for message in self._call:
+                    for sample in message.samples:
+                        yield _wrench_from(sample)
+            except grpc.RpcError as error:
+                if error.code() != grpc.StatusCode.CANCELLED:
+                    raise domain_error(error) from None
+                return
+        raise Unavailable("the sensor's stream ended", reason="SENSOR_STREAM_ENDED")
+
+    def cancel(self) -> None:
+        self._call.cancel()
+
+
+def _status_name(status: int) -> str:
+    return types_pb2.RobotStatus.Name(status).removeprefix("ROBOT_STATUS_")
 
 
 def _wrench_from(sample: force_sensor_pb2.WrenchSample) -> SlaveWrench:

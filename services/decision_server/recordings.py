@@ -1,8 +1,9 @@
 """Recorded command sequences on disk: the DecisionServer's repeatability. No gRPC here.
 
-A recording is a JSON-lines file: a header line, then one line per applied Cartesian
-increment with its time offset from the first, its frame, ΔX, ΔM, and the tool target it led to
-(so a replay can be checked against the original path).
+A recording is a JSON-lines file: a header line, then one line per applied increment with its
+time offset from the first: a Cartesian one with its frame, ΔX and ΔM, or a joint one
+(frame "JOINTS") with its Δθ; each with the tool target it led to (so a replay can be checked
+against the original path).
 """
 
 from __future__ import annotations
@@ -10,12 +11,12 @@ from __future__ import annotations
 import json
 import re
 import threading
-import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import AlreadyExists, FailedPrecondition, InvalidArgument, NotFound
 
 NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]{1,64}")
@@ -24,24 +25,29 @@ NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]{1,64}")
 @dataclass(frozen=True)
 class RecordedCommand:
     offset_s: float
-    frame: str
+    frame: str  # BASE, WRIST or TOOL for a Cartesian increment; JOINTS for a joint one
     delta_position_m: np.ndarray
     delta_rotation: np.ndarray
     target_position_m: np.ndarray
+    delta_joints_rad: np.ndarray | None = None  # with frame JOINTS only
 
     def to_json(self) -> str:
-        return json.dumps({
-            "offset_s": self.offset_s, "frame": self.frame,
-            "delta_position_m": self.delta_position_m.tolist(),
-            "delta_rotation": self.delta_rotation.reshape(9).tolist(),
-            "target_position_m": self.target_position_m.tolist()})
+        data = {"offset_s": self.offset_s, "frame": self.frame,
+                "delta_position_m": self.delta_position_m.tolist(),
+                "delta_rotation": self.delta_rotation.reshape(9).tolist(),
+                "target_position_m": self.target_position_m.tolist()}
+        if self.delta_joints_rad is not None:
+            data["delta_joints_rad"] = self.delta_joints_rad.tolist()
+        return json.dumps(data)
 
     @classmethod
     def from_json(cls, line: str) -> RecordedCommand:
         data = json.loads(line)
+        joints = data.get("delta_joints_rad")
         return cls(data["offset_s"], data["frame"], np.array(data["delta_position_m"]),
                    np.array(data["delta_rotation"]).reshape(3, 3),
-                   np.array(data["target_position_m"]))
+                   np.array(data["target_position_m"]),
+                   None if joints is None else np.array(joints))
 
 
 @dataclass(frozen=True)
@@ -55,8 +61,9 @@ class RecordingInfo:
 class RecordingStore:
     """Recordings in one directory. One recording at a time. Thread-safe."""
 
-    def __init__(self, directory: Path):
+    def __init__(self, directory: Path, clock: Clock = SYSTEM_CLOCK):
         self.directory = Path(directory)
+        self._clock = clock
         self.directory.mkdir(parents=True, exist_ok=True)
         self._lock = threading.Lock()
         self._active: tuple[str, int, float, list[RecordedCommand]] | None = None
@@ -76,7 +83,7 @@ class RecordingStore:
             if path.exists():
                 raise AlreadyExists(f"a recording named '{name}' exists: delete it or pick "
                                     "another name", reason="NAME_TAKEN")
-            self._active = (name, time.time_ns(), time.monotonic(), [])
+            self._active = (name, self._clock.time_ns(), self._clock.monotonic(), [])
         return RecordingInfo(name, self._active[1], 0.0, 0)
 
     @property
@@ -85,14 +92,20 @@ class RecordingStore:
 
     def add(self, frame: str, delta_position: np.ndarray, delta_rotation: np.ndarray,
             target_position: np.ndarray) -> None:
+        self._add(frame, delta_position, delta_rotation, target_position, None)
+
+    def add_joints(self, delta_joints: np.ndarray, target_position: np.ndarray) -> None:
+        self._add("JOINTS", np.zeros(3), np.eye(3), target_position, delta_joints)
+
+    def _add(self, frame, delta_position, delta_rotation, target_position, delta_joints):
         with self._lock:
             if self._active is None:
                 return
             _, _, started, commands = self._active
-            commands.append(RecordedCommand(time.monotonic() - started, frame,
-                                            np.asarray(delta_position, float),
-                                            np.asarray(delta_rotation, float),
-                                            np.asarray(target_position, float)))
+            commands.append(RecordedCommand(
+                self._clock.monotonic() - started, frame, np.asarray(delta_position, float),
+                np.asarray(delta_rotation, float), np.asarray(target_position, float),
+                None if delta_joints is None else np.asarray(delta_joints, float)))
 
     def stop(self) -> RecordingInfo:
         with self._lock:

@@ -10,9 +10,10 @@ import grpc
 import numpy as np
 
 from services.common import convert
+from services.common.geometry import finite_vector
 from services.decision_server import assistance as assist
 from services.decision_server.arbitration import ControlMode, ControlView, Lease
-from services.decision_server.backends import call, forwarded_metadata, forwarding_servicer
+from services.decision_server.backends import forwarding_servicer
 from services.decision_server.supervisor import (
     AssistanceChanged,
     CommandResult,
@@ -173,18 +174,17 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         self._core = core
 
     def _ack(self, sequence: int, send_time, result: CommandResult) -> pb.TeleoperateResponse:
-        slave = self._core.slave
         ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
                             receive_time=convert.timestamp(result.receive_time_ns),
                             apply_time=convert.timestamp(result.apply_time_ns),
                             outcome=_OUTCOMES[result.outcome], detail=result.detail)
         try:
-            state = slave.state()
+            state = self._core.robot_state()
             ack.tool_pose.CopyFrom(convert.pose_to_proto(state.tool_pose))
             ack.status = types_pb2.RobotStatus.Value(f"ROBOT_STATUS_{state.status}")
         except TelerobotError:
             pass  # the ack still says what happened to the command
-        wrench = slave.wrench()
+        wrench = self._core.wrench()
         if wrench is not None:
             ack.tool_wrench.CopyFrom(convert.wrench_to_proto(wrench.force_n, wrench.torque_nm))
         return pb.TeleoperateResponse(ack=ack)
@@ -307,8 +307,9 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if kind is None:
             raise InvalidArgument("set one action: busy_work, move_joints or move_cartesian",
                                   reason="NO_ACTION")
+        move = _move_from_proto(self._core, lease_id(context), kind, getattr(request, kind))
         if kind != "busy_work":
-            self._core.locks.require(lease_id(context))
+            self._core.locks.require(lease_id(context))  # before waiting at a barrier
         if request.cobegin_id:
             self._core.barriers.arrive_and_wait(request.cobegin_id)
         if kind == "busy_work":
@@ -316,10 +317,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                                                   convert.seconds(request.busy_work.duration))
         else:
             start = time.time_ns()
-            robot = self._core.slave.robot
-            method = (robot.MoveJointsIncremental if kind == "move_joints"
-                      else robot.MoveCartesianIncremental)
-            call(method, getattr(request, kind), forwarded_metadata(context))
+            move()
             end = time.time_ns()
         return pb.RunActionResponse(action_id=request.action_id, lane=LANE_TO_PROTO[lane],
                                     arrive_time=convert.timestamp(arrive),
@@ -341,9 +339,28 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
 
 # -- the inherited services, forwarded --------------------------------------------------------
 
-def make_facades(core: DecisionCore, stereo_stub) -> list[tuple]:
-    """(grpc module, service name, servicer) for ProxyRobot, ForceSensor and StereoCamera."""
-    slave = core.slave
+def _move_from_proto(core: DecisionCore, lease: str | None, kind: str, action):
+    """RunAction's move, checked and converted now, to run through the core later."""
+    if kind == "move_joints":
+        deltas = finite_vector(action.delta_joint_positions_rad, 6,
+                               "delta_joint_positions_rad")
+        return lambda: core.move_joints(lease, deltas)
+    if kind == "move_cartesian":
+        delta_x = convert.vector3_from_proto(action.delta_position_m, "delta_position_m")
+        delta_m = convert.rotation_from_proto(action.delta_rotation, "delta_rotation")
+        frame = frame_from_proto(action.frame)
+        return lambda: core.move_cartesian(lease, delta_x, delta_m, frame)
+    return None
+
+
+def _status(name: str) -> int:
+    return types_pb2.RobotStatus.Value(f"ROBOT_STATUS_{name}")
+
+
+def make_facades(core: DecisionCore, robot_stub, sensor_stub, stereo_stub) -> list[tuple]:
+    """(grpc module, service name, servicer) for ProxyRobot, ForceSensor and StereoCamera:
+    each forwarded to its stub with the lock in front of commands, and the calls that change
+    what the DecisionServer supervises (stop, reset, tool frame) through the core."""
 
     def guard_commands(commands: set[str]):
         def guard(method: str, context) -> None:
@@ -353,31 +370,24 @@ def make_facades(core: DecisionCore, stereo_stub) -> list[tuple]:
 
     class RobotOverrides:
         def EmergencyStop(self, request, context):
-            core.emergency_stop(request.reason or "emergency stop")
-            status = call(slave.robot.GetStatus, proxy_robot_pb2.GetStatusRequest()).status
+            status = core.emergency_stop(request.reason or "emergency stop")
             return proxy_robot_pb2.EmergencyStopResponse(
-                status=status, stop_time=convert.timestamp(time.time_ns()))
+                status=_status(status), stop_time=convert.timestamp(time.time_ns()))
 
         def Reset(self, request, context):
-            core.reset(lease_id(context))
-            status = call(slave.robot.GetStatus, proxy_robot_pb2.GetStatusRequest()).status
-            return proxy_robot_pb2.ResetResponse(status=status)
+            return proxy_robot_pb2.ResetResponse(status=_status(core.reset(lease_id(context))))
 
         def SetToolFrame(self, request, context):
-            core.locks.require(lease_id(context))
-            reply = call(slave.robot.SetToolFrame, request, forwarded_metadata(context))
-            # Keep the sensor's tool frame equal to the arm's, as the contracts promise.
-            call(slave.sensor.SetSensorConfig, force_sensor_pb2.SetSensorConfigRequest(
-                config=force_sensor_pb2.SensorConfig(flange_to_tool=reply.flange_to_tool),
-                update_mask={"paths": ["flange_to_tool"]}))
-            return reply
+            flange_to_tool = convert.pose_from_proto(request.flange_to_tool, "flange_to_tool")
+            return proxy_robot_pb2.SetToolFrameResponse(flange_to_tool=convert.pose_to_proto(
+                core.set_tool_frame(lease_id(context), flange_to_tool)))
 
     robot = forwarding_servicer(
-        proxy_robot_pb2_grpc.ProxyRobotServicer, slave.robot,
+        proxy_robot_pb2_grpc.ProxyRobotServicer, robot_stub,
         proxy_robot_pb2.DESCRIPTOR.services_by_name["ProxyRobot"],
         guard_commands(PROXY_COMMANDS), RobotOverrides)
     sensor = forwarding_servicer(
-        force_sensor_pb2_grpc.ForceSensorServicer, slave.sensor,
+        force_sensor_pb2_grpc.ForceSensorServicer, sensor_stub,
         force_sensor_pb2.DESCRIPTOR.services_by_name["ForceSensor"],
         guard_commands(SENSOR_COMMANDS))
     stereo = forwarding_servicer(

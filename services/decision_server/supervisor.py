@@ -1,8 +1,20 @@
-"""DecisionCore: the DecisionServer's supervisory logic, with no transport code.
+"""DecisionCore: the DecisionServer's supervisory logic, and the one owner of the arm on the
+operator's side. No transport code.
 
-It owns the control lock, the assistance configuration, the emergency-stop latch, the
-teleoperation sessions and their watchdogs, record and replay, the force-control loop, and the
-cobegin barriers, and it publishes its events. It reaches the arm through a `Slave`.
+It owns the control lock, the assistance configuration, the teleoperation sessions and their
+watchdogs, record and replay, the force-control loop and the cobegin barriers, and publishes
+its events. It reaches the arm only through its `Slave` port.
+
+Threads: gRPC handlers, the session watchdogs, the replay, the force loop, the lease reaper
+and the slave's state stream all call in. Every piece of mutable state below lives behind
+`self._lock`; nothing is called on the slave or the lock manager while it is held (a slow arm
+never blocks a stop, and the lock manager's callback may take it), and threads are signalled
+under it but joined outside it.
+
+The emergency stop has one source of truth: the latch at the hardware, as the arm's status
+reports it. Whichever door stopped the arm (this server, ProxyRobot, the emergency-stop band),
+the first state sample that says ESTOPPED stops replay and force control here, and commands
+are refused until a Reset, whose answer is the status after it.
 """
 
 from __future__ import annotations
@@ -11,9 +23,7 @@ import dataclasses
 import itertools
 import logging
 import threading
-import time
 import uuid
-from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,8 +33,16 @@ from services.common.fanout import Fanout
 from services.decision_server.arbitration import ControlView, Lease, LockManager
 from services.decision_server.assistance import Assistance, apply_assistance
 from services.decision_server.cobegin import Barriers, SimulatedProcessor
+from services.decision_server.force_control import ForceLoop
 from services.decision_server.recordings import RecordingInfo, RecordingStore
-from services.decision_server.slave import Slave, SlaveWrench
+from services.decision_server.slave import (
+    LATCHED_STATUSES,
+    MoveResult,
+    Slave,
+    SlaveState,
+    SlaveWrench,
+)
+from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import (
     FailedPrecondition,
     InvalidArgument,
@@ -37,13 +55,6 @@ log = logging.getLogger(__name__)
 DEFAULT_WATCHDOG_S = 0.1
 MIN_WATCHDOG_S, MAX_WATCHDOG_S = 0.01, 5.0
 MIN_REPLAY_SPEED, MAX_REPLAY_SPEED = 0.1, 10.0
-FORCE_LOOP_RETRY_S = 0.2
-FORCE_LOOP_DECIMATION = 5  # the force loop acts on every 5th 1 kHz sample: 200 Hz
-# A sample older than this is history, not feedback: the loop skips it to catch up. Acting on
-# a backlog (gRPC's transport buffers hold seconds of samples when the loop falls behind on a
-# loaded machine) would add that whole delay to the loop, and a contact loop with K ≈ 1e5 N/m
-# goes unstable once A·K·delay nears π/2.
-FORCE_LOOP_MAX_SAMPLE_AGE_NS = 50_000_000
 
 
 # -- events -------------------------------------------------------------------------------
@@ -81,6 +92,13 @@ class RobotEventForwarded:
     message: object  # the ProxyRobot event, as it came
 
 
+@dataclass(frozen=True)
+class DecisionEvent:
+    sequence: int
+    time_ns: int
+    payload: object
+
+
 @dataclass
 class _Replay:
     """A running replay: its thread, how to stop it, and how far it got."""
@@ -89,13 +107,6 @@ class _Replay:
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)
     reason: str = ""
     replayed: int = 0
-
-
-@dataclass(frozen=True)
-class DecisionEvent:
-    sequence: int
-    time_ns: int
-    payload: object
 
 
 # -- teleoperation --------------------------------------------------------------------------
@@ -109,7 +120,8 @@ class CommandResult:
 
 
 class TeleopSession:
-    """One operator's Teleoperate stream: increments in, the watchdog behind them."""
+    """One operator's Teleoperate stream: increments in, the watchdog behind them. One
+    stream calls `command`/`heartbeat`; the watchdog thread and `close` share `_lock`."""
 
     def __init__(self, core: DecisionCore, operator_id: str, lease: Lease, mapping: str | None,
                  watchdog_s: float):
@@ -119,32 +131,37 @@ class TeleopSession:
         self.lease = lease
         self.mapping = mapping
         self.watchdog_s = watchdog_s
-        self._last_activity = time.monotonic()
+        self._clock = core.clock
+        self._lock = threading.Lock()
+        self._last_activity = self._clock.monotonic()
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
         self._held = False
         self._closed = threading.Event()
         self._activity = threading.Event()
         self._watchdog = threading.Thread(target=self._watch, name=f"watchdog-{self.session_id}",
                                           daemon=True)
+
+    def start(self) -> TeleopSession:
         self._watchdog.start()
+        return self
 
     def heartbeat(self) -> CommandResult:
-        now = time.time_ns()
+        now = self._clock.time_ns()
         self._touch()
         return CommandResult("HEARTBEAT", "", now, now)
 
     def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
                 clutch_engaged: bool) -> CommandResult:
-        receive = time.time_ns()
+        receive = self._clock.time_ns()
         self._touch()
         self.core.locks.require(self.lease.lease_id)  # FailedPrecondition ends the stream
-        if clutch_engaged or self.core.indexing:
+        assistance, indexing, latched = self.core.snapshot()
+        if clutch_engaged or indexing:
             self._target = None  # the reference follows the hand; re-read the pose after
             return CommandResult("INDEXED", "indexing is engaged", receive, receive)
-        if self.core.estopped:
-            return CommandResult("REJECTED", "an emergency stop is latched: reset it first",
+        if latched:
+            return CommandResult("REJECTED", f"the arm is {latched}: Reset it first",
                                  receive, receive)
-        assistance = self.core.assistance
         mapping = self.mapping or assistance.mapping
         assistance = dataclasses.replace(assistance, mapping=mapping)
         tool = self._target or self.core.slave.state().tool_pose
@@ -154,8 +171,8 @@ class TeleopSession:
         except Unavailable:
             raise  # the arm is unreachable: the stream ends, it is not one refused command
         except TelerobotError as error:
-            return CommandResult("REJECTED", error.message, receive, time.time_ns())
-        applied = time.time_ns()
+            return CommandResult("REJECTED", error.message, receive, self._clock.time_ns())
+        applied = self._clock.time_ns()
         self._target = result.target_tool_pose
         self.core.recordings.add(mapping, dx, dm, result.target_tool_pose.translation)
         modified = modified or result.applied_fraction < 1.0
@@ -166,37 +183,39 @@ class TeleopSession:
 
     def close(self, reason: str) -> None:
         """The stream ended: hold the arm, unless the watchdog already did."""
-        if self._closed.is_set():
-            return
-        self._closed.set()
+        with self._lock:
+            if self._closed.is_set():
+                return
+            self._closed.set()
+            hold = not self._held
+            self._held = True
         self._activity.set()
-        if not self._held:
+        if hold:
             self._hold(reason)
-        self.core._sessions.pop(self.session_id, None)  # noqa: SLF001 - the core's registry
+        self.core.forget_session(self.session_id)
 
     def _touch(self) -> None:
-        self._last_activity = time.monotonic()
-        self._held = False
+        with self._lock:
+            self._last_activity = self._clock.monotonic()
+            self._held = False
         self._activity.set()
 
     def _watch(self) -> None:
-        while True:
+        while not self._closed.is_set():
             # Clear before reading the state, so a command or a close that lands in between
             # still wakes the wait below instead of being missed.
             self._activity.clear()
-            if self._closed.is_set():
-                return
-            remaining = self._last_activity + self.watchdog_s - time.monotonic()
-            if remaining > 0:
-                self._activity.wait(remaining)
-                continue
-            if not self._held:
+            with self._lock:
+                remaining = self._last_activity + self.watchdog_s - self._clock.monotonic()
+                fire = remaining <= 0 and not self._held and not self._closed.is_set()
+                if fire:
+                    self._held = True
+            if fire:
                 self._hold("watchdog timeout: no command or heartbeat")
-            self._activity.wait()
+            self._clock.wait(self._activity, remaining if remaining > 0 else None)
 
     def _hold(self, reason: str) -> None:
-        self._held = True
-        silence = time.monotonic() - self._last_activity
+        silence = self._clock.monotonic() - self._last_activity
         self._target = None
         try:
             self.core.slave.hold(reason)
@@ -208,49 +227,104 @@ class TeleopSession:
 # -- the core -------------------------------------------------------------------------------
 
 class DecisionCore:
-    def __init__(self, slave: Slave, recordings: RecordingStore,
-                 wrench_stream: Callable[[int], Iterator[SlaveWrench]] | None = None):
+    def __init__(self, slave: Slave, recordings: RecordingStore, clock: Clock = SYSTEM_CLOCK):
         self.slave = slave
         self.recordings = recordings
-        self._wrench_stream = wrench_stream
-        self._lock = threading.Lock()
+        self.clock = clock
+        self._lock = threading.RLock()
         self._event_sequence = itertools.count(1)
         self.events: Fanout[DecisionEvent] = Fanout()
-        self.locks = LockManager(self._on_control_change)
-        self.assistance = Assistance()
+        self.locks = LockManager(self._on_control_change, clock=clock)
+        self._assistance = Assistance()
         self._force_lease: Lease | None = None  # the lease that switched force control on
-        self.indexing = False
-        self.estopped = False
+        self._force_loop: ForceLoop | None = None
+        self._indexing = False
+        # The arm's latest status, from state samples and from the answers of stop and reset;
+        # an older sample never overrides a newer answer.
+        self._state: SlaveState | None = None
         self._sessions: dict[str, TeleopSession] = {}
         self._replay: _Replay | None = None
-        self._force_loop: tuple[threading.Thread, threading.Event] | None = None
         self.barriers = Barriers()
         self.processor = SimulatedProcessor()
+        slave.on_state = self._on_state
+        slave.on_robot_event = lambda message: self.emit(RobotEventForwarded(message))
 
     def emit(self, payload) -> None:
-        self.events.publish(DecisionEvent(next(self._event_sequence), time.time_ns(), payload))
-
-    def _on_control_change(self, view: ControlView, reason: str) -> None:
-        """Force control moves the arm by itself, so it lives only as long as the lease that
-        switched it on: released or lapsed (a crashed operator), it stops and the arm holds
-        where it is. The next holder switches it on again if they want it."""
-        self.emit(ControlChanged(view, reason))
-        owner = self._force_lease
-        if owner is None or any(lease.lease_id == owner.lease_id for lease in view.holders):
-            return
-        self._force_lease = None
-        self._stop_force_loop()
-        self.assistance = dataclasses.replace(self.assistance, force_control=None)
-        log.warning("force control switched off: %s", reason)
-        self.emit(AssistanceChanged(self.assistance, owner.operator_id))
+        self.events.publish(DecisionEvent(next(self._event_sequence), self.clock.time_ns(),
+                                          payload))
 
     def close(self) -> None:
         self._stop_replay("the server is stopping")
-        self._stop_force_loop()
-        for session in list(self._sessions.values()):
+        old = self._replace_force_loop(None)
+        if old is not None:
+            old.stop()
+        with self._lock:
+            sessions = list(self._sessions.values())
+        for session in sessions:
             session.close("the server is stopping")
         self.locks.close()
         self.events.close_all()
+
+    # -- what the servicer reads ------------------------------------------------------------
+
+    @property
+    def assistance(self) -> Assistance:
+        return self._assistance
+
+    @property
+    def indexing(self) -> bool:
+        return self._indexing
+
+    @property
+    def latched(self) -> str | None:
+        """ESTOPPED or FAULT while the arm refuses motion until a Reset, else None."""
+        state = self._state
+        return state.status if state is not None and state.status in LATCHED_STATUSES else None
+
+    @property
+    def force_loop(self) -> ForceLoop | None:
+        return self._force_loop
+
+    def snapshot(self) -> tuple[Assistance, bool, str | None]:
+        """(assistance, indexing, latched status or None), read together."""
+        with self._lock:
+            return self._assistance, self._indexing, self.latched
+
+    def robot_state(self) -> SlaveState:
+        """The arm's latest state, with the latched status if it is newer than the sample."""
+        state = self.slave.state()
+        known = self._state
+        if known is not None and known.sample_time_ns > state.sample_time_ns:
+            return dataclasses.replace(state, status=known.status, reason=known.reason)
+        return state
+
+    def wrench(self) -> SlaveWrench | None:
+        return self.slave.wrench()
+
+    # -- the arm's status: one source of truth ----------------------------------------------
+
+    def _on_state(self, state: SlaveState) -> None:
+        self._note_state(state)
+
+    def _note_state(self, state: SlaveState) -> None:
+        with self._lock:
+            known = self._state
+            if known is not None and state.sample_time_ns < known.sample_time_ns:
+                return  # taken before the answer we already have
+            was_latched = self.latched
+            self._state = state
+            newly_latched = self.latched if was_latched is None else None
+        if newly_latched:
+            log.warning("the arm is %s (%s): replay and force control stop", newly_latched,
+                        state.reason or "no reason given")
+            self._stop_replay(f"the arm is {newly_latched}: {state.reason}".rstrip(": "))
+            self._replace_force_loop(None)
+
+    def _note_status(self, status: str, reason: str) -> None:
+        """The status an answer from the arm reported, as of now."""
+        state = self._state
+        pose = state.tool_pose if state is not None else pin.SE3.Identity()
+        self._note_state(SlaveState(pose, status, self.clock.time_ns(), reason))
 
     # -- teleoperation ----------------------------------------------------------------------
 
@@ -261,21 +335,53 @@ class DecisionCore:
         if not MIN_WATCHDOG_S <= watchdog_s <= MAX_WATCHDOG_S:
             raise InvalidArgument(f"watchdog_timeout must be {MIN_WATCHDOG_S * 1e3:.0f} ms.."
                                   f"{MAX_WATCHDOG_S:.0f} s", reason="BAD_WATCHDOG")
-        if self.estopped:
-            raise FailedPrecondition("an emergency stop is latched: Reset it first",
-                                     reason="ESTOPPED")
-        status = self.slave.state().status
+        status = self.robot_state().status
+        if status in LATCHED_STATUSES:
+            raise FailedPrecondition(f"the arm is {status}: Reset it first", reason=status)
         if status not in ("READY", "MOVING"):
             raise FailedPrecondition(f"the arm is {status}: Connect and Initialize it first",
                                      reason=status)
-        if self._replay is not None:
-            raise FailedPrecondition("a replay is running: stop it first", reason="REPLAYING")
         session = TeleopSession(self, operator_id or lease.operator_id, lease, mapping,
                                 watchdog_s)
-        self._sessions[session.session_id] = session
-        return session
+        with self._lock:
+            if self._replay is not None:
+                raise FailedPrecondition("a replay is running: stop it first",
+                                         reason="REPLAYING")
+            self._sessions[session.session_id] = session
+        return session.start()
 
-    # -- assistance and indexing ------------------------------------------------------------
+    def forget_session(self, session_id: str) -> None:
+        with self._lock:
+            self._sessions.pop(session_id, None)
+
+    # -- direct moves (RunAction) -------------------------------------------------------------
+
+    def move_cartesian(self, lease_id: str, delta_position: np.ndarray,
+                       delta_rotation: np.ndarray, frame: str) -> MoveResult:
+        """One Cartesian increment from the lock holder, recorded like a teleoperated one."""
+        self._require_motion_allowed(lease_id)
+        result = self.slave.move_cartesian(delta_position, delta_rotation, frame)
+        self.recordings.add(frame, delta_position, delta_rotation,
+                            result.target_tool_pose.translation)
+        return result
+
+    def move_joints(self, lease_id: str, delta_joints_rad: np.ndarray) -> MoveResult:
+        """One joint increment from the lock holder, recorded."""
+        self._require_motion_allowed(lease_id)
+        result = self.slave.move_joints(delta_joints_rad)
+        self.recordings.add_joints(delta_joints_rad, result.target_tool_pose.translation)
+        return result
+
+    def _require_motion_allowed(self, lease_id: str | None) -> None:
+        self.locks.require(lease_id)
+        with self._lock:
+            latched, replaying = self.latched, self._replay is not None
+        if latched:
+            raise FailedPrecondition(f"the arm is {latched}: Reset it first", reason=latched)
+        if replaying:
+            raise FailedPrecondition("a replay is running: stop it first", reason="REPLAYING")
+
+    # -- assistance, indexing, tool frame ---------------------------------------------------
 
     def set_assistance(self, lease_id: str, assistance: Assistance) -> Assistance:
         lease = self.locks.require(lease_id)
@@ -285,34 +391,62 @@ class DecisionCore:
             anchor = self.slave.state().tool_pose.translation.copy()
             assistance = dataclasses.replace(
                 assistance, constraint=dataclasses.replace(constraint, anchor_m=anchor))
-        self.assistance = assistance
-        self._stop_force_loop()
-        self._force_lease = lease if assistance.force_control is not None else None
-        if assistance.force_control is not None:
-            self._start_force_loop(assistance)
+        with self._lock:
+            self._assistance = assistance
+            self._force_lease = lease if assistance.force_control is not None else None
+            self._replace_force_loop(assistance)
         self.emit(AssistanceChanged(assistance, lease.operator_id))
         return assistance
 
     def set_indexing(self, lease_id: str, engaged: bool) -> bool:
         self.locks.require(lease_id)
-        self.indexing = engaged
+        with self._lock:
+            self._indexing = engaged
         return engaged
+
+    def set_tool_frame(self, lease_id: str, flange_to_tool: pin.SE3) -> pin.SE3:
+        """The tool frame on the arm and the sensor alike (the contracts promise they agree)."""
+        self.locks.require(lease_id)
+        return self.slave.set_tool_frame(flange_to_tool)
+
+    # -- control changes --------------------------------------------------------------------
+
+    def _on_control_change(self, view: ControlView, reason: str) -> None:
+        """Force control moves the arm by itself, so it lives only as long as the lease that
+        switched it on: released or lapsed (a crashed operator), it stops and the arm holds
+        where it is. The next holder switches it on again if they want it."""
+        self.emit(ControlChanged(view, reason))
+        with self._lock:
+            owner = self._force_lease
+            if owner is None or any(h.lease_id == owner.lease_id for h in view.holders):
+                return
+            self._switch_force_control_off()
+        log.warning("force control switched off: %s", reason)
+        self.emit(AssistanceChanged(self._assistance, owner.operator_id))
 
     # -- emergency stop ---------------------------------------------------------------------
 
-    def emergency_stop(self, reason: str) -> None:
-        """Latch, stop replay and force control, and stop the arm. Never needs the lock."""
-        self.estopped = True
-        self.slave.emergency_stop(reason)
-        self._stop_replay(f"emergency stop: {reason}")
-        self._stop_force_loop()
+    def emergency_stop(self, reason: str) -> str:
+        """Stop the arm first, then replay and force control; returns the arm's status.
+        Never needs the lock. Raises Unavailable only when no path latched the stop, and even
+        then stops what runs here."""
+        try:
+            status = self.slave.emergency_stop(reason)
+        finally:
+            self._stop_replay(f"emergency stop: {reason}")
+            self._replace_force_loop(None)
+        self._note_status(status, reason)
+        return status
 
-    def reset(self, lease_id: str) -> None:
+    def reset(self, lease_id: str) -> str:
+        """Clear the latch (the lock holder only); force control, if configured, resumes."""
         self.locks.require(lease_id)
-        self.slave.reset()
-        self.estopped = False
-        if self.assistance.force_control is not None:
-            self._start_force_loop(self.assistance)
+        status = self.slave.reset()
+        self._note_status(status, "reset")
+        with self._lock:
+            if self.latched is None:
+                self._replace_force_loop(self._assistance)
+        return status
 
     # -- record and replay ------------------------------------------------------------------
 
@@ -327,122 +461,99 @@ class DecisionCore:
             raise InvalidArgument(f"speed must be {MIN_REPLAY_SPEED}..{MAX_REPLAY_SPEED}",
                                   reason="BAD_SPEED")
         info, commands = self.recordings.load(name)
-        if self._replay is not None:
-            raise FailedPrecondition("a replay is already running", reason="REPLAYING")
-        if self._sessions:
-            raise FailedPrecondition("an operator is teleoperating: end the session first",
-                                     reason="TELEOPERATING")
-        if self.estopped:
-            raise FailedPrecondition("an emergency stop is latched: Reset it first",
-                                     reason="ESTOPPED")
-        replay = _Replay()
-        replay.thread = threading.Thread(target=self._run_replay,
-                                         args=(info, commands, speed, replay),
-                                         name="replay", daemon=True)
-        self._replay = replay
+        with self._lock:
+            if self._replay is not None:
+                raise FailedPrecondition("a replay is already running", reason="REPLAYING")
+            if self._sessions:
+                raise FailedPrecondition("an operator is teleoperating: end the session first",
+                                         reason="TELEOPERATING")
+            if self.latched:
+                raise FailedPrecondition(f"the arm is {self.latched}: Reset it first",
+                                         reason=self.latched)
+            replay = _Replay()
+            replay.thread = threading.Thread(target=self._run_replay,
+                                             args=(info, commands, speed, replay),
+                                             name="replay", daemon=True)
+            self._replay = replay
         replay.thread.start()
         return info
 
     def stop_replay(self, lease_id: str) -> int:
         self.locks.require(lease_id)
-        if self._replay is None:
-            raise FailedPrecondition("no replay is running", reason="NOT_REPLAYING")
+        with self._lock:
+            if self._replay is None:
+                raise FailedPrecondition("no replay is running", reason="NOT_REPLAYING")
         return self._stop_replay("stopped by the lock holder")
 
     def _stop_replay(self, reason: str) -> int:
-        replay = self._replay
-        if replay is None:
-            return 0
-        replay.reason = reason
-        replay.stop.set()
+        with self._lock:
+            replay = self._replay
+            if replay is None:
+                return 0
+            replay.reason = reason
+            replay.stop.set()
         if replay.thread is not threading.current_thread():
             replay.thread.join(2.0)
         return replay.replayed
 
     def _run_replay(self, info: RecordingInfo, commands, speed: float, replay: _Replay) -> None:
-        started = time.monotonic()
+        started = self.clock.monotonic()
         first = commands[0].offset_s if commands else 0.0
         replayed, state, detail = 0, "FINISHED", ""
         self.emit(ReplayProgress(info.name, 0, len(commands), "RUNNING"))
         try:
             for command in commands:
                 due = started + (command.offset_s - first) / speed
-                if replay.stop.wait(max(0.0, due - time.monotonic())):
+                if self.clock.wait(replay.stop, max(0.0, due - self.clock.monotonic())):
                     state, detail = "INTERRUPTED", replay.reason
                     break
-                self.slave.move_cartesian(command.delta_position_m, command.delta_rotation,
-                                          command.frame)
+                if command.delta_joints_rad is not None:
+                    self.slave.move_joints(command.delta_joints_rad)
+                else:
+                    self.slave.move_cartesian(command.delta_position_m, command.delta_rotation,
+                                              command.frame)
                 replayed = replay.replayed = replayed + 1
                 if replayed % 10 == 0:
                     self.emit(ReplayProgress(info.name, replayed, len(commands), "RUNNING"))
         except TelerobotError as error:
             state, detail = "INTERRUPTED", error.message
         finally:
-            self._replay = None
+            with self._lock:
+                if self._replay is replay:
+                    self._replay = None
             self.emit(ReplayProgress(info.name, replayed, len(commands), state, detail))
 
     # -- force control (active compliance) -------------------------------------------------
 
-    def _start_force_loop(self, assistance: Assistance) -> None:
-        if self._wrench_stream is None or self.estopped:
-            return
-        stop = threading.Event()
-        thread = threading.Thread(target=self._run_force_loop, args=(assistance, stop),
-                                  name="force-control", daemon=True)
-        self._force_loop = (thread, stop)
-        thread.start()
+    def _replace_force_loop(self, assistance: Assistance | None) -> ForceLoop | None:
+        """Stop the running loop and, when `assistance` asks for force control and the arm is
+        not latched, start its replacement, which waits for the old loop to end before its
+        first step. Never blocks: returns the old loop, for a caller that must join it."""
+        with self._lock:
+            old = self._force_loop
+            new = None
+            control = assistance.force_control if assistance is not None else None
+            if control is not None and self.latched is None:
+                new = ForceLoop(self.slave, control, self.clock, after=old,
+                                on_end=self._on_force_loop_end)
+            self._force_loop = new
+            if old is not None:
+                old.stop(wait=False)
+            if new is not None:
+                new.start()
+            return old
 
-    def _stop_force_loop(self) -> None:
-        loop, self._force_loop = self._force_loop, None
-        if loop is not None:
-            loop[1].set()
-            if loop[0] is not threading.current_thread():
-                loop[0].join(2.0)
+    def _switch_force_control_off(self) -> None:
+        with self._lock:
+            self._force_lease = None
+            self._assistance = dataclasses.replace(self._assistance, force_control=None)
+            self._replace_force_loop(None)
 
-    def _run_force_loop(self, assistance: Assistance, stop: threading.Event) -> None:
-        while not stop.is_set():
-            try:
-                self._force_control_steps(assistance, stop)
-            except Unavailable as error:  # the sensor stalled: subscribe again once it is back
-                log.warning("force control paused: %s", error.message)
-                stop.wait(FORCE_LOOP_RETRY_S)
-            except TelerobotError as error:
-                log.warning("force control stopped: %s", error.message)
+    def _on_force_loop_end(self, loop: ForceLoop, why: str) -> None:
+        """The arm refused a step: force control is off, and everyone is told."""
+        with self._lock:
+            if self._force_loop is not loop:
                 return
-
-    def _force_control_steps(self, assistance: Assistance, stop: threading.Event) -> None:
-        """ΔT = A·(F_t − F_d), ΔM = B·(C_t − C_d) on the selected tool axes, per sample, until
-        stopped; Unavailable when the sensor's stream ends."""
-        control = assistance.force_control
-        axes = control.axes
-        previous_ns = None
-        for sample in self._wrench_stream(FORCE_LOOP_DECIMATION):
-            if stop.is_set():
-                return
-            if time.time_ns() - sample.sample_time_ns > FORCE_LOOP_MAX_SAMPLE_AGE_NS:
-                previous_ns = None  # the target did not move meanwhile: integrate nothing
-                continue
-            if previous_ns is None:
-                previous_ns = sample.sample_time_ns
-                continue
-            dt = min((sample.sample_time_ns - previous_ns) * 1e-9, 0.05)
-            previous_ns = sample.sample_time_ns
-            if dt <= 0 or self.estopped:
-                continue
-            force_error = (sample.force_n - control.desired_force_n) * axes[:3]
-            torque_error = (sample.torque_nm - control.desired_torque_nm) * axes[3:]
-            delta_x = control.translation_gain_m_per_n_s * force_error * dt
-            delta_m = pin.exp3(control.rotation_gain_rad_per_nm_s * torque_error * dt)
-            try:
-                self.slave.move_cartesian(delta_x, delta_m, "TOOL")
-            except TelerobotError as error:
-                if isinstance(error, Unavailable):
-                    raise
-                log.debug("force control step refused: %s", error.message)
-
-
-def build_core(slave, recordings_dir) -> DecisionCore:
-    """A core on a GrpcSlave-like slave, with its robot events forwarded to the core's own."""
-    core = DecisionCore(slave, RecordingStore(recordings_dir), slave.wrench_stream)
-    slave.on_robot_event = lambda message: core.emit(RobotEventForwarded(message))
-    return core
+            owner = self._force_lease
+            self._switch_force_control_off()
+        self.emit(AssistanceChanged(self._assistance, owner.operator_id if owner else ""))

@@ -14,7 +14,8 @@ import pytest
 from services.decision_server.__main__ import LANES
 from services.decision_server.backends import GrpcSlave
 from services.decision_server.servicer import DecisionServerServicer, make_facades
-from services.decision_server.supervisor import DecisionCore, build_core
+from services.decision_server.recordings import RecordingStore
+from services.decision_server.supervisor import DecisionCore
 from services.robot_model.puma560 import HOME_Q
 from services.runtime.server import binding, create_server
 from telerobot.v1 import decision_server_pb2 as pb
@@ -97,9 +98,10 @@ class Station:
 @pytest.fixture
 def station(backends, tmp_path) -> Iterator[Station]:
     slave = GrpcSlave(backends.proxy_address, backends.sensor_address, backends.emergency_address)
-    core = build_core(slave, tmp_path / "recordings")
+    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings"))
     stereo_channel = grpc.insecure_channel(f"127.0.0.1:{free_port()}")  # no camera here
-    facades = make_facades(core, stereo_camera_pb2_grpc.StereoCameraStub(stereo_channel))
+    facades = make_facades(core, slave.robot, slave.sensor,
+                           stereo_camera_pb2_grpc.StereoCameraStub(stereo_channel))
     server, port = create_server(
         "127.0.0.1:0",
         [binding(decision_server_pb2_grpc, "DecisionServer", DecisionServerServicer(core)),

@@ -1,0 +1,118 @@
+"""Active compliance, the loop: ΔT = A·(F_t − F_d), ΔM = B·(C_t − C_d) on the selected tool
+axes, one tool-frame increment per fresh wrench sample. No gRPC here."""
+
+from __future__ import annotations
+
+import logging
+import threading
+from collections.abc import Callable
+
+import pinocchio as pin
+
+from services.decision_server.assistance import ForceControl
+from services.decision_server.slave import Slave
+from services.runtime.clock import Clock
+from services.runtime.errors import TelerobotError, Unavailable
+
+log = logging.getLogger(__name__)
+
+RETRY_S = 0.2  # after the sensor's stream ends, subscribe again this often
+DECIMATION = 5  # the loop acts on every 5th 1 kHz sample: 200 Hz
+MAX_STEP_S = 0.05  # one sample never integrates more than this
+# A sample older than this is history, not feedback: the loop skips it to catch up. Acting on
+# a backlog (gRPC's transport buffers hold seconds of samples when the loop falls behind on a
+# loaded machine) would add that whole delay to the loop, and a contact loop with K ≈ 1e5 N/m
+# goes unstable once A·K·delay nears π/2.
+MAX_SAMPLE_AGE_NS = 50_000_000
+
+
+class ForceLoop:
+    """One force-control loop on its own thread. It starts only once the loop it replaces
+    (`after`) has ended, so two loops never move the arm at once; `stop()` ends it. When it
+    ends by itself (the arm refused a step), it calls `on_end(loop, why)`."""
+
+    def __init__(self, slave: Slave, control: ForceControl, clock: Clock,
+                 after: ForceLoop | None = None,
+                 on_end: Callable[[ForceLoop, str], None] = lambda loop, why: None):
+        self._slave = slave
+        self._on_end = on_end
+        self._control = control
+        self._clock = clock
+        self._after = after
+        self._stop = threading.Event()
+        self._stream = None  # the wrench stream being read, cancelled by stop()
+        self.steps = 0  # increments sent, for tests and logs
+        self._thread = threading.Thread(target=self._run, name="force-control", daemon=True)
+
+    def start(self) -> ForceLoop:
+        self._thread.start()
+        return self
+
+    def stop(self, wait: bool = True) -> None:
+        self._stop.set()
+        stream = self._stream
+        if stream is not None:
+            stream.cancel()  # a loop waiting for a sample ends now, not at the next one
+        if wait and self._thread.ident is not None and (
+                self._thread is not threading.current_thread()):
+            self._thread.join(2.0)
+
+    @property
+    def running(self) -> bool:
+        return self._thread.is_alive()
+
+    def _run(self) -> None:
+        if self._after is not None:
+            self._after.stop()
+            self._after = None  # no chain of ended loops
+        while not self._stop.is_set():
+            try:
+                self._steps()
+            except Unavailable as error:  # the sensor stalled: subscribe again once it is back
+                log.warning("force control paused: %s", error.message)
+                self._clock.wait(self._stop, RETRY_S)
+            except TelerobotError as error:
+                log.warning("force control stopped: %s", error.message)
+                self._on_end(self, error.message)
+                return
+
+    def _steps(self) -> None:
+        """Integrate per fresh sample until stopped; Unavailable when the stream ends."""
+        self._stream = self._slave.wrench_stream(DECIMATION)
+        try:
+            self._act_on(self._stream)
+        finally:
+            self._stream.cancel()  # whatever ended the loop, the subscription ends with it
+
+    def _act_on(self, stream) -> None:
+        if self._stop.is_set():  # stopped while subscribing: stop() may have missed it
+            return
+        control = self._control
+        previous_ns = None
+        for sample in stream:
+            if self._stop.is_set():
+                return
+            if self._clock.time_ns() - sample.sample_time_ns > MAX_SAMPLE_AGE_NS:
+                previous_ns = None  # the target did not move meanwhile: integrate nothing
+                continue
+            if previous_ns is None:
+                previous_ns = sample.sample_time_ns
+                continue
+            dt = min((sample.sample_time_ns - previous_ns) * 1e-9, MAX_STEP_S)
+            previous_ns = sample.sample_time_ns
+            if dt <= 0:
+                continue
+            force_error = (sample.force_n - control.desired_force_n) * control.axes[:3]
+            torque_error = (sample.torque_nm - control.desired_torque_nm) * control.axes[3:]
+            delta_x = control.translation_gain_m_per_n_s * force_error * dt
+            delta_m = pin.exp3(control.rotation_gain_rad_per_nm_s * torque_error * dt)
+            try:
+                self._slave.move_cartesian(delta_x, delta_m, "TOOL")
+                self.steps += 1
+            except Unavailable:
+                raise
+            except TelerobotError as error:
+                # A refusal ends the loop: the core stops it on a latch anyway, and a loop that
+                # keeps sending refused moves at 200 Hz helps nobody.
+                raise TelerobotError(f"a step was refused: {error.message}",
+                                     error.reason) from None

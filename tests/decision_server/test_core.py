@@ -1,0 +1,234 @@
+"""DecisionCore in-process, on a fake slave and a fake clock: no process, no world, no sleeps.
+
+Each test of a defect names it; each failed on the core before it owned the arm."""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from services.decision_server.arbitration import ControlMode, Lease
+from services.decision_server.assistance import Assistance, ForceControl
+from services.decision_server.recordings import RecordingStore
+from services.decision_server.supervisor import (
+    AssistanceChanged,
+    DecisionCore,
+    WatchdogHold,
+)
+from services.runtime.errors import FailedPrecondition, OutOfRange
+from tests.conftest import wait_for
+from tests.fakes.clock import FakeClock
+from tests.fakes.slave import FakeSlave
+
+SERVO_PERIOD_S = 0.001
+Z_AXIS = np.array([False, False, True, False, False, False])
+
+
+@dataclass
+class Rig:
+    clock: FakeClock
+    slave: FakeSlave
+    core: DecisionCore
+    lease: Lease
+
+    def force_control(self, desired_z_n: float = -5.0, gain: float = 2e-3) -> Assistance:
+        control = ForceControl(Z_AXIS, np.array([0.0, 0.0, desired_z_n]), np.zeros(3), gain,
+                               0.0)
+        return self.core.set_assistance(self.lease.lease_id, Assistance(force_control=control))
+
+    def moves(self) -> int:
+        return sum(c.kind == "cartesian" for c in self.slave.commands)
+
+
+@pytest.fixture
+def rig(tmp_path):
+    clock = FakeClock()
+    slave = FakeSlave(clock)
+    core = DecisionCore(slave, RecordingStore(tmp_path, clock), clock)
+    lease = core.locks.acquire("alice", ControlMode.EXCLUSIVE)
+    yield Rig(clock, slave, core, lease)
+    slave.end_wrench_streams()
+    core.close()
+
+
+def moves_in(rig: Rig, steps: int, loops: int) -> int:
+    """Force-control moves sent while the arm steps `steps` servo periods, once `loops` loops
+    read the sensor. One loop acts on every 5th sample; a second one would double it."""
+    wait_for(lambda: rig.slave.subscribers() == loops, what=f"{loops} loops reading")
+    rig.slave.step(SERVO_PERIOD_S, 10)  # a fresh loop skips its first sample
+    before = rig.moves()
+    rig.slave.step(SERVO_PERIOD_S, steps)
+    return rig.moves() - before
+
+
+def test_force_control_brings_the_contact_force_to_its_target(rig):
+    rig.slave.floor_z = rig.slave.tool_pose().translation[2] - 0.002  # 2 mm below the tip
+    rig.force_control(desired_z_n=-5.0)
+    wait_for(lambda: rig.slave.subscribers() == 1, what="the force loop to subscribe")
+    rig.slave.step(SERVO_PERIOD_S, 3000)
+    force = rig.core.wrench().force_n
+    # The table pushes up on a tool whose z points down: −5 N along the tool's z. It settles
+    # within a dead band: a step A·ΔF·dt under the IK's 1 µm tolerance moves nothing, so
+    # |ΔF| < 1e-6 / (2e-3 · 5e-3) = 0.1 N.
+    assert force[2] == pytest.approx(-5.0, abs=0.1)
+    assert np.abs(force[:2]).max() < 1e-3  # the IK's 1 µrad tilts the normal force
+    depth = rig.slave.floor_z - rig.slave.tool_pose().translation[2]
+    assert depth == pytest.approx(5.0 / rig.slave.stiffness, abs=0.1 / rig.slave.stiffness)
+
+
+def test_a_stop_through_another_door_stops_force_control_within_one_state_sample(rig):
+    """Defect: the DecisionServer kept its own e-stop flag, set only by its own stop path, so
+    after a stop through the band its force loop kept sending refused moves at 200 Hz."""
+    rig.force_control()
+    wait_for(lambda: rig.slave.subscribers() == 1, what="the force loop to subscribe")
+    rig.slave.step(SERVO_PERIOD_S, 50)
+    assert rig.moves() > 0  # free space: the loop drives the tool towards the table
+    rig.slave.latch_at_hardware("stopped through the band")
+    rig.slave.step(SERVO_PERIOD_S)  # one state sample
+    assert rig.core.latched == "ESTOPPED"
+    assert rig.core.force_loop is None
+    assert moves_in(rig, 50, loops=0) == 0
+    with pytest.raises(FailedPrecondition, match="ESTOPPED"):
+        rig.core.open_session("alice", rig.lease.lease_id, None, 0.1)
+    with pytest.raises(FailedPrecondition, match="ESTOPPED"):
+        rig.core.move_cartesian(rig.lease.lease_id, np.zeros(3), np.eye(3), "BASE")
+    # Reset clears it, and force control, still configured, resumes.
+    assert rig.core.reset(rig.lease.lease_id) == "READY"
+    assert rig.core.latched is None and rig.core.force_loop is not None
+
+
+def test_reset_with_force_control_on_runs_exactly_one_loop(rig):
+    """Defect: Reset started a second force loop without stopping the first, whose stop
+    event was then lost."""
+    rig.force_control()
+    wait_for(lambda: rig.slave.subscribers() == 1, what="the force loop to subscribe")
+    assert moves_in(rig, 50, loops=1) == 10
+    rig.core.reset(rig.lease.lease_id)  # an idle reset: nothing latched
+    rig.core.reset(rig.lease.lease_id)
+    assert moves_in(rig, 50, loops=1) == 10
+    rig.core.set_assistance(rig.lease.lease_id, Assistance())
+    assert moves_in(rig, 50, loops=0) == 0
+
+
+def test_concurrent_set_assistance_leaves_exactly_one_loop(rig):
+    """Defect: two concurrent SetAssistance calls each started a loop; one was never
+    stopped."""
+    start = threading.Barrier(8)
+
+    def switch_on():
+        start.wait()
+        rig.force_control()
+
+    threads = [threading.Thread(target=switch_on) for _ in range(8)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert moves_in(rig, 50, loops=1) == 10
+    rig.core.set_assistance(rig.lease.lease_id, Assistance())
+    assert moves_in(rig, 50, loops=0) == 0
+
+
+def test_force_control_ends_when_its_lease_lapses(rig):
+    events = rig.core.events.subscribe(64)
+    rig.core.locks.release(rig.lease.lease_id)
+    lease = rig.core.locks.acquire("bob", ControlMode.EXCLUSIVE, lease_s=0.5)
+    rig.lease = lease
+    rig.force_control()
+    wait_for(lambda: rig.slave.subscribers() == 1, what="the force loop to subscribe")
+    rig.slave.step(SERVO_PERIOD_S, 400)  # within the lease
+    assert rig.core.assistance.force_control is not None
+    moving = rig.moves()
+    assert moving > 0
+    rig.slave.step(SERVO_PERIOD_S, 200)  # nobody renews: the lease lapses at 0.5 s
+    wait_for(lambda: rig.core.assistance.force_control is None, what="force control off")
+    assert moves_in(rig, 100, loops=0) == 0
+    kinds = []
+    while (event := events.get(0)) is not None:
+        kinds.append(type(event.payload).__name__)
+    assert "AssistanceChanged" in kinds[kinds.index("ControlChanged"):], kinds
+
+
+def test_a_refused_step_switches_force_control_off_and_says_so(rig, monkeypatch):
+    events = rig.core.events.subscribe(64)
+    rig.force_control()
+    wait_for(lambda: rig.slave.subscribers() == 1, what="the force loop to subscribe")
+
+    def refuse(*args):
+        raise OutOfRange("past the workspace", reason="WORKSPACE")
+
+    monkeypatch.setattr(rig.slave, "move_cartesian", refuse)
+    rig.slave.step(SERVO_PERIOD_S, 20)
+    wait_for(lambda: rig.core.assistance.force_control is None, what="force control off")
+    assert rig.core.force_loop is None
+    changes = []
+    while (event := events.get(0)) is not None:
+        if isinstance(event.payload, AssistanceChanged):
+            changes.append(event.payload.assistance.force_control)
+    assert changes[-1] is None
+
+
+def test_direct_moves_are_recorded_and_refused_while_latched(rig):
+    """Defect: RunAction's moves went around the core: not recorded, no latch check."""
+    lease = rig.lease.lease_id
+    rig.core.start_recording(lease, "direct")
+    rig.core.move_cartesian(lease, np.array([0.0, 0.0, 0.01]), np.eye(3), "BASE")
+    rig.core.move_joints(lease, np.array([0.05, 0, 0, 0, 0, 0]))
+    info = rig.core.recordings.stop()
+    assert info.command_count == 2
+    _, commands = rig.core.recordings.load("direct")
+    assert [c.frame for c in commands] == ["BASE", "JOINTS"]
+    np.testing.assert_allclose(commands[1].delta_joints_rad, [0.05, 0, 0, 0, 0, 0])
+
+    rig.core.emergency_stop("test")
+    target = rig.slave.q_target.copy()
+    with pytest.raises(FailedPrecondition):
+        rig.core.move_joints(lease, np.array([0.05, 0, 0, 0, 0, 0]))
+    np.testing.assert_array_equal(rig.slave.q_target, target)
+
+
+def test_stop_and_reset_answer_with_the_status_after_them(rig):
+    """Defect: the servicer asked for the status again after stop and reset."""
+    assert rig.core.emergency_stop("test") == "ESTOPPED"
+    assert rig.core.latched == "ESTOPPED"
+    assert rig.core.reset(rig.lease.lease_id) == "READY"
+    assert [c.kind for c in rig.slave.commands] == ["estop", "reset"]
+
+
+def test_an_old_state_sample_does_not_undo_a_stop(rig):
+    before = rig.slave.state()
+    rig.clock.advance(0.001)
+    rig.core.emergency_stop("test")
+    rig.slave.on_state(before)  # a sample taken before the stop, delivered after it
+    assert rig.core.latched == "ESTOPPED"
+
+
+def test_the_tool_frame_reaches_the_arm_and_the_sensor(rig):
+    import pinocchio as pin
+
+    frame = pin.SE3(np.eye(3), np.array([0.0, 0.0, 0.15]))
+    rig.core.set_tool_frame(rig.lease.lease_id, frame)
+    assert rig.slave.kinematics.flange_T_tool == frame
+    assert rig.slave.sensor_flange_to_tool == frame
+
+
+def test_the_watchdog_holds_the_arm_exactly_at_its_timeout(rig):
+    events = rig.core.events.subscribe(64)
+    armed = rig.clock.waiters()
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 0.05)
+    session.command(np.array([0.0, 0.0, 0.01]), np.eye(3), False)
+    wait_for(lambda: rig.clock.waiters() > armed, what="the watchdog to arm")
+    rig.clock.advance(0.049)
+    assert not any(c.kind == "hold" for c in rig.slave.commands)
+    rig.clock.advance(0.002)
+    wait_for(lambda: any(c.kind == "hold" for c in rig.slave.commands), what="a hold")
+    event = wait_for(lambda: events.get(0), what="the hold event")
+    while not isinstance(event.payload, WatchdogHold):
+        event = wait_for(lambda: events.get(0), what="the hold event")
+    assert event.payload.silence_s == pytest.approx(0.051, abs=1e-9)
+    assert "watchdog timeout" in event.payload.reason
+    session.close("the stream ended")
+    assert sum(c.kind == "hold" for c in rig.slave.commands) == 1  # no second hold
