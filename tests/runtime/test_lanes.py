@@ -85,9 +85,10 @@ def test_lower_lane_never_borrows_from_higher(executor):
     for _ in range(2):
         assert started.acquire(timeout=5)
     # Emergency, high and medium threads are idle, yet the next low call must wait.
-    waiting = executor.submit(Lane.LOW, lambda: threading.current_thread().name)
-    time.sleep(0.2)
-    assert not waiting.done()
+    began = threading.Event()
+    waiting = executor.submit(Lane.LOW,
+                              lambda: (began.set(), threading.current_thread().name)[1])
+    assert not began.wait(0.2)  # still not started 0.2 s on
     release.set()
     assert "-low-" in waiting.result(5)
     for f in low:

@@ -5,7 +5,6 @@ health and reflection. The servicers here are test fixtures; the runtime under t
 from __future__ import annotations
 
 import threading
-import time
 from concurrent import futures
 
 import grpc
@@ -25,6 +24,7 @@ from telerobot.v1 import (
     proxy_robot_pb2,
     proxy_robot_pb2_grpc,
 )
+from tests.conftest import wait_for
 
 LANES = {
     Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=1, queue_capacity=2),
@@ -50,9 +50,11 @@ class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
         raise OutOfRange("joint 2 would pass its limit of 225 deg", reason="JOINT_LIMIT")
 
     def StreamRobotEvents(self, request, context):
-        while context.is_active():
+        ended = threading.Event()
+        context.add_callback(ended.set)
+        while not ended.is_set():
             yield proxy_robot_pb2.StreamRobotEventsResponse(sequence=1)
-            time.sleep(0.01)
+            ended.wait(0.01)  # an event every 10 ms until the call ends
 
 
 class Decisions(decision_server_pb2_grpc.DecisionServerServicer):
@@ -164,9 +166,8 @@ def test_parma_high_and_emergency_calls_are_served_with_low_lane_saturated(stati
                              timeout=20) for _ in range(LOW_CAPACITY)]
     for _ in range(2):  # the low lane's two threads are inside long calls
         assert decisions.entered.acquire(timeout=5)
-    deadline = time.monotonic() + 5
-    while server.executor.counters()[Lane.LOW].queued < 4 and time.monotonic() < deadline:
-        time.sleep(0.01)
+    wait_for(lambda: server.executor.counters()[Lane.LOW].queued >= 4,
+             what="the low lane's queue to fill")
     assert server.executor.counters()[Lane.LOW].queued == 4  # and its queue is full
 
     with pytest.raises(grpc.RpcError) as error:
