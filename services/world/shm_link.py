@@ -10,8 +10,8 @@ raise Unavailable when the world is not running, has shut down, or has not stepp
 ``stale_after_s``. One driver process commands a world at a time (the command record has a
 single writer); within that process the links are thread-safe.
 
-The heartbeat is time.monotonic_ns, which every process on the machine shares; a test may give
-a world and its drivers one clock of its own (``clock``) to make the world go stale at will.
+The heartbeat is the monotonic clock, which every process on the machine shares; a test may
+give a world and its drivers one clock of its own (``clock``) to make the world go stale at will.
 """
 
 from __future__ import annotations
@@ -20,12 +20,12 @@ import logging
 import os
 import threading
 import time
-from collections.abc import Callable
 from dataclasses import dataclass
 from multiprocessing import shared_memory
 
 import numpy as np
 
+from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import AlreadyExists, InvalidArgument, OutOfRange, Unavailable
 from services.world.link import JOINT_COUNT, ArmSample, RawWrench
 from services.world.realtime import LoopStats
@@ -78,10 +78,10 @@ class Command:
 
 class WorldPublisher:
     """The world's end of the link. Single-threaded: the servo thread calls everything.
-    ``clock`` (monotonic ns) stamps the heartbeat."""
+    ``clock``'s monotonic time stamps the heartbeat."""
 
     def __init__(self, joint_lower: np.ndarray, joint_upper: np.ndarray, period_s: float,
-                 name: str | None = None, clock: Callable[[], int] = time.monotonic_ns):
+                 name: str | None = None, clock: Clock = SYSTEM_CLOCK):
         self.name = segment_name(name)
         self._clock = clock
         if not ORDERING_GUARANTEED:
@@ -92,7 +92,7 @@ class WorldPublisher:
         header["layout_version"] = LAYOUT_VERSION
         header["world_pid"] = os.getpid()
         header["status"] = STATUS_STARTING  # RUNNING from the first publish on
-        header["heartbeat_ns"] = clock()
+        header["heartbeat_ns"] = clock.monotonic_ns()
         header["period_ns"] = round(period_s * 1e9)
         header["joint_lower"] = joint_lower
         header["joint_upper"] = joint_upper
@@ -104,7 +104,7 @@ class WorldPublisher:
 
     def publish(self, arm: ArmSample, wrench: RawWrench, loop: LoopStats | None = None) -> None:
         """Publish one step's samples and beat the heartbeat."""
-        now = self._clock()
+        now = self._clock.monotonic_ns()
         loop = loop or LoopStats()
         record = self._state
         record["heartbeat_ns"] = now
@@ -213,7 +213,7 @@ def _live_owner(shm: shared_memory.SharedMemory) -> int | None:
 class _WorldConnection:
     """An attachment to a running world's segment, with the liveness checks every read makes."""
 
-    def __init__(self, name: str | None, stale_after_s: float, clock: Callable[[], int]):
+    def __init__(self, name: str | None, stale_after_s: float, clock: Clock):
         self.name = segment_name(name)
         self._stale_after_ns = round(stale_after_s * 1e9)
         self._clock = clock
@@ -257,7 +257,7 @@ class _WorldConnection:
         if status != STATUS_RUNNING:
             raise Unavailable(f"the world (pid {segment.world_pid}) is starting; try again",
                               reason="WORLD_STARTING")
-        age_ns = self._clock() - heartbeat_ns
+        age_ns = self._clock.monotonic_ns() - heartbeat_ns
         if age_ns > self._stale_after_ns:
             raise Unavailable(
                 f"the world (pid {segment.world_pid}) has not stepped for {age_ns / 1e6:.0f} ms "
@@ -286,12 +286,12 @@ class SharedMemoryArmLink:
     """ArmLink to the simulated arm through the world's shared memory.
 
     Unavailable on open and on every call when the world is not running, has shut down or has
-    not stepped for ``stale_after_s`` (s). ``clock`` (monotonic ns) must be the one that stamps
-    the world's heartbeat. Thread-safe.
+    not stepped for ``stale_after_s`` (s) by ``clock``, which must be the one that stamps the
+    world's heartbeat. Thread-safe.
     """
 
     def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S,
-                 clock: Callable[[], int] = time.monotonic_ns):
+                 clock: Clock = SYSTEM_CLOCK):
         self._state_lock = threading.Lock()
         self._command_lock = threading.Lock()
         self._connection = _WorldConnection(name, stale_after_s, clock)
@@ -413,7 +413,7 @@ class SharedMemoryEmergencyStop:
     ``clock`` as for SharedMemoryArmLink. Thread-safe."""
 
     def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S,
-                 clock: Callable[[], int] = time.monotonic_ns):
+                 clock: Clock = SYSTEM_CLOCK):
         self._lock = threading.Lock()
         self._connection = _WorldConnection(name, stale_after_s, clock)
         self._last_request_ns = 0
@@ -446,7 +446,7 @@ class SharedMemoryWrenchLink:
 
     def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S):
         self._lock = threading.Lock()
-        self._connection = _WorldConnection(name, stale_after_s, time.monotonic_ns)
+        self._connection = _WorldConnection(name, stale_after_s, SYSTEM_CLOCK)
 
     def read_wrench(self) -> RawWrench:
         """The latest sensor sample (N, N*m, sensor frame). Unavailable when the world is gone."""

@@ -22,6 +22,7 @@ from services.world.shm_link import (
     WorldPublisher,
 )
 from services.world.sim import ArmSim
+from tests.fakes.clock import FakeClock
 from tests.world.conftest import segment_exists, unique_shm_name
 
 PERIOD_S = 0.001
@@ -47,26 +48,13 @@ def link(publisher: WorldPublisher):
     arm.close()
 
 
-class ManualClock:
-    """Monotonic ns that pass only when the test advances them."""
-
-    def __init__(self):
-        self.now_ns = 5_000_000_000
-
-    def __call__(self) -> int:
-        return self.now_ns
-
-    def advance(self, seconds: float) -> None:
-        self.now_ns += round(seconds * 1e9)
+@pytest.fixture
+def clock() -> FakeClock:
+    return FakeClock()
 
 
 @pytest.fixture
-def clock() -> ManualClock:
-    return ManualClock()
-
-
-@pytest.fixture
-def paused_publisher(sim: ArmSim, clock: ManualClock):
+def paused_publisher(sim: ArmSim, clock: FakeClock):
     """A world whose heartbeat comes from `clock`: it goes stale only when the test says so."""
     world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name(),
                            clock=clock)
