@@ -32,7 +32,7 @@ from services.force_sensor.servicer import reading_to_proto
 from services.force_sensor.subscribers import StreamOptions
 from services.proxy_robot.core import ProxyRobotCore
 from services.runtime.errors import TelerobotError
-from services.runtime.process import PARENT_PID_ENV, READY_LINE_PREFIX
+from services.runtime.process import ready_line, watch_parent
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2
 
@@ -125,8 +125,8 @@ def serve_zmq(cores: Cores, stop: threading.Event) -> list[threading.Thread]:
 
     threads = [threading.Thread(target=commands, name="zmq-commands", daemon=True),
                threading.Thread(target=force, name="zmq-force", daemon=True)]
-    print(f"{READY_LINE_PREFIX} baseline_command 127.0.0.1:{command_port}", flush=True)
-    print(f"{READY_LINE_PREFIX} baseline_force 127.0.0.1:{force_port}", flush=True)
+    print(ready_line("baseline_command", f"127.0.0.1:{command_port}"), flush=True)
+    print(ready_line("baseline_force", f"127.0.0.1:{force_port}"), flush=True)
     return threads
 
 
@@ -174,8 +174,8 @@ def serve_tcp(cores: Cores, stop: threading.Event) -> list[threading.Thread]:
                              daemon=True).start()
         listener.close()
 
-    print(f"{READY_LINE_PREFIX} baseline_command 127.0.0.1:{port}", flush=True)
-    print(f"{READY_LINE_PREFIX} baseline_force 127.0.0.1:{port}", flush=True)
+    print(ready_line("baseline_command", f"127.0.0.1:{port}"), flush=True)
+    print(ready_line("baseline_force", f"127.0.0.1:{port}"), flush=True)
     return [threading.Thread(target=accept, name="tcp-accept", daemon=True)]
 
 
@@ -191,7 +191,7 @@ def main(argv: list[str] | None = None) -> int:
     stop = threading.Event()
     signal.signal(signal.SIGTERM, lambda *_: stop.set())
     signal.signal(signal.SIGINT, lambda *_: stop.set())
-    parent = os.environ.get(PARENT_PID_ENV)
+    watch_parent(stop.set, stop)
 
     cores = Cores(args.shm_name)
     try:
@@ -200,9 +200,7 @@ def main(argv: list[str] | None = None) -> int:
         threads = serve(cores, stop)
         for thread in threads:
             thread.start()
-        while not stop.wait(0.25):
-            if parent and os.getppid() != int(parent):
-                stop.set()
+        stop.wait()
         for thread in threads:
             thread.join(2.0)
     finally:

@@ -1,10 +1,11 @@
 """The bench run: start a slave station of its own, run the scenarios in order, stop it all.
 
 The station (world, proxy_robot, force_sensor, emergency_stop; stereo_camera per source when
-its scenarios run) listens on free loopback ports with a shared-memory name of its own, so it
-never meets a `make serve` or a test. Every measuring client is a separate worker process
-(worker.py); the baselines' servers are separate processes too (baseline_server.py). Baselines
-run right after the project's scenarios they are compared with, in the same run.
+its scenarios run) listens on loopback port 0 (each service reports the port it bound) with a
+shared-memory name of its own, so it never meets a `make serve` or a test. Every measuring
+client is a separate worker process (worker.py); the baselines' servers are separate processes
+too (baseline_server.py). Baselines run right after the project's scenarios they are compared
+with, in the same run.
 """
 
 from __future__ import annotations
@@ -21,8 +22,9 @@ from pathlib import Path
 import grpc
 
 from bench import plots, report, stereo
-from bench.procs import ChildFailed, ProcessSet, free_port, unique_shm_name
+from bench.procs import ChildFailed, ProcessSet, unique_shm_name
 from bench.stats import ratio
+from services.runtime.children import refused_address
 from services.world.shm_layout import SHM_NAME_ENV
 from telerobot.v1 import (
     force_sensor_pb2,
@@ -120,32 +122,31 @@ class Station:
     def __init__(self, procs: ProcessSet, shm_name: str):
         self.procs = procs
         self.shm = shm_name
-        self.address = {name: f"127.0.0.1:{free_port()}"
-                        for name in ("world", "proxy_robot", "force_sensor", "emergency_stop")}
+        self.address: dict[str, str] = {}  # service -> host:port, from its ready line
 
     def start(self) -> None:
-        self.procs.start_service("world", self.address["world"])
-        self.proxy = self.procs.start("proxy_robot", self._service_args("proxy_robot"))
-        sensor = self.procs.start("force_sensor", self._service_args("force_sensor"))
-        band = self.procs.start("emergency_stop", self._service_args("emergency_stop"))
-        for child in (self.proxy, sensor, band):
-            child.wait_service_ready(child.name, 60.0)
-
-    def _service_args(self, name: str) -> list[str]:
-        return ["-m", f"services.{name}", "--address", self.address[name], "--grace-s", "0.5"]
+        _, self.address["world"] = self.procs.run_service("world")
+        started = [self.procs.start_service(name)
+                   for name in ("proxy_robot", "force_sensor", "emergency_stop")]
+        for child in started:
+            self.address[child.name] = child.wait_ready(timeout_s=60.0)
+        self.proxy = started[0]
 
     def restart_proxy(self, switch_interval_s: float | None = None) -> None:
-        """A new proxy_robot process on the same address, connected and initialized; with
-        `switch_interval_s`, its interpreter hands the GIL over at that interval (a diagnostic:
-        the service keeps CPython's default of 5 ms; the DecisionServer sets 1 ms)."""
+        """A new proxy_robot process (on a new port: self.address follows), connected and
+        initialized; with `switch_interval_s`, its interpreter hands the GIL over at that
+        interval (a diagnostic: the service keeps CPython's default of 5 ms; the DecisionServer
+        sets 1 ms)."""
         self.procs.stop(self.proxy)
-        args = self._service_args("proxy_robot")
-        if switch_interval_s is not None:
-            args = ["-c", "import runpy, sys; "
-                    f"sys.setswitchinterval({switch_interval_s}); "
-                    "runpy.run_module('services.proxy_robot', run_name='__main__')", *args[2:]]
-        self.proxy = self.procs.start("proxy_robot", args)
-        self.proxy.wait_service_ready("proxy_robot", 60.0)
+        if switch_interval_s is None:
+            self.proxy = self.procs.start_service("proxy_robot")
+        else:
+            self.proxy = self.procs.start("proxy_robot", [
+                "-c", "import runpy, sys; "
+                f"sys.setswitchinterval({switch_interval_s}); "
+                "runpy.run_module('services.proxy_robot', run_name='__main__')",
+                "--address", "127.0.0.1:0", "--grace-s", "0.5"])
+        self.address["proxy_robot"] = self.proxy.wait_ready(timeout_s=60.0)
         self.arm_ready()
 
     def arm_ready(self) -> None:
@@ -352,8 +353,8 @@ class Bench:
         server = self.procs.start(f"baseline_{transport}", [
             "-m", "bench.baseline_server", "--transport", transport, "--shm-name", self.shm])
         try:
-            command_address = server.wait_service_ready("baseline_command", 60.0)
-            force_address = server.wait_service_ready("baseline_force", 10.0)
+            command_address = server.wait_ready("baseline_command", timeout_s=60.0)
+            force_address = server.wait_ready("baseline_force", timeout_s=10.0)
             results = self._worker("command", {
                 "transport": transport, "address": command_address, "shm": self.shm,
                 "rates": list(plan.command_rates), "duration_s": plan.command_s},
@@ -406,13 +407,13 @@ class Bench:
                     "address": address, "count": size,
                     "decimation": plan.observer_decimation, "max_s": plan.observers_s + 60}))
             for group in groups:
-                group.wait_worker_ready(60.0)
+                self.procs.wait_worker_ready(group, 60.0)
             result = self.procs.run_worker("force", {
                 "transport": "grpc", "address": address, "decimation": 1,
                 "duration_s": plan.observers_s}, 60 + 3 * plan.observers_s)
             observed = []
             for group in groups:
-                group.stop(5.0)
+                group.stop(grace_s=5.0)
                 observed.append(self.procs.finish_worker(group, 10.0))
         finally:
             for group in groups:
@@ -455,13 +456,13 @@ class Bench:
                 load = self.procs.start_worker("load", {
                     "address": proxy, "concurrency": plan.load_concurrency,
                     "max_s": timeout + 30})
-                load.wait_worker_ready(60.0)
+                self.procs.wait_worker_ready(load, 60.0)
                 time.sleep(0.5)  # let the low lane fill up
             result = self._worker("estop", {"address": proxy, "stop_address": stop_address,
                                             "shm": self.shm, "trials": plan.estop_trials,
                                             "label": name}, timeout)
             if load is not None:
-                load.stop(10.0)
+                load.stop(grace_s=10.0)
                 load_result = self.procs.finish_worker(load, 10.0)
                 load = None
         except ChildFailed as error:
@@ -486,19 +487,16 @@ class Bench:
         commands on the Teleoperate stream) and the emergency stop under its intended load
         (200 RunAction BusyWork on the low lane), against the same stop through it idle."""
         plan = self.plan
-        address = f"127.0.0.1:{free_port()}"
         names = [f"teleop_{rate}" for rate in plan.command_rates]
         self.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate stream, lockstep, "
                            f"{plan.command_s:.0f} s each")
         try:
-            server = self.procs.start("decision_server", [
-                "-m", "services.decision_server", "--address", address, "--grace-s", "0.5",
+            server, address = self.procs.run_service("decision_server", [
                 "--proxy-robot-address", self.station.address["proxy_robot"],
                 "--force-sensor-address", self.station.address["force_sensor"],
-                "--stereo-camera-address", f"127.0.0.1:{free_port()}",
+                "--stereo-camera-address", refused_address(),  # no camera in these scenarios
                 "--emergency-stop-address", self.station.address["emergency_stop"],
                 "--recordings-dir", str(self.procs.scratch / "recordings")])
-            server.wait_service_ready("decision_server", 60.0)
         except ChildFailed as error:
             self._fail(names + ["estop_ds_idle", "estop_ds_busywork"], error)
             return
@@ -541,10 +539,10 @@ class Bench:
             load = self.procs.start_worker("load", {
                 "address": address, "target": "decision_server",
                 "concurrency": plan.load_concurrency, "max_s": timeout + 30})
-            load.wait_worker_ready(60.0)
+            self.procs.wait_worker_ready(load, 60.0)
             time.sleep(0.5)
             result = self._worker("estop", {**params, "label": "ds busywork"}, timeout)
-            load.stop(10.0)
+            load.stop(grace_s=10.0)
             load_result = self.procs.finish_worker(load, 10.0)
             load = None
         except ChildFailed as error:
@@ -587,17 +585,11 @@ class Bench:
                 self.progress.done("pending")
             return
         for source in plan.stereo_sources:
-            address = f"127.0.0.1:{free_port()}"
-            service = None
             try:
-                service = self.procs.start("stereo_camera", [
-                    "-m", "services.stereo_camera", "--address", address, "--grace-s", "0.5",
+                service, address = self.procs.run_service("stereo_camera", [
                     "--source", source, "--width", str(stereo.WIDTH_PX),
                     "--height", str(stereo.HEIGHT_PX), "--fps", str(plan.stereo_source_fps)])
-                service.wait_service_ready("stereo_camera", 60.0)
             except ChildFailed as error:
-                if service is not None:
-                    self.procs.stop(service)
                 for mode in plan.stereo_modes:
                     self.progress.step(f"stereo_{source}_{mode}")
                     self._fail([f"stereo_{source}_{mode}"], error)

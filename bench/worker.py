@@ -17,10 +17,9 @@ import os
 import signal
 import sys
 import threading
-import time
 
 from bench.procs import WORKER_READY
-from services.runtime.process import PARENT_PID_ENV
+from services.runtime.process import watch_parent
 
 SWITCH_INTERVAL_S = 0.0005
 
@@ -84,20 +83,6 @@ KINDS = {"command": _command, "force": _force, "observers": _observers, "estop":
          "load": _load, "closed_loop": _closed_loop, "stereo": _stereo}
 
 
-def _exit_when_parent_exits() -> None:
-    parent = os.environ.get(PARENT_PID_ENV)
-    if not parent:
-        return
-
-    def watch():
-        while True:
-            time.sleep(0.25)
-            if os.getppid() != int(parent):
-                os._exit(3)  # the bench is gone: nobody wants the result
-
-    threading.Thread(target=watch, name="parent-watch", daemon=True).start()
-
-
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if len(argv) != 3 or argv[0] not in KINDS:
@@ -106,7 +91,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     kind, params, out = argv[0], json.loads(argv[1]), argv[2]
     sys.setswitchinterval(SWITCH_INTERVAL_S)
-    _exit_when_parent_exits()
+    watch_parent(lambda: os._exit(3))  # the bench is gone: nobody wants the result
     result = KINDS[kind](params)
     with open(out, "w") as handle:
         json.dump(result, handle)
