@@ -5,17 +5,24 @@ the members of one group. A request that conflicts waits in a fair FIFO queue (n
 a waiter) or fails at once, as the caller chooses. Every lock is a lease: it expires unless
 its holder renews it or uses it (each authorized call renews it), so a crashed operator never
 blocks the arm for longer than one lease. No gRPC here.
+
+Time comes from a Clock (services/runtime/clock.py): lease deadlines, wait deadlines and the
+reaper's period are all on its monotonic scale. A lease is valid up to its deadline and gone
+after it: every call sweeps expired leases before it looks, and a reaper sweeps when nobody
+calls, so waiters are promoted and `on_change` told. `on_change` is always called with the
+manager's lock released (it may take locks of its own and call back in).
 """
 
 from __future__ import annotations
 
 import enum
 import threading
-import time
 import uuid
-from collections.abc import Callable
+from collections import deque
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
+from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import (
     Aborted,
     DeadlineExceeded,
@@ -42,7 +49,7 @@ class Lease:
     mode: ControlMode
     group: str
     duration_s: float
-    expires_at: float  # time.monotonic()
+    expires_at: float  # on the LockManager's clock.monotonic() scale
 
 
 @dataclass
@@ -51,7 +58,7 @@ class _Waiter:
     mode: ControlMode
     group: str
     duration_s: float
-    deadline: float
+    deadline: float  # clock.monotonic()
     granted: Lease | None = None
     ready: threading.Event = field(default_factory=threading.Event)
 
@@ -63,12 +70,15 @@ class ControlView:
     mode: ControlMode | None
     holders: tuple[Lease, ...]
     waiters: tuple[tuple[str, ControlMode, str, float], ...]  # operator, mode, group, deadline
+    # (the waiters' deadlines and the holders' expires_at are on the manager's clock.monotonic())
 
 
 class LockManager:
     """Leases on the control of one arm. `on_change(view, reason)` is told of every change."""
 
-    def __init__(self, on_change: Callable[[ControlView, str], None] | None = None):
+    def __init__(self, on_change: Callable[[ControlView, str], None] | None = None,
+                 clock: Clock = SYSTEM_CLOCK):
+        self._clock = clock
         self._lock = threading.Lock()
         self._holders: dict[str, Lease] = {}
         self._queue: list[_Waiter] = []
@@ -90,57 +100,71 @@ class LockManager:
         if not MIN_LEASE_S <= lease_s <= MAX_LEASE_S:
             raise InvalidArgument(f"lease must be {MIN_LEASE_S}..{MAX_LEASE_S} s",
                                   reason="BAD_LEASE")
+        lease, waiter, holders = None, None, ""
         with self._lock:
+            expired = self._expire()
             if not self._queue and self._compatible(mode, group):
                 lease = self._grant(operator_id, mode, group, lease_s)
-                changed = True
-            elif not wait:
-                raise Aborted(f"control is held by {self._describe_holders()}; ask with "
-                              "wait=true to queue, or try later", reason="CONTROL_HELD")
-            else:
-                deadline = time.monotonic() + min(wait_timeout_s or MAX_WAIT_S, MAX_WAIT_S)
+            elif wait:
+                deadline = (self._clock.monotonic()
+                            + min(wait_timeout_s or MAX_WAIT_S, MAX_WAIT_S))
                 waiter = _Waiter(operator_id, mode, group, lease_s, deadline)
                 self._queue.append(waiter)
-                lease, changed = None, False
+            else:
+                holders = self._describe_holders()
         if lease is not None:
-            self._notify(changed, f"{operator_id} acquired {mode.name} control")
+            self._notify([*expired, f"{operator_id} acquired {mode.name} control"])
             return lease
-        self._notify(True, f"{operator_id} waits for {mode.name} control")
-        if waiter.ready.wait(max(0.0, waiter.deadline - time.monotonic())) and waiter.granted:
+        if waiter is None:
+            self._notify(expired)
+            raise Aborted(f"control is held by {holders}; ask with wait=true to queue, or try "
+                          "later", reason="CONTROL_HELD")
+        self._notify([*expired, f"{operator_id} waits for {mode.name} control"])
+        if (self._clock.wait(waiter.ready, max(0.0, waiter.deadline - self._clock.monotonic()))
+                and waiter.granted):
             return waiter.granted
         with self._lock:
             if waiter.granted:  # granted just as the wait timed out
                 return waiter.granted
             self._queue.remove(waiter)
-        self._notify(True, f"{operator_id} gave up waiting")
+        self._notify([f"{operator_id} gave up waiting"])
         raise DeadlineExceeded(f"control did not come free in time; held by "
                                f"{self.describe_holders()}", reason="WAIT_TIMEOUT")
 
     def renew(self, lease_id: str) -> Lease:
         with self._lock:
+            expired = self._expire()
             lease = self._holders.get(lease_id)
-            if lease is None:
-                raise NotFound("no such lease (it expired or was released): acquire control "
-                               "again", reason="NO_LEASE")
-            lease.expires_at = time.monotonic() + lease.duration_s
-            return lease
+            if lease is not None:
+                lease.expires_at = self._clock.monotonic() + lease.duration_s
+        self._notify(expired)
+        if lease is None:
+            raise NotFound("no such lease (it expired or was released): acquire control "
+                           "again", reason="NO_LEASE")
+        return lease
 
     def release(self, lease_id: str) -> None:
         with self._lock:
+            expired = self._expire()
             lease = self._holders.pop(lease_id, None)
-            if lease is None:
-                raise NotFound("no such lease (it expired or was released)", reason="NO_LEASE")
-            self._promote()
-        self._notify(True, f"{lease.operator_id} released control")
+            if lease is not None:
+                self._promote()
+        if lease is None:
+            self._notify(expired)
+            raise NotFound("no such lease (it expired or was released)", reason="NO_LEASE")
+        self._notify([*expired, f"{lease.operator_id} released control"])
 
     def require(self, lease_id: str | None) -> Lease:
         """The caller's lease, renewed; FailedPrecondition naming who holds control if none."""
         with self._lock:
+            expired = self._expire()
             lease = self._holders.get(lease_id or "")
             if lease is not None:
-                lease.expires_at = time.monotonic() + lease.duration_s
-                return lease
+                lease.expires_at = self._clock.monotonic() + lease.duration_s
             holders = self._describe_holders()
+        self._notify(expired)
+        if lease is not None:
+            return lease
         hint = "send the lease id from AcquireControl in the telerobot-lease-id metadata key"
         raise FailedPrecondition(
             f"this call needs the control lock, held by {holders}; {hint}"
@@ -149,11 +173,17 @@ class LockManager:
 
     def view(self) -> ControlView:
         with self._lock:
-            return self._view()
+            expired = self._expire()
+            view = self._view()
+        self._notify(expired)
+        return view
 
     def describe_holders(self) -> str:
         with self._lock:
-            return self._describe_holders()
+            expired = self._expire()
+            holders = self._describe_holders()
+        self._notify(expired)
+        return holders
 
     # -- internals (lock held) --------------------------------------------------------------
 
@@ -166,7 +196,7 @@ class LockManager:
 
     def _grant(self, operator_id: str, mode: ControlMode, group: str, lease_s: float) -> Lease:
         lease = Lease(uuid.uuid4().hex, operator_id, mode, group, lease_s,
-                      time.monotonic() + lease_s)
+                      self._clock.monotonic() + lease_s)
         self._holders[lease.lease_id] = lease
         return lease
 
@@ -178,14 +208,16 @@ class LockManager:
                                          waiter.duration_s)
             waiter.ready.set()
 
-    def _expire(self) -> list[Lease]:
-        now = time.monotonic()
+    def _expire(self) -> list[str]:
+        """Drop the leases past their deadline (a lease is valid up to and including it),
+        promote the waiters they blocked, and return the reasons to tell `on_change`."""
+        now = self._clock.monotonic()
         expired = [lease for lease in self._holders.values() if lease.expires_at < now]
         for lease in expired:
             del self._holders[lease.lease_id]
         if expired:
             self._promote()
-        return expired
+        return [f"{lease.operator_id}'s lease expired" for lease in expired]
 
     def _describe_holders(self) -> str:
         if not self._holders:
@@ -202,13 +234,22 @@ class LockManager:
                            tuple((w.operator_id, w.mode, w.group, w.deadline)
                                  for w in self._queue))
 
-    def _notify(self, changed: bool, reason: str) -> None:
-        if changed:
-            self._on_change(self.view(), reason)
+    # -- notifications (lock NOT held) --------------------------------------------------------
+
+    def _notify(self, reasons: Iterable[str]) -> None:
+        """Tell `on_change` of each change, in order, with the view as it is when it is told
+        (so the last one told shows the latest state). Leases found expired on the way are
+        told after."""
+        pending = deque(reasons)
+        while pending:
+            reason = pending.popleft()
+            with self._lock:
+                pending.extend(self._expire())
+                view = self._view()
+            self._on_change(view, reason)
 
     def _reap(self) -> None:
-        while not self._closed.wait(REAPER_PERIOD_S):
+        while not self._clock.wait(self._closed, REAPER_PERIOD_S):
             with self._lock:
                 expired = self._expire()
-            for lease in expired:
-                self._notify(True, f"{lease.operator_id}'s lease expired")
+            self._notify(expired)
