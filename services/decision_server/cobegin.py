@@ -51,6 +51,12 @@ class Barriers:
             self._barriers[barrier_id] = _Barrier(count, time.monotonic() + timeout_s)
         return barrier_id, timeout_s
 
+    def arrived(self, barrier_id: str) -> int:
+        """How many actions wait at an open barrier (0 once it is released or unknown)."""
+        with self._lock:
+            barrier = self._barriers.get(barrier_id)
+        return barrier.arrived if barrier is not None else 0
+
     def arrive_and_wait(self, barrier_id: str) -> None:
         """Block until every action of the batch has arrived; DeadlineExceeded for all of them
         if one never does."""

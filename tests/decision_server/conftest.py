@@ -1,9 +1,9 @@
-"""DecisionServer tests: the real world, ProxyRobot and ForceSensor processes, and an in-process
-DecisionServer in front of them (so the tests can look inside its core)."""
+"""DecisionServer tests. `fake_station`: an in-process DecisionServer over a fake slave and a
+fake clock (no process, no world). `station` (e2e only): the same server in front of the real
+world, ProxyRobot and ForceSensor processes."""
 
 from __future__ import annotations
 
-import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -13,8 +13,8 @@ import pytest
 
 from services.decision_server.__main__ import LANES
 from services.decision_server.backends import GrpcSlave
-from services.decision_server.servicer import DecisionServerServicer, make_facades
 from services.decision_server.recordings import RecordingStore
+from services.decision_server.servicer import DecisionServerServicer, make_facades
 from services.decision_server.supervisor import DecisionCore
 from services.robot_model.puma560 import HOME_Q
 from services.runtime.server import binding, create_server
@@ -28,7 +28,9 @@ from telerobot.v1 import (
     stereo_camera_pb2_grpc,
     types_pb2,
 )
-from tests.conftest import free_port
+from tests.conftest import refused_address, wait_for
+from tests.fakes.clock import FakeClock
+from tests.fakes.slave import FakeSlave
 
 
 @dataclass
@@ -67,22 +69,14 @@ class Station:
                 delta_joint_positions_rad=step.tolist()), metadata=metadata)
                 .target_joint_positions_rad)
             self.wait_status(types_pb2.ROBOT_STATUS_READY)
-        deadline = time.monotonic() + 5
-        while time.monotonic() < deadline:
-            q = np.array(self.robot.GetState(proxy_robot_pb2.GetStateRequest())
-                         .state.joint_positions_rad)
-            if np.max(np.abs(HOME_Q - q)) < 1e-4:
-                self.wait_status(types_pb2.ROBOT_STATUS_READY)
-                return
-            time.sleep(0.01)
-        raise AssertionError(f"the arm did not settle at home: {q}")
+        wait_for(lambda: np.max(np.abs(HOME_Q - np.array(self.robot.GetState(
+            proxy_robot_pb2.GetStateRequest()).state.joint_positions_rad))) < 1e-4, 5,
+            "the arm to settle at home")
+        self.wait_status(types_pb2.ROBOT_STATUS_READY)
 
     def wait_status(self, status: int, timeout_s: float = 10.0) -> None:
-        deadline = time.monotonic() + timeout_s
-        while self.robot.GetStatus(proxy_robot_pb2.GetStatusRequest()).status != status:
-            if time.monotonic() > deadline:
-                raise AssertionError(f"status never became {types_pb2.RobotStatus.Name(status)}")
-            time.sleep(0.01)
+        wait_for(lambda: self.robot.GetStatus(proxy_robot_pb2.GetStatusRequest()).status ==
+                 status, timeout_s, f"status {types_pb2.RobotStatus.Name(status)}")
 
     def tool_position(self) -> np.ndarray:
         p = self.robot.GetState(proxy_robot_pb2.GetStateRequest()).state.tool_pose.position_m
@@ -95,13 +89,11 @@ class Station:
         return convert.pose_from_proto(state.tool_pose, "tool_pose")
 
 
-@pytest.fixture
-def station(backends, tmp_path) -> Iterator[Station]:
-    slave = GrpcSlave(backends.proxy_address, backends.sensor_address, backends.emergency_address)
-    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings"))
-    stereo_channel = grpc.insecure_channel(f"127.0.0.1:{free_port()}")  # no camera here
-    facades = make_facades(core, slave.robot, slave.sensor,
-                           stereo_camera_pb2_grpc.StereoCameraStub(stereo_channel))
+def serve_decisions(core: DecisionCore, robot_stub, sensor_stub) -> tuple[Station, callable]:
+    """An in-process DecisionServer on port 0 in front of `core`; (station, stop)."""
+    nowhere = grpc.insecure_channel(refused_address())  # no camera here
+    facades = make_facades(core, robot_stub, sensor_stub,
+                           stereo_camera_pb2_grpc.StereoCameraStub(nowhere))
     server, port = create_server(
         "127.0.0.1:0",
         [binding(decision_server_pb2_grpc, "DecisionServer", DecisionServerServicer(core)),
@@ -113,12 +105,39 @@ def station(backends, tmp_path) -> Iterator[Station]:
                       proxy_robot_pb2_grpc.ProxyRobotStub(channel),
                       force_sensor_pb2_grpc.ForceSensorStub(channel), f"127.0.0.1:{port}",
                       server)
+
+    def stop():
+        channel.close()
+        server.stop(0)
+        core.close()
+        nowhere.close()
+
+    return station, stop
+
+
+@pytest.fixture
+def fake_station(tmp_path) -> Iterator[tuple[Station, FakeSlave]]:
+    """The DecisionServer over a fake slave on a fake clock; ProxyRobot and ForceSensor
+    calls that it only forwards find nobody (UNAVAILABLE)."""
+    clock = FakeClock()
+    slave = FakeSlave(clock)
+    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings", clock), clock)
+    with grpc.insecure_channel(refused_address()) as nowhere:
+        station, stop = serve_decisions(core, proxy_robot_pb2_grpc.ProxyRobotStub(nowhere),
+                                        force_sensor_pb2_grpc.ForceSensorStub(nowhere))
+        yield station, slave
+        slave.end_wrench_streams()
+        stop()
+
+
+@pytest.fixture
+def station(backends, tmp_path) -> Iterator[Station]:
+    slave = GrpcSlave(backends.proxy_address, backends.sensor_address, backends.emergency_address)
+    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings"))
+    station, stop = serve_decisions(core, slave.robot, slave.sensor)
     yield station
-    channel.close()
-    server.stop(0)
-    core.close()
+    stop()
     slave.close()
-    stereo_channel.close()
     # Leave the sensor stopped and untared for the next test.
     with grpc.insecure_channel(backends.sensor_address) as direct:
         force_sensor_pb2_grpc.ForceSensorStub(direct).StopReading(

@@ -152,6 +152,15 @@ def test_force_control_ends_when_its_lease_lapses(rig):
     assert "AssistanceChanged" in kinds[kinds.index("ControlChanged"):], kinds
 
 
+def test_force_control_acts_on_fresh_samples_only(rig):
+    """Samples that arrive late (a backlog on a loaded machine) are skipped, not acted on."""
+    rig.force_control()
+    rig.slave.wrench_delay_s = 0.1
+    assert moves_in(rig, 50, loops=1) == 0
+    rig.slave.wrench_delay_s = 0.0
+    assert moves_in(rig, 50, loops=1) == 10
+
+
 def test_a_refused_step_switches_force_control_off_and_says_so(rig, monkeypatch):
     events = rig.core.events.subscribe(64)
     rig.force_control()

@@ -1,10 +1,8 @@
-"""Emergency stop under load, the cobegin precedence experiment, record and replay, active
-compliance and the event stream, on the real simulated arm."""
+"""The cobegin precedence experiment in-process; emergency stop under load, record and
+replay, and active compliance on the real simulated arm (e2e)."""
 
 from __future__ import annotations
 
-import dataclasses
-import threading
 import time
 
 import grpc
@@ -15,7 +13,8 @@ from services.common import convert
 from services.robot_model.workspace import TABLE_TOP_Z
 from services.runtime.lanes import Lane
 from telerobot.v1 import decision_server_pb2 as pb
-from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2, types_pb2
+from telerobot.v1 import force_sensor_pb2, options_pb2, proxy_robot_pb2, types_pb2
+from tests.conftest import wait_for
 from tests.decision_server.test_teleoperate import Operator
 
 
@@ -34,17 +33,18 @@ def busy(station, milliseconds: int, lane: str, cobegin_id: str = "", action_id:
         metadata=[("telerobot-lane", lane)], timeout=60)
 
 
+@pytest.mark.e2e
 def test_emergency_stop_halts_the_arm_with_200_low_lane_calls_in_flight(driven):
     station, _, metadata = driven
     station.robot.MoveJointsIncremental(proxy_robot_pb2.MoveJointsIncrementalRequest(
         delta_joint_positions_rad=[0.45, 0, 0, 0, 0, 0]), metadata=metadata)
     load = [busy(station, 50, "low") for _ in range(200)]
-    deadline = time.monotonic() + 10
-    while time.monotonic() < deadline:
+
+    def low_lane_busy() -> bool:
         low = station.server.executor.counters()[Lane.LOW]
-        if low.queued + low.running >= 60:
-            break
-        time.sleep(0.005)
+        return low.queued + low.running >= 60
+
+    wait_for(low_lane_busy, 10, "the low lane to fill")
     started = time.monotonic()
     reply = station.robot.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason="load"),
                                         timeout=5)
@@ -55,21 +55,12 @@ def test_emergency_stop_halts_the_arm_with_200_low_lane_calls_in_flight(driven):
     assert reply.status == types_pb2.ROBOT_STATUS_ESTOPPED
     assert still_pending >= 40  # the low lane was still full of work
     assert latency < 0.5, latency  # generous here; `make bench` measures it properly
-    time.sleep(0.3)
-    state = station.robot.GetState(proxy_robot_pb2.GetStateRequest()).state
-    assert max(abs(v) for v in state.joint_velocities_rad_per_s) < 0.01  # halted
+    wait_for(lambda: max(abs(v) for v in station.robot.GetState(
+        proxy_robot_pb2.GetStateRequest()).state.joint_velocities_rad_per_s) < 0.01, 3,
+        "the arm to halt")
     with pytest.raises(grpc.RpcError) as refused:  # the latch holds on the DecisionServer
         Operator(station, driven[1])
     assert refused.value.code() is grpc.StatusCode.FAILED_PRECONDITION
-    station.robot.Reset(proxy_robot_pb2.ResetRequest(), metadata=metadata)
-
-
-def test_reset_needs_the_lock(driven):
-    station, _, metadata = driven
-    station.robot.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest())  # anyone may stop
-    with pytest.raises(grpc.RpcError) as error:
-        station.robot.Reset(proxy_robot_pb2.ResetRequest())
-    assert error.value.code() is grpc.StatusCode.FAILED_PRECONDITION
     station.robot.Reset(proxy_robot_pb2.ResetRequest(), metadata=metadata)
 
 
@@ -77,20 +68,23 @@ def _starts(*replies) -> list[int]:
     return [reply.start_time.ToNanoseconds() for reply in replies]
 
 
-def test_parma_precedence_without_and_with_cobegin(station):
+def test_parma_precedence_without_and_with_cobegin(fake_station):
     """A medium action reaching the server first runs first without cobegin; with cobegin
     the batch waits for the high-priority action, which then runs first (no inversion)."""
+    station, _ = fake_station
     medium = busy(station, 60, "medium", action_id="medium")
-    time.sleep(0.02)
+    wait_for(lambda: station.server.executor.counters()[Lane.MEDIUM].running >= 1,
+             what="the medium action to start")
     high = busy(station, 60, "high", action_id="high")
     medium, high = medium.result(), high.result()
-    assert medium.lane == pb.LANE_MEDIUM if hasattr(pb, "LANE_MEDIUM") else True
+    assert medium.lane == options_pb2.LANE_MEDIUM and high.lane == options_pb2.LANE_HIGH
     start_medium, start_high = _starts(medium, high)
     assert start_medium < start_high
 
     cobegin = station.decisions.BeginCobegin(pb.BeginCobeginRequest(action_count=2)).cobegin_id
     medium = busy(station, 60, "medium", cobegin, "medium")
-    time.sleep(0.02)
+    wait_for(lambda: station.core.barriers.arrived(cobegin) == 1,
+             what="the medium action at the barrier")
     high = busy(station, 60, "high", cobegin, "high")
     medium, high = medium.result(), high.result()
     start_medium, start_high = _starts(medium, high)
@@ -99,7 +93,8 @@ def test_parma_precedence_without_and_with_cobegin(station):
     assert medium.arrive_time.ToNanoseconds() < high.arrive_time.ToNanoseconds()
 
 
-def test_a_cobegin_that_never_fills_fails_every_action(station):
+def test_a_cobegin_that_never_fills_fails_every_action(fake_station):
+    station, _ = fake_station
     cobegin = station.decisions.BeginCobegin(pb.BeginCobeginRequest(
         action_count=2, barrier_timeout=convert.duration(0.2))).cobegin_id
     with pytest.raises(grpc.RpcError) as error:
@@ -107,6 +102,7 @@ def test_a_cobegin_that_never_fills_fails_every_action(station):
     assert error.value.code() is grpc.StatusCode.DEADLINE_EXCEEDED
 
 
+@pytest.mark.e2e
 def test_replay_reproduces_the_recorded_path(driven):
     station, lease, metadata = driven
     station.decisions.StartRecording(pb.StartRecordingRequest(name="square"), metadata=metadata)
@@ -114,8 +110,7 @@ def test_replay_reproduces_the_recorded_path(driven):
     path = []
     for dx in [(0.004, 0, 0)] * 5 + [(0, 0.004, 0)] * 5 + [(0, 0, 0.004)] * 5:
         operator.move(dx)
-        time.sleep(0.02)
-    station.wait_status(types_pb2.ROBOT_STATUS_READY)
+        station.wait_status(types_pb2.ROBOT_STATUS_READY)  # one stroke at a time
     operator.close()
     recording = station.decisions.StopRecording(pb.StopRecordingRequest()).recording
     assert recording.command_count == 15 and recording.duration.ToNanoseconds() > 2e8
@@ -132,9 +127,8 @@ def test_replay_reproduces_the_recorded_path(driven):
         if event is not None and getattr(event.payload, "state", "") == "FINISHED":
             finished = event.payload
     assert finished is not None and finished.replayed == 15
-    station.wait_status(types_pb2.ROBOT_STATUS_READY)
-    time.sleep(0.2)
-    assert np.linalg.norm(station.tool_position() - recorded_end) < 1e-3
+    wait_for(lambda: np.linalg.norm(station.tool_position() - recorded_end) < 1e-3, 3,
+             "the replay to end where the recording did")
     assert np.linalg.norm(path[-1] - recorded_end) < 1e-3
     names = [r.name for r in station.decisions.ListRecordings(
         pb.ListRecordingsRequest()).recordings]
@@ -145,19 +139,21 @@ def test_replay_reproduces_the_recorded_path(driven):
     assert error.value.code() is grpc.StatusCode.NOT_FOUND
 
 
+@pytest.mark.e2e
 def test_an_emergency_stop_interrupts_a_replay(driven):
     station, lease, metadata = driven
     station.decisions.StartRecording(pb.StartRecordingRequest(name="long"), metadata=metadata)
     operator = Operator(station, lease)
     for _ in range(30):
         operator.move((0, 0, 0.001))
-        time.sleep(0.02)
+        station.wait_status(types_pb2.ROBOT_STATUS_READY)  # one stroke at a time
     operator.close()
     station.decisions.StopRecording(pb.StopRecordingRequest())
     station.ready_at_home(metadata)
     events = station.core.events.subscribe(256)
     station.decisions.StartReplay(pb.StartReplayRequest(name="long"), metadata=metadata)
-    time.sleep(0.2)
+    wait_for(lambda: (event := events.get(0.1)) is not None and getattr(
+        event.payload, "replayed", 0) >= 10, 5, "the replay to get going")
     station.robot.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason="replay test"))
     states = []
     deadline = time.monotonic() + 3
@@ -169,6 +165,7 @@ def test_an_emergency_stop_interrupts_a_replay(driven):
     station.robot.Reset(proxy_robot_pb2.ResetRequest(), metadata=metadata)
 
 
+@pytest.mark.e2e
 def test_active_compliance_brings_the_contact_force_to_its_target(driven):
     station, lease, metadata = driven
     station.sensor.StartReading(force_sensor_pb2.StartReadingRequest(), metadata=metadata)
@@ -186,7 +183,6 @@ def test_active_compliance_brings_the_contact_force_to_its_target(driven):
             delta_position_m=types_pb2.Vector3(z=float(np.clip(dz, -0.05, 0.05))),
             frame=types_pb2.REFERENCE_FRAME_BASE), metadata=metadata)
         station.wait_status(types_pb2.ROBOT_STATUS_READY)
-        time.sleep(0.1)
     assert station.tool_position()[2] == pytest.approx(TABLE_TOP_Z + 0.002, abs=1e-3)
     desired = -10.0  # N along the tool's z: the table pushing back on the peg
     station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=pb.AssistanceConfig(
@@ -196,10 +192,16 @@ def test_active_compliance_brings_the_contact_force_to_its_target(driven):
             # Stable while A·K·dt stays well below 1: on the table K ≈ 1e5 N/m, dt = 5 ms.
             translation_gain_m_per_n_s=1.5e-4))), metadata=metadata)
     forces = []
-    deadline = time.monotonic() + 6
-    while time.monotonic() < deadline:  # approach at A·10 N = 1.5 mm/s and settle
+
+    def sample():  # each look renews the lease
         station.decisions.RenewControl(pb.RenewControlRequest(lease_id=lease))
-        time.sleep(0.25)
+        return station.sensor.GetWrench(force_sensor_pb2.GetWrenchRequest()).sample
+
+    # The approach at A·10 N = 1.5 mm/s, then two seconds of the sensor's time to settle.
+    contact = wait_for(lambda: (s := sample()).wrench.force_n.z < 0.5 * desired and s, 15,
+                       "contact with the table")
+    settled_ns = contact.sample_time.ToNanoseconds() + 2_000_000_000
+    wait_for(lambda: sample().sample_time.ToNanoseconds() > settled_ns, 10, "the settling")
     stream = station.sensor.StreamWrench(force_sensor_pb2.StreamWrenchRequest(batch_size=100),
                                          timeout=10)
     for message in stream:  # one second of every sample
@@ -214,85 +216,3 @@ def test_active_compliance_brings_the_contact_force_to_its_target(driven):
     assert abs(np.mean(forces) - desired) < 0.1 * abs(desired), np.mean(forces)
     deviation = np.abs(np.array(forces) - desired)
     assert np.percentile(deviation, 99) < 0.25 * abs(desired), (np.min(forces), np.max(forces))
-
-
-def test_force_control_acts_on_fresh_samples_only(driven, monkeypatch):
-    """Samples that arrive late (a backlog on a loaded machine) are skipped, not acted on."""
-    station, lease, metadata = driven
-    station.sensor.StartReading(force_sensor_pb2.StartReadingRequest(), metadata=metadata)
-    live = station.core._wrench_stream  # noqa: SLF001 - the sensor stream the loop reads
-
-    def delivered_late(decimation):  # the real samples, as if each took 100 ms to arrive
-        for sample in live(decimation):
-            yield dataclasses.replace(sample, sample_time_ns=sample.sample_time_ns - 100_000_000)
-
-    # In free space the force is ~0, so a -10 N target drives the tool at A·10 N = 10 mm/s.
-    control = pb.AssistanceConfig(force_control=pb.ForceControl(
-        enabled=True, axes=pb.AxisSelection(z=True),
-        desired_wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(z=-10.0)),
-        translation_gain_m_per_n_s=1e-3))
-
-    def travel_in(seconds: float) -> float:
-        before = station.tool_position()
-        station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=control),
-                                        metadata=metadata)
-        time.sleep(seconds)
-        station.decisions.SetAssistance(pb.SetAssistanceRequest(
-            assistance=pb.AssistanceConfig()), metadata=metadata)
-        time.sleep(0.1)
-        return float(np.linalg.norm(station.tool_position() - before))
-
-    monkeypatch.setattr(station.core, "_wrench_stream", delivered_late)
-    assert travel_in(0.5) < 1e-4
-    monkeypatch.setattr(station.core, "_wrench_stream", live)
-    # About 5 mm on a quiet machine; a loaded one makes live samples late too, and fewer count.
-    assert travel_in(0.5) > 5e-4
-
-
-def test_force_control_ends_when_its_lease_lapses(station):
-    """A crashed operator's force control does not go on moving the arm."""
-    lease, metadata = station.acquire(lease_duration=convert.duration(0.5))
-    station.ready_at_home(metadata)
-    station.sensor.StartReading(force_sensor_pb2.StartReadingRequest(), metadata=metadata)
-    events = station.core.events.subscribe(256)
-    # In free space a -10 N target drives the tool at A·10 N = 10 mm/s until someone stops it.
-    station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=pb.AssistanceConfig(
-        force_control=pb.ForceControl(
-            enabled=True, axes=pb.AxisSelection(z=True),
-            desired_wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(z=-10.0)),
-            translation_gain_m_per_n_s=1e-3))), metadata=metadata)
-    start = station.tool_position()
-    time.sleep(1.0)  # nobody renews: the lease lapses after 0.5 s
-    lapsed = station.tool_position()
-    time.sleep(0.5)
-    assert np.linalg.norm(lapsed - start) > 5e-4  # it did move while the lease lived
-    assert np.linalg.norm(station.tool_position() - lapsed) < 1e-4  # and stopped with it
-    assert station.core.assistance.force_control is None
-    seen = []
-    while (event := events.get(0)) is not None:
-        seen.append(type(event.payload).__name__)
-    assert "AssistanceChanged" in seen[seen.index("ControlChanged"):], seen
-
-
-def test_events_report_locks_assistance_and_holds(station):
-    events = station.core.events.subscribe(256)
-    stream = station.decisions.StreamEvents(pb.StreamEventsRequest(), timeout=10)
-    received = []
-    reader = threading.Thread(target=lambda: received.extend(
-        [m for _, m in zip(range(3), stream, strict=False)]), daemon=True)
-    reader.start()
-    time.sleep(0.2)
-    lease, metadata = station.acquire("eve")
-    station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=pb.AssistanceConfig(
-        scaling=pb.Scaling(translation_scale=0.5))), metadata=metadata)
-    station.decisions.ReleaseControl(pb.ReleaseControlRequest(lease_id=lease))
-    reader.join(5)
-    stream.cancel()
-    kinds = [m.WhichOneof("event") for m in received]
-    assert kinds == ["control_changed", "assistance_changed", "control_changed"]
-    assert received[0].control_changed.state.holders[0].operator_id == "eve"
-    assert received[1].assistance_changed.assistance.scaling.translation_scale == 0.5
-    # In order; gaps are ProxyRobot's DATA_RECEIVED events, which this stream leaves out.
-    sequences = [m.sequence for m in received]
-    assert sequences == sorted(set(sequences)), sequences
-    events.close()

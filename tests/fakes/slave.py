@@ -107,6 +107,7 @@ class FakeSlave:
         self.commands: list[Command] = []  # everything the core asked of the arm, in order
         self.sensor_flange_to_tool = self.kinematics.flange_T_tool
         self.sensor_reading = True
+        self.wrench_delay_s = 0.0  # how late samples arrive (a backlog on a loaded machine)
         self.reachable = True
         self.on_state = lambda state: None
         self.on_robot_event = lambda message: None
@@ -258,6 +259,7 @@ class FakeSlave:
         depth = self.floor_z - tool.translation[2]
         force_base = np.array([0.0, 0.0, self.stiffness * depth if depth > 0 else 0.0])
         self._sequence += 1
+        sampled_ns = self.clock.time_ns() - round(self.wrench_delay_s * 1e9)
         self._latest_wrench = SlaveWrench(tool.rotation.T @ force_base, np.zeros(3),
-                                          self._sequence, self.clock.time_ns())
+                                          self._sequence, sampled_ns)
         return self._latest_wrench

@@ -1,0 +1,167 @@
+"""The DecisionServer's contracts over a real in-process gRPC server, in front of a fake slave
+on a fake clock: no process, no world, no sleeps."""
+
+from __future__ import annotations
+
+import queue
+
+import grpc
+import numpy as np
+import pytest
+
+from services.common import convert
+from telerobot.v1 import decision_server_pb2 as pb
+from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
+from tests.conftest import wait_for
+
+
+class Operator:
+    """A Teleoperate stream driven from the test: one message in, its reply out."""
+
+    def __init__(self, station, lease_id: str, watchdog_s: float = 1.0):
+        self._requests: queue.Queue = queue.Queue()
+        self._sequence = 0
+        self._requests.put(pb.TeleoperateRequest(init=pb.TeleoperateInit(
+            operator_id="tester", lease_id=lease_id,
+            watchdog_timeout=convert.duration(watchdog_s))))
+        self._replies = station.decisions.Teleoperate(iter(self._requests.get, None),
+                                                      timeout=30)
+        self.ready = next(self._replies).ready
+
+    def move(self, dx=(0, 0, 0), clutch=False) -> pb.CommandAck:
+        self._sequence += 1
+        self._requests.put(pb.TeleoperateRequest(command=pb.MasterCommand(
+            sequence=self._sequence, delta_position_m=convert.vector3_to_proto(dx),
+            clutch_engaged=clutch)))
+        return next(self._replies).ack
+
+    def close(self):
+        self._requests.put(None)
+        for _ in self._replies:
+            pass
+
+
+def test_acks_carry_the_outcome_pose_status_and_a_fresh_wrench(fake_station):
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    operator = Operator(station, lease)
+    ack = operator.move((0, 0, 0.005))
+    assert ack.sequence == 1 and ack.outcome == pb.COMMAND_OUTCOME_APPLIED
+    assert ack.status == types_pb2.ROBOT_STATUS_MOVING
+    np.testing.assert_allclose(convert.pose_from_proto(ack.tool_pose, "").translation,
+                               slave.tool_pose().translation)
+    assert not ack.HasField("tool_wrench")  # the sensor has sampled nothing yet
+    slave.step(0.001)
+    assert operator.move().HasField("tool_wrench")
+    slave.sensor_reading = False  # StopReading: the wrench leaves the acks
+    assert not operator.move().HasField("tool_wrench")
+    assert operator.move((0, 0, 0.005), clutch=True).outcome == pb.COMMAND_OUTCOME_INDEXED
+    too_big = operator.move((0.2, 0, 0))
+    assert too_big.outcome == pb.COMMAND_OUTCOME_REJECTED and "cap" in too_big.detail
+    operator.close()
+
+
+def test_the_first_message_must_be_init_and_the_lock_is_needed(fake_station):
+    station, _ = fake_station
+    bad = station.decisions.Teleoperate(iter([pb.TeleoperateRequest(
+        heartbeat=pb.Heartbeat())]), timeout=5)
+    with pytest.raises(grpc.RpcError) as error:
+        next(bad)
+    assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+    no_lock = station.decisions.Teleoperate(iter([pb.TeleoperateRequest(
+        init=pb.TeleoperateInit(operator_id="mallory"))]), timeout=5)
+    with pytest.raises(grpc.RpcError) as error:
+        next(no_lock)
+    assert error.value.code() is grpc.StatusCode.FAILED_PRECONDITION
+
+
+def test_lost_control_ends_the_stream_with_aborted(fake_station):
+    station, _ = fake_station
+    lease, _ = station.acquire()
+    operator = Operator(station, lease)
+    operator.move((0, 0, 0.002))
+    station.decisions.ReleaseControl(pb.ReleaseControlRequest(lease_id=lease))
+    with pytest.raises(grpc.RpcError) as error:
+        operator.move((0, 0, 0.002))
+    assert error.value.code() is grpc.StatusCode.ABORTED
+
+
+def test_a_stop_through_another_door_shows_in_the_acks_within_one_sample(fake_station):
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    operator = Operator(station, lease)
+    assert operator.move((0, 0, 0.002)).outcome == pb.COMMAND_OUTCOME_APPLIED
+    slave.latch_at_hardware("stopped through the band")
+    slave.step(0.001)
+    ack = operator.move((0, 0, 0.002))
+    assert ack.outcome == pb.COMMAND_OUTCOME_REJECTED and "ESTOPPED" in ack.detail
+    assert ack.status == types_pb2.ROBOT_STATUS_ESTOPPED
+    operator.close()
+
+
+def test_stop_reset_and_tool_frame_go_through_the_core_alone(fake_station):
+    """Defect: the servicer made extra GetStatus calls after stop and reset, and synced the
+    sensor's tool frame itself."""
+    station, slave = fake_station
+    _, metadata = station.acquire()
+    stopped = station.robot.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason="t"))
+    assert stopped.status == types_pb2.ROBOT_STATUS_ESTOPPED
+    with pytest.raises(grpc.RpcError) as error:  # anyone may stop; only the holder resets
+        station.robot.Reset(proxy_robot_pb2.ResetRequest())
+    assert error.value.code() is grpc.StatusCode.FAILED_PRECONDITION
+    reset = station.robot.Reset(proxy_robot_pb2.ResetRequest(), metadata=metadata)
+    assert reset.status == types_pb2.ROBOT_STATUS_READY
+    frame = types_pb2.Pose(position_m=types_pb2.Vector3(z=0.15))
+    reply = station.robot.SetToolFrame(proxy_robot_pb2.SetToolFrameRequest(
+        flange_to_tool=frame), metadata=metadata)
+    assert reply.flange_to_tool.position_m.z == pytest.approx(0.15)
+    assert slave.sensor_flange_to_tool.translation[2] == pytest.approx(0.15)
+    assert [c.kind for c in slave.commands] == ["estop", "reset", "tool_frame"]
+
+
+def test_run_action_moves_go_through_the_core(fake_station):
+    """Defect: RunAction's moves skipped recording and the latch check."""
+    station, slave = fake_station
+    _, metadata = station.acquire()
+    station.decisions.StartRecording(pb.StartRecordingRequest(name="actions"),
+                                     metadata=metadata)
+    reply = station.decisions.RunAction(pb.RunActionRequest(
+        action_id="a", move_joints=proxy_robot_pb2.MoveJointsIncrementalRequest(
+            delta_joint_positions_rad=[0.05, 0, 0, 0, 0, 0])), metadata=metadata)
+    assert reply.lane == options_pb2.LANE_MEDIUM  # RunAction's declared lane
+    station.decisions.RunAction(pb.RunActionRequest(
+        move_cartesian=proxy_robot_pb2.MoveCartesianIncrementalRequest(
+            delta_position_m=types_pb2.Vector3(z=0.01), frame=types_pb2.REFERENCE_FRAME_BASE)),
+        metadata=metadata)
+    assert station.decisions.StopRecording(pb.StopRecordingRequest()).recording.command_count == 2
+    station.robot.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason="t"))
+    target = slave.q_target.copy()
+    with pytest.raises(grpc.RpcError) as error:
+        station.decisions.RunAction(pb.RunActionRequest(
+            move_joints=proxy_robot_pb2.MoveJointsIncrementalRequest(
+                delta_joint_positions_rad=[0.05, 0, 0, 0, 0, 0])), metadata=metadata)
+    assert error.value.code() is grpc.StatusCode.FAILED_PRECONDITION
+    np.testing.assert_array_equal(slave.q_target, target)
+    with pytest.raises(grpc.RpcError) as error:  # six joints, finite
+        station.decisions.RunAction(pb.RunActionRequest(
+            move_joints=proxy_robot_pb2.MoveJointsIncrementalRequest(
+                delta_joint_positions_rad=[float("nan")] * 6)), metadata=metadata)
+    assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+
+
+def test_events_report_locks_assistance_and_holds_in_order(fake_station):
+    station, _ = fake_station
+    stream = station.decisions.StreamEvents(pb.StreamEventsRequest(), timeout=10)
+    wait_for(lambda: station.core.events.subscriber_count >= 1,
+             what="the event stream to subscribe")
+    lease, metadata = station.acquire("eve")
+    station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=pb.AssistanceConfig(
+        scaling=pb.Scaling(translation_scale=0.5))), metadata=metadata)
+    station.decisions.ReleaseControl(pb.ReleaseControlRequest(lease_id=lease))
+    received = [next(stream) for _ in range(3)]
+    stream.cancel()
+    assert [m.WhichOneof("event") for m in received] == [
+        "control_changed", "assistance_changed", "control_changed"]
+    assert received[0].control_changed.state.holders[0].operator_id == "eve"
+    assert received[1].assistance_changed.assistance.scaling.translation_scale == 0.5
+    assert [m.sequence for m in received] == [1, 2, 3]
