@@ -1,63 +1,160 @@
-"""ProxyRobot tests run against a real world process through the shared-memory link."""
+"""ProxyRobot tests run in-process on a fake arm and a fake clock (tests/fakes), and drive the
+proxy's monitor and setpoints themselves, so every event happens at a known instant. The few
+tests marked e2e run against a real world process through the shared-memory link."""
 
 from __future__ import annotations
 
-import time
-from collections.abc import Iterator
+import os
+import subprocess
+from collections.abc import Callable, Iterator
+from multiprocessing import shared_memory
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from services.proxy_robot import core as core_module
+from services.proxy_robot import interpolator as interpolator_module
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.status import RobotStatus
 from services.robot_model.puma560 import HOME_Q
 from services.world.shm_link import SharedMemoryArmLink
-from tests.world.conftest import World, _cleanup, start_world
+from tests.conftest import wait_for
+from tests.fakes.arm_link import FakeArm
+from tests.fakes.clock import FakeClock
+
+TICK_S = interpolator_module.SETPOINT_PERIOD_S  # the setpoint thread's period, 1 ms
+TICKS_PER_SAMPLE = round(core_module.STATE_PERIOD_S / TICK_S)  # the monitor's, 2 ms
+
+
+HERE = Path(__file__).resolve().parent
+# Fixtures that start real processes (tests/conftest.py, tests/world/conftest.py). The session
+# ones are set up before any function fixture could refuse them, so they are checked at
+# collection.
+PROCESS_FIXTURES = frozenset({"world", "world_factory", "shared_world", "backends",
+                              "service_process"})
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    for item in items:
+        if HERE not in item.path.parents or item.get_closest_marker("e2e"):
+            continue
+        used = PROCESS_FIXTURES.intersection(getattr(item, "fixturenames", ()))
+        if used:
+            raise pytest.UsageError(f"{item.nodeid} uses {sorted(used)}, which start processes: "
+                                    "mark it e2e or use the fake arm (tests/fakes)")
+
+
+class _NoSystemTime:
+    """Stands in for the `time` module inside the proxy: any reading of the real clock fails."""
+
+    def __getattr__(self, name: str):
+        raise AssertionError(f"the proxy read time.{name}: it must use its injected clock")
+
+
+@pytest.fixture(autouse=True)
+def _in_process_only(request, monkeypatch) -> None:
+    """Tests not marked e2e start no process, attach no shared memory (so no world) and read no
+    real time in the proxy."""
+    if request.node.get_closest_marker("e2e"):
+        return
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a ProxyRobot test not marked e2e tried to start a process or "
+                             "attach a world's shared memory")
+
+    monkeypatch.setattr(subprocess.Popen, "__init__", refuse)
+    monkeypatch.setattr(os, "fork", refuse)
+    monkeypatch.setattr(os, "posix_spawn", refuse)
+    monkeypatch.setattr(shared_memory.SharedMemory, "__init__", refuse)
+    monkeypatch.setattr(core_module, "time", _NoSystemTime())
+    monkeypatch.setattr(interpolator_module, "time", _NoSystemTime())
+
+
+class Rig:
+    """A ProxyRobotCore on a FakeArm, both on one FakeClock, driven tick by tick: each tick
+    (1 ms) advances the clock and writes the next setpoint, and every second tick the monitor
+    samples the arm, as the core's own threads would in service."""
+
+    def __init__(self) -> None:
+        self.clock = FakeClock()
+        self.arm = FakeArm(self.clock)
+        self.core = ProxyRobotCore(self.arm.open_link, clock=self.clock, threads=False)
+        self.ticks = 0
+
+    def tick(self) -> None:
+        self.clock.advance(TICK_S)
+        self.core.write_setpoint()
+        self.ticks += 1
+        if self.ticks % TICKS_PER_SAMPLE == 0:
+            self.core.sample_once()
+
+    def run(self, seconds: float) -> None:
+        """Let `seconds` of fake time pass."""
+        for _ in range(round(seconds / TICK_S)):
+            self.tick()
+
+    def run_until(self, predicate: Callable[[], object], timeout_s: float = 2.0,
+                  what: str = "condition") -> float:
+        """Tick until `predicate()` is true; the fake time it took (s). Fails after `timeout_s`
+        of fake time."""
+        start = self.ticks
+        while not predicate():
+            if (self.ticks - start) * TICK_S >= timeout_s:
+                raise AssertionError(f"{what} did not happen within {timeout_s} s (fake time)")
+            self.tick()
+        return (self.ticks - start) * TICK_S
+
+    def run_until_status(self, status: RobotStatus, timeout_s: float = 2.0) -> float:
+        return self.run_until(lambda: self.core.status[0] == status, timeout_s, status.name)
 
 
 @pytest.fixture
-def core(world) -> Iterator[ProxyRobotCore]:
-    """A fresh proxy on the shared world; leaves the world un-latched for the next test."""
-    proxy = ProxyRobotCore(lambda: SharedMemoryArmLink(world.shm_name))
-    yield proxy
-    if proxy.status[0] in (RobotStatus.ESTOPPED, RobotStatus.FAULT):
-        proxy.reset()
-    proxy.close()
+def rig() -> Iterator[Rig]:
+    made = Rig()
+    yield made
+    made.core.close()
 
 
-def send_home(world: World, timeout_s: float = 10.0) -> None:
-    """Drive the arm back to the home pose through the link (before a proxy connects)."""
+@pytest.fixture
+def core(rig) -> ProxyRobotCore:
+    """A fresh proxy on a fake arm at home, not connected."""
+    return rig.core
+
+
+@pytest.fixture
+def ready(rig) -> ProxyRobotCore:
+    """A connected, initialized proxy with the arm at rest at home."""
+    rig.core.connect()
+    rig.core.initialize()
+    rig.run(0.01)
+    return rig.core
+
+
+# -- e2e: the real world process ------------------------------------------------------------
+
+
+def send_home(world, timeout_s: float = 10.0) -> None:
+    """Drive the real arm back to the home pose through the link (before a proxy connects)."""
     link = SharedMemoryArmLink(world.shm_name)
     try:
         link.release_hold()
         link.write_target(HOME_Q)
-        deadline = time.monotonic() + timeout_s
-        while np.max(np.abs(link.read_arm().joint_positions_rad - HOME_Q)) > 1e-4:
-            if time.monotonic() > deadline:
-                raise AssertionError("the arm did not return home")
-            time.sleep(0.01)
+        wait_for(lambda: np.max(np.abs(link.read_arm().joint_positions_rad - HOME_Q)) <= 1e-4,
+                 timeout_s, "the arm back home")
     finally:
         link.close()
 
 
 @pytest.fixture
-def ready(world, core) -> ProxyRobotCore:
-    """A connected, initialized proxy with the arm at home."""
+def world_ready(world) -> Iterator[ProxyRobotCore]:
+    """A connected, initialized proxy on the real world, the arm at home; leaves the world
+    un-latched for the next test."""
     send_home(world)
-    core.connect()
-    core.initialize()
-    return core
-
-
-@pytest.fixture
-def world_factory():
-    """Worlds owned by one test (stopped and cleaned up after it)."""
-    worlds: list[World] = []
-
-    def start() -> World:
-        worlds.append(start_world())
-        return worlds[-1]
-
-    yield start
-    for world in worlds:
-        _cleanup(world)
+    proxy = ProxyRobotCore(lambda: SharedMemoryArmLink(world.shm_name))
+    proxy.connect()
+    proxy.initialize()
+    yield proxy
+    if proxy.status[0] in (RobotStatus.ESTOPPED, RobotStatus.FAULT):
+        proxy.reset()
+    proxy.close()
