@@ -22,9 +22,7 @@ from __future__ import annotations
 
 import logging
 import threading
-import time
 from collections.abc import Callable
-from typing import Protocol
 
 import numpy as np
 import pinocchio as pin
@@ -45,6 +43,7 @@ from services.robot_model import puma560
 from services.robot_model.ik import solve_ik
 from services.robot_model.kinematics import PumaKinematics
 from services.robot_model.singularity import singularity_measures
+from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.link import JOINT_COUNT, ArmLink, ArmSample
 
@@ -71,27 +70,6 @@ HOLD_DECELERATION_RAD_PER_S2 = 10.0
 RELEASE_POLL_S = 0.0005
 
 
-class Clock(Protocol):
-    """Where the proxy reads time."""
-
-    def monotonic_ns(self) -> int:
-        """For intervals and deadlines."""
-
-    def time_ns(self) -> int:
-        """Wall clock, for the times the proxy reports (status changes, events, stops)."""
-
-    def sleep(self, seconds: float) -> None:
-        """Let `seconds` pass (a fake clock advances)."""
-
-
-class SystemClock:
-    """The real clock."""
-
-    monotonic_ns = staticmethod(time.monotonic_ns)
-    time_ns = staticmethod(time.time_ns)
-    sleep = staticmethod(time.sleep)
-
-
 class ProxyRobotCore:
     """The arm proxy. Thread-safe; `close()` stops its monitor thread.
 
@@ -99,11 +77,11 @@ class ProxyRobotCore:
     every STATE_PERIOD_S and `write_setpoint()` every millisecond of its clock instead."""
 
     def __init__(self, link_factory: Callable[[], ArmLink],
-                 state_period_s: float = STATE_PERIOD_S, *, clock: Clock | None = None,
+                 state_period_s: float = STATE_PERIOD_S, *, clock: Clock = SYSTEM_CLOCK,
                  threads: bool = True):
         self._link_factory = link_factory
         self._state_period_s = state_period_s
-        self._clock: Clock = clock if clock is not None else SystemClock()
+        self._clock = clock
         self._threads = threads
         self._lock = threading.RLock()  # status, target, link, tool frame
         self._move_lock = threading.Lock()  # one move computation at a time (kinematics buffers)
