@@ -25,6 +25,7 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
     types_pb2,
 )
+from wire.metadata import LANE_METADATA_KEY, LEASE_METADATA_KEY
 
 log = logging.getLogger(__name__)
 
@@ -44,7 +45,7 @@ WRENCH_FRESH_S = 0.05
 _FRAMES = {"BASE": types_pb2.REFERENCE_FRAME_BASE, "WRIST": types_pb2.REFERENCE_FRAME_WRIST,
            "TOOL": types_pb2.REFERENCE_FRAME_TOOL}
 # Metadata a forwarded call carries on: the lane and the lease, nothing gRPC-internal.
-FORWARDED_METADATA = ("telerobot-lane", "telerobot-lease-id")
+FORWARDED_METADATA = (LANE_METADATA_KEY, LEASE_METADATA_KEY)
 
 
 def domain_error(error: grpc.RpcError) -> TelerobotError:

@@ -24,6 +24,7 @@ from services.decision_server.supervisor import (
     WatchdogHold,
 )
 from services.proxy_robot.servicer import frame_from_proto
+from services.runtime.clock import Clock
 from services.runtime.errors import Aborted, InvalidArgument, TelerobotError
 from services.runtime.lanes import Lane, current_lane
 from services.runtime.rpc import LANE_TO_PROTO
@@ -40,8 +41,8 @@ from telerobot.v1 import (
     stereo_camera_pb2_grpc,
     types_pb2,
 )
+from wire.metadata import LEASE_METADATA_KEY
 
-LEASE_METADATA_KEY = "telerobot-lease-id"
 STREAM_POLL_S = 0.1
 # Calls through the facades that command the arm or the sensor need the control lock.
 PROXY_COMMANDS = {"Connect", "Initialize", "Disconnect", "SetToolFrame", "MoveJointsIncremental",
@@ -64,16 +65,17 @@ def _mode(mode: ControlMode | None) -> int:
     return pb.ControlMode.Value(f"CONTROL_MODE_{mode.name}") if mode else 0
 
 
-def _holder(lease: Lease) -> pb.ControlHolder:
-    expires_ns = time.time_ns() + int((lease.expires_at - time.monotonic()) * 1e9)
+def _holder(lease: Lease, clock: Clock) -> pb.ControlHolder:
+    """A lease, its deadline (on the clock's monotonic scale) as a wall-clock time."""
+    expires_ns = clock.time_ns() + int((lease.expires_at - clock.monotonic()) * 1e9)
     return pb.ControlHolder(operator_id=lease.operator_id, mode=_mode(lease.mode),
                             group=lease.group, expire_time=convert.timestamp(expires_ns))
 
 
-def control_state(view: ControlView) -> pb.ControlState:
-    now_ns, now = time.time_ns(), time.monotonic()
+def control_state(view: ControlView, clock: Clock) -> pb.ControlState:
+    now_ns, now = clock.time_ns(), clock.monotonic()
     return pb.ControlState(
-        mode=_mode(view.mode), holders=[_holder(h) for h in view.holders],
+        mode=_mode(view.mode), holders=[_holder(h, clock) for h in view.holders],
         waiters=[pb.ControlHolder(operator_id=o, mode=_mode(m), group=g,
                                   expire_time=convert.timestamp(now_ns + int((d - now) * 1e9)))
                  for o, m, g, d in view.waiters])
@@ -144,7 +146,7 @@ def recording_to_proto(info) -> pb.Recording:
                         duration=duration, command_count=info.command_count)
 
 
-def event_to_proto(event) -> pb.StreamEventsResponse:
+def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
     message = pb.StreamEventsResponse(sequence=event.sequence,
                                       event_time=convert.timestamp(event.time_ns))
     payload = event.payload
@@ -152,7 +154,7 @@ def event_to_proto(event) -> pb.StreamEventsResponse:
         message.robot.CopyFrom(payload.message)
     elif isinstance(payload, ControlChanged):
         message.control_changed.CopyFrom(pb.ControlChangedEvent(
-            state=control_state(payload.view), reason=payload.reason))
+            state=control_state(payload.view, clock), reason=payload.reason))
     elif isinstance(payload, WatchdogHold):
         message.watchdog_hold.CopyFrom(pb.WatchdogHoldEvent(
             session_id=payload.session_id, reason=payload.reason,
@@ -234,6 +236,9 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         finally:
             session.close(reason)
 
+    def _control_state(self) -> pb.ControlState:
+        return control_state(self._core.locks.view(), self._core.clock)
+
     def GetAssistance(self, request, context):
         return pb.GetAssistanceResponse(assistance=assistance_to_proto(self._core.assistance))
 
@@ -256,19 +261,20 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             request.operator_id, mode, request.group, request.wait, wait_s,
             convert.seconds(request.lease_duration) or 5.0)
         return pb.AcquireControlResponse(lease_id=lease.lease_id,
-                                         expire_time=_holder(lease).expire_time,
-                                         state=control_state(self._core.locks.view()))
+                                         expire_time=_holder(lease, self._core.clock).expire_time,
+                                         state=self._control_state())
 
     def RenewControl(self, request, context):
         return pb.RenewControlResponse(
-            expire_time=_holder(self._core.locks.renew(request.lease_id)).expire_time)
+            expire_time=_holder(self._core.locks.renew(request.lease_id),
+                                 self._core.clock).expire_time)
 
     def ReleaseControl(self, request, context):
         self._core.locks.release(request.lease_id)
-        return pb.ReleaseControlResponse(state=control_state(self._core.locks.view()))
+        return pb.ReleaseControlResponse(state=self._control_state())
 
     def GetControlState(self, request, context):
-        return pb.GetControlStateResponse(state=control_state(self._core.locks.view()))
+        return pb.GetControlStateResponse(state=self._control_state())
 
     def StartRecording(self, request, context):
         info = self._core.start_recording(lease_id(context), request.name)
@@ -330,7 +336,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 event = events.get(STREAM_POLL_S)
                 if event is None:
                     continue
-                message = event_to_proto(event)
+                message = event_to_proto(event, self._core.clock)
                 if (message.WhichOneof("event") == "robot" and not request.include_data_received
                         and message.robot.WhichOneof("event") == "data_received"):
                     continue

@@ -47,10 +47,32 @@ def base_parser(service: str, description: str) -> argparse.ArgumentParser:
     return parser
 
 
+# A record's message never exceeds this, whatever text a client managed to get into it.
+MAX_LOG_MESSAGE_CHARS = 2000
+_CONTROL_CHARACTERS = {c: f"\\x{c:02x}" for c in (*range(0x20), 0x7f)}
+
+
+class OneLineFormatter(logging.Formatter):
+    """One line per record: control characters in the message (newlines, escapes, NULs from
+    a client's string) are escaped and the message is cut at MAX_LOG_MESSAGE_CHARS, so no
+    client text can forge log lines or flood the log. Tracebacks stay as they are."""
+
+    def formatMessage(self, record: logging.LogRecord) -> str:  # noqa: N802 - logging's name
+        record.message = loggable(record.message)
+        return super().formatMessage(record)
+
+
+def loggable(text: str) -> str:
+    """`text` escaped to one line and cut to MAX_LOG_MESSAGE_CHARS."""
+    text = text.translate(_CONTROL_CHARACTERS)
+    if len(text) > MAX_LOG_MESSAGE_CHARS:
+        text = f"{text[:MAX_LOG_MESSAGE_CHARS]}… ({len(text)} characters)"
+    return text
+
+
 def configure_logging(service: str, level: str) -> None:
     """One line per record on stderr, tagged with the service name and pid."""
-    logging.basicConfig(
-        level=level.upper(),
-        stream=sys.stderr,
-        format=f"%(asctime)s {service}[%(process)d] %(levelname)s %(name)s: %(message)s",
-    )
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(OneLineFormatter(
+        f"%(asctime)s {service}[%(process)d] %(levelname)s %(name)s: %(message)s"))
+    logging.basicConfig(level=level.upper(), handlers=[handler])

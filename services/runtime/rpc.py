@@ -29,10 +29,10 @@ from services.runtime.errors import TelerobotError
 from services.runtime.lanes import Lane, LaneExecutor, LaneExecutorClosed, LaneFull
 from services.runtime.validation import check_request
 from telerobot.v1 import options_pb2
+from wire.metadata import LANE_METADATA_KEY
 
 log = logging.getLogger(__name__)
 
-LANE_METADATA_KEY = "telerobot-lane"
 ERROR_DOMAIN = "telerobot.v1"
 
 # Lanes for the runtime's own services, which carry no `default_lane` option.

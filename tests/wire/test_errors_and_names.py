@@ -5,7 +5,6 @@ from __future__ import annotations
 import pytest
 
 from services.runtime import errors as runtime_errors
-from services.runtime import rpc
 from services.runtime.config import address_for as runtime_address_for
 from services.runtime.lanes import Lane
 from wire import errors
@@ -38,7 +37,7 @@ def test_status_names_are_unique_and_an_unknown_one_is_kept():
 
 def test_metadata_names_match_the_services():
     assert LANES == tuple(lane.name.lower() for lane in sorted(Lane))
-    assert rpc.LANE_METADATA_KEY == LANE_METADATA_KEY == "telerobot-lane"
+    assert LANE_METADATA_KEY == "telerobot-lane"  # the names the protos' comments document
     assert LEASE_METADATA_KEY == "telerobot-lease-id"
 
 
