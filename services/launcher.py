@@ -8,7 +8,9 @@ slave station with a part missing is not safe to operate, and a supervisor above
 shell loop) can restart the group cleanly.
 
 Children run in their own process group, so a terminal's Ctrl-C reaches only the launcher, which
-then drains each child once; each child also stops by itself if the launcher is killed.
+then drains each child once; each child also stops by itself if the launcher is killed. Started
+with TELEROBOT_PARENT_PID set (by `make teleop`, the tests), the launcher in turn stops the
+station if that parent goes away.
 
 Each service listens where its TELEROBOT_<NAME>_ADDRESS says (default: config.DEFAULT_PORTS).
 A port 0 there picks a free port: the launcher reads the one bound from the child's ready line
@@ -35,7 +37,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
 from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
-from services.runtime.process import parse_ready_line, ready_line
+from services.runtime.process import parse_ready_line, ready_line, watch_parent
 
 log = logging.getLogger("launcher")
 
@@ -59,17 +61,22 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
 
-    stop = threading.Event()  # SIGINT or SIGTERM
+    stop = threading.Event()  # SIGINT, SIGTERM, or the parent gone
     wake = threading.Event()  # a stop request, or a child ended
     stop_reason: list[str] = []
 
-    def on_signal(signum, _frame):
-        stop_reason.append(signal.Signals(signum).name)
+    def request_stop(reason: str) -> None:
+        stop_reason.append(reason)
         stop.set()
         wake.set()
 
+    def on_signal(signum, _frame):
+        request_stop(f"{signal.Signals(signum).name} received")
+
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
+    # Started by a supervisor of its own (`make teleop`, the tests): stop with it.
+    watch_parent(lambda: request_stop("the parent process is gone"), stop)
 
     env = {"TELEROBOT_GRACE_S": str(args.grace_s)}
     station: list[Child] = []
@@ -100,7 +107,7 @@ def main(argv: list[str] | None = None) -> int:
             log.error("%s\nstopping the whole station (see the launcher's docstring for why)",
                       dead.describe())
             return 1
-        log.info("%s received; stopping the station", stop_reason[0] if stop_reason else "stop")
+        log.info("%s; stopping the station", stop_reason[0] if stop_reason else "stop requested")
         return 0
     finally:
         children.stop_all(reversed(station), args.grace_s + STOP_MARGIN_S)

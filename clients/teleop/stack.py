@@ -2,21 +2,19 @@
 
 from __future__ import annotations
 
-import collections
 import contextlib
-import os
 import signal
-import subprocess
-import sys
-import threading
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 
 import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import UP_LINE
+from services.runtime import children
+from services.runtime.children import ChildFailed
+from services.runtime.config import env_name
 
 STARTUP_TIMEOUT_S = 90.0
+STOP_TIMEOUT_S = 10.0  # after SIGINT, the launcher drains every service well within this
 
 
 def serving(address: str, timeout_s: float = 1.0) -> bool:
@@ -30,36 +28,40 @@ def serving(address: str, timeout_s: float = 1.0) -> bool:
 
 
 @contextlib.contextmanager
+def local_station(operator_address: str | None = None,
+                  env: Mapping[str, str] | None = None) -> Iterator[dict[str, str]]:
+    """Start a slave station (`python -m services.launcher`) and yield every service's address,
+    from the launcher's ready lines, once the whole station is up; stop it after (SIGINT: the
+    launcher drains every service). `operator_address` is where the DecisionServer listens
+    (default: TELEROBOT_DECISION_SERVER_ADDRESS); port 0 there, or in `env`'s addresses, picks
+    a free port. RuntimeError, with the launcher's last lines, if it does not come up."""
+    extra = dict(env or {})
+    if operator_address is not None:
+        extra[env_name("decision_server", "address")] = operator_address
+    launcher = children.start("launcher", ["-m", "services.launcher"], env=extra,
+                              max_lines=40, stop_grace_s=STOP_TIMEOUT_S)
+    try:
+        try:
+            # The launcher starts decision_server last, once every other service serves.
+            launcher.wait_ready("decision_server", timeout_s=STARTUP_TIMEOUT_S)
+        except ChildFailed as failed:
+            raise RuntimeError(f"the local station did not come up: {failed}") from None
+        yield dict(launcher.ready)
+    finally:
+        launcher.stop(signal.SIGINT)
+
+
+@contextlib.contextmanager
 def station_at(address: str, log=print) -> Iterator[bool]:
-    """Yield once a station answers at `address`; start a local one (and stop it after) if
-    nothing does. Yields whether it started one."""
+    """Yield once a station answers at `address`; start a local one there (and stop it after)
+    if nothing does. Yields whether it started one. (To start one on a port 0, use
+    local_station, which yields the addresses bound.)"""
     if serving(address):
         yield False
         return
     log(f"nothing answers at {address}: starting a local slave station")
-    launcher = subprocess.Popen(
-        [sys.executable, "-m", "services.launcher"], stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT, text=True, process_group=0,
-        env={**os.environ, "PYTHONUNBUFFERED": "1"})
-    lines: collections.deque[str] = collections.deque(maxlen=40)
-    up = threading.Event()
-
-    def drain() -> None:  # keep reading, or the station blocks on a full pipe
-        for line in launcher.stdout:
-            lines.append(line.rstrip())
-            if UP_LINE in line:
-                up.set()
-
-    threading.Thread(target=drain, name="station-log", daemon=True).start()
-    try:
-        up.wait(STARTUP_TIMEOUT_S)
+    with local_station(address) as addresses:
         if not serving(address, 5.0):
-            raise RuntimeError("the local station did not come up:\n" + "\n".join(lines))
+            raise RuntimeError(f"the local station is up at {addresses['decision_server']}, "
+                               f"yet nothing answers at {address}")
         yield True
-    finally:
-        if launcher.poll() is None:
-            launcher.send_signal(signal.SIGINT)
-            try:
-                launcher.wait(10)
-            except subprocess.TimeoutExpired:
-                launcher.kill()

@@ -1,4 +1,5 @@
-"""`make teleop`'s program end to end: it starts its own station, runs the peg-in-hole task with
+"""`make teleop`'s program end to end: against a station started the way it starts one
+(clients.teleop.stack.local_station, every service on port 0), it runs the peg-in-hole task with
 force feedback and then with compliance, and leaves its video, plots and summary."""
 
 from __future__ import annotations
@@ -11,26 +12,29 @@ import sys
 import cv2
 import pytest
 
+from clients.teleop.stack import local_station
 from services.launcher import STATION
-from tests.conftest import REPO, free_port
+from tests.conftest import REPO
 from tests.world.conftest import unique_shm_name
 
 pytestmark = pytest.mark.e2e
 
 
-
 def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path):
-    env = {f"TELEROBOT_{name.upper()}_ADDRESS": f"127.0.0.1:{free_port()}" for name in STATION}
+    env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
     env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
     out = tmp_path / "run"
-    result = subprocess.run(
-        [sys.executable, "-m", "clients.teleop", "--out", str(out),
-         "--calibration", str(tmp_path / "cameras.json")],
-        cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True,
-        timeout=400)
+    with local_station(env=env) as addresses:
+        assert sorted(addresses) == sorted(STATION)
+        operator = addresses["decision_server"]
+        result = subprocess.run(
+            [sys.executable, "-m", "clients.teleop", "--address", operator, "--out", str(out),
+             "--calibration", str(tmp_path / "cameras.json")],
+            cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True,
+            timeout=400)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
-    assert "started locally" in (out / "summary.json").read_text()
     summary = json.loads((out / "summary.json").read_text())
+    assert summary["station"] == f"found at {operator}"
     runs = {run["mode"]: run for run in summary["runs"]}
     assert list(runs) == ["feedback", "compliance"], runs
     assert all(run["success"] and run["depth_m"] > 0.035 for run in runs.values()), runs
