@@ -23,6 +23,8 @@ BUF = REPO / "node_modules" / ".bin" / "buf"
 # A started process: .process, .lines, .ready (name -> host:port), .wait_ready(names),
 # .wait_line(text), .stop(sig), .describe(); see services.runtime.children.Child.
 RunningProcess = Child
+# refused_address() (imported above, for the tests too): host:port where connections are
+# refused, for a dependency deliberately absent; held by this process and never listened on.
 STOP_GRACE_S = 10.0  # a test's process gets this long to stop on SIGTERM before SIGKILL
 
 
@@ -39,10 +41,9 @@ def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
 
 
 def free_port() -> int:
-    """Deprecated, for the callers outside the supervised tests that want an address where
-    nothing listens: a port that refuses connections for the whole session (held, never
-    listened on, so never handed to anyone else). Use `refused_address()` instead; a service
-    gets its port by listening on port 0 (`start_service`)."""
+    """Deprecated: the port of a `refused_address()`, for the callers that still want a port
+    where nothing listens. Use `refused_address()`; a service gets its port by listening on
+    port 0 (`start_service`)."""
     return int(refused_address().rsplit(":", 1)[1])
 
 
