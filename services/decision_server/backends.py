@@ -199,6 +199,11 @@ class GrpcSlave:
         return {"proxy_robot": errors.get("proxy_robot", "ok"),
                 "force_sensor": errors.get("force_sensor", "ok")}
 
+    def open_streams(self) -> int:
+        """Calls open now: the three background streams, plus any wrench stream being read."""
+        with self._streams_lock:
+            return len(self._streams)
+
     # -- background streams -----------------------------------------------------------------
 
     @contextlib.contextmanager

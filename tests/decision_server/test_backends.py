@@ -1,0 +1,109 @@
+"""GrpcSlave, the DecisionServer's port to the slave over gRPC, against in-process fakes of
+ProxyRobot and ForceSensor on port 0: what acks may show, and streams that come and go."""
+
+from __future__ import annotations
+
+import queue
+import threading
+import time
+
+import pytest
+
+from services.decision_server import backends
+from services.decision_server.backends import GrpcSlave
+from services.runtime.server import binding, create_server
+from telerobot.v1 import force_sensor_pb2, force_sensor_pb2_grpc, proxy_robot_pb2_grpc
+from tests.conftest import wait_for
+
+
+class Sensor(force_sensor_pb2_grpc.ForceSensorServicer):
+    """Streams the samples a test puts in, stamped when they are put."""
+
+    def __init__(self):
+        self.samples: queue.Queue = queue.Queue()
+
+    def StreamWrench(self, request, context):
+        while context.is_active():
+            try:
+                force_z = self.samples.get(timeout=0.05)
+            except queue.Empty:
+                continue
+            sample = force_sensor_pb2.WrenchSample(sequence=1)
+            sample.wrench.force_n.z = force_z
+            sample.sample_time.FromNanoseconds(time.time_ns())
+            yield force_sensor_pb2.StreamWrenchResponse(samples=[sample])
+
+
+class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
+    """A ProxyRobot whose streams send nothing and stay open, or end at once every time (a
+    backend that keeps restarting)."""
+
+    def __init__(self):
+        self.opened = 0
+        self.lock = threading.Lock()
+        self.end_at_once = False
+
+    def _stream(self, context):
+        with self.lock:
+            self.opened += 1
+        if not self.end_at_once:
+            idle = threading.Event()
+            context.add_callback(idle.set)
+            idle.wait()
+        return
+        yield
+
+    def StreamState(self, request, context):
+        yield from self._stream(context)
+
+    def StreamRobotEvents(self, request, context):
+        yield from self._stream(context)
+
+
+@pytest.fixture
+def slave(monkeypatch):
+    monkeypatch.setattr(backends, "RETRY_S", 0.01)  # reconnect at once
+    sensor, robot = Sensor(), Robot()
+    server, port = create_server("127.0.0.1:0", [
+        binding(force_sensor_pb2_grpc, "ForceSensor", sensor),
+        binding(proxy_robot_pb2_grpc, "ProxyRobot", robot)])
+    server.start()
+    slave = GrpcSlave(f"127.0.0.1:{port}", f"127.0.0.1:{port}")
+    yield slave, sensor, robot
+    slave.close()
+    server.stop(0)
+
+
+def test_a_wrench_that_stopped_coming_leaves_the_acks(slave):
+    """Defect: acks showed the last cached wrench for ever after StopReading."""
+    slave, sensor, _ = slave
+    sensor.samples.put(-4.0)
+    fresh = wait_for(slave.wrench, what="a wrench sample")
+    assert fresh.force_n[2] == -4.0
+    # No more samples (the sensor stopped reading): within WRENCH_FRESH_S it is gone.
+    wait_for(lambda: slave.wrench() is None, 2, "the stale wrench to be dropped")
+    sensor.samples.put(-5.0)
+    assert wait_for(slave.wrench, what="a new sample").force_n[2] == -5.0
+
+
+def test_streams_reopened_after_a_reconnect_are_not_kept(slave):
+    """Defect: every re-opened background stream was added to a list and never removed."""
+    slave, _, robot = slave
+    robot.end_at_once = True
+    wait_for(lambda: robot.opened >= 20, 10, "the streams to reopen 20 times")
+    assert slave.open_streams() <= 3  # state, wrench and events, at most
+
+
+def test_a_wrench_stream_is_forgotten_when_cancelled(slave):
+    slave, sensor, _ = slave
+    wait_for(lambda: slave.open_streams() == 3, what="the three background streams")
+    before = 3
+    stream = slave.wrench_stream(1)
+    samples = iter(stream)
+    sensor.samples.put(1.0)
+    sensor.samples.put(1.0)  # the background follower may take one
+    assert next(samples).force_n[2] == 1.0
+    assert slave.open_streams() == before + 1
+    stream.cancel()
+    assert list(samples) == []
+    assert slave.open_streams() == before
