@@ -15,7 +15,8 @@ import pytest
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 from services.runtime import children
-from services.runtime.children import Child, refused_address
+from services.runtime.children import Child
+from services.runtime.children import refused_address as refused_address  # for the tests
 
 REPO = Path(__file__).resolve().parent.parent
 BUF = REPO / "node_modules" / ".bin" / "buf"
@@ -38,13 +39,6 @@ def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
             return value
         time.sleep(0.005)
     raise AssertionError(f"timed out waiting for {what}")
-
-
-def free_port() -> int:
-    """Deprecated: the port of a `refused_address()`, for the callers that still want a port
-    where nothing listens. Use `refused_address()`; a service gets its port by listening on
-    port 0 (`start_service`)."""
-    return int(refused_address().rsplit(":", 1)[1])
 
 
 def start_process(args: list[str], env: dict[str, str] | None = None,

@@ -36,7 +36,7 @@ from services.stereo_camera.pattern import read_tick
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
 from tests.clients.conftest import CAMERA_HEIGHT_PX, CAMERA_WIDTH_PX
-from tests.conftest import free_port, wait_for
+from tests.conftest import refused_address, wait_for
 
 
 def lease_metadata(client: DecisionClient) -> list[tuple[str, str]]:
@@ -85,7 +85,7 @@ def test_errors_carry_code_message_and_error_info_reason():
 
 
 def test_a_dead_server_fails_at_once_without_retries():
-    with ProxyRobotClient(f"127.0.0.1:{free_port()}") as robot:
+    with ProxyRobotClient(refused_address()) as robot:
         with pytest.raises(UnavailableError) as error:
             robot.move_joints(np.zeros(6), timeout=5)
         assert error.value.code is grpc.StatusCode.UNAVAILABLE

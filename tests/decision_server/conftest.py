@@ -6,11 +6,13 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from pathlib import Path
 
 import grpc
 import numpy as np
 import pytest
 
+from services.decision_server import arbitration, force_control, recordings, supervisor
 from services.decision_server.__main__ import LANES
 from services.decision_server.backends import GrpcSlave
 from services.decision_server.recordings import RecordingStore
@@ -31,6 +33,21 @@ from telerobot.v1 import (
 from tests.conftest import refused_address, wait_for
 from tests.fakes.clock import FakeClock
 from tests.fakes.slave import FakeSlave
+from tests.in_process import refuse_processes, reject_process_fixtures
+
+HERE = Path(__file__).resolve().parent
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    reject_process_fixtures(items, HERE)
+
+
+@pytest.fixture(autouse=True)
+def _in_process_only(request, monkeypatch) -> None:
+    """Tests not marked e2e start no process, attach no world and read no system time in the
+    core."""
+    if not request.node.get_closest_marker("e2e"):
+        refuse_processes(monkeypatch, (supervisor, force_control, arbitration, recordings))
 
 
 @dataclass

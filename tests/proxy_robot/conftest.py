@@ -4,10 +4,7 @@ tests marked e2e run against a real world process through the shared-memory link
 
 from __future__ import annotations
 
-import os
-import subprocess
 from collections.abc import Callable, Iterator
-from multiprocessing import shared_memory
 from pathlib import Path
 
 import numpy as np
@@ -22,53 +19,25 @@ from services.world.shm_link import SharedMemoryArmLink
 from tests.conftest import wait_for
 from tests.fakes.arm_link import FakeArm
 from tests.fakes.clock import FakeClock
+from tests.in_process import refuse_processes, reject_process_fixtures
 
 TICK_S = interpolator_module.SETPOINT_PERIOD_S  # the setpoint thread's period, 1 ms
 TICKS_PER_SAMPLE = round(core_module.STATE_PERIOD_S / TICK_S)  # the monitor's, 2 ms
 
 
 HERE = Path(__file__).resolve().parent
-# Fixtures that start real processes (tests/conftest.py, tests/world/conftest.py). The session
-# ones are set up before any function fixture could refuse them, so they are checked at
-# collection.
-PROCESS_FIXTURES = frozenset({"world", "world_factory", "shared_world", "backends",
-                              "service_process"})
 
 
 def pytest_collection_modifyitems(config, items) -> None:
-    for item in items:
-        if HERE not in item.path.parents or item.get_closest_marker("e2e"):
-            continue
-        used = PROCESS_FIXTURES.intersection(getattr(item, "fixturenames", ()))
-        if used:
-            raise pytest.UsageError(f"{item.nodeid} uses {sorted(used)}, which start processes: "
-                                    "mark it e2e or use the fake arm (tests/fakes)")
-
-
-class _NoSystemTime:
-    """Stands in for the `time` module inside the proxy: any reading of the real clock fails."""
-
-    def __getattr__(self, name: str):
-        raise AssertionError(f"the proxy read time.{name}: it must use its injected clock")
+    reject_process_fixtures(items, HERE)
 
 
 @pytest.fixture(autouse=True)
 def _in_process_only(request, monkeypatch) -> None:
     """Tests not marked e2e start no process, attach no shared memory (so no world) and read no
     real time in the proxy."""
-    if request.node.get_closest_marker("e2e"):
-        return
-
-    def refuse(*args, **kwargs):
-        raise AssertionError("a ProxyRobot test not marked e2e tried to start a process or "
-                             "attach a world's shared memory")
-
-    monkeypatch.setattr(subprocess.Popen, "__init__", refuse)
-    monkeypatch.setattr(os, "fork", refuse)
-    monkeypatch.setattr(os, "posix_spawn", refuse)
-    monkeypatch.setattr(shared_memory.SharedMemory, "__init__", refuse)
-    for module in (core_module, interpolator_module):
-        monkeypatch.setattr(module, "time", _NoSystemTime(), raising=False)
+    if not request.node.get_closest_marker("e2e"):
+        refuse_processes(monkeypatch, (core_module, interpolator_module))
 
 
 class Rig:
