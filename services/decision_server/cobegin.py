@@ -13,6 +13,7 @@ from __future__ import annotations
 import threading
 import time
 import uuid
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from services.runtime.errors import DeadlineExceeded, InvalidArgument, NotFound
@@ -87,6 +88,11 @@ class Barriers:
                                    "actions arrived in time; none ran", reason="BARRIER_TIMEOUT")
 
 
+# The longest BusyWork action: Parma's workloads last milliseconds, and a longer one would
+# hold a lane thread and a core for nothing.
+MAX_BUSY_WORK_S = 10.0
+
+
 class SimulatedProcessor:
     """One processor shared by BusyWork actions, sliced by priority (0 is the most urgent)."""
 
@@ -95,11 +101,16 @@ class SimulatedProcessor:
         self._waiting: list[int] = []  # priorities of actions wanting the next slice
         self._busy = False
 
-    def run(self, priority: int, duration_s: float) -> tuple[int, int]:
-        """Compute for `duration_s` of processor time; returns (start, end) in time.time_ns()."""
+    def run(self, priority: int, duration_s: float,
+            cancelled: Callable[[], bool] = lambda: False) -> tuple[int, int]:
+        """Compute for `duration_s` of processor time, or until `cancelled()`; returns (start,
+        end) in time.time_ns()."""
+        if not 0 <= duration_s <= MAX_BUSY_WORK_S:
+            raise InvalidArgument(f"busy_work.duration must be 0..{MAX_BUSY_WORK_S:.0f} s",
+                                  reason="BAD_DURATION")
         start_ns = 0
         remaining = duration_s
-        while remaining > 0:
+        while remaining > 0 and not cancelled():
             with self._lock:
                 self._waiting.append(priority)
                 while self._busy or min(self._waiting) < priority:

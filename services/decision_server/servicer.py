@@ -319,8 +319,9 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if request.cobegin_id:
             self._core.barriers.arrive_and_wait(request.cobegin_id)
         if kind == "busy_work":
-            start, end = self._core.processor.run(int(lane),
-                                                  convert.seconds(request.busy_work.duration))
+            start, end = self._core.processor.run(
+                int(lane), convert.seconds(request.busy_work.duration),
+                cancelled=lambda: not context.is_active())
         else:
             start = time.time_ns()
             move()

@@ -1,10 +1,12 @@
 """Checks every request must pass before a handler sees it, whatever language sent it.
 
 proto3 enums are open: any int32 can arrive on the wire, and a handler that maps it to a
-name would crash. Strings are unbounded on the wire, and they end up in logs and events. So
-the runtime refuses, for every RPC in one place, an enum value the contract does not define
-and a string longer than its field's `(telerobot.v1.max_length)` (DEFAULT_MAX_STRING_LENGTH
-when the field declares none), naming the field.
+name would crash. Strings are unbounded on the wire, and they end up in logs and events.
+Durations and Timestamps are two integers that can say "10^11 years" or "-1 ns and +1 s". So
+the runtime refuses, for every RPC in one place and naming the field: an enum value the
+contract does not define, a string longer than its field's `(telerobot.v1.max_length)`
+(DEFAULT_MAX_STRING_LENGTH when the field declares none), and a Duration or Timestamp outside
+the range its own .proto defines.
 """
 
 from __future__ import annotations
@@ -16,6 +18,9 @@ from services.runtime.errors import InvalidArgument
 from telerobot.v1 import options_pb2
 
 DEFAULT_MAX_STRING_LENGTH = 256
+DURATION_MAX_SECONDS = 315_576_000_000  # google/protobuf/duration.proto: ±10,000 years
+TIMESTAMP_SECONDS = (-62_135_596_800, 253_402_300_799)  # 0001-01-01 .. 9999-12-31
+NANOS_MAX = 999_999_999
 _ENUM = FieldDescriptor.TYPE_ENUM
 _STRING = FieldDescriptor.TYPE_STRING
 _MESSAGE = FieldDescriptor.TYPE_MESSAGE
@@ -47,7 +52,26 @@ def _check(message: Message, prefix: str) -> None:
                         reason="STRING_TOO_LONG")
         elif field.type == _MESSAGE and not field.message_type.GetOptions().map_entry:
             for index, item in enumerate(values):
-                _check(item, f"{path}[{index}]." if _is_repeated(field) else f"{path}.")
+                where = f"{path}[{index}]" if _is_repeated(field) else path
+                _check_time(field.message_type.full_name, item, where)
+                _check(item, f"{where}.")
+
+
+def _check_time(type_name: str, value: Message, path: str) -> None:
+    if type_name == "google.protobuf.Duration":
+        seconds, nanos = value.seconds, value.nanos
+        if abs(seconds) > DURATION_MAX_SECONDS or abs(nanos) > NANOS_MAX or seconds * nanos < 0:
+            raise InvalidArgument(
+                f"{path} is not a valid Duration ({seconds} s, {nanos} ns): at most "
+                f"{DURATION_MAX_SECONDS} s, nanos under 1e9 with the sign of the seconds",
+                reason="BAD_DURATION")
+    elif type_name == "google.protobuf.Timestamp":
+        seconds, nanos = value.seconds, value.nanos
+        if not TIMESTAMP_SECONDS[0] <= seconds <= TIMESTAMP_SECONDS[1] or not (
+                0 <= nanos <= NANOS_MAX):
+            raise InvalidArgument(f"{path} is not a valid Timestamp ({seconds} s, {nanos} ns): "
+                                  "years 1 to 9999, nanos 0 to 999999999",
+                                  reason="BAD_TIMESTAMP")
 
 
 def _check_enum(field: FieldDescriptor, value: int, path: str) -> None:

@@ -332,9 +332,9 @@ def max_length(field: FieldDescriptor) -> int:
 
 
 def contract_violations(message: Message, prefix: str = "") -> list[str]:
-    """Unknown enum values and over-long strings in `message`, at any depth, as
-    services/runtime/validation.py defines them."""
-    found = []
+    """Unknown enum values, over-long strings and out-of-range Durations and Timestamps in
+    `message`, at any depth, as services/runtime/validation.py defines them."""
+    found = well_known_violations(message, prefix) if not prefix else []
     for field, value in message.ListFields():
         path = f"{prefix}{field.name}"
         values = value if _is_repeated(field) else (value,)

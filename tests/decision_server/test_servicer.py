@@ -165,3 +165,14 @@ def test_events_report_locks_assistance_and_holds_in_order(fake_station):
     assert received[0].control_changed.state.holders[0].operator_id == "eve"
     assert received[1].assistance_changed.assistance.scaling.translation_scale == 0.5
     assert [m.sequence for m in received] == [1, 2, 3]
+
+
+def test_busy_work_is_bounded(fake_station):
+    """Found by the fuzz test: a busy_work of 2⁶³ s held a lane thread and a core for ever."""
+    station, _ = fake_station
+    for seconds in (11, -1):
+        with pytest.raises(grpc.RpcError) as error:
+            station.decisions.RunAction(pb.RunActionRequest(busy_work=pb.BusyWorkAction(
+                duration=convert.duration(seconds))), timeout=5)
+        assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+        assert "busy_work.duration" in error.value.details()

@@ -107,3 +107,22 @@ def test_a_bad_message_mid_stream_ends_the_stream_with_invalid_argument(server):
     assert caught.value.code() == grpc.StatusCode.INVALID_ARGUMENT
     assert "init.mapping = 42 is not a ReferenceFrame value" in caught.value.details()
     assert recorder.calls == ["Teleoperate heartbeat"]
+
+
+@pytest.mark.parametrize(("seconds", "nanos"), [(315_576_000_001, 0), (2**63 - 1, 0), (0, 10**9),
+                                                (1, -1), (-1, 5)])
+def test_a_duration_outside_its_range_is_refused(seconds, nanos):
+    request = decision_server_pb2.AcquireControlRequest(mode=1)
+    request.lease_duration.seconds, request.lease_duration.nanos = seconds, nanos
+    with pytest.raises(Exception, match="lease_duration is not a valid Duration"):
+        check_request(request)
+
+
+def test_a_timestamp_outside_its_range_is_refused_and_a_valid_one_passes():
+    request = decision_server_pb2.TeleoperateRequest()
+    request.command.send_time.seconds = 253_402_300_800  # year 10000
+    with pytest.raises(Exception, match="command.send_time is not a valid Timestamp"):
+        check_request(request)
+    request.command.send_time.seconds = 1_800_000_000
+    request.command.send_time.nanos = 999_999_999
+    check_request(request)
