@@ -35,7 +35,7 @@ gen: $(VENV)/.installed
 
 lint: install
 	$(BUF) lint
-	$(PY) -m ruff check services clients tests
+	$(PY) -m ruff check wire services clients tests bench
 
 test: install
 	$(PY) -m pytest $(PYTEST_ARGS)

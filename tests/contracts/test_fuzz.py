@@ -81,7 +81,7 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
     types_pb2,
 )
-from tests.conftest import start_process
+from tests.conftest import start_process, wait_for
 from tests.contracts import hostile
 from tests.world.conftest import unique_shm_name
 
@@ -209,9 +209,11 @@ def station(tmp_path_factory):
     pids = [int(pid) for line in launcher.lines for pid in re.findall(r"\(pid (\d+)\)", line)]
     yield Station(dict(launcher.ready), launcher)
     launcher.stop(signal.SIGTERM)  # the launcher stops its children; SIGKILL after a grace
-    deadline = time.monotonic() + 5
-    while (alive := [pid for pid in pids if _alive(pid)]) and time.monotonic() < deadline:
-        time.sleep(0.05)
+    try:
+        wait_for(lambda: not any(_alive(pid) for pid in pids), 5, "the station to stop")
+    except AssertionError:
+        pass
+    alive = [pid for pid in pids if _alive(pid)]
     for pid in alive:  # ours, and outliving their launcher: do not leave them to burn a core
         os.kill(pid, signal.SIGKILL)
     assert not alive, f"station processes {alive} outlived the launcher's stop"
@@ -542,12 +544,8 @@ class Fuzzer:
                 self.inner_sensor.StartReading(force_sensor_pb2.StartReadingRequest(), timeout=5)
 
     def _wait_ready(self, timeout_s: float = 5.0) -> None:
-        deadline = time.monotonic() + timeout_s
-        while self._status() != types_pb2.ROBOT_STATUS_READY:
-            if time.monotonic() > deadline:
-                raise AssertionError("the arm did not come back to READY: "
-                                     f"{types_pb2.RobotStatus.Name(self._status())}")
-            time.sleep(0.01)
+        wait_for(lambda: self._status() == types_pb2.ROBOT_STATUS_READY, timeout_s,
+                 "the arm to come back to READY")
 
     def read_arm(self) -> ArmReading:
         """The joint target (a zero increment on ProxyRobot's own port answers it and moves
@@ -562,17 +560,26 @@ class Fuzzer:
         return self.read_at_rest()
 
     def read_at_rest(self, timeout_s: float = 2.0) -> ArmReading:
-        deadline = time.monotonic() + timeout_s
-        while True:
+        """The joints once at rest (or as they are after `timeout_s`)."""
+        def state():
             try:
-                state = self.inner_robot.GetState(proxy_robot_pb2.GetStateRequest(),
-                                                  timeout=5).state
+                return self.inner_robot.GetState(proxy_robot_pb2.GetStateRequest(),
+                                                 timeout=5).state
             except grpc.RpcError:
-                return ArmReading()
-            at_rest = max(abs(v) for v in state.joint_velocities_rad_per_s) < REST_SPEED
-            if at_rest or time.monotonic() > deadline:
-                return ArmReading(measured=np.array(state.joint_positions_rad))
-            time.sleep(0.01)
+                return None
+
+        def resting():
+            current = state()
+            return ("unreachable" if current is None else current if max(
+                abs(v) for v in current.joint_velocities_rad_per_s) < REST_SPEED else None)
+
+        try:
+            found = wait_for(resting, timeout_s, "the arm to rest")
+        except AssertionError:
+            found = state()
+        if found is None or found == "unreachable":
+            return ArmReading()
+        return ArmReading(measured=np.array(found.joint_positions_rad))
 
     def check_health(self, after: str) -> None:
         for name, channel in self.channels.items():
