@@ -4,6 +4,7 @@ services.runtime.children (each reports the port it bound on its ready line)."""
 from __future__ import annotations
 
 import os
+import signal
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -110,3 +111,42 @@ def backends(world):
         raise
     yield Backends(running, *addresses)
     children.stop_all(running)
+
+
+# -- a whole station through the launcher (e2e) ---------------------------------------------
+
+def station_env(**settings: str) -> dict[str, str]:
+    """Every service on port 0 (the launcher reports the ports bound), a shared-memory segment
+    of this station's own so stations never collide, and `settings` (TELEROBOT_* variables)."""
+    from services.launcher import STATION
+    from tests.world.conftest import unique_shm_name
+
+    env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
+    env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
+    env.update(settings)
+    return env
+
+
+def start_station(env: dict[str, str]) -> Child:
+    """The real launcher, once it reported every service's address and said the station is
+    up; `.ready` maps each service to its address."""
+    from services.launcher import STATION, UP_LINE
+
+    launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=env)
+    try:
+        launcher.wait_ready(STATION, timeout_s=90)
+        launcher.wait_line(UP_LINE, timeout_s=10)
+    except Exception:
+        launcher.stop(signal.SIGINT)
+        raise
+    return launcher
+
+
+def pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    # A zombie still answers kill(0); it is gone for our purposes once its parent reaped it.
+    with open(f"/proc/{pid}/stat") as stat:
+        return stat.read().split()[2] != "Z"

@@ -13,7 +13,32 @@ from typing import Protocol
 
 import numpy as np
 
+from services.runtime.errors import InvalidArgument, OutOfRange
+
 JOINT_COUNT = 6
+# Targets may lie this far past a joint limit (the measured position of an arm pushed against
+# its limit stop, sent back as a hold target); the servo clips them onto the limit.
+LIMIT_TOLERANCE_RAD = 0.02
+
+
+def checked_joint_target(joint_positions_rad, lower: np.ndarray,
+                         upper: np.ndarray) -> np.ndarray:
+    """A joint target (6,) in rad, as every ArmLink takes it: InvalidArgument on a wrong shape
+    or NaN; OutOfRange past a joint limit by more than LIMIT_TOLERANCE_RAD."""
+    target = np.asarray(joint_positions_rad, dtype=float)
+    if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
+        raise InvalidArgument(
+            f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}",
+            reason="BAD_TARGET")
+    outside = np.flatnonzero((target < lower - LIMIT_TOLERANCE_RAD)
+                             | (target > upper + LIMIT_TOLERANCE_RAD))
+    if outside.size:
+        joint = int(outside[0])
+        raise OutOfRange(
+            f"joint {joint + 1} target {np.degrees(target[joint]):.1f} deg is past its limit "
+            f"({np.degrees(lower[joint]):.0f}..{np.degrees(upper[joint]):.0f} deg)",
+            reason="JOINT_LIMIT")
+    return target
 
 
 @dataclass(frozen=True)

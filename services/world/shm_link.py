@@ -26,8 +26,12 @@ from multiprocessing import shared_memory
 import numpy as np
 
 from services.runtime.clock import SYSTEM_CLOCK, Clock
-from services.runtime.errors import AlreadyExists, InvalidArgument, OutOfRange, Unavailable
-from services.world.link import JOINT_COUNT, ArmSample, RawWrench
+from services.runtime.errors import AlreadyExists, Unavailable
+from services.world.link import (
+    ArmSample,
+    RawWrench,
+    checked_joint_target,
+)
 from services.world.realtime import LoopStats
 from services.world.seqlock import ORDERING_GUARANTEED, TornRead
 from services.world.shm_layout import (
@@ -57,9 +61,6 @@ TORN_READ_TIMEOUT_S = 0.05  # how long a reader waits for a writer stuck mid-wri
 # A stale segment (its world killed) is replaced; one whose world stepped this recently, or whose
 # pid is alive, belongs to a running world and is left alone.
 REPLACE_AFTER_S = 1.0
-# Targets may lie this far past a joint limit (the measured position of an arm pushed against
-# its limit stop, sent back as a hold target); the world clips them onto the limit.
-LIMIT_TOLERANCE_RAD = 0.02
 
 _HOLD, _RELEASE, _TARGET = "hold", "release", "target"
 
@@ -337,19 +338,7 @@ class SharedMemoryArmLink:
         """Make the servo track a new joint target (6,) in rad; the world ignores it while a
         hold is latched. InvalidArgument on a wrong shape or NaN; OutOfRange past a joint limit
         (by more than LIMIT_TOLERANCE_RAD; the world clips onto the limit)."""
-        target = np.asarray(joint_positions_rad, dtype=float)
-        if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
-            raise InvalidArgument(
-                f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}",
-                reason="BAD_TARGET")
-        outside = np.flatnonzero((target < self.joint_lower - LIMIT_TOLERANCE_RAD)
-                                 | (target > self.joint_upper + LIMIT_TOLERANCE_RAD))
-        if outside.size:
-            joint = int(outside[0])
-            raise OutOfRange(
-                f"joint {joint + 1} target {np.degrees(target[joint]):.1f} deg is past its limit "
-                f"({np.degrees(self.joint_lower[joint]):.0f}.."
-                f"{np.degrees(self.joint_upper[joint]):.0f} deg)", reason="JOINT_LIMIT")
+        target = checked_joint_target(joint_positions_rad, self.joint_lower, self.joint_upper)
         self._issue(_TARGET, target)
 
     def hold(self) -> None:

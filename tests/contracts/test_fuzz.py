@@ -70,7 +70,6 @@ from grpc_reflection.v1alpha.proto_reflection_descriptor_database import (
     ProtoReflectionDescriptorDatabase,
 )
 
-from services.launcher import STATION, UP_LINE
 from services.runtime.children import Child
 from telerobot.v1 import (
     decision_server_pb2,
@@ -81,9 +80,8 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
     types_pb2,
 )
-from tests.conftest import start_process, wait_for
+from tests.conftest import pid_alive, start_station, station_env, wait_for
 from tests.contracts import hostile
-from tests.world.conftest import unique_shm_name
 
 pytestmark = pytest.mark.e2e
 
@@ -190,42 +188,23 @@ class Station:
 def station(tmp_path_factory):
     """The whole station through the launcher, every service on port 0 (the one place that
     knows how the station is started)."""
-    env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
-    env.update({
-        "TELEROBOT_WORLD_SHM": unique_shm_name(),
-        "TELEROBOT_STEREO_CAMERA_SOURCE": "pattern",  # the cheapest source
-        "TELEROBOT_STEREO_CAMERA_WIDTH": "160", "TELEROBOT_STEREO_CAMERA_HEIGHT": "120",
-        "TELEROBOT_STEREO_CAMERA_FPS": "10",
-        "TELEROBOT_RECORDINGS_DIR": str(tmp_path_factory.mktemp("recordings")),
-        "TELEROBOT_LOG_LEVEL": "WARNING",
-    })
-    launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=env)
-    try:
-        launcher.wait_ready(STATION, timeout_s=90)
-        launcher.wait_line(UP_LINE, timeout_s=10)
-    except Exception:
-        launcher.stop(signal.SIGINT)
-        raise
+    launcher = start_station(station_env(
+        TELEROBOT_STEREO_CAMERA_SOURCE="pattern",  # the cheapest source
+        TELEROBOT_STEREO_CAMERA_WIDTH="160", TELEROBOT_STEREO_CAMERA_HEIGHT="120",
+        TELEROBOT_STEREO_CAMERA_FPS="10",
+        TELEROBOT_RECORDINGS_DIR=str(tmp_path_factory.mktemp("recordings")),
+        TELEROBOT_LOG_LEVEL="WARNING"))
     pids = [int(pid) for line in launcher.lines for pid in re.findall(r"\(pid (\d+)\)", line)]
     yield Station(dict(launcher.ready), launcher)
     launcher.stop(signal.SIGTERM)  # the launcher stops its children; SIGKILL after a grace
     try:
-        wait_for(lambda: not any(_alive(pid) for pid in pids), 5, "the station to stop")
+        wait_for(lambda: not any(pid_alive(pid) for pid in pids), 5, "the station to stop")
     except AssertionError:
         pass
-    alive = [pid for pid in pids if _alive(pid)]
+    alive = [pid for pid in pids if pid_alive(pid)]
     for pid in alive:  # ours, and outliving their launcher: do not leave them to burn a core
         os.kill(pid, signal.SIGKILL)
     assert not alive, f"station processes {alive} outlived the launcher's stop"
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    with open(f"/proc/{pid}/stat") as stat:  # a zombie is gone for our purposes
-        return stat.read().split()[2] != "Z"
 
 
 # -- reflection -------------------------------------------------------------------------------

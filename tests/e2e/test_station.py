@@ -12,32 +12,20 @@ import grpc
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import STATION, UP_LINE
+from services.launcher import STATION
 from services.runtime.children import refused_address
-from tests.conftest import BUF, REPO, start_process, wait_for
-from tests.world.conftest import unique_shm_name
+from tests.conftest import (
+    BUF,
+    REPO,
+    pid_alive,
+    start_station,
+    station_env,
+    wait_for,
+)
 
 pytestmark = pytest.mark.e2e
 
 SERVICES = ["ProxyRobot", "ForceSensor", "StereoCamera", "DecisionServer"]
-
-
-def _station_env() -> dict[str, str]:
-    """Every service on port 0 (the launcher reports the ports bound) and a shared-memory name
-    of this test's own, so stations never collide."""
-    env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
-    env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
-    return env
-
-
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    # A zombie still answers kill(0); it is gone for our purposes once its parent reaped it.
-    with open(f"/proc/{pid}/stat") as stat:
-        return stat.read().split()[2] != "Z"
 
 
 def _child_pids(pid: int) -> list[int]:
@@ -56,22 +44,9 @@ def _buf_curl(*args: str) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=30)
 
 
-def _start_station(env: dict[str, str]):
-    """The real launcher, once it reported every service's address and said the station is
-    up; `.ready` maps each service to its address."""
-    launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=env)
-    try:
-        launcher.wait_ready(STATION, timeout_s=90)
-        launcher.wait_line(UP_LINE, timeout_s=10)
-    except Exception:
-        launcher.stop(signal.SIGINT)
-        raise
-    return launcher
-
-
 @pytest.fixture(scope="module")
 def station():
-    launcher = _start_station(_station_env())
+    launcher = start_station(station_env())
     yield launcher, launcher.ready
     if launcher.process.poll() is None:
         launcher.stop(signal.SIGKILL)
@@ -216,11 +191,11 @@ def test_sigint_stops_the_whole_group_within_5_s_with_no_orphans(station):
     assert len(children) == len(STATION)
     launcher.process.send_signal(signal.SIGINT)
     assert launcher.wait(timeout_s=5.0) == 0  # TimeoutExpired if it takes longer
-    assert not [pid for pid in children if _pid_alive(pid)]
+    assert not [pid for pid in children if pid_alive(pid)]
 
 
 def test_a_dying_child_stops_the_station_and_is_named():
-    launcher = _start_station(_station_env())
+    launcher = start_station(station_env())
     children = _child_pids(launcher.process.pid)
     victim = next(pid for pid in children
                   if "services.force_sensor" in open(f"/proc/{pid}/cmdline").read())
@@ -230,12 +205,12 @@ def test_a_dying_child_stops_the_station_and_is_named():
     output = "\n".join(launcher.lines)
     assert "force_sensor" in output and "was killed by signal 9" in output
     # The launcher stopped and reaped every other child before it exited.
-    assert not [pid for pid in children if _pid_alive(pid)]
+    assert not [pid for pid in children if pid_alive(pid)]
 
 
 def test_children_stop_by_themselves_when_the_launcher_is_killed():
-    launcher = _start_station(_station_env())
+    launcher = start_station(station_env())
     children = _child_pids(launcher.process.pid)
     launcher.stop(signal.SIGKILL)
-    wait_for(lambda: not any(_pid_alive(pid) for pid in children), timeout_s=5,
+    wait_for(lambda: not any(pid_alive(pid) for pid in children), timeout_s=5,
              what="every child to notice and stop")

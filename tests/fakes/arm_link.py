@@ -38,9 +38,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from services.robot_model.puma560 import HOME_Q, JOINT_LOWER, JOINT_UPPER
-from services.runtime.errors import InvalidArgument, OutOfRange, Unavailable
-from services.world.link import JOINT_COUNT, ArmSample
-from services.world.shm_link import LIMIT_TOLERANCE_RAD, STALE_AFTER_S
+from services.runtime.errors import Unavailable
+from services.world.link import JOINT_COUNT, ArmSample, checked_joint_target
+from services.world.shm_link import STALE_AFTER_S
 from tests.fakes.clock import FakeClock
 
 SERVO_PERIOD_S = 0.001  # the world's servo rate
@@ -242,17 +242,7 @@ class FakeArmLink:
 
     def write_target(self, joint_positions_rad: np.ndarray) -> None:
         arm = self._require()
-        target = np.asarray(joint_positions_rad, dtype=float)
-        if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
-            raise InvalidArgument(
-                f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}",
-                reason="BAD_TARGET")
-        outside = np.flatnonzero((target < arm.joint_lower - LIMIT_TOLERANCE_RAD)
-                                 | (target > arm.joint_upper + LIMIT_TOLERANCE_RAD))
-        if outside.size:
-            joint = int(outside[0])
-            raise OutOfRange(f"joint {joint + 1} target {np.degrees(target[joint]):.1f} deg is "
-                             "past its limit", reason="JOINT_LIMIT")
+        target = checked_joint_target(joint_positions_rad, arm.joint_lower, arm.joint_upper)
         arm.issue(Command(TARGET, target.copy()))
 
     def hold(self) -> None:
