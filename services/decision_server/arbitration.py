@@ -120,7 +120,7 @@ class LockManager:
             raise Aborted(f"control is held by {holders}; ask with wait=true to queue, or try "
                           "later", reason="CONTROL_HELD")
         self._notify([*expired, f"{operator_id} waits for {mode.name} control"])
-        if (self._clock.wait(waiter.ready, max(0.0, waiter.deadline - self._clock.monotonic()))
+        if (self._clock.wait_until(waiter.ready, waiter.deadline)
                 and waiter.granted):
             return waiter.granted
         with self._lock:

@@ -140,23 +140,24 @@ class GrpcSlave:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
 
     def emergency_stop(self, reason: str) -> str:
-        """Latch through the band first (fast under any ProxyRobot load), then through
-        ProxyRobot too: it records the reason and stops its interpolator, and it is the path
-        left when the band is down. Raises only when neither path latched the stop."""
+        """Latch through the band and through ProxyRobot at once: the band is fast under any
+        ProxyRobot load, ProxyRobot records the reason, stops its interpolator and is the path
+        left when the band is down; neither waits for the other. Returns ProxyRobot's status,
+        or ESTOPPED when only the band confirmed; raises only when neither path latched."""
         request = proxy_robot_pb2.EmergencyStopRequest(reason=reason)
-        latched = False
-        if self.emergency is not None:
-            try:
-                call(self.emergency.EmergencyStop, request)
-                latched = True
-            except TelerobotError as error:
-                log.error("the emergency-stop band failed (%s); stopping through ProxyRobot",
-                          error.message)
+        band = (self.emergency.EmergencyStop.future(request, timeout=CALL_TIMEOUT_S)
+                if self.emergency is not None else None)
         try:
             return _status_name(call(self.robot.EmergencyStop, request).status)
         except TelerobotError as error:
-            if not latched:
+            if band is None:
                 raise
+            try:
+                band.result()
+            except grpc.RpcError as band_error:
+                log.error("neither ProxyRobot (%s) nor the emergency-stop band (%s) latched the "
+                          "stop", error.message, band_error.details())
+                raise error from None
             log.warning("stop latched by the band; ProxyRobot did not confirm: %s", error.message)
             return "ESTOPPED"
 

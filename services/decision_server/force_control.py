@@ -29,11 +29,11 @@ MAX_SAMPLE_AGE_NS = 50_000_000
 class ForceLoop:
     """One force-control loop on its own thread. It starts only once the loop it replaces
     (`after`) has ended, so two loops never move the arm at once; `stop()` ends it. When it
-    ends by itself (the arm refused a step), it calls `on_end(loop, why)`."""
+    ends by itself (the arm refused a step), it calls `on_end(loop, error)` with the refusal."""
 
     def __init__(self, slave: Slave, control: ForceControl, clock: Clock,
                  after: ForceLoop | None = None,
-                 on_end: Callable[[ForceLoop, str], None] = lambda loop, why: None):
+                 on_end: Callable[[ForceLoop, TelerobotError], None] = lambda loop, e: None):
         self._slave = slave
         self._on_end = on_end
         self._control = control
@@ -57,13 +57,20 @@ class ForceLoop:
                 self._thread is not threading.current_thread()):
             self._thread.join(2.0)
 
+    def join(self) -> None:
+        if self._thread.ident is not None and self._thread is not threading.current_thread():
+            self._thread.join()
+
     @property
     def running(self) -> bool:
         return self._thread.is_alive()
 
     def _run(self) -> None:
         if self._after is not None:
-            self._after.stop()
+            # Until it has ended, however long its last call takes (a call's own timeout
+            # bounds it): two loops must never move the arm at once.
+            self._after.stop(wait=False)
+            self._after.join()
             self._after = None  # no chain of ended loops
         while not self._stop.is_set():
             try:
@@ -73,7 +80,7 @@ class ForceLoop:
                 self._clock.wait(self._stop, RETRY_S)
             except TelerobotError as error:
                 log.warning("force control stopped: %s", error.message)
-                self._on_end(self, error.message)
+                self._on_end(self, error)
                 return
 
     def _steps(self) -> None:
@@ -114,5 +121,5 @@ class ForceLoop:
             except TelerobotError as error:
                 # A refusal ends the loop: the core stops it on a latch anyway, and a loop that
                 # keeps sending refused moves at 200 Hz helps nobody.
-                raise TelerobotError(f"a step was refused: {error.message}",
-                                     error.reason) from None
+                raise type(error)(f"a step was refused: {error.message}",
+                                  error.reason) from None

@@ -7,9 +7,9 @@ its events. It reaches the arm only through its `Slave` port.
 
 Threads: gRPC handlers, the session watchdogs, the replay, the force loop, the lease reaper
 and the slave's state stream all call in. Every piece of mutable state below lives behind
-`self._lock`; nothing is called on the slave or the lock manager while it is held (a slow arm
-never blocks a stop, and the lock manager's callback may take it), and threads are signalled
-under it but joined outside it.
+`self._lock`; nothing that waits on the slave or the lock manager runs while it is held (a slow
+arm never blocks a stop, and the lock manager's callback may take it): threads and streams are
+signalled or cancelled under it, and joined outside it.
 
 The emergency stop has one source of truth: the latch at the hardware, as the arm's status
 reports it. Whichever door stopped the arm (this server, ProxyRobot, the emergency-stop band),
@@ -148,6 +148,7 @@ class TeleopSession:
     def heartbeat(self) -> CommandResult:
         now = self._clock.time_ns()
         self._touch()
+        self.core.locks.require(self.lease.lease_id)  # renews it; FailedPrecondition if lost
         return CommandResult("HEARTBEAT", "", now, now)
 
     def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
@@ -206,13 +207,14 @@ class TeleopSession:
             # still wakes the wait below instead of being missed.
             self._activity.clear()
             with self._lock:
-                remaining = self._last_activity + self.watchdog_s - self._clock.monotonic()
-                fire = remaining <= 0 and not self._held and not self._closed.is_set()
+                deadline = self._last_activity + self.watchdog_s
+                due = deadline <= self._clock.monotonic()
+                fire = due and not self._held and not self._closed.is_set()
                 if fire:
                     self._held = True
             if fire:
                 self._hold("watchdog timeout: no command or heartbeat")
-            self._clock.wait(self._activity, remaining if remaining > 0 else None)
+            self._clock.wait_until(self._activity, None if due else deadline)
 
     def _hold(self, reason: str) -> None:
         silence = self._clock.monotonic() - self._last_activity
@@ -306,25 +308,29 @@ class DecisionCore:
     def _on_state(self, state: SlaveState) -> None:
         self._note_state(state)
 
-    def _note_state(self, state: SlaveState) -> None:
+    def _note_state(self, state: SlaveState, answer: bool = False) -> None:
+        """A state sample, or (`answer`) the status a stop or reset answered with. Whatever is
+        older than what we know is history; at the same instant, an answer wins."""
         with self._lock:
             known = self._state
-            if known is not None and state.sample_time_ns < known.sample_time_ns:
-                return  # taken before the answer we already have
+            if known is not None and (state.sample_time_ns < known.sample_time_ns or (
+                    state.sample_time_ns == known.sample_time_ns and not answer)):
+                return
             was_latched = self.latched
             self._state = state
             newly_latched = self.latched if was_latched is None else None
+            if newly_latched:
+                self._replace_force_loop(None)  # paused: a Reset resumes it
         if newly_latched:
             log.warning("the arm is %s (%s): replay and force control stop", newly_latched,
                         state.reason or "no reason given")
             self._stop_replay(f"the arm is {newly_latched}: {state.reason}".rstrip(": "))
-            self._replace_force_loop(None)
 
     def _note_status(self, status: str, reason: str) -> None:
         """The status an answer from the arm reported, as of now."""
         state = self._state
         pose = state.tool_pose if state is not None else pin.SE3.Identity()
-        self._note_state(SlaveState(pose, status, self.clock.time_ns(), reason))
+        self._note_state(SlaveState(pose, status, self.clock.time_ns(), reason), answer=True)
 
     # -- teleoperation ----------------------------------------------------------------------
 
@@ -395,6 +401,14 @@ class DecisionCore:
             self._assistance = assistance
             self._force_lease = lease if assistance.force_control is not None else None
             self._replace_force_loop(assistance)
+        if assistance.force_control is not None:
+            # The lease may have gone while this call ran (released, lapsed): then nobody's
+            # change of control would stop the loop just started, so look again now.
+            try:
+                self.locks.require(lease.lease_id)
+            except FailedPrecondition:
+                self._switch_force_control_off()
+                raise
         self.emit(AssistanceChanged(assistance, lease.operator_id))
         return assistance
 
@@ -432,10 +446,12 @@ class DecisionCore:
         then stops what runs here."""
         try:
             status = self.slave.emergency_stop(reason)
-        finally:
-            self._stop_replay(f"emergency stop: {reason}")
+        except TelerobotError:
             self._replace_force_loop(None)
-        self._note_status(status, reason)
+            self._stop_replay(f"emergency stop: {reason}")
+            raise
+        self._note_status(status, reason)  # the latch pauses force control until a Reset
+        self._stop_replay(f"emergency stop: {reason}")
         return status
 
     def reset(self, lease_id: str) -> str:
@@ -504,7 +520,7 @@ class DecisionCore:
         try:
             for command in commands:
                 due = started + (command.offset_s - first) / speed
-                if self.clock.wait(replay.stop, max(0.0, due - self.clock.monotonic())):
+                if self.clock.wait_until(replay.stop, due):
                     state, detail = "INTERRUPTED", replay.reason
                     break
                 if command.delta_joints_rad is not None:
@@ -549,10 +565,15 @@ class DecisionCore:
             self._assistance = dataclasses.replace(self._assistance, force_control=None)
             self._replace_force_loop(None)
 
-    def _on_force_loop_end(self, loop: ForceLoop, why: str) -> None:
-        """The arm refused a step: force control is off, and everyone is told."""
+    def _on_force_loop_end(self, loop: ForceLoop, error: TelerobotError) -> None:
+        """The arm refused a step. Refused for a latch (which the state stream may report
+        after the loop met it): force control pauses, and a Reset resumes it. Refused for
+        anything else (a limit): force control is off, and everyone is told."""
         with self._lock:
             if self._force_loop is not loop:
+                return
+            if error.reason in LATCHED_STATUSES:
+                self._force_loop = None
                 return
             owner = self._force_lease
             self._switch_force_control_off()

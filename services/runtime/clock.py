@@ -24,6 +24,10 @@ class Clock(Protocol):
     def wait(self, event: threading.Event, timeout_s: float | None) -> bool:
         """Block until `event` is set (True) or `timeout_s` of this clock passed (False)."""
 
+    def wait_until(self, event: threading.Event, deadline_s: float | None) -> bool:
+        """Block until `event` is set (True) or `monotonic()` reaches `deadline_s` (False). A
+        deadline, unlike a timeout, does not move if time passes before the wait begins."""
+
 
 class SystemClock:
     """The real clock."""
@@ -36,6 +40,12 @@ class SystemClock:
     @staticmethod
     def wait(event: threading.Event, timeout_s: float | None) -> bool:
         return event.wait(timeout_s)
+
+    @staticmethod
+    def wait_until(event: threading.Event, deadline_s: float | None) -> bool:
+        if deadline_s is None:
+            return event.wait()
+        return event.wait(max(0.0, deadline_s - time.monotonic()))
 
 
 SYSTEM_CLOCK = SystemClock()

@@ -17,21 +17,39 @@ from tests.conftest import wait_for
 
 
 class Sensor(force_sensor_pb2_grpc.ForceSensorServicer):
-    """Streams the samples a test puts in, stamped when they are put."""
+    """Streams every sample a test puts in to every open stream, stamped when it is sent."""
 
     def __init__(self):
-        self.samples: queue.Queue = queue.Queue()
+        self._streams: list[queue.Queue] = []
+        self._lock = threading.Lock()
+
+    def put(self, force_z: float) -> None:
+        with self._lock:
+            for stream in self._streams:
+                stream.put(force_z)
+
+    def streams(self) -> int:
+        with self._lock:
+            return len(self._streams)
 
     def StreamWrench(self, request, context):
+        samples: queue.Queue = queue.Queue()
+        with self._lock:
+            self._streams.append(samples)
+        context.add_callback(lambda: self._forget(samples))
         while context.is_active():
             try:
-                force_z = self.samples.get(timeout=0.05)
+                force_z = samples.get(timeout=0.05)
             except queue.Empty:
                 continue
             sample = force_sensor_pb2.WrenchSample(sequence=1)
             sample.wrench.force_n.z = force_z
             sample.sample_time.FromNanoseconds(time.time_ns())
             yield force_sensor_pb2.StreamWrenchResponse(samples=[sample])
+
+    def _forget(self, samples: queue.Queue) -> None:
+        with self._lock:
+            self._streams.remove(samples)
 
 
 class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
@@ -77,12 +95,13 @@ def slave(monkeypatch):
 def test_a_wrench_that_stopped_coming_leaves_the_acks(slave):
     """Defect: acks showed the last cached wrench for ever after StopReading."""
     slave, sensor, _ = slave
-    sensor.samples.put(-4.0)
+    wait_for(lambda: sensor.streams() == 1, what="the wrench follower to subscribe")
+    sensor.put(-4.0)
     fresh = wait_for(slave.wrench, what="a wrench sample")
     assert fresh.force_n[2] == -4.0
     # No more samples (the sensor stopped reading): within WRENCH_FRESH_S it is gone.
     wait_for(lambda: slave.wrench() is None, 2, "the stale wrench to be dropped")
-    sensor.samples.put(-5.0)
+    sensor.put(-5.0)
     assert wait_for(slave.wrench, what="a new sample").force_n[2] == -5.0
 
 
@@ -100,8 +119,8 @@ def test_a_wrench_stream_is_forgotten_when_cancelled(slave):
     before = 3
     stream = slave.wrench_stream(1)
     samples = iter(stream)
-    sensor.samples.put(1.0)
-    sensor.samples.put(1.0)  # the background follower may take one
+    wait_for(lambda: sensor.streams() == 2, what="the wrench stream to open")  # and the follower
+    sensor.put(1.0)
     assert next(samples).force_n[2] == 1.0
     assert slave.open_streams() == before + 1
     stream.cancel()

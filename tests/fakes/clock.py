@@ -1,7 +1,8 @@
 """A fake clock: time stands still until a test advances it.
 
 It has what the cores read (services/runtime/clock.py's Clock: `monotonic()`,
-`monotonic_ns()`, `time_ns()`, `sleep(s)`, `wait(event, timeout_s)`) and what a test drives
+`monotonic_ns()`, `time_ns()`, `sleep(s)`, `wait(event, timeout_s)`, `wait_until(event,
+deadline_s)`) and what a test drives
 (`advance(s)`, `waiters()`). Both readings move together. `sleep` advances the clock, so code
 that polls with a deadline runs to that deadline at once instead of hanging; `wait` blocks
 until its event is set or a test advances the clock past its deadline, so watchdogs and lease
@@ -68,16 +69,26 @@ class FakeClock:
         with self._changed:
             deadline_ns = (None if timeout_s is None
                            else self._monotonic_ns + max(round(timeout_s * 1e9), 0))
-            self._waiters += 1
-            self._changed.notify_all()
-            try:
-                while not event.is_set():
-                    if deadline_ns is not None and self._monotonic_ns >= deadline_ns:
-                        return False
-                    self._changed.wait(EVENT_POLL_S)
-                return True
-            finally:
-                self._waiters -= 1
+            return self._wait_locked(event, deadline_ns)
+
+    def wait_until(self, event: threading.Event, deadline_s: float | None) -> bool:
+        """Block until `event` is set (True) or the clock reaches `deadline_s` (False)."""
+        with self._changed:
+            return self._wait_locked(event, None if deadline_s is None
+                                     else round(deadline_s * 1e9))
+
+    def _wait_locked(self, event: threading.Event, deadline_ns: int | None) -> bool:
+        """`wait` and `wait_until`, with `_changed` held by the caller."""
+        self._waiters += 1
+        self._changed.notify_all()
+        try:
+            while not event.is_set():
+                if deadline_ns is not None and self._monotonic_ns >= deadline_ns:
+                    return False
+                self._changed.wait(EVENT_POLL_S)
+            return True
+        finally:
+            self._waiters -= 1
 
     def waiters(self) -> int:
         """How many threads are blocked in `wait` now (a test waits for a timer to be armed)."""

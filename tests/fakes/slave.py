@@ -47,6 +47,8 @@ class _Subscription:
 
     def put(self, item) -> None:
         with self._changed:
+            if self._cancelled:
+                return  # its reader has gone: nothing will take it
             self._items.append(item)
             self._unhandled += 1
             self._changed.notify_all()
@@ -61,7 +63,7 @@ class _Subscription:
             return None if self._cancelled else self._items.pop(0)
 
     def __iter__(self):
-        self._slave._subscribers.append(self)  # noqa: SLF001 - the fake's own registry
+        self._slave._subscribe(self)  # noqa: SLF001 - the fake's own registry
         try:
             handled_previous = False
             while (sample := self.get(handled_previous)) is not None:
@@ -78,8 +80,7 @@ class _Subscription:
             self._items.clear()
             self._unhandled = 0
             self._changed.notify_all()
-        if self in self._slave._subscribers:  # noqa: SLF001 - the fake's own registry
-            self._slave._subscribers.remove(self)  # noqa: SLF001
+        self._slave._unsubscribe(self)  # noqa: SLF001 - the fake's own registry
 
     def wait_handled(self, timeout_s: float = 5.0) -> None:
         with self._changed:
@@ -108,6 +109,7 @@ class FakeSlave:
         self.sensor_flange_to_tool = self.kinematics.flange_T_tool
         self.sensor_reading = True
         self.wrench_delay_s = 0.0  # how late samples arrive (a backlog on a loaded machine)
+        self.publish_state = True  # False: the state stream lags (samples held back)
         self.reachable = True
         self.on_state = lambda state: None
         self.on_robot_event = lambda message: None
@@ -130,9 +132,11 @@ class FakeSlave:
                     self.status = "READY"
                 state = self._state()
                 wrench = self._sample_wrench()
-            self.on_state(state)
+            if self.publish_state:
+                self.on_state(state)
             if wrench is not None:
-                subscriptions = list(self._subscribers)
+                with self._lock:
+                    subscriptions = list(self._subscribers)
                 for subscription in subscriptions:
                     if wrench.sequence % subscription.decimation == 0:
                         subscription.put(wrench)
@@ -149,7 +153,9 @@ class FakeSlave:
         return self.kinematics.tool_pose(self.q)
 
     def end_wrench_streams(self) -> None:
-        for subscription in list(self._subscribers):
+        with self._lock:
+            subscriptions = list(self._subscribers)
+        for subscription in subscriptions:
             subscription.put(None)
 
     # -- the Slave port -------------------------------------------------------------------
@@ -228,7 +234,17 @@ class FakeSlave:
         return _Subscription(self, decimation)
 
     def subscribers(self) -> int:
-        return len(self._subscribers)
+        with self._lock:
+            return len(self._subscribers)
+
+    def _subscribe(self, subscription: _Subscription) -> None:
+        with self._lock:
+            self._subscribers.append(subscription)
+
+    def _unsubscribe(self, subscription: _Subscription) -> None:
+        with self._lock:
+            if subscription in self._subscribers:
+                self._subscribers.remove(subscription)
 
     def health(self) -> dict[str, str]:
         ok = "ok" if self.reachable else "unreachable"
