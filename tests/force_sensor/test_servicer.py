@@ -59,6 +59,17 @@ def collect(stream, count: int) -> list[pb.StreamWrenchResponse]:
     return messages
 
 
+def wait_at_rest(world, speed_rad_per_s: float = 1e-3) -> None:
+    """Until every joint moves slower than `speed_rad_per_s` (send_home stops waiting once the
+    arm is within 1e-4 rad of home, which it may still cross with some speed)."""
+    link = SharedMemoryArmLink(world.shm_name)
+    try:
+        wait_for(lambda: np.max(np.abs(link.read_arm().joint_velocities_rad_per_s))
+                 < speed_rad_per_s, 5.0, "the arm at rest")
+    finally:
+        link.close()
+
+
 def newer_sample(sensor, sequence: int) -> pb.WrenchSample:
     """The sensor's first sample after `sequence` (fails if none comes)."""
     def newer() -> pb.WrenchSample | None:
@@ -72,9 +83,10 @@ def test_start_read_stop_and_resume(sensor, world):
         grpc.StatusCode.FAILED_PRECONDITION)
     started = sensor.StartReading(pb.StartReadingRequest(), timeout=5)
     assert started.config.reading and started.config.period.nanos == 1_000_000
+    wait_at_rest(world)
     first = sensor.GetWrench(pb.GetWrenchRequest()).sample
     second = newer_sample(sensor, first.sequence)
-    # No contact: the tool's weight is removed without any tare.
+    # No contact, no motion: the tool's weight is removed without any tare.
     assert np.linalg.norm(force(second)) < 0.01
     last = sensor.StopReading(pb.StopReadingRequest()).last_sequence
     # While the world makes 50 new sensor readings (50 ms at 1 kHz), the stopped sensor takes
