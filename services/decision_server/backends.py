@@ -30,6 +30,9 @@ from wire.metadata import LANE_METADATA_KEY, LEASE_METADATA_KEY
 log = logging.getLogger(__name__)
 
 CALL_TIMEOUT_S = 5.0
+# The band answers in milliseconds under any load (it is a process of its own at nice -10);
+# one that takes longer is down, and ProxyRobot's stop stands without it.
+BAND_TIMEOUT_S = 1.0
 MAX_FORWARD_TIMEOUT_S = 60.0
 # A backend that restarts is reachable again within a second, not after gRPC's default
 # reconnect back-off (which grows to two minutes); calls meanwhile fail fast with UNAVAILABLE.
@@ -142,13 +145,15 @@ class GrpcSlave:
     def emergency_stop(self, reason: str) -> str:
         """Latch through the band and through ProxyRobot at once: the band is fast under any
         ProxyRobot load, ProxyRobot records the reason, stops its interpolator and is the path
-        left when the band is down; neither waits for the other. Returns ProxyRobot's status,
-        or ESTOPPED when only the band confirmed; raises only when neither path latched."""
+        left when the band is down; neither path delays the other's stop. Returns once both
+        have answered (a band stop still in flight could re-latch the arm after a prompt
+        Reset), with ProxyRobot's status, or ESTOPPED when only the band confirmed; raises
+        only when neither path latched."""
         request = proxy_robot_pb2.EmergencyStopRequest(reason=reason)
-        band = (self.emergency.EmergencyStop.future(request, timeout=CALL_TIMEOUT_S)
+        band = (self.emergency.EmergencyStop.future(request, timeout=BAND_TIMEOUT_S)
                 if self.emergency is not None else None)
         try:
-            return _status_name(call(self.robot.EmergencyStop, request).status)
+            status = _status_name(call(self.robot.EmergencyStop, request).status)
         except TelerobotError as error:
             if band is None:
                 raise
@@ -160,6 +165,13 @@ class GrpcSlave:
                 raise error from None
             log.warning("stop latched by the band; ProxyRobot did not confirm: %s", error.message)
             return "ESTOPPED"
+        if band is not None:
+            try:
+                band.result()
+            except grpc.RpcError as band_error:
+                log.error("the emergency-stop band failed (%s); ProxyRobot latched the stop",
+                          band_error.details())
+        return status
 
     def reset(self) -> str:
         return _status_name(call(self.robot.Reset, proxy_robot_pb2.ResetRequest()).status)

@@ -7,6 +7,7 @@ import logging
 import threading
 from collections.abc import Callable
 
+import numpy as np
 import pinocchio as pin
 
 from services.decision_server.assistance import ForceControl
@@ -19,6 +20,12 @@ log = logging.getLogger(__name__)
 RETRY_S = 0.2  # after the sensor's stream ends, subscribe again this often
 DECIMATION = 5  # the loop acts on every 5th 1 kHz sample: 200 Hz
 MAX_STEP_S = 0.05  # one sample never integrates more than this
+# The smallest increment sent. The arm's IK resolves a pose to 1 µm and 1 µrad, so a smaller
+# increment moves nothing, and a loop that sent each sample's own would stall short of its
+# target (with A = 1.5e-4 m/(N·s) at 200 Hz, anywhere within 1.3 N of it). Smaller ones are
+# added up until they count.
+MIN_TRANSLATION_STEP_M = 2e-6
+MIN_ROTATION_STEP_RAD = 2e-6
 # A sample older than this is history, not feedback: the loop skips it to catch up. Acting on
 # a backlog (gRPC's transport buffers hold seconds of samples when the loop falls behind on a
 # loaded machine) would add that whole delay to the loop, and a contact loop with K ≈ 1e5 N/m
@@ -96,6 +103,7 @@ class ForceLoop:
             return
         control = self._control
         previous_ns = None
+        pending_x, pending_r = np.zeros(3), np.zeros(3)  # integrated, not sent yet
         for sample in stream:
             if self._stop.is_set():
                 return
@@ -111,8 +119,13 @@ class ForceLoop:
                 continue
             force_error = (sample.force_n - control.desired_force_n) * control.axes[:3]
             torque_error = (sample.torque_nm - control.desired_torque_nm) * control.axes[3:]
-            delta_x = control.translation_gain_m_per_n_s * force_error * dt
-            delta_m = pin.exp3(control.rotation_gain_rad_per_nm_s * torque_error * dt)
+            pending_x += control.translation_gain_m_per_n_s * force_error * dt
+            pending_r += control.rotation_gain_rad_per_nm_s * torque_error * dt
+            if (np.linalg.norm(pending_x) < MIN_TRANSLATION_STEP_M
+                    and np.linalg.norm(pending_r) < MIN_ROTATION_STEP_RAD):
+                continue
+            delta_x, delta_m = pending_x, pin.exp3(pending_r)
+            pending_x, pending_r = np.zeros(3), np.zeros(3)
             try:
                 self._slave.move_cartesian(delta_x, delta_m, "TOOL")
                 self.steps += 1

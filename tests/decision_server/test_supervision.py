@@ -191,23 +191,25 @@ def test_active_compliance_brings_the_contact_force_to_its_target(driven):
             desired_wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(z=desired)),
             # Stable while A·K·dt stays well below 1: on the table K ≈ 1e5 N/m, dt = 5 ms.
             translation_gain_m_per_n_s=1.5e-4))), metadata=metadata)
-    forces = []
-
-    def sample():  # each look renews the lease
-        station.decisions.RenewControl(pb.RenewControlRequest(lease_id=lease))
-        return station.sensor.GetWrench(force_sensor_pb2.GetWrenchRequest()).sample
-
-    # The approach at A·10 N = 1.5 mm/s, then two seconds of the sensor's time to settle.
-    contact = wait_for(lambda: (s := sample()).wrench.force_n.z < 0.5 * desired and s, 15,
-                       "contact with the table")
-    settled_ns = contact.sample_time.ToNanoseconds() + 2_000_000_000
-    wait_for(lambda: sample().sample_time.ToNanoseconds() > settled_ns, 10, "the settling")
+    # The approach at A·10 N = 1.5 mm/s, the impact, then a creep towards the target: the
+    # last newton can take seconds, as a step A·ΔF·dt under the IK's 1 µm tolerance moves
+    # nothing. Wait (renewing the lease) until half a second of samples averages within 5 %;
+    # then the next second must hold there.
     stream = station.sensor.StreamWrench(force_sensor_pb2.StreamWrenchRequest(batch_size=100),
-                                         timeout=10)
-    for message in stream:  # one second of every sample
-        forces.extend(s.wrench.force_n.z for s in message.samples)
-        if len(forces) >= 1000:
-            break
+                                         timeout=30)
+    messages = iter(stream)
+    window: list[float] = []
+
+    def settled() -> bool:
+        station.decisions.RenewControl(pb.RenewControlRequest(lease_id=lease))
+        window.extend(s.wrench.force_n.z for s in next(messages).samples)
+        del window[:-500]
+        return len(window) == 500 and abs(np.mean(window) - desired) < 0.05 * abs(desired)
+
+    wait_for(settled, 20, "the contact force to settle at its target")
+    forces: list[float] = []
+    while len(forces) < 1000:  # one second of every sample
+        forces.extend(s.wrench.force_n.z for s in next(messages).samples)
     stream.cancel()
     station.decisions.SetAssistance(pb.SetAssistanceRequest(assistance=pb.AssistanceConfig()),
                                     metadata=metadata)
