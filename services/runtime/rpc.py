@@ -114,6 +114,8 @@ class LaneInterceptor(grpc.ServerInterceptor):
     def _wrap(self, handler: grpc.RpcMethodHandler, method: str, requested: str | None):
         decode = handler.request_deserializer or (lambda raw: raw)
         encode = handler.response_serializer
+        # A stop is never refused for its words: an over-long reason is cut, not refused.
+        emergency = declared_lane(method) == Lane.EMERGENCY
 
         def resolve_lane(context) -> Lane:
             try:
@@ -127,7 +129,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
             def unary_unary(raw, context):
                 lane = resolve_lane(context)
-                request = _decode_or_abort(decode, raw, context)
+                request = _decode_or_abort(decode, raw, context, emergency)
                 return self._run_on_lane(lane, behavior, request, context)
 
             return grpc.unary_unary_rpc_method_handler(unary_unary, None, encode)
@@ -213,7 +215,7 @@ def _requested_lane(metadata) -> str | None:
     return None
 
 
-def _decode_or_abort(decode: Callable, raw: bytes, context):
+def _decode_or_abort(decode: Callable, raw: bytes, context, emergency: bool = False):
     try:
         request = decode(raw)
     except (DecodeError, ValueError, TypeError) as exc:
@@ -221,7 +223,7 @@ def _decode_or_abort(decode: Callable, raw: bytes, context):
               f"the request is not a valid message for this method: {exc}", "MALFORMED_REQUEST")
     if isinstance(request, Message):
         try:
-            check_request(request)
+            check_request(request, cut_long_strings=emergency)
         except TelerobotError as error:
             abort_with_error(context, error)
     return request

@@ -7,6 +7,9 @@ the runtime refuses, for every RPC in one place and naming the field: an enum va
 contract does not define, a string longer than its field's `(telerobot.v1.max_length)`
 (DEFAULT_MAX_STRING_LENGTH when the field declares none), and a Duration or Timestamp outside
 the range its own .proto defines.
+
+One exception, for safety: an RPC on the emergency lane (EmergencyStop) is never refused for
+its words. A string past its bound there is cut to the bound, and the stop goes through.
 """
 
 from __future__ import annotations
@@ -26,17 +29,18 @@ _STRING = FieldDescriptor.TYPE_STRING
 _MESSAGE = FieldDescriptor.TYPE_MESSAGE
 
 
-def check_request(message: Message) -> None:
-    """Raise InvalidArgument for the first unknown enum value or over-long string in
-    `message`, at any depth."""
-    _check(message, "")
+def check_request(message: Message, *, cut_long_strings: bool = False) -> None:
+    """Raise InvalidArgument for the first unknown enum value, over-long string or
+    out-of-range Duration or Timestamp in `message`, at any depth. With `cut_long_strings`,
+    an over-long string is cut to its bound in place instead."""
+    _check(message, "", cut_long_strings)
 
 
 def max_length(field: FieldDescriptor) -> int:
     return field.GetOptions().Extensions[options_pb2.max_length] or DEFAULT_MAX_STRING_LENGTH
 
 
-def _check(message: Message, prefix: str) -> None:
+def _check(message: Message, prefix: str, cut_long_strings: bool) -> None:
     for field, value in message.ListFields():
         path = f"{prefix}{field.name}"
         values = value if _is_repeated(field) else (value,)
@@ -45,6 +49,9 @@ def _check(message: Message, prefix: str) -> None:
                 _check_enum(field, item, path)
         elif field.type == _STRING:
             limit = max_length(field)
+            if cut_long_strings and not _is_repeated(field) and len(value) > limit:
+                setattr(message, field.name, value[:limit])
+                continue
             for item in values:
                 if len(item) > limit:
                     raise InvalidArgument(
@@ -54,7 +61,7 @@ def _check(message: Message, prefix: str) -> None:
             for index, item in enumerate(values):
                 where = f"{path}[{index}]" if _is_repeated(field) else path
                 _check_time(field.message_type.full_name, item, where)
-                _check(item, f"{where}.")
+                _check(item, f"{where}.", cut_long_strings)
 
 
 def _check_time(type_name: str, value: Message, path: str) -> None:

@@ -712,6 +712,8 @@ class Fuzzer:
                                  "bytes that do not decode must get INVALID_ARGUMENT")
             return
         violations = hostile.contract_violations(message)
+        if key.endswith("/EmergencyStop"):  # never refused for its words: a long reason is cut
+            violations = [v for v in violations if "character bound" not in v]
         if violations and not refused:
             self.report.fail("contract", where, label, outcome,
                              "expected INVALID_ARGUMENT naming " + violations[0])

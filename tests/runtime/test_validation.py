@@ -83,16 +83,26 @@ def test_a_nested_unknown_enum_value_names_its_path():
 
 def test_a_string_past_its_bound_is_refused_and_never_reaches_the_handler(server):
     recorder, channel = server
-    stub = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+    stub = decision_server_pb2_grpc.DecisionServerStub(channel)
     with pytest.raises(grpc.RpcError) as caught:
-        stub.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason="x" * 10_000), timeout=5)
+        stub.AcquireControl(decision_server_pb2.AcquireControlRequest(
+            mode=1, operator_id="x" * 10_000), timeout=5)
     assert caught.value.code() == grpc.StatusCode.INVALID_ARGUMENT
-    assert f"reason has 10000 characters; it takes at most {DEFAULT_MAX_STRING_LENGTH}" in (
-        caught.value.details())
+    assert (f"operator_id has 10000 characters; it takes at most {DEFAULT_MAX_STRING_LENGTH}"
+            in caught.value.details())
     assert recorder.calls == []
-    at_bound = "y" * DEFAULT_MAX_STRING_LENGTH
-    stub.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason=at_bound), timeout=5)
-    assert recorder.calls == [f"EmergencyStop {at_bound!r}"]
+    stub.AcquireControl(decision_server_pb2.AcquireControlRequest(
+        mode=1, operator_id="y" * DEFAULT_MAX_STRING_LENGTH), timeout=5)
+    assert recorder.calls == ["AcquireControl CONTROL_MODE_EXCLUSIVE"]
+
+
+def test_an_emergency_stop_is_never_refused_for_its_reason(server):
+    """Safety first: the stop goes through, its over-long reason cut to the bound (so the logs
+    stay bounded all the same)."""
+    recorder, channel = server
+    stub = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+    stub.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason="x" * 10_000), timeout=5)
+    assert recorder.calls == [f"EmergencyStop {'x' * DEFAULT_MAX_STRING_LENGTH!r}"]
 
 
 def test_a_bad_message_mid_stream_ends_the_stream_with_invalid_argument(server):
