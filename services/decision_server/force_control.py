@@ -48,7 +48,6 @@ class ForceLoop:
         self._after = after
         self._stop = threading.Event()
         self._stream = None  # the wrench stream being read, cancelled by stop()
-        self.steps = 0  # increments sent, for tests and logs
         self._thread = threading.Thread(target=self._run, name="force-control", daemon=True)
 
     def start(self) -> ForceLoop:
@@ -67,10 +66,6 @@ class ForceLoop:
     def join(self) -> None:
         if self._thread.ident is not None and self._thread is not threading.current_thread():
             self._thread.join()
-
-    @property
-    def running(self) -> bool:
-        return self._thread.is_alive()
 
     def _run(self) -> None:
         if self._after is not None:
@@ -128,7 +123,6 @@ class ForceLoop:
             pending_x, pending_r = np.zeros(3), np.zeros(3)
             try:
                 self._slave.move_cartesian(delta_x, delta_m, "TOOL")
-                self.steps += 1
             except Unavailable:
                 raise
             except TelerobotError as error:
