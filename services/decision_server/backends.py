@@ -152,26 +152,24 @@ class GrpcSlave:
         request = proxy_robot_pb2.EmergencyStopRequest(reason=reason)
         band = (self.emergency.EmergencyStop.future(request, timeout=BAND_TIMEOUT_S)
                 if self.emergency is not None else None)
+        status, robot_error, band_error = None, None, None
         try:
             status = _status_name(call(self.robot.EmergencyStop, request).status)
         except TelerobotError as error:
-            if band is None:
-                raise
-            try:
-                band.result()
-            except grpc.RpcError as band_error:
-                log.error("neither ProxyRobot (%s) nor the emergency-stop band (%s) latched the "
-                          "stop", error.message, band_error.details())
-                raise error from None
-            log.warning("stop latched by the band; ProxyRobot did not confirm: %s", error.message)
-            return "ESTOPPED"
+            robot_error = error
         if band is not None:
             try:
                 band.result()
-            except grpc.RpcError as band_error:
-                log.error("the emergency-stop band failed (%s); ProxyRobot latched the stop",
-                          band_error.details())
-        return status
+            except grpc.RpcError as error:
+                band_error = error.details()
+                log.error("the emergency-stop band failed: %s", band_error)
+        if robot_error is None:
+            return status
+        if band is None or band_error is not None:
+            raise robot_error  # neither path latched the stop
+        log.warning("stop latched by the band; ProxyRobot did not confirm: %s",
+                    robot_error.message)
+        return "ESTOPPED"
 
     def reset(self) -> str:
         return _status_name(call(self.robot.Reset, proxy_robot_pb2.ResetRequest()).status)

@@ -59,13 +59,13 @@ class ForceLoop:
         stream = self._stream
         if stream is not None:
             stream.cancel()  # a loop waiting for a sample ends now, not at the next one
-        if wait and self._thread.ident is not None and (
-                self._thread is not threading.current_thread()):
-            self._thread.join(2.0)
+        if wait:
+            self.join(2.0)
 
-    def join(self) -> None:
+    def join(self, timeout_s: float | None = None) -> None:
+        """Until the loop's thread has ended (if it started, and is not the caller)."""
         if self._thread.ident is not None and self._thread is not threading.current_thread():
-            self._thread.join()
+            self._thread.join(timeout_s)
 
     def _run(self) -> None:
         if self._after is not None:

@@ -183,7 +183,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         try:
             state = self._core.robot_state()
             ack.tool_pose.CopyFrom(convert.pose_to_proto(state.tool_pose))
-            ack.status = types_pb2.RobotStatus.Value(f"ROBOT_STATUS_{state.status}")
+            ack.status = _status(state.status)
         except TelerobotError:
             pass  # the ack still says what happened to the command
         wrench = self._core.wrench()

@@ -23,10 +23,6 @@ class SlaveState:
     sample_time_ns: int
     reason: str = ""  # why the status was entered, when the source says
 
-    @property
-    def estopped(self) -> bool:
-        return self.status == "ESTOPPED"
-
 
 @dataclass(frozen=True)
 class SlaveWrench:

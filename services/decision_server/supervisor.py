@@ -248,7 +248,7 @@ class DecisionCore:
         self._replay: _Replay | None = None
         self.barriers = Barriers()
         self.processor = SimulatedProcessor()
-        slave.on_state = self._on_state
+        slave.on_state = self._note_state
         slave.on_robot_event = lambda message: self.emit(RobotEventForwarded(message))
 
     def emit(self, payload) -> None:
@@ -304,9 +304,6 @@ class DecisionCore:
         return self.slave.wrench()
 
     # -- the arm's status: one source of truth ----------------------------------------------
-
-    def _on_state(self, state: SlaveState) -> None:
-        self._note_state(state)
 
     def _note_state(self, state: SlaveState, answer: bool = False) -> None:
         """A state sample, or (`answer`) the status a stop or reset answered with. Whatever is
