@@ -4,6 +4,8 @@ world, ProxyRobot and ForceSensor processes."""
 
 from __future__ import annotations
 
+import queue
+import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -12,6 +14,7 @@ import grpc
 import numpy as np
 import pytest
 
+from services.common import convert
 from services.decision_server import arbitration, force_control, recordings, supervisor
 from services.decision_server.__main__ import LANES
 from services.decision_server.backends import GrpcSlave
@@ -100,8 +103,6 @@ class Station:
         return np.array([p.x, p.y, p.z])
 
     def tool_pose(self):
-        from services.common import convert
-
         state = self.robot.GetState(proxy_robot_pb2.GetStateRequest()).state
         return convert.pose_from_proto(state.tool_pose, "tool_pose")
 
@@ -159,3 +160,32 @@ def station(backends, tmp_path) -> Iterator[Station]:
     with grpc.insecure_channel(backends.sensor_address) as direct:
         force_sensor_pb2_grpc.ForceSensorStub(direct).StopReading(
             force_sensor_pb2.StopReadingRequest())
+
+
+class Operator:
+    """A Teleoperate stream driven from the test: send() one message, get its reply."""
+
+    def __init__(self, station, lease_id: str, mapping=0, watchdog_s: float = 0.5):
+        self._requests: queue.Queue = queue.Queue()
+        self._sequence = 0
+        init = pb.TeleoperateInit(operator_id="tester", lease_id=lease_id, mapping=mapping,
+                                  watchdog_timeout=convert.duration(watchdog_s))
+        self._requests.put(pb.TeleoperateRequest(init=init))
+        self._replies = station.decisions.Teleoperate(iter(self._requests.get, None), timeout=60)
+        self.ready = next(self._replies).ready
+
+    def move(self, dx=(0, 0, 0), rotation=None, clutch=False) -> pb.CommandAck:
+        self._sequence += 1
+        command = pb.MasterCommand(sequence=self._sequence,
+                                   send_time=convert.timestamp(time.time_ns()),
+                                   delta_position_m=convert.vector3_to_proto(dx),
+                                   clutch_engaged=clutch)
+        if rotation is not None:
+            command.delta_rotation.CopyFrom(convert.rotation_to_proto(rotation))
+        self._requests.put(pb.TeleoperateRequest(command=command))
+        return next(self._replies).ack
+
+    def close(self):
+        self._requests.put(None)
+        for _ in self._replies:
+            pass

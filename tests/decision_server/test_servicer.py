@@ -3,8 +3,6 @@ on a fake clock: no process, no world, no sleeps."""
 
 from __future__ import annotations
 
-import queue
-
 import grpc
 import numpy as np
 import pytest
@@ -13,32 +11,7 @@ from services.common import convert
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
-
-
-class Operator:
-    """A Teleoperate stream driven from the test: one message in, its reply out."""
-
-    def __init__(self, station, lease_id: str, watchdog_s: float = 1.0):
-        self._requests: queue.Queue = queue.Queue()
-        self._sequence = 0
-        self._requests.put(pb.TeleoperateRequest(init=pb.TeleoperateInit(
-            operator_id="tester", lease_id=lease_id,
-            watchdog_timeout=convert.duration(watchdog_s))))
-        self._replies = station.decisions.Teleoperate(iter(self._requests.get, None),
-                                                      timeout=30)
-        self.ready = next(self._replies).ready
-
-    def move(self, dx=(0, 0, 0), clutch=False) -> pb.CommandAck:
-        self._sequence += 1
-        self._requests.put(pb.TeleoperateRequest(command=pb.MasterCommand(
-            sequence=self._sequence, delta_position_m=convert.vector3_to_proto(dx),
-            clutch_engaged=clutch)))
-        return next(self._replies).ack
-
-    def close(self):
-        self._requests.put(None)
-        for _ in self._replies:
-            pass
+from tests.decision_server.conftest import Operator
 
 
 def test_acks_carry_the_outcome_pose_status_and_a_fresh_wrench(fake_station):

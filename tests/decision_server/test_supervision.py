@@ -15,7 +15,7 @@ from services.runtime.lanes import Lane
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, options_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
-from tests.decision_server.test_teleoperate import Operator
+from tests.decision_server.conftest import Operator
 
 
 @pytest.fixture

@@ -4,7 +4,6 @@ test_servicer.py, the watchdog's timing in test_core.py."""
 
 from __future__ import annotations
 
-import queue
 import signal
 import textwrap
 import time
@@ -18,37 +17,9 @@ from services.decision_server.supervisor import WatchdogHold
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2, types_pb2
 from tests.conftest import start_process, wait_for
+from tests.decision_server.conftest import Operator
 
 BASE, TOOL = types_pb2.REFERENCE_FRAME_BASE, types_pb2.REFERENCE_FRAME_TOOL
-
-
-class Operator:
-    """A Teleoperate stream driven from the test: send() one message, get its reply."""
-
-    def __init__(self, station, lease_id: str, mapping=0, watchdog_s: float = 0.5):
-        self._requests: queue.Queue = queue.Queue()
-        self._sequence = 0
-        init = pb.TeleoperateInit(operator_id="tester", lease_id=lease_id, mapping=mapping,
-                                  watchdog_timeout=convert.duration(watchdog_s))
-        self._requests.put(pb.TeleoperateRequest(init=init))
-        self._replies = station.decisions.Teleoperate(iter(self._requests.get, None), timeout=60)
-        self.ready = next(self._replies).ready
-
-    def move(self, dx=(0, 0, 0), rotation=None, clutch=False) -> pb.CommandAck:
-        self._sequence += 1
-        command = pb.MasterCommand(sequence=self._sequence,
-                                   send_time=convert.timestamp(time.time_ns()),
-                                   delta_position_m=convert.vector3_to_proto(dx),
-                                   clutch_engaged=clutch)
-        if rotation is not None:
-            command.delta_rotation.CopyFrom(convert.rotation_to_proto(rotation))
-        self._requests.put(pb.TeleoperateRequest(command=command))
-        return next(self._replies).ack
-
-    def close(self):
-        self._requests.put(None)
-        for _ in self._replies:
-            pass
 
 
 pytestmark = pytest.mark.e2e
