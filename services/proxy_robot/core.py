@@ -118,7 +118,11 @@ class ProxyRobotCore:
             self._status, self._reason, self._change_time_ns = (status, reason,
                                                                  self._clock.time_ns())
             self._emit(StatusChanged(previous, status, reason))
-        log.info("status %s -> %s: %s", previous.name, status.name, reason)
+        # READY <-> MOVING comes with every command: an INFO line each would cost the hot path
+        # (a log write per command at 1 kHz) and bury the changes that matter.
+        routine = {previous, status} == {RobotStatus.READY, RobotStatus.MOVING}
+        log.log(logging.DEBUG if routine else logging.INFO, "status %s -> %s: %s",
+                previous.name, status.name, reason)
 
     def _emit(self, payload) -> None:
         with self._lock:

@@ -13,6 +13,7 @@ import pytest
 
 from services.proxy_robot import core as core_module
 from services.proxy_robot.status import Moved, RobotErrorRaised, RobotStatus, StatusChanged
+from services.proxy_robot.interpolator import LONE_COMMAND_SPEED_RAD_PER_S
 from services.robot_model.puma560 import HOME_Q
 from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryEmergencyStop
@@ -150,7 +151,8 @@ def test_increments_add_to_the_target_not_the_lagging_arm(rig, ready):
 
 def test_a_50_hz_command_stream_is_spread_over_the_servo_rate(rig, ready):
     """Each 20 ms command becomes a straight segment of 1 ms setpoints, so the servo's target
-    moves every period instead of jumping every 20 ms."""
+    moves every period instead of jumping every 20 ms. The first command comes after a pause
+    (it is a lone one): it takes only as long as the lone-command speed needs."""
     watcher = rig.arm.open_link()  # read-only here: the proxy is the driver
     seen = []
     for _ in range(10):
@@ -159,9 +161,11 @@ def test_a_50_hz_command_stream_is_spread_over_the_servo_rate(rig, ready):
             rig.tick()
             seen.append(watcher.read_arm().joint_targets_rad[0])
     assert seen[0] == HOME_Q[0]  # the servo takes a setpoint at its next step
-    steps = np.diff(seen)
-    assert np.all(steps > 0)  # then a new one every period, all the way
-    assert np.max(steps) < 0.001  # a whole command would be a 0.004 rad step
+    lone_ticks = round(0.004 / LONE_COMMAND_SPEED_RAD_PER_S / 0.001)
+    assert seen[lone_ticks] == pytest.approx(HOME_Q[0] + 0.004, abs=1e-12)
+    steps = np.diff(seen[20:])
+    assert np.all(steps > 0)  # from the second command on, a new one every period
+    assert np.max(np.diff(seen)) < 0.002  # a whole command would be a 0.004 rad step
     # Every setpoint the proxy wrote is a 1 ms step along the way: there are one per tick.
     written = [c for c in rig.arm.commands if c.kind == TARGET]
     assert len(written) >= len(seen)
