@@ -7,7 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.report import LATENCY_BUDGET_MS, family
+from bench.goals import goal_for
+from bench.report import family
 
 _GROUPS = {
     "commands": ("command", "teleop"),
@@ -15,6 +16,14 @@ _GROUPS = {
     "estop": ("estop",),
     "closed_loop": ("closed",),
 }
+# The goal whose p99 bound each plot draws as a line (goals.py).
+_GOAL_LINE = {"commands": "teleop_1000", "force": "force_1000", "estop": "estop_idle",
+              "closed_loop": "closed_loop", "observers": "observers_32"}
+
+
+def _p99_goal(group: str) -> float | None:
+    goal = goal_for(_GOAL_LINE[group])
+    return goal.p99_ms if goal is not None else None
 
 
 def write_plots(out_dir: Path, results: dict[str, dict], raw: dict[str, list[float]]
@@ -48,10 +57,10 @@ def write_plots(out_dir: Path, results: dict[str, dict], raw: dict[str, list[flo
             style = "--" if name.endswith(("_zmq", "_tcp")) else "-"
             cdf.plot(values, quantiles, style, label=name, linewidth=1.4,
                      color=colors[(2 * index) % 20 + (2 * index) // 20 % 2])
-        budget = LATENCY_BUDGET_MS.get(families[0])
+        budget = _p99_goal(group)
         if budget:
             cdf.axvline(budget, color="red", linewidth=1, alpha=0.6)
-            cdf.text(budget, 0.5, f" budget {budget:g} ms (p99)", color="red", fontsize=8,
+            cdf.text(budget, 0.5, f" goal {budget:g} ms (p99)", color="red", fontsize=8,
                      rotation=90, va="center")
         cdf.axhline(0.99, color="grey", linewidth=0.6, linestyle=":")
         plain_log(cdf)
@@ -82,8 +91,8 @@ def write_plots(out_dir: Path, results: dict[str, dict], raw: dict[str, list[flo
         axes[0].set_ylabel("Hz")
         axes[1].plot(counts, [r["p50_ms"] for _, r in observers], "o-", label="p50")
         axes[1].plot(counts, [r["p99_ms"] for _, r in observers], "s-", label="p99")
-        axes[1].axhline(LATENCY_BUDGET_MS["observers"], color="red", alpha=0.6,
-                        label="budget (p99)")
+        axes[1].axhline(_p99_goal("observers"), color="red", alpha=0.6,
+                        label="goal (p99)")
         axes[1].set_title("sample -> operator latency")
         axes[1].set_ylabel("ms")
         axes[1].legend(fontsize=8)

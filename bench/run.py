@@ -21,7 +21,7 @@ from pathlib import Path
 
 import grpc
 
-from bench import plots, report, stereo
+from bench import goals, plots, report, stereo
 from bench.procs import ChildFailed, ProcessSet, unique_shm_name
 from bench.stats import ratio
 from services.runtime.children import refused_address
@@ -103,17 +103,6 @@ class Progress:
 
     def note(self, text: str) -> None:
         print(f"            {text}", file=sys.stderr, flush=True)
-
-
-def _headline(result: dict) -> str:
-    if result.get("status") in ("pending", "failed"):
-        return f"{result['status']}: {result.get('reason', '')[:200]}"
-    parts = []
-    if result.get("delivered_hz") is not None:
-        parts.append(f"{result['delivered_hz']:.1f} Hz")
-    if result.get("p99_ms") is not None:
-        parts.append(f"p50 {result['p50_ms']:.3f} / p99 {result['p99_ms']:.3f} ms")
-    return ", ".join(parts) or "done"
 
 
 class Station:
@@ -235,11 +224,39 @@ class Bench:
         if raw:
             self.raw[name] = raw
         self.results[name] = result
+        for dependent in goals.dependents(name):  # a baseline came: judge what waited for it
+            if dependent in self.results:
+                judged = goals.judge(dependent, self.results)
+                self.progress.note(f"{dependent}: {self._verdict(judged)}")
+
+    def _headline(self, name: str) -> str:
+        """A scenario's figures, its goal and verdict."""
+        result = self.results[name]
+        if result.get("status") in ("pending", "failed"):
+            return (f"{result['status']}: {result.get('reason', '')[:200]} "
+                    f"{self._verdict(goals.judge(name, self.results, final=False))}")
+        parts = []
+        if result.get("delivered_hz") is not None:
+            parts.append(f"{result['delivered_hz']:.1f} Hz")
+        if result.get("p99_ms") is not None:
+            parts.append(f"p50 {result['p50_ms']:.3f} / p99 {result['p99_ms']:.3f} ms")
+        judged = goals.judge(name, self.results, final=False)
+        return f"{', '.join(parts) or 'done'} {self._verdict(judged)}"
+
+    @staticmethod
+    def _verdict(judged: dict) -> str:
+        verdict = goals.verdict_text(judged)
+        if verdict == goals.NO_GOAL:
+            return "[no goal]"
+        why = f" ({'; '.join(judged['misses'])})" if judged["misses"] else ""
+        return f"[goal {judged['goal']}: {verdict}{why}]"
 
     def _fail(self, names: list[str], error: Exception) -> None:
         for name in names:
             self.results[name] = _missing("failed", _reason(error))
-        self.progress.done(f"FAILED: {_reason(error)}")
+        verdicts = [f"{name} {self._verdict(goals.judge(name, self.results))}"
+                    for name in names]
+        self.progress.done(f"FAILED: {_reason(error)}; " + ", ".join(verdicts))
         print(str(error), file=sys.stderr)
         try:
             self.station.arm_ready()  # for the scenarios after this one
@@ -276,7 +293,7 @@ class Bench:
             return self._fail(names, error)
         for rate in plan.command_rates:
             self._record(f"command_{rate}", results[str(rate)])
-        self.progress.done("; ".join(f"{r}: {_headline(self.results[f'command_{r}'])}"
+        self.progress.done("; ".join(f"{r}: {self._headline(f'command_{r}')}"
                                      for r in plan.command_rates))
         self._command_diagnostic()
 
@@ -296,7 +313,7 @@ class Bench:
                 60 + 3 * plan.command_s)["1000"]
             result["diagnostic"] = "proxy_robot with sys.setswitchinterval(0.001)"
             self._record(name, result)
-            self.progress.done(_headline(result))
+            self.progress.done(self._headline(name))
         except ChildFailed as error:
             self._fail([name], error)
         finally:
@@ -316,7 +333,7 @@ class Bench:
                 self._fail([name], error)
                 continue
             self._record(name, result)
-            self.progress.done(_headline(result))
+            self.progress.done(self._headline(name))
 
     def baselines(self) -> None:
         """The command round trip and the force stream over pyzmq and over plain TCP, with the
@@ -343,7 +360,7 @@ class Bench:
                         self.results[name] = _missing("failed", _reason(error))
                     self.progress.done(f"FAILED: {_reason(error)}")
                     continue
-                self.progress.done("; ".join(f"{n}: {_headline(self.results[n])}"
+                self.progress.done("; ".join(f"{n}: {self._headline(n)}"
                                              for n in names if n in self.results))
         finally:
             self.station.arm_ready()
@@ -391,7 +408,7 @@ class Bench:
             if retried:
                 result["retried_after"] = retried
             self._record(name, result)
-            self.progress.done(_headline(result) + f", jitter {result.get('jitter_ms')} ms")
+            self.progress.done(self._headline(name) + f", jitter {result.get('jitter_ms')} ms")
 
     def _observers_once(self, count: int) -> dict:
         """Observer processes streaming, then the operator's 1 kHz stream measured."""
@@ -469,7 +486,7 @@ class Bench:
             if load is not None:
                 self.procs.stop(load)
             return self._fail([name], error)
-        headline = _headline(result)
+        extra = ""
         if loaded:
             idle = self.results.get("estop_idle", {})
             result.update(load_calls_per_s=load_result["calls_per_s"],
@@ -478,9 +495,9 @@ class Bench:
                                "telerobot-lane: low",
                           vs_idle={"p50": ratio(result.get("p50_ms"), idle.get("p50_ms")),
                                    "p99": ratio(result.get("p99_ms"), idle.get("p99_ms"))})
-            headline += f" (load {load_result['calls_per_s']:.0f} calls/s)"
+            extra = f" (load {load_result['calls_per_s']:.0f} calls/s)"
         self._record(name, result)
-        self.progress.done(headline)
+        self.progress.done(self._headline(name) + extra)
 
     def decision(self) -> None:
         """Through the DecisionServer, the operator's one address: teleop_<rate> (master
@@ -517,7 +534,7 @@ class Bench:
             return self._fail(names, error)
         for rate in plan.command_rates:
             self._record(f"teleop_{rate}", results[str(rate)])
-        self.progress.done("; ".join(f"{r}: {_headline(self.results[f'teleop_{r}'])}"
+        self.progress.done("; ".join(f"{r}: {self._headline(f'teleop_{r}')}"
                                      for r in plan.command_rates))
 
     def _estop_ds(self, address: str) -> None:
@@ -529,7 +546,7 @@ class Bench:
         try:
             result = self._worker("estop", {**params, "label": "ds idle"}, timeout)
             self._record("estop_ds_idle", result)
-            self.progress.done(_headline(result))
+            self.progress.done(self._headline("estop_ds_idle"))
         except ChildFailed as error:
             self._fail(["estop_ds_idle"], error)
         self.progress.step(f"estop_ds_busywork: the same with {plan.load_concurrency} "
@@ -557,8 +574,8 @@ class Bench:
                       vs_idle={"p50": ratio(result.get("p50_ms"), idle.get("p50_ms")),
                                "p99": ratio(result.get("p99_ms"), idle.get("p99_ms"))})
         self._record("estop_ds_busywork", result)
-        self.progress.done(_headline(result) + f" (load {load_result['calls_per_s']:.0f} "
-                           "calls/s)")
+        self.progress.done(self._headline("estop_ds_busywork")
+                           + f" (load {load_result['calls_per_s']:.0f} calls/s)")
 
     def closed_loop(self) -> None:
         plan = self.plan
@@ -572,7 +589,7 @@ class Bench:
         except ChildFailed as error:
             return self._fail(["closed_loop"], error)
         self._record("closed_loop", result)
-        self.progress.done(_headline(result))
+        self.progress.done(self._headline("closed_loop"))
 
     def stereo(self) -> None:
         plan = self.plan
@@ -607,7 +624,7 @@ class Bench:
                         self._fail([name], error)
                         continue
                     self._record(name, result)
-                    self.progress.done(_headline(result))
+                    self.progress.done(self._headline(name))
             finally:
                 self.procs.stop(service)
 
@@ -615,7 +632,8 @@ class Bench:
 
     def write(self) -> list[Path]:
         self.out_dir.mkdir(parents=True, exist_ok=True)
-        ratios = report.add_verdicts_and_ratios(self.results)
+        ratios = report.add_ratios(self.results)
+        goals.add_goals(self.results)
         machine = report.machine()
         machine["load_avg_at_end"] = list(os.getloadavg())
         machine["load_avg_at_start"] = self.load_at_start

@@ -1,0 +1,140 @@
+"""The bench's goals: one table, and the PASS/FAIL of a scenario against it.
+
+The goals come from issue #12 ("the hot path at haptic rates") and the architecture brief's
+budgets (loopback, 2-core machine). A scenario matches the first pattern (fnmatch) that fits
+its name; a scenario that matches none has no goal and says so. Baselines and diagnostics are
+there to be compared with, not judged.
+
+A goal relative to a baseline (command_1000: p99 <= 1.5 x command_1000_zmq's) is judged
+against the baseline measured in the same run; until that baseline has run it is PENDING, and
+if the run never measured it (``--only`` without ``baselines``) it FAILs, saying why.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+from dataclasses import dataclass
+
+PASS, FAIL, PENDING, NO_GOAL = "PASS", "FAIL", "PENDING", "no goal"
+
+
+@dataclass(frozen=True)
+class Goal:
+    """Every bound that is set must hold. Rates are the scenario's `delivered_hz`."""
+
+    min_rate: float | None = None
+    rate_unit: str = "Hz"
+    p50_ms: float | None = None
+    p99_ms: float | None = None
+    p99_vs: tuple[str, float] | None = None  # (baseline scenario, factor) from the same run
+    max_overrun_pct: float | None = None  # the world loop's overruns, % of its steps
+    source: str = ""
+
+    def text(self) -> str:
+        parts = []
+        if self.min_rate is not None:
+            parts.append(f">= {self.min_rate:g} {self.rate_unit}")
+        if self.p50_ms is not None:
+            parts.append(f"p50 <= {self.p50_ms:g} ms")
+        if self.p99_ms is not None:
+            parts.append(f"p99 <= {self.p99_ms:g} ms")
+        if self.p99_vs is not None:
+            parts.append(f"p99 <= {self.p99_vs[1]:g} x {self.p99_vs[0]}")
+        if self.max_overrun_pct is not None:
+            parts.append(f"overruns <= {self.max_overrun_pct:g} %")
+        return ", ".join(parts)
+
+
+_ISSUE, _BRIEF = "issue #12", "architecture brief"
+# First match wins: the exact names before the patterns.
+GOALS: tuple[tuple[str, Goal], ...] = (
+    ("teleop_1000", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
+    ("teleop_50", Goal(p99_ms=2.0, source=_ISSUE)),
+    ("command_1000", Goal(min_rate=990, p99_vs=("command_1000_zmq", 1.5), source=_ISSUE)),
+    ("observers_16", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
+    ("observers_32", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
+    ("closed_loop", Goal(p50_ms=15.0, p99_ms=25.0, source=_ISSUE)),
+    ("estop_*", Goal(p99_ms=5.0, source=_ISSUE)),
+    ("stereo_sim_double", Goal(min_rate=17, rate_unit="fps", source=_ISSUE)),
+    ("stereo_pattern_*", Goal(p99_ms=30.0, source=_BRIEF)),
+    ("force_1000", Goal(p99_ms=2.0, source=_BRIEF)),
+    ("world_loop", Goal(max_overrun_pct=0.1, source=_ISSUE)),
+)
+
+
+def is_baseline(name: str) -> bool:
+    return name.endswith(("_zmq", "_tcp"))
+
+
+def goal_for(name: str) -> Goal | None:
+    """The scenario's goal, or None (baselines never have one)."""
+    if is_baseline(name):
+        return None
+    for pattern, goal in GOALS:
+        if fnmatch.fnmatchcase(name, pattern):
+            return goal
+    return None
+
+
+def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
+    """{goal, pass, misses}: goal is the goal's text (or "no goal"); pass is True, False, or
+    None (no goal, or PENDING while not `final`); misses say what fell short."""
+    goal = goal_for(name)
+    result = results.get(name, {})
+    if goal is None:
+        return {"goal": NO_GOAL, "pass": None, "misses": []}
+    if result.get("status") in ("pending", "failed"):
+        return {"goal": goal.text(), "pass": False,
+                "misses": [f"{result['status']}: {result.get('reason', '')}"[:200]]}
+    misses = []
+    rate, p50, p99 = result.get("delivered_hz"), result.get("p50_ms"), result.get("p99_ms")
+    if goal.min_rate is not None and (rate is None or rate < goal.min_rate):
+        misses.append(f"{_num(rate)} {goal.rate_unit} < {goal.min_rate:g}")
+    if goal.p50_ms is not None and (p50 is None or p50 > goal.p50_ms):
+        misses.append(f"p50 {_num(p50)} ms > {goal.p50_ms:g}")
+    if goal.p99_ms is not None and (p99 is None or p99 > goal.p99_ms):
+        misses.append(f"p99 {_num(p99)} ms > {goal.p99_ms:g}")
+    if goal.p99_vs is not None:
+        baseline, factor = goal.p99_vs
+        base_p99 = results.get(baseline, {}).get("p99_ms")
+        if base_p99 is None:
+            if not final and not misses:
+                return {"goal": goal.text(), "pass": None,
+                        "misses": [f"waits for {baseline}"]}
+            misses.append(f"{baseline} not measured in this run")
+        elif p99 is None or p99 > factor * base_p99:
+            misses.append(f"p99 {_num(p99)} ms > {factor:g} x {base_p99:.3f}")
+    if goal.max_overrun_pct is not None:
+        pct = result.get("overrun_pct")
+        if pct is None or pct > goal.max_overrun_pct:
+            misses.append(f"overruns {_num(pct)} % > {goal.max_overrun_pct:g}")
+    return {"goal": goal.text(), "pass": not misses, "misses": misses}
+
+
+def verdict_text(judged: dict) -> str:
+    """PASS, FAIL, PENDING or "no goal", as the progress lines and tables show it."""
+    if judged["goal"] == NO_GOAL:
+        return NO_GOAL
+    if judged["pass"] is None:
+        return PENDING
+    return PASS if judged["pass"] else FAIL
+
+
+def dependents(name: str) -> list[str]:
+    """The scenarios whose goal is judged against `name` (a baseline)."""
+    return [pattern for pattern, goal in GOALS
+            if goal.p99_vs is not None and goal.p99_vs[0] == name]
+
+
+def add_goals(results: dict[str, dict]) -> None:
+    """goal, pass and (when it fails) goal_misses on every scenario, judged at the run's end."""
+    for name, result in results.items():
+        judged = judge(name, results, final=True)
+        result["goal"], result["pass"] = judged["goal"], judged["pass"]
+        result.pop("goal_misses", None)
+        if judged["misses"]:
+            result["goal_misses"] = judged["misses"]
+
+
+def _num(value) -> str:
+    return "-" if value is None else f"{value:.3g}"
