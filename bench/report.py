@@ -89,13 +89,13 @@ def table(results: dict[str, dict]) -> str:
     """The results (judged: goals.add_goals) as a fixed-width table, each row with its goal
     and PASS/FAIL; then the project/baseline ratios and the details."""
     columns = ("scenario", "transport", "offered Hz", "deliv. Hz", "p50 ms", "p99 ms",
-               "max ms", "dropped", "goal", "result", "papers")
+               "max ms", "dropped", "world ovr %", "goal", "result", "papers")
     rows = []
     for name, r in results.items():
         rows.append((name, _short_transport(r.get("transport", "")), fmt(r.get("rate_hz"), 1),
                      fmt(r.get("delivered_hz"), 1), fmt(r.get("p50_ms"), 3),
                      fmt(r.get("p99_ms"), 3), fmt(r.get("max_ms"), 3),
-                     fmt(r.get("dropped")), r.get("goal", "-"),
+                     fmt(r.get("dropped")), fmt(_overrun_pct(r), 2), r.get("goal", "-"),
                      verdict_text({"goal": r.get("goal", "-"), "pass": r.get("pass")}),
                      r.get("paper", "")))
     widths = [max(len(str(row[i])) for row in [columns, *rows]) for i in range(len(columns))]
@@ -123,6 +123,14 @@ def table(results: dict[str, dict]) -> str:
     return "\n".join(lines)
 
 
+def _overrun_pct(result: dict) -> float | None:
+    """The world loop's overruns during the scenario, % of its steps (None if not read)."""
+    if "overrun_pct" in result:
+        return result["overrun_pct"]
+    loop = result.get("world_loop")
+    return loop.get("overrun_pct") if isinstance(loop, dict) else None
+
+
 def _short_transport(text: str) -> str:
     return text.split(" ", 1)[0] if text else ""
 
@@ -145,6 +153,12 @@ def _extras(results: dict[str, dict]) -> list[str]:
             lines.append(f"  {name}: RPC returned p50 {fmt(r.get('ack_p50_ms'), 3)} / p99 "
                          f"{fmt(r.get('ack_p99_ms'), 3)} ms; joints under 0.05 rad/s p50 "
                          f"{fmt(r.get('stopped_p50_ms'), 1)} ms (braking at 10 rad/s^2)")
+        elif name == "world_loop":
+            since = r.get("since_world_start") or {}
+            lines.append(f"  {name}: {r.get('steps')} steps, {r.get('overruns')} overruns, "
+                         f"{r.get('dropped_steps')} dropped over the run; since the world "
+                         f"started (start-up included) {since.get('overruns')} of "
+                         f"{since.get('steps')} ({fmt(since.get('overrun_pct'), 2)} %)")
         elif name == "closed_loop":
             lines.append(f"  {name}: = call ack p50 {fmt(r.get('ack_p50_ms'), 2)} ms; "
                          f"send->contact sample p50 {fmt(r.get('motion_p50_ms'), 1)} ms; "

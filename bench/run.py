@@ -21,9 +21,10 @@ from pathlib import Path
 
 import grpc
 
-from bench import goals, plots, report, stereo
+from bench import goals, plots, report, stereo, worldloop
 from bench.procs import ChildFailed, ProcessSet, unique_shm_name
 from bench.stats import ratio
+from bench.worldloop import LoopMeter
 from services.runtime.children import refused_address
 from services.world.shm_layout import SHM_NAME_ENV
 from telerobot.v1 import (
@@ -89,10 +90,12 @@ GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "cl
 class Progress:
     """One line per step on stderr: [step/total elapsed] what, then its headline figure."""
 
-    def __init__(self, total: int):
+    def __init__(self, total: int, on_step: Callable[[], None] = lambda: None):
         self.total, self.index, self.started = total, 0, time.monotonic()
+        self.on_step = on_step  # a scenario starts: the world-loop counters take a mark
 
     def step(self, text: str) -> None:
+        self.on_step()
         self.index += 1
         elapsed = time.monotonic() - self.started
         print(f"[{self.index:2d}/{self.total} {elapsed:5.0f}s] {text} ...", end="",
@@ -182,8 +185,9 @@ class Bench:
         self.station = Station(self.procs, self.shm)
         self.results: dict[str, dict] = {}
         self.raw: dict[str, list[float]] = {}
-        self.progress = Progress(self._count_steps())
+        self.progress = Progress(self._count_steps(), on_step=self._mark_loop)
         self.load_at_start = list(os.getloadavg())
+        self.loop: LoopMeter | None = None  # once the world is up
 
     def _count_steps(self) -> int:
         p = self.plan
@@ -191,7 +195,7 @@ class Bench:
                   "observers": len(p.observer_counts), "estop": 4, "decision": 3,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
-        return 1 + sum(n for group, n in counts.items() if p.wants(group))
+        return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
 
     # -- running ----------------------------------------------------------------------------
 
@@ -202,6 +206,7 @@ class Bench:
                                f"shared memory {self.shm})")
             self.station.start()
             self.station.arm_ready()
+            self.loop = LoopMeter(self.shm)
             self.progress.done("up")
             steps: list[tuple[str, Callable[[], None]]] = [
                 ("command", self.commands), ("force", self.force),
@@ -212,7 +217,10 @@ class Bench:
             for group, step in steps:
                 if self.plan.wants(group):
                     step()
+            self._world_loop()
         finally:
+            if self.loop is not None:
+                self.loop.close()
             self.procs.stop_all()
             _remove_segment(self.shm)
         self.elapsed_s = time.monotonic() - started
@@ -223,14 +231,36 @@ class Bench:
         result.pop("ack_latencies_ms", None)
         if raw:
             self.raw[name] = raw
+        # The world loop during this scenario: the worker's own count if it took one (it
+        # brackets just the measurement), else the orchestrator's since the scenario began.
+        since_mark = self._loop_since_mark()
+        if "world_loop" in result:
+            result["world_loop"] = worldloop.with_pct(result["world_loop"])
+        elif since_mark is not None:
+            result["world_loop"] = since_mark
         self.results[name] = result
         for dependent in goals.dependents(name):  # a baseline came: judge what waited for it
             if dependent in self.results:
                 judged = goals.judge(dependent, self.results)
                 self.progress.note(f"{dependent}: {self._verdict(judged)}")
 
+    def _mark_loop(self) -> None:
+        if self.loop is not None:
+            try:
+                self.loop.mark()
+            except RuntimeError:
+                pass  # the world is stuck or gone: the scenario says so itself
+
+    def _loop_since_mark(self) -> dict | None:
+        if self.loop is None:
+            return None
+        try:
+            return self.loop.since_mark()
+        except RuntimeError:
+            return None
+
     def _headline(self, name: str) -> str:
-        """A scenario's figures, its goal and verdict."""
+        """A scenario's figures, the world loop's overruns during it, its goal and verdict."""
         result = self.results[name]
         if result.get("status") in ("pending", "failed"):
             return (f"{result['status']}: {result.get('reason', '')[:200]} "
@@ -240,6 +270,9 @@ class Bench:
             parts.append(f"{result['delivered_hz']:.1f} Hz")
         if result.get("p99_ms") is not None:
             parts.append(f"p50 {result['p50_ms']:.3f} / p99 {result['p99_ms']:.3f} ms")
+        loop = result.get("world_loop") or {}
+        if loop.get("overrun_pct") is not None:
+            parts.append(f"world overruns {loop['overrun_pct']:.2f} %")
         judged = goals.judge(name, self.results, final=False)
         return f"{', '.join(parts) or 'done'} {self._verdict(judged)}"
 
@@ -576,6 +609,20 @@ class Bench:
         self._record("estop_ds_busywork", result)
         self.progress.done(self._headline("estop_ds_busywork")
                            + f" (load {load_result['calls_per_s']:.0f} calls/s)")
+
+    def _world_loop(self) -> None:
+        """The world_loop row: the loop's overruns from the station's start to here."""
+        self.progress.step("world_loop: the world's 1 kHz loop over the whole run (shared "
+                           "memory counters)")
+        try:
+            result = self.loop.row()
+        except RuntimeError as error:
+            return self._fail(["world_loop"], error)
+        self.results["world_loop"] = result
+        self.progress.done(f"{result['steps']} steps, {result['overruns']} overruns "
+                           f"({report.fmt(result['overrun_pct'], 3)} %), "
+                           f"{result['dropped_steps']} dropped "
+                           f"{self._verdict(goals.judge('world_loop', self.results))}")
 
     def closed_loop(self) -> None:
         plan = self.plan
