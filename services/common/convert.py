@@ -26,7 +26,7 @@ from wire.convert import (
 
 __all__ = [
     "duration", "pose_from_proto", "pose_to_proto", "rotation_from_proto", "rotation_to_proto",
-    "seconds", "time_ns", "timestamp", "vector3_from_proto", "vector3_to_proto",
+    "seconds", "time_ns", "timestamp", "trusted_pose", "vector3_from_proto", "vector3_to_proto",
     "wrench_to_proto",
 ]
 
@@ -35,3 +35,9 @@ def pose_from_proto(pose: types_pb2.Pose, what: str) -> pin.SE3:
     """A checked pose (``wire.convert.pose_from_proto``) as a ``pin.SE3``."""
     checked = _wire.pose_from_proto(pose, what)
     return pin.SE3(checked.rotation, checked.translation)
+
+
+def trusted_pose(pose: types_pb2.Pose) -> pin.SE3:
+    """A pose from the station's own services, as sent: no checks, no re-orthonormalization
+    (they cost more than the rest of a command's handling on the DecisionServer)."""
+    return pin.SE3(_wire.rotation_value(pose.rotation), _wire.vector3_value(pose.position_m))

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,9 +28,6 @@ from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
 # Waiting for a lock or at a cobegin barrier holds a medium-lane thread, so give it more.
 LANES = {**DEFAULT_LANES,
          Lane.MEDIUM: LaneConfig(static_threads=2, max_threads=32, queue_capacity=64)}
-# Busy lane threads hand the GIL over every 1 ms instead of 5 ms, so an emergency stop waits
-# at most about that long for the interpreter.
-GIL_SWITCH_INTERVAL_S = 0.001
 
 
 @dataclass
@@ -77,7 +73,6 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 if __name__ == "__main__":
-    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
     raise SystemExit(run_service(
         "decision_server", "DecisionServer: supervisory control and arbitration.",
         DecisionService, add_arguments=_add_arguments))

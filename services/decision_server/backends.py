@@ -129,15 +129,13 @@ class GrpcSlave:
                          delta_position_m=convert.vector3_to_proto(delta_position),
                          delta_rotation=convert.rotation_to_proto(delta_rotation),
                          frame=_FRAMES[frame]))
-        return MoveResult(convert.pose_from_proto(reply.target_tool_pose, "target_tool_pose"),
-                          reply.applied_fraction)
+        return MoveResult(convert.trusted_pose(reply.target_tool_pose), reply.applied_fraction)
 
     def move_joints(self, delta_joints_rad) -> MoveResult:
         reply = call(self.robot.MoveJointsIncremental,
                      proxy_robot_pb2.MoveJointsIncrementalRequest(
                          delta_joint_positions_rad=[float(v) for v in delta_joints_rad]))
-        return MoveResult(convert.pose_from_proto(reply.target_tool_pose, "target_tool_pose"),
-                          1.0)
+        return MoveResult(convert.trusted_pose(reply.target_tool_pose), 1.0)
 
     def hold(self, reason: str) -> None:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
@@ -231,8 +229,8 @@ class GrpcSlave:
 
     @staticmethod
     def _state_from(state: types_pb2.RobotState) -> SlaveState:
-        return SlaveState(convert.pose_from_proto(state.tool_pose, "tool_pose"),
-                          _status_name(state.status), state.sample_time.ToNanoseconds())
+        return SlaveState(convert.trusted_pose(state.tool_pose), _status_name(state.status),
+                          state.sample_time.ToNanoseconds())
 
     def _follow(self, name: str, open_stream: Callable[[], Iterator],
                 on_message: Callable) -> None:

@@ -174,6 +174,8 @@ def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
 class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
     def __init__(self, core: DecisionCore):
         self._core = core
+        self._last_pose: tuple[object, types_pb2.Pose | None] = (None, None)
+        self._last_wrench: tuple[object, types_pb2.Wrench | None] = (None, None)
 
     def _ack(self, sequence: int, send_time, result: CommandResult) -> pb.TeleoperateResponse:
         ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
@@ -182,14 +184,31 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                             outcome=_OUTCOMES[result.outcome], detail=result.detail)
         try:
             state = self._core.robot_state()
-            ack.tool_pose.CopyFrom(convert.pose_to_proto(state.tool_pose))
+            ack.tool_pose.CopyFrom(self._pose_of(state))
             ack.status = _status(state.status)
         except TelerobotError:
             pass  # the ack still says what happened to the command
         wrench = self._core.wrench()
         if wrench is not None:
-            ack.tool_wrench.CopyFrom(convert.wrench_to_proto(wrench.force_n, wrench.torque_nm))
+            ack.tool_wrench.CopyFrom(self._wrench_of(wrench))
         return pb.TeleoperateResponse(ack=ack)
+
+    # The state and the wrench change at 100 Hz, acks go out at up to 1 kHz: each sample is
+    # converted once, for every ack that carries it. (A (sample, message) pair is swapped in
+    # whole, so concurrent streams read a consistent one.)
+    def _pose_of(self, state) -> types_pb2.Pose:
+        seen, message = self._last_pose
+        if seen is not state:
+            message = convert.pose_to_proto(state.tool_pose)
+            self._last_pose = (state, message)
+        return message
+
+    def _wrench_of(self, wrench) -> types_pb2.Wrench:
+        seen, message = self._last_wrench
+        if seen is not wrench:
+            message = convert.wrench_to_proto(wrench.force_n, wrench.torque_nm)
+            self._last_wrench = (wrench, message)
+        return message
 
     def Teleoperate(self, request_iterator, context):
         first = next(request_iterator, None)

@@ -13,6 +13,7 @@ import argparse
 import logging
 import os
 import signal
+import sys
 import threading
 from collections.abc import Callable, Sequence
 from typing import Protocol
@@ -32,6 +33,9 @@ READY_LINE_PREFIX = "TELEROBOT_READY"
 # even if the parent was killed without a chance to stop it (no orphans).
 PARENT_PID_ENV = "TELEROBOT_PARENT_PID"
 _PARENT_POLL_S = 0.25
+# A thread woken by the network waits for the GIL at most this long behind a busy one (Python's
+# default is 5 ms, longer than a whole command budget). Every call crosses several threads.
+GIL_SWITCH_INTERVAL_S = 0.001
 
 
 def ready_line(name: str, address: str) -> str:
@@ -73,6 +77,7 @@ def run_service(
         add_arguments(parser)
     args = parser.parse_args(argv)
     configure_logging(name, args.log_level)
+    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
 
     stop = threading.Event()
     _install_signal_handlers(stop)
