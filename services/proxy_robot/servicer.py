@@ -5,6 +5,7 @@ from __future__ import annotations
 import time
 
 from services.common import convert
+from services.common.fanout import Fanout, Subscription
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.status import (
     Moved,
@@ -32,6 +33,24 @@ DEFAULT_DATA_RECEIVED_PERIOD_S = 0.1
 # How long a stream waits for news before it checks whether its client is still there.
 STREAM_POLL_S = 0.1
 STATE_QUEUE = 8  # state samples: only the newest matter to a slow reader
+
+
+class PeriodicSubscription(Subscription[RobotSnapshot]):
+    """State samples at most one per `period_ns` of sample time. The monitor publishes every
+    2 ms; filtering here, in the publisher's thread, spares a subscriber at 100 Hz four
+    wake-ups in five (in a profile under Teleoperate, those wake-ups were a third of
+    ProxyRobot's GIL time)."""
+
+    def __init__(self, fanout: Fanout[RobotSnapshot], capacity: int, period_ns: int):
+        super().__init__(fanout, capacity)
+        self._period_ns = period_ns
+        self._next_due_ns = 0
+
+    def offer(self, item: RobotSnapshot) -> None:
+        if item.sample_time_ns < self._next_due_ns:
+            return
+        self._next_due_ns = item.sample_time_ns + self._period_ns
+        super().offer(item)
 
 
 def status_to_proto(status: RobotStatus) -> int:
@@ -128,17 +147,14 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
         if period_s < 0:
             raise InvalidArgument("period must not be negative", reason="BAD_PERIOD")
         self._core.snapshot()  # FailedPrecondition when not connected
-        next_due_ns = 0
-        with self._core.states.subscribe(STATE_QUEUE) as states:
+        subscription = PeriodicSubscription(self._core.states, STATE_QUEUE, int(period_s * 1e9))
+        with self._core.states.attach(subscription) as states:
             while context.is_active():
                 snapshot = states.get(STREAM_POLL_S)
                 if snapshot is None:
                     if self._core.status[0] == RobotStatus.NOT_CONNECTED:
                         raise Unavailable("the hardware link dropped: Connect, then resubscribe")
                     continue
-                if snapshot.sample_time_ns < next_due_ns:
-                    continue
-                next_due_ns = snapshot.sample_time_ns + int(period_s * 1e9)
                 yield pb.StreamStateResponse(state=snapshot_to_proto(snapshot))
 
     def StreamRobotEvents(self, request, context):
