@@ -18,8 +18,14 @@ import numpy as np
 import pinocchio as pin
 
 from services.common.fanout import Fanout
-from services.force_sensor.settings import SensorSettings, ThreadPriority, exceeds
-from services.force_sensor.subscribers import StreamOptions, WrenchReading, WrenchSubscription
+from services.force_sensor.settings import SensorSettings, ThreadPriority
+from services.force_sensor.subscribers import (
+    StreamOptions,
+    WrenchFanout,
+    WrenchReading,
+    WrenchSubscription,
+    changed_enough,
+)
 from services.force_sensor.wrench_model import ContactWrench, Payload, contact_wrench
 from services.robot_model import puma560
 from services.robot_model.kinematics import PumaKinematics
@@ -79,7 +85,7 @@ class ForceSensorCore:
         self._stop = threading.Event()
         self._loop: RealtimeLoop | None = None
         self._failing_since: float | None = None
-        self.readings: Fanout[WrenchReading] = Fanout()
+        self.readings = WrenchFanout()
         self._unbiased: Fanout[ContactWrench] = Fanout()  # only while a tare averages
 
     # -- configuration ----------------------------------------------------------------------
@@ -238,10 +244,8 @@ class ForceSensorCore:
         self._failing_since = None
         self._failure = None
         settings = self._settings
-        last = self._last_published
-        if last is None or exceeds(float(np.max(np.abs(reading.force_n - last.force_n))),
-                                   float(np.max(np.abs(reading.torque_nm - last.torque_nm))),
-                                   settings.threshold_force_n, settings.threshold_torque_nm):
+        if changed_enough(reading, self._last_published, settings.threshold_force_n,
+                          settings.threshold_torque_nm):
             self._last_published = reading
             self.readings.publish(reading)
 

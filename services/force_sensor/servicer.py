@@ -1,13 +1,19 @@
-"""ForceSensor over gRPC: reads requests, calls ForceSensorCore, converts answers and errors."""
+"""ForceSensor over gRPC: reads requests, calls ForceSensorCore, converts answers and errors.
+
+StreamWrench yields each message already serialized (bytes; the lane interceptor sends bytes
+as they are): a batch's samples are encoded once, by the first stream that needs them, and
+every subscriber given the same batch sends those bytes, followed by its own dropped_count.
+"""
 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 
 from services.common import convert
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.settings import ThreadPriority
-from services.force_sensor.subscribers import StreamOptions, WrenchReading
+from services.force_sensor.subscribers import StreamOptions, WrenchBatch, WrenchReading
 from services.runtime.errors import InvalidArgument, Unavailable
 from telerobot.v1 import force_sensor_pb2 as pb
 from telerobot.v1 import force_sensor_pb2_grpc
@@ -21,6 +27,26 @@ def reading_to_proto(reading: WrenchReading) -> pb.WrenchSample:
     return pb.WrenchSample(sequence=reading.sequence,
                            sample_time=convert.timestamp(reading.sample_time_ns),
                            wrench=convert.wrench_to_proto(reading.force_n, reading.torque_nm))
+
+
+def encode_samples(readings: Sequence[WrenchReading]) -> bytes:
+    """A StreamWrenchResponse carrying `readings` and no dropped_count, serialized."""
+    return pb.StreamWrenchResponse(
+        samples=[reading_to_proto(r) for r in readings]).SerializeToString()
+
+
+def encode_dropped(dropped: int) -> bytes:
+    """The dropped_count field alone, serialized (nothing for 0, as proto3 leaves it out).
+    Appended to encode_samples' bytes it makes the whole message: protobuf writes fields in
+    number order, and samples (1) come before dropped_count (2)."""
+    return pb.StreamWrenchResponse(dropped_count=dropped).SerializeToString()
+
+
+def stream_message(batch: WrenchBatch, dropped: int) -> bytes:
+    """The serialized StreamWrenchResponse for one subscriber: the batch's shared bytes and
+    that subscriber's dropped_count."""
+    payload = batch.payload(encode_samples)
+    return payload + encode_dropped(dropped) if dropped else payload
 
 
 def priority_from_proto(value: int) -> ThreadPriority:
@@ -101,5 +127,4 @@ class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
                                           "StartReading again, then resubscribe",
                                           reason="SENSOR_DOWN")
                     continue
-                yield pb.StreamWrenchResponse(samples=[reading_to_proto(r) for r in batch],
-                                              dropped_count=subscription.dropped)
+                yield stream_message(batch, subscription.dropped)

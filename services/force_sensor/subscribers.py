@@ -1,14 +1,22 @@
 """Per-subscriber quality of service for the wrench stream (the Parma paper's notification
 service): each subscriber keeps every Nth sample, filters by change, and batches, on the
-sampling thread, into its own bounded queue that drops the oldest batch when it is full."""
+sampling thread, into its own bounded queue that drops the oldest batch when it is full.
+
+What many subscribers share is made once: when several subscribers complete a batch of the
+same samples at the same tick (the operator at decimation 1 and every observer whose turn it
+is, say), `WrenchFanout` hands them one `WrenchBatch`, whose message bytes are encoded once by
+whichever stream needs them first and then fanned out as they are. Each subscriber's own
+counters, change filter, queue and `dropped` stay its own, so sharing changes no one's samples.
+"""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from services.common.fanout import Subscription
+from services.common.fanout import Fanout, Subscription
 from services.force_sensor.settings import exceeds
 from services.runtime.errors import InvalidArgument
 
@@ -25,6 +33,17 @@ class WrenchReading:
     sample_time_ns: int
     force_n: np.ndarray
     torque_nm: np.ndarray
+
+
+def changed_enough(reading: WrenchReading, last: WrenchReading | None, threshold_force_n: float,
+                   threshold_torque_nm: float) -> bool:
+    """The ThresholdValue test of `reading` against the `last` one let through (settings.exceeds);
+    True with no last one, and with both thresholds zero without looking at the values."""
+    if last is None or (threshold_force_n == 0 and threshold_torque_nm == 0):
+        return True
+    return exceeds(float(np.max(np.abs(reading.force_n - last.force_n))),
+                   float(np.max(np.abs(reading.torque_nm - last.torque_nm))),
+                   threshold_force_n, threshold_torque_nm)
 
 
 @dataclass(frozen=True)
@@ -54,8 +73,37 @@ class StreamOptions:
                    queue_capacity or DEFAULT_QUEUE_CAPACITY)
 
 
-class WrenchSubscription(Subscription[list[WrenchReading]]):
-    """A subscriber's queue of batches; `offer_sample` runs on the sampling thread."""
+class WrenchBatch:
+    """The samples of one message, oldest first, shared by every subscriber that chose the
+    same ones at the same tick, with the message's bytes once someone has encoded them."""
+
+    __slots__ = ("readings", "_payload")
+
+    def __init__(self, readings: tuple[WrenchReading, ...]):
+        self.readings = readings
+        self._payload: bytes | None = None
+
+    def payload(self, encode: Callable[[Sequence[WrenchReading]], bytes]) -> bytes:
+        """encode(readings), computed by the first caller and kept for the others. Two streams
+        that ask at once may both encode (the same bytes); neither waits for the other."""
+        payload = self._payload
+        if payload is None:
+            payload = self._payload = encode(self.readings)
+        return payload
+
+    def __iter__(self) -> Iterator[WrenchReading]:
+        return iter(self.readings)
+
+    def __len__(self) -> int:
+        return len(self.readings)
+
+    def __repr__(self) -> str:
+        return f"WrenchBatch({[r.sequence for r in self.readings]})"
+
+
+class WrenchSubscription(Subscription[WrenchBatch]):
+    """A subscriber's filters and its queue of batches. `take` and `deliver` (or `offer`, both
+    at once) run on the sampling thread; `get` on the subscriber's stream."""
 
     def __init__(self, fanout, options: StreamOptions):
         super().__init__(fanout, options.queue_capacity)
@@ -64,19 +112,45 @@ class WrenchSubscription(Subscription[list[WrenchReading]]):
         self._last_forwarded: WrenchReading | None = None
         self._batch: list[WrenchReading] = []
 
-    def offer(self, item: WrenchReading) -> None:  # type: ignore[override]
-        """Decimate, filter by change, batch; queue a batch once full."""
+    def take(self, item: WrenchReading) -> tuple[WrenchReading, ...] | None:
+        """Decimate, filter by change, batch: the readings of a batch this sample completes, or
+        None. Changes only this subscriber's filter state."""
         self._count += 1
         if (self._count - 1) % self.options.decimation:
-            return
-        last = self._last_forwarded
-        if last is not None and not exceeds(
-                float(np.max(np.abs(item.force_n - last.force_n))),
-                float(np.max(np.abs(item.torque_nm - last.torque_nm))),
-                self.options.threshold_force_n, self.options.threshold_torque_nm):
-            return
+            return None
+        if not changed_enough(item, self._last_forwarded, self.options.threshold_force_n,
+                              self.options.threshold_torque_nm):
+            return None
         self._last_forwarded = item
         self._batch.append(item)
-        if len(self._batch) >= self.options.batch_size:
-            batch, self._batch = self._batch, []
-            super().offer(batch)
+        if len(self._batch) < self.options.batch_size:
+            return None
+        readings, self._batch = tuple(self._batch), []
+        return readings
+
+    def deliver(self, batch: WrenchBatch) -> None:
+        """Queue a batch (the oldest goes when the queue is full, counted in `dropped`)."""
+        super().offer(batch)
+
+    def offer(self, item: WrenchReading) -> None:  # type: ignore[override]
+        """take(item), and queue what it completes as a batch of this subscriber's own."""
+        readings = self.take(item)
+        if readings is not None:
+            self.deliver(WrenchBatch(readings))
+
+
+class WrenchFanout(Fanout[WrenchBatch]):
+    """Delivers every published reading to every open WrenchSubscription, with one shared
+    WrenchBatch for all whose batches hold the same samples."""
+
+    def publish(self, reading: WrenchReading) -> None:  # type: ignore[override]
+        shared: dict[tuple[int, ...], WrenchBatch] = {}
+        for subscription in self._subscriptions:  # a snapshot: subscribe/close never block it
+            readings = subscription.take(reading)
+            if readings is None:
+                continue
+            key = tuple(map(id, readings))  # the readings are alive: their ids are theirs
+            batch = shared.get(key)
+            if batch is None:
+                batch = shared[key] = WrenchBatch(readings)
+            subscription.deliver(batch)

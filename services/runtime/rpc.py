@@ -8,7 +8,9 @@
 - requests are decoded and checked here (services/runtime/validation.py), so a malformed
   message, an unknown enum value or an over-long string gets INVALID_ARGUMENT naming the
   field, instead of grpcio's INTERNAL or a handler's UNKNOWN;
-- `TelerobotError`s raised by servicers become their status code with a google.rpc.ErrorInfo.
+- `TelerobotError`s raised by servicers become their status code with a google.rpc.ErrorInfo;
+- a response a servicer already serialized (`bytes`, such as one message fanned out to many
+  streams) goes out as it is; every other response goes through the method's serializer.
 """
 
 from __future__ import annotations
@@ -113,7 +115,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
     def _wrap(self, handler: grpc.RpcMethodHandler, method: str, requested: str | None):
         decode = handler.request_deserializer or (lambda raw: raw)
-        encode = handler.response_serializer
+        encode = _passing_bytes(handler.response_serializer)
         # A stop is never refused for its words: an over-long reason is cut, not refused.
         emergency = declared_lane(method) == Lane.EMERGENCY
 
@@ -206,6 +208,19 @@ def _call(behavior: Callable, request, context):
         return behavior(request, context)
     except TelerobotError as error:
         abort_with_error(context, error)
+
+
+def _passing_bytes(serialize: Callable | None) -> Callable | None:
+    """The method's response serializer, except that bytes pass through unchanged."""
+    if serialize is None:
+        return None
+
+    def serialize_unless_bytes(response):
+        if type(response) is bytes:
+            return response
+        return serialize(response)
+
+    return serialize_unless_bytes
 
 
 def _requested_lane(metadata) -> str | None:
