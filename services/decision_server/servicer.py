@@ -5,12 +5,14 @@ IForceSensor). Reads requests, calls DecisionCore, converts answers and errors."
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
 
 import grpc
 import numpy as np
 
 from services.common import convert
 from services.common.geometry import finite_vector
+from services.common.inbox import Inbox
 from services.decision_server import assistance as assist
 from services.decision_server.arbitration import ControlMode, ControlView, Lease
 from services.decision_server.backends import forwarding_servicer
@@ -19,6 +21,7 @@ from services.decision_server.supervisor import (
     CommandResult,
     ControlChanged,
     DecisionCore,
+    MasterIncrement,
     ReplayProgress,
     RobotEventForwarded,
     WatchdogHold,
@@ -231,21 +234,9 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                     f"REFERENCE_FRAME_{mapping or self._core.assistance.mapping}"),
                 watchdog_timeout=convert.duration(session.watchdog_s),
                 assistance=assistance_to_proto(self._core.assistance)))
-            for request in request_iterator:
-                kind = request.WhichOneof("message")
-                if kind == "command":
-                    command = request.command
-                    delta_x = convert.vector3_from_proto(command.delta_position_m,
-                                                         "delta_position_m")
-                    delta_m = convert.rotation_from_proto(command.delta_rotation,
-                                                          "delta_rotation")
-                    result = session.command(delta_x, delta_m, command.clutch_engaged)
-                    yield self._ack(command.sequence, command.send_time, result)
-                elif kind == "heartbeat":
-                    yield self._ack(0, request.heartbeat.send_time, session.heartbeat())
-                else:
-                    raise InvalidArgument("only commands and heartbeats may follow the init",
-                                          reason="BAD_MESSAGE")
+            inbox = Inbox(request_iterator, self._received, name=f"teleop-{session.session_id}")
+            while batch := inbox.take():
+                yield from self._serve_batch(session, batch)
             reason = "the stream ended"
         except TelerobotError as error:
             if error.reason == "NO_CONTROL":
@@ -254,6 +245,38 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             raise
         finally:
             session.close(reason)
+
+    def _received(self, request: pb.TeleoperateRequest
+                  ) -> tuple[pb.TeleoperateRequest, MasterIncrement | None]:
+        """A Teleoperate message as it arrives (on the inbox's thread): a command is checked,
+        converted and stamped with its receive time then."""
+        kind = request.WhichOneof("message")
+        if kind == "heartbeat":
+            return request, None
+        if kind != "command":
+            raise InvalidArgument("only commands and heartbeats may follow the init",
+                                  reason="BAD_MESSAGE")
+        command = request.command
+        return request, MasterIncrement(
+            convert.vector3_from_proto(command.delta_position_m, "delta_position_m"),
+            convert.rotation_from_proto(command.delta_rotation, "delta_rotation"),
+            command.clutch_engaged, self._core.clock.time_ns())
+
+    def _serve_batch(self, session, batch) -> Iterator[pb.TeleoperateResponse]:
+        """Acks, in order, for messages that arrived together: the commands between heartbeats
+        go to the session together (it may merge them into one move)."""
+        commands: list[pb.MasterCommand] = []
+        increments: list[MasterIncrement] = []
+        for request, increment in [*batch, (None, None)]:
+            if increment is not None:
+                commands.append(request.command)
+                increments.append(increment)
+                continue
+            for command, result in zip(commands, session.commands(increments), strict=True):
+                yield self._ack(command.sequence, command.send_time, result)
+            commands, increments = [], []
+            if request is not None:
+                yield self._ack(0, request.heartbeat.send_time, session.heartbeat())
 
     def _control_state(self) -> pb.ControlState:
         return control_state(self._core.locks.view(), self._core.clock)

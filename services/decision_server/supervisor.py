@@ -119,6 +119,60 @@ class CommandResult:
     apply_time_ns: int
 
 
+@dataclass(frozen=True)
+class MasterIncrement:
+    """One master command: ΔX (m) and ΔM in the session's mapping frame, the clutch, and when
+    the server received it."""
+
+    delta_position: np.ndarray
+    delta_rotation: np.ndarray
+    clutch_engaged: bool
+    receive_time_ns: int
+
+
+# A merged move stays well inside ProxyRobot's caps per move (50 mm, 15 deg), so merging never
+# turns acceptable commands into one refused move; and at most 50 commands (50 ms at 1 kHz).
+MAX_MERGED_COMMANDS = 50
+MAX_MERGED_TRANSLATION_M = 0.02
+MAX_MERGED_ROTATION_RAD = np.radians(5.0)
+
+
+def merge_groups(increments: list[MasterIncrement]) -> list[list[MasterIncrement]]:
+    """Consecutive commands that may share one move: all motion (clutch released) or all
+    clutch, at most MAX_MERGED_COMMANDS, their summed sizes within the merge bounds."""
+    groups: list[list[MasterIncrement]] = []
+    translation = rotation = 0.0
+    for increment in increments:
+        size = float(np.linalg.norm(increment.delta_position))
+        angle = float(np.linalg.norm(pin.log3(increment.delta_rotation)))
+        group = groups[-1] if groups else None
+        if (group is not None and group[0].clutch_engaged == increment.clutch_engaged
+                and len(group) < MAX_MERGED_COMMANDS
+                and translation + size <= MAX_MERGED_TRANSLATION_M
+                and rotation + angle <= MAX_MERGED_ROTATION_RAD):
+            group.append(increment)
+            translation, rotation = translation + size, rotation + angle
+        else:
+            groups.append([increment])
+            translation, rotation = size, angle
+    return groups
+
+
+def moved_by(tool: pin.SE3, step: pin.SE3, mapping: str) -> pin.SE3:
+    """The tool pose after an increment in the mapping frame, as ProxyRobot applies it: in the
+    tool frame, or (BASE) translated in the base frame and rotated about the tool point."""
+    if mapping == "TOOL":
+        return tool * step
+    return pin.SE3(step.rotation @ tool.rotation, tool.translation + step.translation)
+
+
+def compose(first: pin.SE3, then: pin.SE3, mapping: str) -> pin.SE3:
+    """One increment with the effect of `first` followed by `then` (see `moved_by`)."""
+    if mapping == "TOOL":
+        return first * then
+    return pin.SE3(then.rotation @ first.rotation, first.translation + then.translation)
+
+
 class TeleopSession:
     """One operator's Teleoperate stream: increments in, the watchdog behind them. One
     stream calls `command`/`heartbeat`; the watchdog thread and `close` share `_lock`."""
@@ -153,34 +207,66 @@ class TeleopSession:
 
     def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
                 clutch_engaged: bool) -> CommandResult:
-        receive = self._clock.time_ns()
+        """One master command, received now."""
+        return self.commands([MasterIncrement(delta_position, delta_rotation, clutch_engaged,
+                                              self._clock.time_ns())])[0]
+
+    def commands(self, increments: list[MasterIncrement]) -> list[CommandResult]:
+        """Master commands that arrived together (a backlog behind a slow arm), in order: a
+        result each. Consecutive motion commands go to the arm as one move, their increments
+        composed (see `merge_groups`), so a backlog costs one arm round trip instead of one
+        per command, and the newest command reaches the arm soonest."""
+        if not increments:
+            return []
         self._touch()
         self.core.locks.require(self.lease.lease_id)  # FailedPrecondition ends the stream
         assistance, indexing, latched = self.core.snapshot()
-        if clutch_engaged or indexing:
-            self._target = None  # the reference follows the hand; re-read the pose after
-            return CommandResult("INDEXED", "indexing is engaged", receive, receive)
-        if latched:
-            return CommandResult("REJECTED", f"the arm is {latched}: Reset it first",
-                                 receive, receive)
+        results: list[CommandResult] = []
+        for group in merge_groups(increments):
+            first = group[0]
+            if first.clutch_engaged or indexing:
+                self._target = None  # the reference follows the hand; re-read the pose after
+                results += [CommandResult("INDEXED", "indexing is engaged", i.receive_time_ns,
+                                          i.receive_time_ns) for i in group]
+            elif latched:
+                results += [CommandResult("REJECTED", f"the arm is {latched}: Reset it first",
+                                          i.receive_time_ns, i.receive_time_ns) for i in group]
+            else:
+                results += self._move(assistance, group)
+        return results
+
+    def _move(self, assistance: Assistance, group: list[MasterIncrement]) -> list[CommandResult]:
+        """One move for a group of motion commands: each gets the assistance at the pose the
+        ones before it lead to; the composed increment goes to the arm."""
         mapping = self.mapping or assistance.mapping
         assistance = dataclasses.replace(assistance, mapping=mapping)
         tool = self._target or self.core.slave.state().tool_pose
-        dx, dm, modified = apply_assistance(assistance, delta_position, delta_rotation, tool)
+        total = pin.SE3.Identity()
+        modified_by_assistance = []
+        for increment in group:
+            dx, dm, modified = apply_assistance(assistance, increment.delta_position,
+                                                increment.delta_rotation, tool)
+            step = pin.SE3(dm, dx)
+            tool = moved_by(tool, step, mapping)
+            total = compose(total, step, mapping)
+            modified_by_assistance.append(modified)
         try:
-            result = self.core.slave.move_cartesian(dx, dm, mapping)
+            result = self.core.slave.move_cartesian(total.translation, total.rotation, mapping)
         except Unavailable:
             raise  # the arm is unreachable: the stream ends, it is not one refused command
         except TelerobotError as error:
-            return CommandResult("REJECTED", error.message, receive, self._clock.time_ns())
+            now = self._clock.time_ns()
+            return [CommandResult("REJECTED", error.message, i.receive_time_ns, now)
+                    for i in group]
         applied = self._clock.time_ns()
         self._target = result.target_tool_pose
-        self.core.recordings.add(mapping, dx, dm, result.target_tool_pose.translation)
-        modified = modified or result.applied_fraction < 1.0
-        return CommandResult("MODIFIED" if modified else "APPLIED",
-                             "" if result.applied_fraction == 1.0 else
-                             f"reduced to {result.applied_fraction:.2f} near a singularity",
-                             receive, applied)
+        self.core.recordings.add(mapping, total.translation, total.rotation,
+                                 result.target_tool_pose.translation)
+        reduced = result.applied_fraction < 1.0
+        detail = f"reduced to {result.applied_fraction:.2f} near a singularity" if reduced else ""
+        return [CommandResult("MODIFIED" if modified or reduced else "APPLIED", detail,
+                              i.receive_time_ns, applied)
+                for i, modified in zip(group, modified_by_assistance, strict=True)]
 
     def close(self, reason: str) -> None:
         """The stream ended: hold the arm, unless the watchdog already did."""

@@ -281,3 +281,75 @@ def test_the_watchdog_holds_the_arm_exactly_at_its_timeout(rig):
     assert "watchdog timeout" in event.payload.reason
     session.close("the stream ended")
     assert sum(c.kind == "hold" for c in rig.slave.commands) == 1  # no second hold
+
+
+# -- a backlog of commands: one move -------------------------------------------------------------
+
+def _increments(rig: Rig, steps, clutch=()):
+    from services.decision_server.supervisor import MasterIncrement
+
+    return [MasterIncrement(np.asarray(dx, float), rotation, i in clutch, rig.clock.time_ns())
+            for i, (dx, rotation) in enumerate(steps)]
+
+
+def _rotation_z(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+@pytest.mark.parametrize("mapping", ["BASE", "TOOL"])
+def test_a_backlog_of_commands_is_one_move_to_where_the_commands_one_by_one_lead(rig, mapping):
+    """Commands that arrived together reach the arm as one move; the arm ends where the same
+    commands sent one at a time take it, and each command gets its own result."""
+    steps = [([0.001, 0.0, 0.0], _rotation_z(0.01)), ([0.0, 0.002, 0.0], np.eye(3)),
+             ([0.0, 0.0, -0.001], _rotation_z(-0.02))]
+    session = rig.core.open_session("alice", rig.lease.lease_id, mapping, 1.0)
+    results = session.commands(_increments(rig, steps))
+    assert [r.outcome for r in results] == ["APPLIED"] * 3
+    assert rig.moves() == 1
+    merged = rig.slave.kinematics.tool_pose(rig.slave.q_target)
+    session.close("done")
+
+    one_by_one = FakeSlave(rig.clock)
+    core = DecisionCore(one_by_one, rig.core.recordings, rig.clock)
+    lease = core.locks.acquire("bob", ControlMode.EXCLUSIVE)
+    single = core.open_session("bob", lease.lease_id, mapping, 1.0)
+    for dx, rotation in steps:
+        single.command(np.asarray(dx, float), rotation, False)
+    expected = one_by_one.kinematics.tool_pose(one_by_one.q_target)
+    single.close("done")
+    core.close()
+    np.testing.assert_allclose(merged.translation, expected.translation, atol=1e-6)
+    np.testing.assert_allclose(merged.rotation, expected.rotation, atol=1e-6)
+
+
+def test_the_clutch_splits_a_backlog_and_its_commands_move_nothing(rig):
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 1.0)
+    step = ([0.001, 0.0, 0.0], np.eye(3))
+    results = session.commands(_increments(rig, [step] * 5, clutch={2}))
+    assert [r.outcome for r in results] == ["APPLIED", "APPLIED", "INDEXED", "APPLIED",
+                                            "APPLIED"]
+    assert rig.moves() == 2  # before and after the clutch
+    session.close("done")
+
+
+def test_a_backlog_past_the_merge_bounds_goes_as_several_moves_none_refused(rig):
+    """Thirty 1 mm commands (30 mm in all) would pass the 20 mm a merged move may carry: they
+    go as two moves, each within it (so inside the arm's 50 mm cap)."""
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 1.0)
+    results = session.commands(_increments(rig, [([0.0, 0.0, 0.001], np.eye(3))] * 30))
+    assert {r.outcome for r in results} == {"APPLIED"}
+    sizes = [np.linalg.norm(c.detail[1]) for c in rig.slave.commands if c.kind == "cartesian"]
+    assert len(sizes) == 2 and max(sizes) <= 0.02 and sum(sizes) == pytest.approx(0.03)
+    session.close("done")
+
+
+def test_a_refused_merged_move_rejects_each_of_its_commands(rig):
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 1.0)
+    rig.slave.latch_at_hardware()
+    rig.slave.step(SERVO_PERIOD_S)  # the state sample that says ESTOPPED
+    results = session.commands(_increments(rig, [([0.001, 0.0, 0.0], np.eye(3))] * 3))
+    assert [r.outcome for r in results] == ["REJECTED"] * 3
+    assert all("ESTOPPED" in r.detail for r in results)
+    assert rig.moves() == 0
+    session.close("done")

@@ -34,6 +34,28 @@ def test_acks_carry_the_outcome_pose_status_and_a_fresh_wrench(fake_station):
     operator.close()
 
 
+def test_a_burst_of_commands_gets_one_ack_each_in_order_and_moves_by_their_sum(fake_station):
+    """However the server batches a backlog, every command gets its ack, in order, heartbeats
+    in their place; the arm moves by all the increments."""
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    messages = [pb.TeleoperateRequest(init=pb.TeleoperateInit(
+        operator_id="tester", lease_id=lease, mapping=types_pb2.REFERENCE_FRAME_BASE,
+        watchdog_timeout=convert.duration(1.0)))]
+    for sequence in range(1, 21):
+        messages.append(pb.TeleoperateRequest(command=pb.MasterCommand(
+            sequence=sequence, delta_position_m=types_pb2.Vector3(z=0.0005))))
+        if sequence == 10:
+            messages.append(pb.TeleoperateRequest(heartbeat=pb.Heartbeat()))
+    replies = list(station.decisions.Teleoperate(iter(messages), timeout=30))
+    acks = [r.ack for r in replies[1:]]
+    assert [a.sequence for a in acks] == [*range(1, 11), 0, *range(11, 21)]
+    assert acks[10].outcome == pb.COMMAND_OUTCOME_HEARTBEAT
+    assert {a.outcome for a in acks[:10] + acks[11:]} == {pb.COMMAND_OUTCOME_APPLIED}
+    moves = [c.detail[1] for c in slave.commands if c.kind == "cartesian"]
+    np.testing.assert_allclose(np.sum(moves, axis=0), [0.0, 0.0, 0.01], atol=1e-9)
+
+
 def test_the_first_message_must_be_init_and_the_lock_is_needed(fake_station):
     station, _ = fake_station
     bad = station.decisions.Teleoperate(iter([pb.TeleoperateRequest(

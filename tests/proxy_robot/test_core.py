@@ -12,8 +12,8 @@ import pinocchio as pin
 import pytest
 
 from services.proxy_robot import core as core_module
-from services.proxy_robot.status import Moved, RobotErrorRaised, RobotStatus, StatusChanged
 from services.proxy_robot.interpolator import LONE_COMMAND_SPEED_RAD_PER_S
+from services.proxy_robot.status import Moved, RobotErrorRaised, RobotStatus, StatusChanged
 from services.robot_model.puma560 import HOME_Q
 from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryEmergencyStop

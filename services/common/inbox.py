@@ -1,0 +1,61 @@
+"""`Inbox`: a stream's messages read on a thread of their own, taken by the handler in batches.
+
+A handler that reads one message, acts, and reads the next falls behind for good once the
+messages come faster than it acts: each waits behind all the earlier ones. With an inbox, the
+handler takes everything that has arrived since it last looked, so it can act once on the
+whole backlog (the DecisionServer composes a backlog of increments into one move). Nothing
+here knows about gRPC.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import deque
+from collections.abc import Callable, Iterator
+from typing import Generic, TypeVar
+
+T = TypeVar("T")
+M = TypeVar("M")
+
+
+class Inbox(Generic[T]):
+    """Reads `messages` on a daemon thread, stamping each with `stamp(message)` as it arrives.
+
+    `take()` returns what has arrived (at least one, waiting for it), or an empty list once the
+    messages ended; if reading raised, `take()` raises that exception, in the taker's thread.
+    """
+
+    def __init__(self, messages: Iterator[M], stamp: Callable[[M], T], name: str = "inbox"):
+        self._messages = messages
+        self._stamp = stamp
+        self._items: deque[T] = deque()
+        self._ready = threading.Condition()
+        self._ended = False
+        self._error: BaseException | None = None
+        self._thread = threading.Thread(target=self._read, name=name, daemon=True)
+        self._thread.start()
+
+    def _read(self) -> None:
+        try:
+            for message in self._messages:
+                item = self._stamp(message)
+                with self._ready:
+                    self._items.append(item)
+                    self._ready.notify()
+        except BaseException as error:  # noqa: BLE001 - handed to the taker, which raises it
+            self._error = error
+        finally:
+            with self._ready:
+                self._ended = True
+                self._ready.notify()
+
+    def take(self, limit: int | None = None) -> list[T]:
+        """Everything that has arrived (at most `limit`), oldest first, waiting for at least
+        one; [] once the messages ended and all were taken."""
+        with self._ready:
+            while not self._items and not self._ended:
+                self._ready.wait()
+            if not self._items and self._error is not None:
+                raise self._error
+            count = len(self._items) if limit is None else min(limit, len(self._items))
+            return [self._items.popleft() for _ in range(count)]
