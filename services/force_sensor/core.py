@@ -48,6 +48,8 @@ SENSOR_DOWN_AFTER_S = 0.5
 _STALLED = "WORLD_STALE"
 MAX_SUBSCRIBERS = 128
 STOP_TIMEOUT_S = 2.0
+_IDENTITY = np.eye(3)  # the sensor's rotation when no arm link tells it
+_IDENTITY.setflags(write=False)
 
 
 def default_payload() -> Payload:
@@ -251,10 +253,11 @@ class ForceSensorCore:
 
     def _sample_once(self) -> WrenchReading:
         raw = self._wrench_link.read_wrench()
-        rotation = np.eye(3)
         if self._arm_link is not None:
             q = self._arm_link.read_arm().joint_positions_rad
             rotation = self._kinematics.frame_pose(q, puma560.FT_SITE).rotation
+        else:
+            rotation = _IDENTITY
         sensor_to_tool, bias = self._sensor_to_tool, self._bias
         if self._unbiased.subscriber_count:
             self._unbiased.publish(contact_wrench(raw.force_n, raw.torque_nm, rotation,
