@@ -53,6 +53,10 @@ class DecisionService:
     def start(self) -> None:
         pass  # the backends are reached per call; their absence is UNAVAILABLE, not a crash
 
+    def on_emergency_call(self) -> None:
+        if self.core is not None:
+            self.core.slave.stop_now()
+
     def close(self) -> None:
         if self.core is not None:
             self.core.close()

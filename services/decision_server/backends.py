@@ -169,6 +169,15 @@ class GrpcSlave:
                     robot_error.message)
         return "ESTOPPED"
 
+    def stop_now(self) -> None:
+        """Send the stop to the band without waiting for it (an EmergencyStop call is arriving;
+        emergency_stop() follows with its reason, through both paths)."""
+        if self.emergency is not None:
+            self.emergency.EmergencyStop.future(
+                proxy_robot_pb2.EmergencyStopRequest(
+                    reason="an EmergencyStop call arrived at the DecisionServer"),
+                timeout=BAND_TIMEOUT_S)
+
     def reset(self) -> str:
         return _status_name(call(self.robot.Reset, proxy_robot_pb2.ResetRequest()).status)
 

@@ -69,6 +69,10 @@ class Slave(Protocol):
     def emergency_stop(self, reason: str) -> str:
         """Latch a stop at the hardware; returns the status after it (ESTOPPED)."""
 
+    def stop_now(self) -> None:
+        """Start latching a stop without waiting for it: an emergency stop is on its way
+        (emergency_stop() follows with the reason). Must not block."""
+
     def reset(self) -> str:
         """Clear a latch; returns the status after it."""
 

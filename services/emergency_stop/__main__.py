@@ -27,7 +27,8 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
 def build(args: argparse.Namespace) -> CoreService:
     servicer = EmergencyStopServicer(lambda: SharedMemoryEmergencyStop(args.shm_name))
     servicer.open()
-    return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", servicer)], servicer.close)
+    return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", servicer)], servicer.close,
+                       on_emergency_call=servicer.stop_now)
 
 
 # Threads inherit their creator's nice value, so setting it first gives every thread of this

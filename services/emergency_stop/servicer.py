@@ -48,6 +48,16 @@ class EmergencyStopServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
         return pb.EmergencyStopResponse(status=status_to_proto(RobotStatus.ESTOPPED),
                                         stop_time=convert.timestamp(stop_time_ns))
 
+    def stop_now(self) -> None:
+        """Latch the stop as an EmergencyStop call arrives (the runtime's on_emergency_call);
+        its handler follows, latches again and answers. A link that fails is the handler's to
+        report."""
+        with self._lock:
+            try:
+                self._stop()
+            except Unavailable:
+                pass
+
     def _stop(self) -> int:
         if self._link is None:
             self._link = self._open_link()

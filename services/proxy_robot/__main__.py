@@ -26,7 +26,7 @@ def build(args: argparse.Namespace) -> CoreService:
     # The link opens on Connect, as the papers' ConnectRobot does; close() holds the arm.
     core = ProxyRobotCore(lambda: SharedMemoryArmLink(args.shm_name))
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],
-                       core.close)
+                       core.close, on_emergency_call=core.hold_now)
 
 
 if __name__ == "__main__":

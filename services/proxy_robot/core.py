@@ -385,8 +385,18 @@ class ProxyRobotCore:
             except Unavailable:
                 pass  # the monitor reports the lost link
         with self._lock:
-            self._set_status(RobotStatus.ESTOPPED, f"emergency stop: {reason or 'no reason given'}")
+            text = f"emergency stop: {reason or 'no reason given'}"
+            if self._status == RobotStatus.ESTOPPED:
+                self._reason = text  # the latch came first (hold_now, the band): say why
+            self._set_status(RobotStatus.ESTOPPED, text)
             return self._status, stop_time_ns
+
+    def hold_now(self) -> None:
+        """Latch the hold at the hardware at once, taking no lock: an emergency stop is on its
+        way (emergency_stop() follows, with the reason). Nothing happens without a link."""
+        link = self._link
+        if link is not None:
+            link.hold()
 
     def reset(self) -> RobotStatus:
         """Clear an e-stop or fault latch; the arm stays where it is."""

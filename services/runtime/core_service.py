@@ -15,6 +15,7 @@ class CoreService:
 
     served: Sequence[ServiceBinding]
     release: Callable[[], None]
+    on_emergency_call: Callable[[], None] | None = None  # see services.runtime.process.Service
 
     def bindings(self) -> Sequence[ServiceBinding]:
         return self.served

@@ -63,6 +63,10 @@ class Service(Protocol):
     def close(self) -> None:
         """Release everything start() took. Called once, after the server stopped."""
 
+    # Optional: `lanes` (a dict of LaneConfig) sizes the service's lanes, and
+    # `on_emergency_call()` latches its stop the moment an EmergencyStop call arrives (on gRPC's
+    # polling thread: it must not block).
+
 
 def run_service(
     name: str,
@@ -87,6 +91,7 @@ def run_service(
     server, port = create_server(
         args.address, service.bindings(), client_lane_limit=args.client_lane_limit,
         lanes=getattr(service, "lanes", None),  # a service may size its own lanes
+        on_emergency_call=getattr(service, "on_emergency_call", None),  # and stop on arrival
     )
     server.start()
     try:

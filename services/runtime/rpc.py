@@ -10,12 +10,17 @@
   field, instead of grpcio's INTERNAL or a handler's UNKNOWN;
 - `TelerobotError`s raised by servicers become their status code with a google.rpc.ErrorInfo;
 - a response a servicer already serialized (`bytes`, such as one message fanned out to many
-  streams) goes out as it is; every other response goes through the method's serializer.
+  streams) goes out as it is; every other response goes through the method's serializer;
+- an emergency-lane call (EmergencyStop) calls the server's `on_emergency_call` hook the moment
+  it arrives, on gRPC's polling thread, before its request is read or any thread picks it up:
+  the service latches its stop there, so the stop never waits behind a busy pool or lane. The
+  handler then runs as usual (with the reason) and answers. Stopping early is always safe.
 """
 
 from __future__ import annotations
 
 import contextlib
+import functools
 import logging
 import threading
 from collections.abc import Callable, Iterator
@@ -51,6 +56,7 @@ _PROTO_LANES = {
 LANE_TO_PROTO = {lane: value for value, lane in _PROTO_LANES.items()}
 
 
+@functools.lru_cache(maxsize=1024)  # looked up for every call: cached (methods are few)
 def declared_lane(method_path: str) -> Lane:
     """The lane an RPC declares in its proto ("/pkg.Service/Method"); MEDIUM when it has none."""
     if method_path in _BUILTIN_LANES:
@@ -86,8 +92,9 @@ class LaneInterceptor(grpc.ServerInterceptor):
     """Dispatches every call of a server onto its priority lane; see the module docstring."""
 
     def __init__(self, executor: LaneExecutor, client_lane_limit: Lane = Lane.HIGH,
-                 max_streams: int = 64):
+                 max_streams: int = 64, on_emergency_call: Callable[[], None] | None = None):
         self._executor = executor
+        self._on_emergency_call = on_emergency_call
         self._client_lane_limit = client_lane_limit
         self._max_streams = max_streams
         self._open_streams = 0
@@ -102,8 +109,17 @@ class LaneInterceptor(grpc.ServerInterceptor):
         if handler is None:
             return None  # unknown method: grpcio answers UNIMPLEMENTED
         method = handler_call_details.method
+        if self._on_emergency_call is not None and declared_lane(method) == Lane.EMERGENCY:
+            self._emergency_arrived(method)
         requested = _requested_lane(handler_call_details.invocation_metadata)
         return self._wrap(handler, method, requested)
+
+    def _emergency_arrived(self, method: str) -> None:
+        try:
+            self._on_emergency_call()
+        except Exception:  # noqa: BLE001 - the handler still runs and stops the arm
+            log.exception("the early stop for %s failed; the call's handler stops the arm",
+                          method)
 
     # -- wrapping ---------------------------------------------------------------------------
 

@@ -71,13 +71,15 @@ def create_server(
     lanes: dict[Lane, LaneConfig] | None = None,
     client_lane_limit: Lane = Lane.HIGH,
     max_streams: int = 64,
+    on_emergency_call: Callable[[], None] | None = None,
 ) -> tuple[TelerobotServer, int]:
     """Build a server bound to `address` (port 0 picks one); returns it and the bound port.
 
     Every service is reported NOT_SERVING until `set_serving()`, and is listed by reflection.
+    `on_emergency_call` runs as an emergency-lane call arrives (see services.runtime.rpc).
     """
     executor = LaneExecutor(lanes, name="rpc")
-    interceptor = LaneInterceptor(executor, client_lane_limit, max_streams)
+    interceptor = LaneInterceptor(executor, client_lane_limit, max_streams, on_emergency_call)
     lane_configs = lanes or {}
     capacity = sum(c.max_threads + c.queue_capacity for c in lane_configs.values()) or 512
     # gRPC threads only receive calls and wait on the lanes (or carry a stream), so there

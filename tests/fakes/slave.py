@@ -206,6 +206,10 @@ class FakeSlave:
         self.commands.append(Command("estop", reason))
         return "ESTOPPED"
 
+    def stop_now(self) -> None:
+        self.commands.append(Command("stop_now"))
+        self.latch_at_hardware("an emergency stop is arriving")
+
     def reset(self) -> str:
         self._check_reachable()
         with self._lock:

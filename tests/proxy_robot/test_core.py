@@ -365,6 +365,20 @@ def test_reset_gives_up_on_a_hold_the_hardware_does_not_release(rig, ready, monk
     assert ready.status[0] == S.ESTOPPED
 
 
+def test_a_stop_latched_on_arrival_keeps_the_reason_its_handler_gives(rig, ready):
+    """hold_now latches at the hardware as the call arrives; the monitor may see the latch
+    first, but the status ends with the stop's own reason once its handler runs."""
+    ready.move_joints([0.05, 0, 0, 0, 0, 0])
+    rig.run(0.005)
+    ready.hold_now()
+    assert rig.arm.commands[-1].kind == HOLD  # at once, at the hardware
+    rig.run_until_status(S.ESTOPPED)  # the monitor saw the latch before the handler ran
+    assert "latched stop was set at the hardware" in ready.status[1]
+    status, _ = ready.emergency_stop("operator pressed stop")
+    assert status == S.ESTOPPED
+    assert ready.status[1] == "emergency stop: operator pressed stop"
+
+
 def test_hold_stops_without_latching(rig, ready):
     events = ready.events.subscribe(256)
     ready.move_joints([0.5, 0, 0, 0, 0, 0])
