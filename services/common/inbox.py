@@ -1,14 +1,19 @@
-"""`Inbox`: a stream's messages read on a thread of their own, taken by the handler in batches.
+"""A stream handler in three threads, so that reading, acting and answering never wait on each
+other. Nothing here knows about gRPC.
 
-A handler that reads one message, acts, and reads the next falls behind for good once the
-messages come faster than it acts: each waits behind all the earlier ones. With an inbox, the
-handler takes everything that has arrived since it last looked, so it can act once on the
-whole backlog (the DecisionServer composes a backlog of increments into one move). Nothing
-here knows about gRPC.
+- `Inbox`: the messages are read on a thread of their own and taken in batches. A handler that
+  reads one message, acts, and reads the next falls behind for good once the messages come
+  faster than it acts: each waits behind all the earlier ones. Taking everything that arrived
+  since it last looked, it can act once on the whole backlog (the DecisionServer composes a
+  backlog of increments into one move).
+- `Producer`: the acting runs on a thread of its own and its answers are yielded, in order, in
+  the handler's thread (the one a server streams from). Writing an answer to the network
+  (gRPC's sync server waits for each write to complete) then never delays the next action.
 """
 
 from __future__ import annotations
 
+import queue
 import threading
 from collections import deque
 from collections.abc import Callable, Iterator
@@ -49,6 +54,14 @@ class Inbox(Generic[T]):
                 self._ended = True
                 self._ready.notify()
 
+    def close(self) -> None:
+        """No more batches: take() returns [] once what arrived was taken (the reader thread
+        ends with the stream)."""
+        with self._ready:
+            self._ended = True
+            self._items.clear()
+            self._ready.notify_all()
+
     def take(self, limit: int | None = None) -> list[T]:
         """Everything that has arrived (at most `limit`), oldest first, waiting for at least
         one; [] once the messages ended and all were taken."""
@@ -59,3 +72,32 @@ class Inbox(Generic[T]):
                 raise self._error
             count = len(self._items) if limit is None else min(limit, len(self._items))
             return [self._items.popleft() for _ in range(count)]
+
+
+_END = object()
+
+
+class Producer(Generic[T]):
+    """Runs `produce(emit)` on a daemon thread; iterating yields what it emits, in order, in the
+    iterating thread, then raises what `produce` raised, if anything. Emitting never waits for
+    the reader. Stop its input (Inbox.close()) to end it."""
+
+    def __init__(self, produce: Callable[[Callable[[T], None]], None], name: str = "producer"):
+        self._produce = produce
+        self._out: queue.SimpleQueue = queue.SimpleQueue()
+        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        try:
+            self._produce(self._out.put)
+        except BaseException as error:  # noqa: BLE001 - raised again in the iterating thread
+            self._out.put(error)
+        finally:
+            self._out.put(_END)
+
+    def __iter__(self) -> Iterator[T]:
+        while (item := self._out.get()) is not _END:
+            if isinstance(item, BaseException):
+                raise item
+            yield item

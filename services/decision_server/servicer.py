@@ -12,7 +12,7 @@ import numpy as np
 
 from services.common import convert
 from services.common.geometry import finite_vector
-from services.common.inbox import Inbox
+from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
 from services.decision_server.arbitration import ControlMode, ControlView, Lease
 from services.decision_server.backends import forwarding_servicer
@@ -234,9 +234,19 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                     f"REFERENCE_FRAME_{mapping or self._core.assistance.mapping}"),
                 watchdog_timeout=convert.duration(session.watchdog_s),
                 assistance=assistance_to_proto(self._core.assistance)))
-            inbox = Inbox(request_iterator, self._received, name=f"teleop-{session.session_id}")
-            while batch := inbox.take():
-                yield from self._serve_batch(session, batch)
+            # Three threads (services/common/inbox.py): the inbox reads, the producer moves the
+            # arm, this one writes the acks; the arm never waits for an ack to be written.
+            inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
+
+            def serve(emit) -> None:
+                while batch := inbox.take():
+                    for ack in self._serve_batch(session, batch):
+                        emit(ack)
+
+            try:
+                yield from Producer(serve, name=f"teleop-{session.session_id}")
+            finally:
+                inbox.close()  # (a move in flight lands before session.close holds the arm)
             reason = "the stream ended"
         except TelerobotError as error:
             if error.reason == "NO_CONTROL":

@@ -174,8 +174,9 @@ def compose(first: pin.SE3, then: pin.SE3, mapping: str) -> pin.SE3:
 
 
 class TeleopSession:
-    """One operator's Teleoperate stream: increments in, the watchdog behind them. One
-    stream calls `command`/`heartbeat`; the watchdog thread and `close` share `_lock`."""
+    """One operator's Teleoperate stream: increments in, the watchdog behind them. One thread
+    calls `commands`/`heartbeat`; the watchdog thread and `close` share `_lock`; `close` waits
+    for a move in flight (`_moving`), so its hold is the last word."""
 
     def __init__(self, core: DecisionCore, operator_id: str, lease: Lease, mapping: str | None,
                  watchdog_s: float):
@@ -187,6 +188,7 @@ class TeleopSession:
         self.watchdog_s = watchdog_s
         self._clock = core.clock
         self._lock = threading.Lock()
+        self._moving = threading.Lock()  # held across a move; see close()
         self._last_activity = self._clock.monotonic()
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
         self._held = False
@@ -250,14 +252,18 @@ class TeleopSession:
             tool = moved_by(tool, step, mapping)
             total = compose(total, step, mapping)
             modified_by_assistance.append(modified)
-        try:
-            result = self.core.slave.move_cartesian(total.translation, total.rotation, mapping)
-        except Unavailable:
-            raise  # the arm is unreachable: the stream ends, it is not one refused command
-        except TelerobotError as error:
-            now = self._clock.time_ns()
-            return [CommandResult("REJECTED", error.message, i.receive_time_ns, now)
-                    for i in group]
+        with self._moving:  # close() holds the arm only after a move in flight landed
+            try:
+                if self._closed.is_set():
+                    raise FailedPrecondition("the session has ended", reason="SESSION_ENDED")
+                result = self.core.slave.move_cartesian(total.translation, total.rotation,
+                                                        mapping)
+            except Unavailable:
+                raise  # the arm is unreachable: the stream ends, it is not one refused command
+            except TelerobotError as error:
+                now = self._clock.time_ns()
+                return [CommandResult("REJECTED", error.message, i.receive_time_ns, now)
+                        for i in group]
         applied = self._clock.time_ns()
         self._target = result.target_tool_pose
         self.core.recordings.add(mapping, total.translation, total.rotation,
@@ -277,8 +283,9 @@ class TeleopSession:
             hold = not self._held
             self._held = True
         self._activity.set()
-        if hold:
-            self._hold(reason)
+        with self._moving:  # a move in flight lands first; none starts after
+            if hold:
+                self._hold(reason)
         self.core.forget_session(self.session_id)
 
     def _touch(self) -> None:

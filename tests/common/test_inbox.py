@@ -7,7 +7,7 @@ import threading
 
 import pytest
 
-from services.common.inbox import Inbox
+from services.common.inbox import Inbox, Producer
 from tests.conftest import wait_for
 
 
@@ -72,3 +72,31 @@ def test_a_stamp_that_raises_ends_the_inbox_with_that_error():
     assert inbox.take() == [1]
     with pytest.raises(KeyError, match="refused"):
         inbox.take()
+
+
+def test_a_producer_yields_what_it_emits_in_order_then_raises_its_error():
+    def produce(emit):
+        for value in range(5):
+            emit(value)
+        raise LookupError("no more")
+
+    got = []
+    with pytest.raises(LookupError, match="no more"):
+        for value in Producer(produce):
+            got.append(value)
+    assert got == [0, 1, 2, 3, 4]
+
+
+def test_a_closed_inbox_ends_the_producer_that_takes_from_it():
+    gate = Gate(range(100))
+    inbox = Inbox(iter(gate), lambda v: v)
+
+    def produce(emit):
+        while batch := inbox.take():
+            emit(batch)
+
+    gate.let(1)
+    stream = iter(Producer(produce))
+    assert next(stream) == [0]
+    inbox.close()
+    assert list(stream) == []

@@ -353,3 +353,32 @@ def test_a_refused_merged_move_rejects_each_of_its_commands(rig):
     assert all("ESTOPPED" in r.detail for r in results)
     assert rig.moves() == 0
     session.close("done")
+
+
+def test_closing_a_session_holds_after_the_move_in_flight_and_no_move_follows(rig):
+    """The acting thread may be mid-move when the stream ends: the hold waits for that move to
+    land, so it is the arm's last command; a command after the close moves nothing."""
+    entered, release = threading.Event(), threading.Event()
+    move = rig.slave.move_cartesian
+
+    def slow_move(*args):
+        entered.set()
+        release.wait(5)
+        return move(*args)
+
+    rig.slave.move_cartesian = slow_move
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 1.0)
+    mover = threading.Thread(target=session.command,
+                             args=(np.array([0.0, 0.0, 0.001]), np.eye(3), False))
+    mover.start()
+    entered.wait(5)
+    closer = threading.Thread(target=session.close, args=("the stream ended",))
+    closer.start()
+    wait_for(lambda: session._closed.is_set(), what="the close to begin")
+    assert not any(c.kind == "hold" for c in rig.slave.commands)  # it waits for the move
+    release.set()
+    mover.join(5), closer.join(5)
+    assert [c.kind for c in rig.slave.commands][-2:] == ["cartesian", "hold"]
+    late = session.command(np.array([0.0, 0.0, 0.001]), np.eye(3), False)
+    assert late.outcome == "REJECTED" and "ended" in late.detail
+    assert rig.slave.commands[-1].kind == "hold"
