@@ -1,10 +1,12 @@
-"""command_<rate>: master command -> applied at the servo, and the ack round trip.
+"""command_<rate>: master command -> applied at the servo, and the ack round trip, lockstep.
 
-Until the DecisionServer's Teleoperate stream exists, a "master command" is one
-ProxyRobot.MoveJointsIncremental unary call (the transport ``grpc-unary``). The baselines send
-the same request bytes to the same ProxyRobotCore over pyzmq REQ/REP and over a plain TCP socket
-(baseline_server.py). A Teleoperate transport plugs in as one more CommandTransport: its
-`send` writes a MasterCommand on the stream and waits for the ack with that sequence.
+A "master command" here is one ProxyRobot.MoveJointsIncremental unary call (the transport
+``grpc-unary``). The baselines send the same request bytes to the same ProxyRobotCore over
+pyzmq REQ/REP and over a plain TCP socket (baseline_server.py). A unary call is lockstep by
+nature (its answer is the ack), so these scenarios stay lockstep. The Teleoperate stream is
+measured pipelined, as a haptic master drives it (teleop.py); its lockstep figure,
+teleop_1000_lockstep, is a diagnostic kept here as one more CommandTransport, whose `send`
+writes a MasterCommand on the stream and waits for the ack with that sequence.
 
 How it is measured (each rate, each transport, the same way):
 - lockstep at the offered rate: tick k is due at t0 + k/rate; a call is sent at its tick and
@@ -145,7 +147,8 @@ class TcpTransport:
 
 class TeleoperateTransport:
     """DecisionServer.Teleoperate: one MasterCommand per command on the bidirectional stream
-    (BASE mapping, TELEOP_STEP_M along base y), each waited for its ack. The DecisionServer
+    (BASE mapping, TELEOP_STEP_M along base y), each waited for its ack: the lockstep
+    diagnostic (teleop_1000_lockstep), which caps the rate at 1 / round trip. The DecisionServer
     applies it with ProxyRobot.MoveCartesianIncremental (IK) and stamps `apply_time` when
     ProxyRobot took the target; that stamp is this transport's "applied"."""
 

@@ -192,7 +192,7 @@ class Bench:
     def _count_steps(self) -> int:
         p = self.plan
         counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
-                  "observers": len(p.observer_counts), "estop": 4, "decision": 3,
+                  "observers": len(p.observer_counts), "estop": 4, "decision": 4,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
         return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
@@ -308,7 +308,7 @@ class Bench:
             self.progress.note(f"{kind} worker failed ({why}); retrying once")
             self.station.arm_ready()
             result = self.procs.run_worker(kind, params, timeout_s)
-            for entry in (result.values() if kind == "command" else [result]):
+            for entry in (result.values() if kind in ("command", "teleop") else [result]):
                 entry["retried_after"] = why
             return result
 
@@ -534,12 +534,15 @@ class Bench:
 
     def decision(self) -> None:
         """Through the DecisionServer, the operator's one address: teleop_<rate> (master
-        commands on the Teleoperate stream) and the emergency stop under its intended load
-        (200 RunAction BusyWork on the low lane), against the same stop through it idle."""
-        plan = self.plan
-        names = [f"teleop_{rate}" for rate in plan.command_rates]
-        self.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate stream, lockstep, "
-                           f"{plan.command_s:.0f} s each")
+        commands streamed on Teleoperate, pipelined; teleop_1000_lockstep the same sent
+        lockstep, a diagnostic); then, through a fresh DecisionServer, the emergency stop idle
+        and under its intended load (200 RunAction BusyWork on the low lane)."""
+        teleop = [f"teleop_{rate}" for rate in self.plan.command_rates]
+        self._with_decision_server(teleop + ["teleop_1000_lockstep"], self._teleop)
+        self._with_decision_server(["estop_ds_idle", "estop_ds_busywork"], self._estop_ds)
+
+    def _with_decision_server(self, names: list[str], body: Callable[[str], None]) -> None:
+        """A DecisionServer process in front of the station while `body(address)` runs."""
         try:
             server, address = self.procs.run_service("decision_server", [
                 "--proxy-robot-address", self.station.address["proxy_robot"],
@@ -548,25 +551,43 @@ class Bench:
                 "--emergency-stop-address", self.station.address["emergency_stop"],
                 "--recordings-dir", str(self.procs.scratch / "recordings")])
         except ChildFailed as error:
-            self._fail(names + ["estop_ds_idle", "estop_ds_busywork"], error)
-            return
+            self.progress.step(f"starting the DecisionServer for {', '.join(names)}")
+            return self._fail(names, error)
         try:
-            self._teleop(address, names)
-            self._estop_ds(address)
+            body(address)
         finally:
             self.procs.stop(server)
 
-    def _teleop(self, address: str, names: list[str]) -> None:
+    def _teleop(self, address: str) -> None:
         plan = self.plan
+        name = "teleop_1000_lockstep"
+        self.progress.step(f"{name} (diagnostic): Teleoperate at 1 kHz offered, each command "
+                           f"waited for (the old way), {plan.command_s:.0f} s")
         try:
-            results = self._worker("command", {
-                "transport": "teleop", "address": address, "shm": self.shm,
+            result = self._worker("command", {
+                "transport": "teleop", "address": address, "shm": self.shm, "rates": [1000],
+                "duration_s": plan.command_s}, 60 + 3 * plan.command_s)["1000"]
+            result["diagnostic"] = "lockstep: each command waits for the previous one's ack"
+            self._record(name, result)
+            self.progress.done(self._headline(name))
+        except ChildFailed as error:
+            self._fail([name], error)
+        names = [f"teleop_{rate}" for rate in plan.command_rates]
+        self.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate, commands streamed "
+                           f"at the offered rate (pipelined), {plan.command_s:.0f} s each")
+        try:
+            results = self._worker("teleop", {
+                "transport": "grpc", "address": address, "shm": self.shm,
                 "rates": list(plan.command_rates), "duration_s": plan.command_s},
                 60 + 3 * plan.command_s * len(names))
         except ChildFailed as error:
             return self._fail(names, error)
         for rate in plan.command_rates:
             self._record(f"teleop_{rate}", results[str(rate)])
+        lockstep = self.results.get(name, {})
+        if "teleop_1000" in self.results and lockstep.get("delivered_hz") is not None:
+            self.results["teleop_1000"].update(lockstep_delivered_hz=lockstep["delivered_hz"],
+                                               lockstep_p99_ms=lockstep["p99_ms"])
         self.progress.done("; ".join(f"{r}: {self._headline(f'teleop_{r}')}"
                                      for r in plan.command_rates))
 

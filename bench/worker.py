@@ -40,6 +40,12 @@ def _command(p: dict) -> dict:
     return measure(p["transport"], p["address"], p["shm"], p["rates"], p["duration_s"])
 
 
+def _teleop(p: dict) -> dict:
+    from bench.teleop import measure
+
+    return measure(p["transport"], p["address"], p.get("shm"), p["rates"], p["duration_s"])
+
+
 def _force(p: dict) -> dict:
     from bench.force import measure_stream
 
@@ -79,8 +85,8 @@ def _stereo(p: dict) -> dict:
     return run_stereo(p["address"], p["mode"], p["pairs"], p["source_fps"])
 
 
-KINDS = {"command": _command, "force": _force, "observers": _observers, "estop": _estop,
-         "load": _load, "closed_loop": _closed_loop, "stereo": _stereo}
+KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
+         "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo}
 
 
 def main(argv: list[str] | None = None) -> int:

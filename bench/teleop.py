@@ -1,0 +1,402 @@
+"""teleop_<rate> and teleop_1000_zmq: master commands streamed the way a haptic master sends them.
+
+A haptic master at 1 kHz sends a command every millisecond whether or not the last one has been
+acknowledged: the Teleoperate stream is bidirectional so that it can. Measuring it lockstep
+(send, wait for the ack, send the next; command.py's TeleoperateTransport) caps the delivered
+rate at 1 / round trip and measures the client's patience, not the stream. So here:
+
+- a sender thread streams MasterCommands at the offered rate on absolute deadlines (tick k is due
+  at t0 + k/rate); a tick it wakes up a whole period or more late for is skipped and counted in
+  ``late_skipped`` (a master that fell behind sends the current command, not a backlog);
+- a reader thread takes the acks as they come and matches them to commands by sequence number;
+- ``delivered_hz``: commands acked APPLIED or MODIFIED per second, over the sending schedule (or
+  until the last such ack, if that came later: a server that queues shows its true rate);
+- latency (``p50_ms``...): the ack's ``apply_time`` (the server stamps it when ProxyRobot took
+  the target) minus the command's send time, both time.time_ns() on this host; ``ack_*``: the
+  ack's arrival at the client minus the send time; ``server_receive_*``: the ack's
+  ``receive_time`` minus the send time;
+- ``dropped`` = ticks not sent (late, or the stream ended) + commands still unacked DRAIN_S
+  after the last send (``unacked``) + commands acked with another outcome (``refused``);
+- every command is TELEOP_STEP_M along base y (the direction flips from one rate to the next,
+  so the arm comes back); each rate has a stream (a session) of its own, after WARMUP_COMMANDS
+  sent the same way and waited for.
+
+Transports (the same MasterCommand and TeleoperateResponse bytes on both):
+
+- ``grpc``: DecisionServer.Teleoperate; grpcio's sync client consumes the request iterator on a
+  thread of its own;
+- ``zmq``: baseline_server.py's ``zmq-teleop`` (DEALER/ROUTER), the DecisionServer's own
+  DecisionCore and GrpcSlave behind it. A zmq socket belongs to one thread, so the reader
+  thread owns the DEALER and forwards what the sender pushes on an inproc pipe: one hand-off
+  on the client, as gRPC's.
+"""
+
+from __future__ import annotations
+
+import itertools
+import queue
+import threading
+import time
+import uuid
+from collections.abc import Iterator
+from typing import Protocol
+
+import grpc
+from google.protobuf import duration_pb2, timestamp_pb2
+
+from bench import framing
+from bench.command import TELEOP_STEP_M, acquire_control, release_control
+from bench.stats import summary
+from bench.worldloop import LoopMeter
+from telerobot.v1 import decision_server_pb2 as dpb
+from telerobot.v1 import decision_server_pb2_grpc, types_pb2
+
+WARMUP_COMMANDS = 20
+DRAIN_S = 1.0  # after the last send, acks still count this long
+CLOSE_S = 2.0  # the stream gets this long to end after the half-close, then it is cancelled
+STREAM_TIMEOUT_S = 3600.0
+WATCHDOG_S = 5  # the session's watchdog: far longer than any pause of the bench's
+POLL_MS = 50
+END = b"X"  # zmq-teleop: the server's last frame of a session (the half-close answered)
+ACCEPTED = (dpb.COMMAND_OUTCOME_APPLIED, dpb.COMMAND_OUTCOME_MODIFIED)
+
+
+class StreamFailed(Exception):
+    """The server ended the stream with an error."""
+
+
+class Stream(Protocol):
+    """One Teleoperate session: `send` never waits for an ack; `responses` yields what the
+    server sends, in order, until the stream ends (one thread at a time iterates it)."""
+
+    def send(self, request: dpb.TeleoperateRequest) -> None: ...
+
+    def responses(self) -> Iterator[dpb.TeleoperateResponse]: ...
+
+    def end(self) -> None:
+        """Half-close: no more commands; the server answers what it has, then ends."""
+
+    def cancel(self) -> None:
+        """Give up on the stream now."""
+
+    def close(self) -> None:
+        """Release what the stream holds (after its reader has ended)."""
+
+
+def init_request(lease_id: str) -> dpb.TeleoperateRequest:
+    return dpb.TeleoperateRequest(init=dpb.TeleoperateInit(
+        operator_id="bench", lease_id=lease_id, mapping=types_pb2.REFERENCE_FRAME_BASE,
+        watchdog_timeout=duration_pb2.Duration(seconds=WATCHDOG_S)))
+
+
+# -- gRPC -------------------------------------------------------------------------------------
+
+class GrpcStream:
+    def __init__(self, stub, lease_id: str):
+        self._requests: queue.SimpleQueue = queue.SimpleQueue()
+        self._call = stub.Teleoperate(iter(self._requests.get, None), timeout=STREAM_TIMEOUT_S)
+        self._requests.put(init_request(lease_id))
+
+    def send(self, request: dpb.TeleoperateRequest) -> None:
+        self._requests.put(request)
+
+    def responses(self) -> Iterator[dpb.TeleoperateResponse]:
+        try:
+            yield from self._call
+        except grpc.RpcError as error:
+            if error.code() != grpc.StatusCode.CANCELLED:
+                raise StreamFailed(f"{error.code().name}: {error.details()}") from None
+
+    def end(self) -> None:
+        self._requests.put(None)
+
+    def cancel(self) -> None:
+        self._call.cancel()
+
+    def close(self) -> None:
+        pass
+
+
+class GrpcTeleop:
+    """DecisionServer.Teleoperate: one control lease for the run (each command renews it), a
+    stream per rate."""
+
+    name = "grpc-teleoperate pipelined"
+
+    def __init__(self, address: str):
+        self._channel = grpc.insecure_channel(address)
+        self._stub = decision_server_pb2_grpc.DecisionServerStub(self._channel)
+        self._lease = acquire_control(self._stub)
+
+    def open(self) -> GrpcStream:
+        return GrpcStream(self._stub, self._lease)
+
+    def close(self) -> None:
+        release_control(self._stub, self._lease)
+        self._channel.close()
+
+
+# -- pyzmq ------------------------------------------------------------------------------------
+
+class ZmqStream:
+    """A DEALER to the baseline's ROUTER. Frames back: [OK, TeleoperateResponse bytes],
+    [ERROR, why] or [END, b""]; an empty frame out is the half-close."""
+
+    def __init__(self, context, address: str):
+        import zmq
+
+        self._zmq = zmq
+        self._dealer = context.socket(zmq.DEALER)
+        self._dealer.setsockopt(zmq.LINGER, 0)
+        self._dealer.connect(f"tcp://{address}")
+        endpoint = f"inproc://teleop-{uuid.uuid4().hex}"
+        self._inbox = context.socket(zmq.PULL)  # the reader's end of the pipe
+        self._inbox.bind(endpoint)
+        self._outbox = context.socket(zmq.PUSH)  # the sender's end
+        self._outbox.setsockopt(zmq.LINGER, 0)
+        self._outbox.connect(endpoint)
+        self._cancelled = False
+        # The baseline takes its lease itself for an init without one.
+        self._outbox.send(init_request("").SerializeToString())
+
+    def send(self, request: dpb.TeleoperateRequest) -> None:
+        self._outbox.send(request.SerializeToString())
+
+    def responses(self) -> Iterator[dpb.TeleoperateResponse]:
+        zmq = self._zmq
+        poller = zmq.Poller()
+        poller.register(self._dealer, zmq.POLLIN)
+        poller.register(self._inbox, zmq.POLLIN)
+        while not self._cancelled:
+            ready = dict(poller.poll(POLL_MS))
+            if self._inbox in ready:
+                while True:
+                    try:
+                        self._dealer.send(self._inbox.recv(zmq.NOBLOCK))
+                    except zmq.Again:
+                        break
+            if self._dealer in ready:
+                while True:
+                    try:
+                        kind, payload = self._dealer.recv_multipart(zmq.NOBLOCK)
+                    except zmq.Again:
+                        break
+                    if kind == END:
+                        return
+                    if kind != framing.REPLY_OK:
+                        raise StreamFailed(payload.decode(errors="replace"))
+                    yield dpb.TeleoperateResponse.FromString(payload)
+
+    def end(self) -> None:
+        self._outbox.send(b"")
+
+    def cancel(self) -> None:
+        self._cancelled = True  # the reader sees it within POLL_MS
+
+    def close(self) -> None:
+        for sock in (self._outbox, self._inbox, self._dealer):
+            sock.close(0)
+
+
+class ZmqTeleop:
+    name = "zmq-dealer-router pipelined"
+
+    def __init__(self, address: str):
+        import zmq
+
+        self._context = zmq.Context()
+        self._address = address
+
+    def open(self) -> ZmqStream:
+        return ZmqStream(self._context, self._address)
+
+    def close(self) -> None:
+        self._context.destroy(linger=0)  # every stream's sockets, should one be left open
+
+
+CLIENTS = {"grpc": GrpcTeleop, "zmq": ZmqTeleop}
+
+
+# -- measuring --------------------------------------------------------------------------------
+
+class AckTracker:
+    """Commands in flight by sequence, and what their acks said. The sender registers a
+    command before sending it; the reader thread (`follow`) matches the acks."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._pending: dict[int, int] = {}  # sequence -> send time (time.time_ns)
+        self._drained = threading.Event()
+        self.ended = threading.Event()
+        self.error: str | None = None
+        self.forget()
+
+    def forget(self) -> None:
+        """Start counting afresh (after the warm-up): a late warm-up ack is not counted."""
+        with self._lock:
+            self._pending.clear()
+            self._acks: list[tuple[int, int, int, int, int]] = []  # sent, arrived, receive,
+            self._refusals: list[str] = []                         # apply, outcome
+
+    def close_books(self) -> tuple[list[tuple[int, int, int, int, int]], list[str], int]:
+        """(acks, refusals, commands still unacked) as of now; later acks are not counted."""
+        with self._lock:
+            books = self._acks, self._refusals, len(self._pending)
+            self._pending.clear()
+            self._acks, self._refusals = [], []
+            return books
+
+    def sent(self, sequence: int, sent_ns: int) -> None:
+        with self._lock:
+            self._pending[sequence] = sent_ns
+            self._drained.clear()
+
+    def wait_drained(self, timeout_s: float) -> bool:
+        return self._drained.wait(timeout_s)
+
+    def follow(self, responses: Iterator[dpb.TeleoperateResponse]) -> None:
+        try:
+            for response in responses:
+                arrived = time.time_ns()
+                if response.WhichOneof("message") != "ack":
+                    continue
+                ack = response.ack
+                times = (arrived, ack.receive_time.ToNanoseconds(),
+                         ack.apply_time.ToNanoseconds())
+                with self._lock:
+                    sent = self._pending.pop(ack.sequence, None)
+                    if not self._pending:
+                        self._drained.set()
+                    if sent is None:
+                        continue  # not counted (the warm-up's, or after the books closed)
+                    self._acks.append((sent, *times, ack.outcome))
+                    if ack.outcome not in ACCEPTED and len(self._refusals) < 5:
+                        self._refusals.append(f"{dpb.CommandOutcome.Name(ack.outcome)}: "
+                                              f"{ack.detail}")
+        except StreamFailed as error:
+            self.error = str(error)
+        finally:
+            self.ended.set()
+            self._drained.set()
+
+
+def _command(sequence: int, sign: float) -> tuple[dpb.TeleoperateRequest, int]:
+    sent_ns = time.time_ns()
+    stamp = timestamp_pb2.Timestamp()
+    stamp.FromNanoseconds(sent_ns)
+    return dpb.TeleoperateRequest(command=dpb.MasterCommand(
+        sequence=sequence, send_time=stamp,
+        delta_position_m=types_pb2.Vector3(y=sign * TELEOP_STEP_M))), sent_ns
+
+
+def stream_at_rate(stream: Stream, tracker: AckTracker, sequences: Iterator[int],
+                   rate_hz: float, ticks: int, sign: float) -> tuple[int, int, int | None]:
+    """Send `ticks` commands on absolute deadlines at rate_hz, never waiting for an ack
+    (stopping early if the stream ends): (commands sent, ticks skipped for lateness,
+    time.time_ns() of the first send)."""
+    period = 1.0 / rate_hz
+    start = time.perf_counter() + 0.005
+    tick = skipped = sent = 0
+    first_ns = None
+    while tick < ticks and not tracker.ended.is_set():
+        due = start + tick * period
+        now = time.perf_counter()
+        if now < due:
+            time.sleep(due - now)
+        elif now - due >= period:  # this tick's slot is gone: on to the current one
+            missed = min(int((now - due) / period), ticks - tick)
+            skipped += missed
+            tick += missed
+            continue
+        sequence = next(sequences)
+        request, sent_ns = _command(sequence, sign)
+        tracker.sent(sequence, sent_ns)
+        stream.send(request)
+        first_ns = first_ns or sent_ns
+        sent += 1
+        tick += 1
+    return sent, skipped, first_ns
+
+
+def run_rate(client, rate_hz: float, duration_s: float, sign: float,
+             loop: LoopMeter | None) -> dict:
+    """One Teleoperate session streaming at rate_hz for duration_s; the scenario's summary and
+    raw latencies."""
+    stream = client.open()
+    tracker = AckTracker()
+    reader = None
+    ticks = int(round(duration_s * rate_hz))
+    try:
+        responses = stream.responses()
+        first = next(responses, None)  # the session is open once the server says ready
+        if first is None or first.WhichOneof("message") != "ready":
+            raise StreamFailed("Teleoperate did not answer its init with ready")
+        reader = threading.Thread(target=tracker.follow, args=(responses,), name="acks",
+                                  daemon=True)
+        reader.start()
+        sequences = itertools.count(1)
+        stream_at_rate(stream, tracker, sequences, rate_hz, WARMUP_COMMANDS, sign)
+        tracker.wait_drained(DRAIN_S)
+        tracker.forget()
+        if loop is not None:
+            loop.mark()
+        sent, skipped, first_ns = stream_at_rate(stream, tracker, sequences, rate_hz, ticks,
+                                                 sign)
+        tracker.wait_drained(DRAIN_S)
+        world_loop = loop.since_mark() if loop is not None else None
+        books = tracker.close_books()
+        stream.end()
+        tracker.ended.wait(CLOSE_S)
+    finally:
+        if not tracker.ended.is_set():
+            stream.cancel()
+        if reader is not None:
+            reader.join(CLOSE_S)
+        stream.close()
+    return _summarize(books, tracker.error, client.name, rate_hz, ticks, sent, skipped,
+                      first_ns, world_loop)
+
+
+def _summarize(books: tuple[list, list[str], int], error: str | None, transport: str,
+               rate_hz: float, ticks: int, sent: int, skipped: int, first_ns: int | None,
+               world_loop: dict | None) -> dict:
+    acks, refusals, unacked = books
+    accepted = [a for a in acks if a[4] in ACCEPTED]
+    applied_ms = [(apply - sent) / 1e6 for sent, _, _, apply, _ in accepted]
+    ack_ms = [(arrived - sent) / 1e6 for sent, arrived, _, _, _ in acks]
+    receive_ms = [(receive - sent) / 1e6 for sent, _, receive, _, _ in acks]
+    scheduled_s = ticks / rate_hz
+    last_ns = max((arrived for _, arrived, _, _, _ in accepted), default=None)
+    window_s = scheduled_s
+    if first_ns is not None and last_ns is not None:
+        window_s = max(scheduled_s, (last_ns - first_ns) / 1e9)
+    refused = len(acks) - len(accepted)
+    ack, received = summary(ack_ms, None, 0, 1, 0), summary(receive_ms, None, 0, 1, 0)
+    result = summary(
+        applied_ms, rate_hz, len(accepted), window_s, ticks - sent + unacked + refused,
+        transport=transport, mode="pipelined", duration_s=round(window_s, 3),
+        applied_means="the server's apply_time (target handed to ProxyRobot) - send time",
+        sent=sent, late_skipped=skipped, unacked=unacked, refused=refused,
+        ack_p50_ms=ack["p50_ms"], ack_p99_ms=ack["p99_ms"], ack_max_ms=ack["max_ms"],
+        server_receive_p50_ms=received["p50_ms"], server_receive_p99_ms=received["p99_ms"],
+        failures=refusals + ([error] if error else []))
+    if world_loop is not None:
+        result["world_loop"] = world_loop
+    result["latencies_ms"] = [round(v, 4) for v in applied_ms]
+    return result
+
+
+def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
+            duration_s: float) -> dict[str, dict]:
+    """run_rate for each rate (a session each, the direction of motion alternating);
+    {str(rate): result}."""
+    client = CLIENTS[transport_kind](address)
+    loop = LoopMeter(shm_name) if shm_name else None
+    try:
+        return {str(int(rate)): run_rate(client, rate, duration_s,
+                                         1.0 if index % 2 == 0 else -1.0, loop)
+                for index, rate in enumerate(rates)}
+    finally:
+        if loop is not None:
+            loop.close()
+        client.close()

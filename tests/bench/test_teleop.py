@@ -1,0 +1,80 @@
+"""bench.teleop's pipelined measurement against an in-memory stream (no server): acks are
+matched by sequence, refused and unanswered commands count as dropped. No timing asserted."""
+
+from __future__ import annotations
+
+import queue
+
+from bench import teleop
+from telerobot.v1 import decision_server_pb2 as dpb
+
+
+class EchoStream:
+    """Answers the init with ready and each command with an ack at once; refuses the
+    sequences in `refuse`, never answers those in `ignore`."""
+
+    def __init__(self, refuse=(), ignore=()):
+        self.refuse, self.ignore = set(refuse), set(ignore)
+        self._out: queue.SimpleQueue = queue.SimpleQueue()
+        self._out.put(dpb.TeleoperateResponse(ready=dpb.TeleoperateReady(session_id="s")))
+
+    def send(self, request):
+        command = request.command
+        if command.sequence in self.ignore:
+            return
+        outcome = (dpb.COMMAND_OUTCOME_REJECTED if command.sequence in self.refuse
+                   else dpb.COMMAND_OUTCOME_APPLIED)
+        ack = dpb.CommandAck(sequence=command.sequence, command_send_time=command.send_time,
+                             receive_time=command.send_time, apply_time=command.send_time,
+                             outcome=outcome, detail="no")
+        self._out.put(dpb.TeleoperateResponse(ack=ack))
+
+    def responses(self):
+        yield from iter(self._out.get, None)
+
+    def end(self):
+        self._out.put(None)
+
+    def cancel(self):
+        self._out.put(None)
+
+    def close(self):
+        pass
+
+
+class EchoClient:
+    name = "in-memory"
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def open(self):
+        return self.stream
+
+
+def test_every_command_is_acked_applied_refused_or_counted_unacked():
+    # Sequences 1..20 are the warm-up (fewer if the sender skipped late ticks); the measured
+    # commands follow, 5 ms apart: the first few are always sent.
+    stream = EchoStream(refuse={22, 23}, ignore={24})
+    result = teleop.run_rate(EchoClient(stream), rate_hz=200.0, duration_s=0.1, sign=1.0,
+                             loop=None)
+    assert result["mode"] == "pipelined"
+    assert result["refused"] == 2 and result["unacked"] == 1
+    assert result["failures"] == ["COMMAND_OUTCOME_REJECTED: no"] * 2
+    sent = result["sent"]
+    assert result["samples"] == sent - 3  # latencies of the APPLIED acks only
+    assert result["dropped"] == 20 - sent + 3
+    assert result["late_skipped"] == 20 - sent
+    assert all(value == 0.0 for value in result["latencies_ms"])  # apply_time = send_time
+
+
+def test_a_stream_that_never_says_ready_fails():
+    stream = EchoStream()
+    stream._out = queue.SimpleQueue()
+    stream.end()
+    try:
+        teleop.run_rate(EchoClient(stream), 1000.0, 0.01, 1.0, None)
+    except teleop.StreamFailed as error:
+        assert "ready" in str(error)
+    else:
+        raise AssertionError("no StreamFailed")
