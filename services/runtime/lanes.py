@@ -103,6 +103,7 @@ class LaneCounters:
     rejected: int = 0
     borrowed: int = 0
     threads: int = 0
+    inline: int = 0  # served on the caller's thread (run_here)
 
 
 @dataclass
@@ -134,6 +135,7 @@ class LaneExecutor:
         self._queues: dict[Lane, deque[_Task]] = {lane: deque() for lane in Lane}
         self._idle: dict[Lane, list[_Worker]] = {lane: [] for lane in Lane}
         self._counters = {lane: LaneCounters() for lane in Lane}
+        self._inline = {lane: 0 for lane in Lane}  # run_here calls running now
         self._threads: set[threading.Thread] = set()
         self._closed = False
         with self._lock:
@@ -154,13 +156,50 @@ class LaneExecutor:
             if (
                 len(queue) >= self._config[lane].queue_capacity
                 and not self._has_idle(lane)
-                and counters.threads >= self._config[lane].max_threads
+                and counters.threads + self._inline[lane] >= self._config[lane].max_threads
             ):
                 counters.rejected += 1
                 raise LaneFull(lane, self._config[lane].queue_capacity)
             queue.append(_Task(lane, fn, future, time.monotonic_ns()))
             counters.queued += 1
             self._dispatch(lane)
+        return future
+
+    def run_here(self, lane: Lane, fn: Callable[[], Any]) -> Future:
+        """Run fn on the calling thread, as `lane` work, when the lane has a free slot and
+        nothing of its priority or higher is waiting; else queue it like submit(). Returns a
+        done Future in the first case.
+
+        A caller that would only block until a lane thread has run fn (a gRPC handler thread)
+        saves two thread hand-overs this way, each a wait for the GIL. Priority is kept: fn
+        never jumps a queued task of its own or a higher lane. Bounds are kept: runs here take
+        only the slots the lane's threads leave free (max_threads - threads), so the lane
+        never runs more than max_threads at once."""
+        with self._lock:
+            if self._closed:
+                raise LaneExecutorClosed("the server is shutting down; retry on another instance")
+            counters = self._counters[lane]
+            free = self._config[lane].max_threads - counters.threads - self._inline[lane]
+            inline = free > 0 and not self._queues_for(lane)
+            if inline:
+                self._inline[lane] += 1
+                counters.running += 1
+                counters.inline += 1
+        if not inline:
+            return self.submit(lane, fn)
+        future: Future = Future()
+        future.set_running_or_notify_cancel()
+        outer, _current.lane = getattr(_current, "lane", None), lane
+        try:
+            future.set_result(fn())
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller through the future
+            future.set_exception(exc)
+        finally:
+            _current.lane = outer
+            with self._lock:
+                self._inline[lane] -= 1
+                counters.running -= 1
+                counters.served += 1
         return future
 
     def counters(self) -> dict[Lane, LaneCounters]:
@@ -201,7 +240,7 @@ class LaneExecutor:
             worker.reserved = True
             worker.wake.notify()
             return
-        if self._counters[lane].threads < self._config[lane].max_threads:
+        if self._counters[lane].threads + self._inline[lane] < self._config[lane].max_threads:
             self._spawn(lane, dynamic=True)
 
     def _spawn(self, lane: Lane, dynamic: bool) -> None:

@@ -183,7 +183,9 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
     def _run_on_lane(self, lane: Lane, behavior: Callable, request, context):
         try:
-            future = self._executor.submit(lane, lambda: _call(behavior, request, context))
+            # On this gRPC thread when the lane has room (no hand-over to a lane thread and
+            # back); queued on the lane otherwise.
+            future = self._executor.run_here(lane, lambda: _call(behavior, request, context))
         except LaneFull as exc:
             abort(context, grpc.StatusCode.RESOURCE_EXHAUSTED, str(exc), "LANE_SATURATED")
         except LaneExecutorClosed as exc:

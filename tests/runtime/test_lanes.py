@@ -155,3 +155,59 @@ def test_bad_lane_names_are_refused():
     assert Lane.parse(" High ") is Lane.HIGH
     with pytest.raises(ValueError, match="use one of emergency, high, medium, low"):
         Lane.parse("urgent")
+
+
+# -- run_here: on the caller's thread when the lane has room -------------------------------------
+
+def test_run_here_runs_on_the_calling_thread_as_lane_work(executor):
+    from services.runtime.lanes import current_lane
+
+    here = threading.current_thread().name
+    future = executor.run_here(Lane.HIGH, lambda: (threading.current_thread().name,
+                                                   current_lane()))
+    assert future.done() and future.result() == (here, Lane.HIGH)
+    assert current_lane() is None  # the caller's thread is itself again
+    counters = executor.counters()[Lane.HIGH]
+    assert counters.inline == 1 and counters.served == 1 and counters.running == 0
+
+
+def test_run_here_never_jumps_queued_work_of_its_lane_or_higher(executor):
+    release = threading.Event()
+    started = threading.Semaphore(0)
+    # HIGH: one thread and one free slot (max 2). Fill both, then queue one more.
+    busy = executor.submit(Lane.HIGH, blocker(release, started))
+    assert started.acquire(timeout=5)
+    inline_started = threading.Semaphore(0)
+    caller = threading.Thread(target=lambda: executor.run_here(
+        Lane.HIGH, blocker(release, inline_started)))
+    caller.start()
+    assert inline_started.acquire(timeout=5)  # ran on the caller's thread: the free slot
+    queued = executor.submit(Lane.HIGH, lambda: "first in line")
+    assert executor.counters()[Lane.HIGH].queued == 1
+    later = executor.run_here(Lane.HIGH, lambda: "after it")  # no room: it queues behind
+    assert not later.done()
+    release.set()
+    assert queued.result(5) == "first in line" and later.result(5) == "after it"
+    caller.join(5)
+    busy.result(5)
+
+
+def test_run_here_keeps_the_lane_within_max_threads(executor):
+    """HIGH has max 2: with a call running here and one on the lane's own thread, a third gets
+    no new HIGH thread; it runs on an idle lower lane's thread (borrowing), as before."""
+    release = threading.Event()
+    running = threading.Semaphore(0)
+    inline = threading.Thread(target=lambda: executor.run_here(Lane.HIGH,
+                                                                blocker(release, running)))
+    inline.start()
+    assert running.acquire(timeout=5)
+    on_thread = executor.submit(Lane.HIGH, blocker(release, running))
+    assert running.acquire(timeout=5)
+    third = executor.submit(Lane.HIGH, blocker(release, running))
+    assert running.acquire(timeout=5)
+    counters = executor.counters()[Lane.HIGH]
+    assert counters.threads == 1 and counters.borrowed == 1
+    release.set()
+    assert "-high-" in on_thread.result(5)
+    assert "-medium-" in third.result(5) or "-low-" in third.result(5)
+    inline.join(5)

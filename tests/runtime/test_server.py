@@ -15,7 +15,7 @@ from grpc_reflection.v1alpha import reflection_pb2, reflection_pb2_grpc
 from grpc_status import rpc_status
 
 from services.runtime.errors import InvalidArgument, OutOfRange
-from services.runtime.lanes import Lane, LaneConfig
+from services.runtime.lanes import Lane, LaneConfig, current_lane
 from services.runtime.rpc import declared_lane
 from services.runtime.server import binding, create_server
 from telerobot.v1 import (
@@ -35,11 +35,17 @@ LANES = {
 LOW_CAPACITY = 2 + 4  # threads + queue
 
 
+def where() -> str:
+    """The lane a call runs as and the thread it runs on (a lane's thread, or gRPC's own when
+    the lane had room: run_here)."""
+    return f"{current_lane().name.lower()} on {threading.current_thread().name}"
+
+
 class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
-    """Answers with the name of the thread that ran the call."""
+    """Answers with where the call ran."""
 
     def GetStatus(self, request, context):
-        return proxy_robot_pb2.GetStatusResponse(reason=threading.current_thread().name)
+        return proxy_robot_pb2.GetStatusResponse(reason=where())
 
     def EmergencyStop(self, request, context):
         return proxy_robot_pb2.EmergencyStopResponse()
@@ -67,9 +73,8 @@ class Decisions(decision_server_pb2_grpc.DecisionServerServicer):
     def ListRecordings(self, request, context):
         self.entered.release()
         self.release.wait(10)
-        name = threading.current_thread().name
         return decision_server_pb2.ListRecordingsResponse(
-            recordings=[decision_server_pb2.Recording(name=name)])
+            recordings=[decision_server_pb2.Recording(name=where())])
 
 
 @pytest.fixture
@@ -104,17 +109,17 @@ def test_declared_lanes_come_from_the_protos():
 def test_calls_run_on_their_declared_lane(station):
     _, channel, _ = station
     reply = robot(channel).GetStatus(proxy_robot_pb2.GetStatusRequest(), timeout=5)
-    assert "-high-" in reply.reason
+    assert reply.reason.startswith("high on ")
 
 
 def test_client_may_lower_its_lane_and_is_clamped_when_raising(station):
     _, channel, _ = station
     lowered = robot(channel).GetStatus(
         proxy_robot_pb2.GetStatusRequest(), metadata=[("telerobot-lane", "low")], timeout=5)
-    assert "-low-" in lowered.reason
+    assert lowered.reason.startswith("low on ")
     raised = robot(channel).GetStatus(
         proxy_robot_pb2.GetStatusRequest(), metadata=[("telerobot-lane", "emergency")], timeout=5)
-    assert "-high-" in raised.reason  # the server's client_lane_limit is HIGH
+    assert raised.reason.startswith("high on ")  # the server's client_lane_limit is HIGH
 
 
 def test_bad_lane_metadata_is_invalid_argument(station):
@@ -176,13 +181,16 @@ def test_parma_high_and_emergency_calls_are_served_with_low_lane_saturated(stati
     assert "low lane is saturated" in error.value.details()
 
     reply = robot(channel).GetStatus(proxy_robot_pb2.GetStatusRequest(), timeout=2)
-    assert "-high-" in reply.reason
+    assert reply.reason.startswith("high on ")
     robot(channel).EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(), timeout=2)
     assert not any(call.done() for call in low_calls)  # served ahead of every low call
 
     decisions.release.set()
     names = [call.result(10).recordings[0].name for call in low_calls]
-    assert all("-low-" in name for name in names)  # low work never ran on higher lanes
+    assert all(name.startswith("low on ") for name in names)
+    # Low work never ran on a higher lane's thread (on its own, or on gRPC's: run_here).
+    assert not any(f"-{lane}-" in name for name in names for lane in ("emergency", "high",
+                                                                           "medium"))
     counters = server.executor.counters()
     assert counters[Lane.LOW].rejected == 1 and counters[Lane.LOW].served == LOW_CAPACITY
     pool.shutdown()
