@@ -1,4 +1,4 @@
-"""python -m bench.baseline_server --transport zmq|tcp: the baselines' slave side.
+"""python -m bench.baseline_server --transport zmq|tcp|zmq-teleop: the baselines' slave side.
 
 The same domain code as the services (ProxyRobotCore driving the world's shared memory,
 ForceSensorCore sampling it at 1 kHz with per-subscriber decimation) and the same protobuf
@@ -13,6 +13,16 @@ It connects and initializes the arm and starts the sensor on start-up; the bench
 the ProxyRobot service first, because the world's command record has one writer at a time.
 It prints ``TELEROBOT_READY baseline_command host:port`` and ``... baseline_force host:port``
 and runs until SIGTERM/SIGINT (or until its parent, TELEROBOT_PARENT_PID, is gone).
+
+- zmq-teleop: the Teleoperate stream's baseline (teleop_1000_zmq). The DecisionServer's own
+  domain code, built as its __main__ builds it: a DecisionCore over a GrpcSlave to the
+  station's ProxyRobot and ForceSensor services (which stay up), behind a ROUTER socket
+  instead of grpcio. A DEALER sends TeleoperateRequest bytes (init, then commands, then an
+  empty frame for the half-close); each gets [K, TeleoperateResponse bytes] (ready, then one
+  ack per command), [E, why] (the session is over), or [X] for the half-close. Commands that
+  arrived together are one batch for the servicer's own code (TeleopSessions), as on the gRPC
+  stream. An init without a lease takes one (the bench has no other channel).
+  It prints ``TELEROBOT_READY baseline_teleop host:port``.
 """
 
 from __future__ import annotations
@@ -23,22 +33,35 @@ import os
 import signal
 import socket
 import sys
+import tempfile
 import threading
+from pathlib import Path
 
 from bench import framing
 from services.common import convert
+from services.decision_server.arbitration import ControlMode
+from services.decision_server.backends import GrpcSlave
+from services.decision_server.recordings import RecordingStore
+from services.decision_server.servicer import DecisionServerServicer
+from services.decision_server.supervisor import DecisionCore, TeleopSession
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.servicer import reading_to_proto
 from services.force_sensor.subscribers import StreamOptions
 from services.proxy_robot.core import ProxyRobotCore
-from services.runtime.errors import TelerobotError
+from services.runtime.errors import InvalidArgument, TelerobotError
 from services.runtime.process import ready_line, watch_parent
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
-from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2
+from telerobot.v1 import decision_server_pb2 as dpb
+from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2, types_pb2
 
 log = logging.getLogger("baseline")
 POLL_S = 0.1  # how often idle loops look at the stop flag
 SUBSCRIPTION_WAIT_S = 0.01
+# As the DecisionServer's process: busy threads hand the GIL over every 1 ms, not 5 ms.
+DECISION_GIL_SWITCH_INTERVAL_S = 0.001
+TELEOP_LEASE_S = 60.0  # every command renews it
+TELEOP_END = b"X"
+_MAPPINGS = {types_pb2.REFERENCE_FRAME_BASE: "BASE", types_pb2.REFERENCE_FRAME_TOOL: "TOOL"}
 
 
 class Cores:
@@ -179,11 +202,152 @@ def serve_tcp(cores: Cores, stop: threading.Event) -> list[threading.Thread]:
     return [threading.Thread(target=accept, name="tcp-accept", daemon=True)]
 
 
+# -- zmq-teleop ---------------------------------------------------------------------------------
+
+
+class TeleopSessions:
+    """The Teleoperate sessions of the DEALERs connected, by their zmq identity, served by the
+    DecisionServer servicer's own per-message and per-batch code (`_received`: a command
+    checked, converted and stamped; `_serve_batch`: the commands that arrived together go to
+    the session together, which may merge them into one move, and come back as acks built as
+    the gRPC stream's are). Private methods, used on purpose: the baseline must not drift from
+    what the service does; only the transport differs."""
+
+    def __init__(self, core: DecisionCore):
+        self.core = core
+        self.servicer = DecisionServerServicer(core)
+        self._sessions: dict[bytes, tuple[TeleopSession, str | None]] = {}
+
+    def handle(self, frames: list[tuple[bytes, bytes]]) -> list[tuple[bytes, list[bytes]]]:
+        """Frames (identity, payload) that arrived together, in order: the replies, in order.
+        A peer's consecutive commands form one batch, as the gRPC handler's inbox takes them."""
+        replies: list[tuple[bytes, list[bytes]]] = []
+        batch: list = []
+        batch_of: bytes | None = None
+        for identity, raw in [*frames, (None, None)]:
+            request = None
+            if raw:
+                request = dpb.TeleoperateRequest.FromString(raw)
+            if (request is not None and identity == batch_of
+                    and request.WhichOneof("message") in ("command", "heartbeat")):
+                batch.append(request)
+                continue
+            if batch:
+                replies += self._serve(batch_of, batch)
+                batch, batch_of = [], None
+            if identity is None:
+                break
+            if raw == b"":
+                self.end(identity, "the stream ended")
+                replies.append((identity, [TELEOP_END, b""]))
+            elif request.WhichOneof("message") == "init":
+                replies.append((identity, self._reply(identity, self._open, request.init)))
+            else:
+                batch, batch_of = [request], identity
+        return replies
+
+    def _serve(self, identity: bytes, requests: list) -> list[tuple[bytes, list[bytes]]]:
+        def acks() -> list[bytes]:
+            entry = self._sessions.get(identity)
+            if entry is None:
+                raise InvalidArgument("a Teleoperate stream starts with an init",
+                                      reason="NO_INIT")
+            received = [self.servicer._received(request) for request in requests]
+            return [ack.SerializeToString()
+                    for ack in self.servicer._serve_batch(entry[0], received)]
+
+        try:
+            return [(identity, [framing.REPLY_OK, ack]) for ack in acks()]
+        except TelerobotError as error:
+            self.end(identity, f"the stream failed: {error.message}")
+            return [(identity, [framing.REPLY_ERROR, error.message.encode()])]
+
+    def _reply(self, identity: bytes, action, *args) -> list[bytes]:
+        try:
+            return [framing.REPLY_OK, action(identity, *args).SerializeToString()]
+        except TelerobotError as error:
+            self.end(identity, f"the stream failed: {error.message}")
+            return [framing.REPLY_ERROR, error.message.encode()]
+
+    def _open(self, identity: bytes, init) -> dpb.TeleoperateResponse:
+        self.end(identity, "a new init on the same stream")
+        own_lease = None
+        lease_id = init.lease_id
+        if not lease_id:
+            own_lease = lease_id = self.core.locks.acquire(
+                init.operator_id or "bench", ControlMode.EXCLUSIVE, wait=True,
+                wait_timeout_s=5.0, lease_s=TELEOP_LEASE_S).lease_id
+        try:
+            session = self.core.open_session(init.operator_id, lease_id,
+                                             _MAPPINGS.get(init.mapping),
+                                             convert.seconds(init.watchdog_timeout))
+        except TelerobotError:
+            if own_lease:
+                self.core.locks.release(own_lease)
+            raise
+        self._sessions[identity] = (session, own_lease)
+        mapping = session.mapping or self.core.assistance.mapping
+        return dpb.TeleoperateResponse(ready=dpb.TeleoperateReady(
+            session_id=session.session_id,
+            mapping=types_pb2.ReferenceFrame.Value(f"REFERENCE_FRAME_{mapping}"),
+            watchdog_timeout=convert.duration(session.watchdog_s)))
+
+    def end(self, identity: bytes, reason: str) -> None:
+        entry = self._sessions.pop(identity, None)
+        if entry is None:
+            return
+        session, own_lease = entry
+        session.close(reason)
+        if own_lease:
+            try:
+                self.core.locks.release(own_lease)
+            except TelerobotError:
+                pass  # it lapsed: nothing to give back
+
+    def close(self) -> None:
+        for identity in list(self._sessions):
+            self.end(identity, "the server is stopping")
+
+
+def serve_teleop_zmq(core: DecisionCore, stop: threading.Event) -> list[threading.Thread]:
+    import zmq
+
+    context = zmq.Context.instance()
+    router = context.socket(zmq.ROUTER)
+    router.setsockopt(zmq.LINGER, 0)
+    port = router.bind_to_random_port("tcp://127.0.0.1")
+    sessions = TeleopSessions(core)
+
+    def teleoperate():
+        # One thread: everything that arrived since the last look is one batch (the gRPC
+        # handler's inbox does the same on a thread of its own), then its acks are queued to
+        # zmq's I/O thread, which never makes this one wait.
+        while not stop.is_set():
+            if not router.poll(int(POLL_S * 1000)):
+                continue
+            frames = []
+            while True:
+                try:
+                    identity, raw = router.recv_multipart(zmq.NOBLOCK)
+                except zmq.Again:
+                    break
+                frames.append((identity, raw))
+            for identity, reply in sessions.handle(frames):
+                router.send_multipart([identity, *reply])
+        sessions.close()
+        router.close()
+
+    print(ready_line("baseline_teleop", f"127.0.0.1:{port}"), flush=True)
+    return [threading.Thread(target=teleoperate, name="zmq-teleoperate", daemon=True)]
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.baseline_server",
                                      description=__doc__.split("\n\n")[0])
-    parser.add_argument("--transport", choices=["zmq", "tcp"], required=True)
-    parser.add_argument("--shm-name", required=True)
+    parser.add_argument("--transport", choices=["zmq", "tcp", "zmq-teleop"], required=True)
+    parser.add_argument("--shm-name", help="the world's segment (zmq, tcp)")
+    parser.add_argument("--proxy-robot-address", help="the station's ProxyRobot (zmq-teleop)")
+    parser.add_argument("--force-sensor-address", help="the station's ForceSensor (zmq-teleop)")
     args = parser.parse_args(argv)
     logging.basicConfig(level=os.environ.get("TELEROBOT_LOG_LEVEL", "WARNING"),
                         stream=sys.stderr,
@@ -192,6 +356,8 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGTERM, lambda *_: stop.set())
     signal.signal(signal.SIGINT, lambda *_: stop.set())
     watch_parent(stop.set, stop)
+    if args.transport == "zmq-teleop":
+        return _serve_teleop(args, stop)
 
     cores = Cores(args.shm_name)
     try:
@@ -205,6 +371,24 @@ def main(argv: list[str] | None = None) -> int:
             thread.join(2.0)
     finally:
         cores.close()
+    return 0
+
+
+def _serve_teleop(args: argparse.Namespace, stop: threading.Event) -> int:
+    sys.setswitchinterval(DECISION_GIL_SWITCH_INTERVAL_S)
+    slave = GrpcSlave(args.proxy_robot_address, args.force_sensor_address)
+    with tempfile.TemporaryDirectory(prefix="baseline_recordings_") as recordings:
+        core = DecisionCore(slave, RecordingStore(Path(recordings)))
+        try:
+            threads = serve_teleop_zmq(core, stop)
+            for thread in threads:
+                thread.start()
+            stop.wait()
+            for thread in threads:
+                thread.join(2.0)
+        finally:
+            core.close()
+            slave.close()
     return 0
 
 

@@ -192,7 +192,7 @@ class Bench:
     def _count_steps(self) -> int:
         p = self.plan
         counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
-                  "observers": len(p.observer_counts), "estop": 4, "decision": 4,
+                  "observers": len(p.observer_counts), "estop": 4, "decision": 5,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
         return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
@@ -535,10 +535,13 @@ class Bench:
     def decision(self) -> None:
         """Through the DecisionServer, the operator's one address: teleop_<rate> (master
         commands streamed on Teleoperate, pipelined; teleop_1000_lockstep the same sent
-        lockstep, a diagnostic); then, through a fresh DecisionServer, the emergency stop idle
-        and under its intended load (200 RunAction BusyWork on the low lane)."""
+        lockstep, a diagnostic), then teleop_1000_zmq (the same DecisionCore over pyzmq) with
+        the DecisionServer stopped, so nothing else follows ProxyRobot's streams meanwhile;
+        then, through a fresh DecisionServer, the emergency stop idle and under its intended
+        load (200 RunAction BusyWork on the low lane)."""
         teleop = [f"teleop_{rate}" for rate in self.plan.command_rates]
         self._with_decision_server(teleop + ["teleop_1000_lockstep"], self._teleop)
+        self._teleop_baseline()
         self._with_decision_server(["estop_ds_idle", "estop_ds_busywork"], self._estop_ds)
 
     def _with_decision_server(self, names: list[str], body: Callable[[str], None]) -> None:
@@ -590,6 +593,29 @@ class Bench:
                                                lockstep_p99_ms=lockstep["p99_ms"])
         self.progress.done("; ".join(f"{r}: {self._headline(f'teleop_{r}')}"
                                      for r in plan.command_rates))
+
+    def _teleop_baseline(self) -> None:
+        """teleop_1000_zmq: the DecisionServer's DecisionCore and GrpcSlave (to this station's
+        ProxyRobot and ForceSensor) behind pyzmq DEALER/ROUTER, streamed the same way."""
+        plan = self.plan
+        name = "teleop_1000_zmq"
+        self.progress.step(f"{name}: the same DecisionCore over pyzmq DEALER/ROUTER, "
+                           f"pipelined at 1 kHz, {plan.command_s:.0f} s")
+        server = self.procs.start("baseline_teleop", [
+            "-m", "bench.baseline_server", "--transport", "zmq-teleop",
+            "--proxy-robot-address", self.station.address["proxy_robot"],
+            "--force-sensor-address", self.station.address["force_sensor"]])
+        try:
+            address = server.wait_ready("baseline_teleop", timeout_s=60.0)
+            result = self._worker("teleop", {
+                "transport": "zmq", "address": address, "shm": self.shm, "rates": [1000],
+                "duration_s": plan.command_s}, 60 + 3 * plan.command_s)["1000"]
+        except ChildFailed as error:
+            return self._fail([name], error)
+        finally:
+            self.procs.stop(server)
+        self._record(name, result)
+        self.progress.done(self._headline(name))
 
     def _estop_ds(self, address: str) -> None:
         plan = self.plan
