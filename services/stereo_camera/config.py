@@ -14,7 +14,13 @@ from dataclasses import dataclass, field
 
 from services.runtime.config import env_name
 from services.stereo_camera.pattern import PatternSource
-from services.stereo_camera.sim import SimSource, WorldJoints, home_joints
+from services.stereo_camera.sim import (
+    DEFAULT_MULTISAMPLES,
+    DEFAULT_SHADOW_MAP_PX,
+    SimSource,
+    WorldJoints,
+    home_joints,
+)
 from services.stereo_camera.source import StereoSource
 from services.stereo_camera.video import DEVICE, FILE, VideoSource
 from services.world.shm_layout import add_shm_name_argument
@@ -64,8 +70,9 @@ def add_source_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument(
         "--fps", type=float, default=_optional_float(_env("fps")),
         help=f"source rate: the most pairs per second for sim and pattern (default "
-             f"{DEFAULT_FPS:.0f}; sim renders 6-11 pairs/s at 640x480 with shadows on "
-             "software EGL), the replay rate of files (default: the file's), asked of devices")
+             f"{DEFAULT_FPS:.0f}; sim renders 35-47 pairs/s at 640x480 by default, 9-18 with "
+             "--sim-shadows on, on software EGL), the replay rate of files (default: the "
+             "file's), asked of devices")
     group.add_argument(
         "--left", default=_env("left"),
         help="device (index such as 0, or path such as /dev/video0) or file of the left eye")
@@ -88,9 +95,18 @@ def add_source_arguments(parser: argparse.ArgumentParser) -> None:
         help="where the sim takes the arm's pose: the running world process (default) or the "
              "fixed home pose")
     group.add_argument(
-        "--sim-shadows", type=_on_off, default=_on_off(_env("sim_shadows", "on")),
-        help="render shadows (on or off, default on); off is several times faster on "
-             "software rendering")
+        "--sim-shadows", type=_on_off, default=_on_off(_env("sim_shadows", "off")),
+        help="render the light's shadows (on or off, default off): on software rendering they "
+             "cost 55-110 ms a pair at 640x480, several times the rest of the picture")
+    group.add_argument(
+        "--sim-shadow-map", type=int, default=int(_env("sim_shadow_map", DEFAULT_SHADOW_MAP_PX)),
+        help=f"side of the shadow map in pixels, with --sim-shadows on (default "
+             f"{DEFAULT_SHADOW_MAP_PX}; MuJoCo's own 4096 costs about twice as much)")
+    group.add_argument(
+        "--sim-multisample", type=int,
+        default=int(_env("sim_multisample", DEFAULT_MULTISAMPLES)),
+        help=f"multisampling (anti-aliasing) samples per pixel (default {DEFAULT_MULTISAMPLES}: "
+             "none; MuJoCo's own 4 smooths the edges and doubles the cost in software)")
     add_shm_name_argument(group, "shared memory of the world process, for --sim-joints world")
 
 
@@ -117,7 +133,9 @@ def source_from_args(args: argparse.Namespace) -> SourceSetup:
         else:
             joints = WorldJoints(args.shm_name)
             closers.append(joints.close)
-        source = SimSource(joints, width, height, args.fps or DEFAULT_FPS, args.sim_shadows)
+        source = SimSource(joints, width, height, args.fps or DEFAULT_FPS, args.sim_shadows,
+                           shadow_map_px=args.sim_shadow_map,
+                           multisamples=args.sim_multisample)
         return SourceSetup(source, closers)
     kind = DEVICE if args.source == "device" else FILE
     if args.side_by_side and (args.left or args.right):

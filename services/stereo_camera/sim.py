@@ -10,10 +10,15 @@ The renderer is created, used and closed on the capture thread only (it owns the
 Offscreen rendering needs MUJOCO_GL=egl (or osmesa) in the environment before mujoco is
 imported; the package sets egl unless told otherwise.
 
-Cost: with Mesa's software EGL, most of a pair's time is the directional light's shadow map
-(4096² by default), not the pixels: about 60-170 ms a pair with shadows at any size up to
-640x480 on a shared 2-core machine, and about 12-30 ms without (``shadows=False``). A GPU
-(EGL on a real driver) makes both a few milliseconds.
+Cost (Mesa's software EGL, no GPU, a shared 2-core AMD EPYC VM under load; 640x480, both eyes,
+timed around ``grab`` in three back-to-back rounds): the defaults, no shadows and no
+multisampling, render a pair in 19-28 ms at p50 (35-47 pairs/s). MuJoCo's own settings, the
+directional light's shadow with a 4096² map and 4x multisampling, took 190-375 ms (2.4-5
+pairs/s). Either one alone is costly: 4x multisampling without shadows about 45 ms a pair
+(~20 pairs/s); shadows with the default 1024² map 55-110 ms (9-18 pairs/s), with a 4096² map
+140-235 ms. The shadow's extra passes, not the pixels, dominate: a smaller map or image helps
+little. ``shadows=True`` and ``multisamples=4`` buy looks for rate; a GPU (EGL on a real driver)
+makes every setting a few milliseconds.
 """
 
 from __future__ import annotations
@@ -38,7 +43,11 @@ from services.world.shm_link import SharedMemoryArmLink
 
 log = logging.getLogger(__name__)
 
-DEFAULT_FPS = 30.0  # a cap; rendering is usually slower (see the module docstring)
+DEFAULT_FPS = 30.0  # a cap on the pairs per second
+# The defaults favour the rate on software rendering (see the module docstring): no shadows, no
+# multisampling, and a modest shadow map for when shadows are asked for.
+DEFAULT_SHADOW_MAP_PX = 1024
+DEFAULT_MULTISAMPLES = 0
 
 JointSource = Callable[[], np.ndarray]
 
@@ -76,15 +85,22 @@ class SimSource:
     live = False
 
     def __init__(self, joints: JointSource, width_px: int = 640, height_px: int = 480,
-                 fps: float = DEFAULT_FPS, shadows: bool = True,
-                 model: mujoco.MjModel | None = None):
+                 fps: float = DEFAULT_FPS, shadows: bool = False,
+                 model: mujoco.MjModel | None = None,
+                 shadow_map_px: int = DEFAULT_SHADOW_MAP_PX,
+                 multisamples: int = DEFAULT_MULTISAMPLES):
         if width_px < 1 or height_px < 1 or not fps > 0:
             raise ValueError(f"the sim cameras need a positive size and fps, got "
                              f"{width_px}x{height_px} at {fps}")
+        if shadow_map_px < 1 or multisamples < 0:
+            raise ValueError(f"the sim cameras need a positive shadow map and no negative "
+                             f"multisampling, got {shadow_map_px} and {multisamples}")
         self._joints = joints
         self._model = model if model is not None else load_mujoco_model()
         self._ids = mujoco_ids(self._model)
         self._shadows = shadows
+        self._shadow_map_px = shadow_map_px
+        self._multisamples = multisamples
         self._data = mujoco.MjData(self._model)
         mujoco.mj_resetDataKeyframe(self._model, self._data, self._ids.home_key)
         mujoco.mj_kinematics(self._model, self._data)
@@ -103,6 +119,9 @@ class SimSource:
             global_ = self._model.vis.global_
             global_.offwidth = max(int(global_.offwidth), self.geometry.width_px)
             global_.offheight = max(int(global_.offheight), self.geometry.height_px)
+            quality = self._model.vis.quality  # read when the GL context is made, just below
+            quality.shadowsize = self._shadow_map_px
+            quality.offsamples = self._multisamples
             try:
                 self._renderer = mujoco.Renderer(self._model, self.geometry.height_px,
                                                  self.geometry.width_px)
