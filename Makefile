@@ -53,6 +53,7 @@ bench: $(VENV)/.installed
 	@test $(VENV)/.installed-bench -nt pyproject.toml || { \
 		$(PY) -m pip install --quiet -e '.[dev,bench]' && touch $(VENV)/.installed-bench; }
 	$(PY) -m bench $(if $(filter-out 0,$(QUICK)),--quick)
+	$(PY) -m bench.readme  # README's Performance table, from bench/results/latest.json
 
 clean:
 	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache
