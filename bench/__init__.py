@@ -8,10 +8,16 @@ Layout:
 - ``worker.py``      ``python -m bench.worker KIND``: one measuring client process;
 - ``run.py``'s groups: command, force, baselines, observers, estop, decision (Teleoperate and
   the e-stop through the DecisionServer), closed_loop, stereo (``python -m bench --only``);
-- ``command.py``, ``force.py``, ``estop.py``, ``closed_loop.py``, ``stereo.py``: the scenarios'
-  client code (run inside workers);
-- ``baseline_server.py``: the same domain cores (ProxyRobotCore, ForceSensorCore) behind pyzmq
-  or a plain TCP socket (``framing.py``) instead of gRPC, so a ratio isolates the transport;
+- ``command.py``, ``teleop.py``, ``force.py``, ``estop.py``, ``closed_loop.py``, ``stereo.py``:
+  the scenarios' client code (run inside workers); ``teleop.py`` streams Teleoperate pipelined;
+- ``baseline_server.py``: the same domain code (ProxyRobotCore, ForceSensorCore; the
+  DecisionServer's DecisionCore for Teleoperate) behind pyzmq or a plain TCP socket
+  (``framing.py``) instead of gRPC, so a ratio isolates the transport;
 - ``worldwatch.py``  reads the world's shared memory (read only) to see what the servo applied;
-- ``stats.py``, ``report.py``, ``plots.py``: figures, the terminal table, JSON and PNG plots.
+  ``worldloop.py`` counts the world loop's overruns per scenario and over the run;
+- ``goals.py``       the one table of goals, and each scenario's PASS/FAIL;
+- ``stats.py``, ``report.py``, ``plots.py``: figures, the terminal table, JSON and PNG plots;
+  ``readme.py`` (``python -m bench.readme``) README.md's Performance table from the JSON.
+
+How each scenario is measured, the goals and how to read PASS/FAIL: ``bench/README.md``.
 """

@@ -65,3 +65,13 @@ def test_add_goals_stores_goal_pass_and_misses_on_every_scenario():
     assert results["stereo_sim_double"]["goal"] == ">= 17 fps"
     assert results["stereo_sim_double"]["pass"] is True
     assert results["teleop_500"]["goal"] == "no goal"
+
+
+def test_bench_readme_lists_the_goals_as_the_code_has_them():
+    from pathlib import Path
+
+    text = (Path(goals.__file__).parent / "README.md").read_text()
+    block = text.split("<!-- goals:begin -->")[1].split("<!-- goals:end -->")[0]
+    rows = [[cell.strip().strip("`") for cell in line.strip("|").split("|")]
+            for line in block.strip().splitlines()[2:]]
+    assert rows == [[pattern, goal.text(), goal.source] for pattern, goal in goals.GOALS]
