@@ -11,12 +11,18 @@ counters, change filter, queue and `dropped` stay its own, so sharing changes no
 
 from __future__ import annotations
 
+import os
+import select
+import threading
+import time
+import weakref
+from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from services.common.fanout import Fanout, Subscription
+from services.common.fanout import Fanout
 from services.force_sensor.settings import exceeds
 from services.runtime.errors import InvalidArgument
 
@@ -101,47 +107,121 @@ class WrenchBatch:
         return f"WrenchBatch({[r.sequence for r in self.readings]})"
 
 
-class WrenchSubscription(Subscription[WrenchBatch]):
+class WrenchSubscription:
     """A subscriber's filters and its queue of batches. `take` and `deliver` (or `offer`, both
     at once) run on the sampling thread; `get` on the subscriber's stream."""
 
     def __init__(self, fanout, options: StreamOptions):
-        super().__init__(fanout, options.queue_capacity)
+        if options.queue_capacity < 1:
+            raise ValueError("capacity must be at least 1")
         self.options = options
+        self._fanout = fanout
+        self._decimation = options.decimation
+        self._batch_size = options.batch_size
+        self._thresholds = (options.threshold_force_n, options.threshold_torque_nm)
         self._count = 0
         self._last_forwarded: WrenchReading | None = None
         self._batch: list[WrenchReading] = []
+        self._items: deque[WrenchBatch] = deque(maxlen=options.queue_capacity)
+        self._lock = threading.Lock()  # the queue and `dropped` change together
+        # The stream waits for batches on an eventfd, which the sampling thread writes with the
+        # GIL released (see `_wake`). Closed with the object, once nothing can write to it.
+        self._wake_fd = os.eventfd(0, os.EFD_CLOEXEC | os.EFD_NONBLOCK)
+        weakref.finalize(self, os.close, self._wake_fd)
+        self._poll = select.poll()
+        self._poll.register(self._wake_fd, select.POLLIN)
+        self._waiting = False  # the stream is (about to be) in poll(): write to wake it
+        self.dropped = 0
+        self.closed = False
 
     def take(self, item: WrenchReading) -> tuple[WrenchReading, ...] | None:
         """Decimate, filter by change, batch: the readings of a batch this sample completes, or
         None. Changes only this subscriber's filter state."""
         self._count += 1
-        if (self._count - 1) % self.options.decimation:
+        if (self._count - 1) % self._decimation:
             return None
-        if not changed_enough(item, self._last_forwarded, self.options.threshold_force_n,
-                              self.options.threshold_torque_nm):
+        if not changed_enough(item, self._last_forwarded, *self._thresholds):
             return None
         self._last_forwarded = item
+        if self._batch_size == 1:
+            return (item,)
         self._batch.append(item)
-        if len(self._batch) < self.options.batch_size:
+        if len(self._batch) < self._batch_size:
             return None
         readings, self._batch = tuple(self._batch), []
         return readings
 
     def deliver(self, batch: WrenchBatch) -> None:
-        """Queue a batch (the oldest goes when the queue is full, counted in `dropped`)."""
-        super().offer(batch)
+        """Queue a batch, dropping (and counting) the oldest when full, and wake the stream."""
+        with self._lock:
+            if len(self._items) == self._items.maxlen:
+                self.dropped += 1  # deque drops the oldest on append
+            self._items.append(batch)
+        if self._waiting:
+            self._wake()
 
-    def offer(self, item: WrenchReading) -> None:  # type: ignore[override]
-        """take(item), and queue what it completes as a batch of this subscriber's own."""
+    def offer(self, item: WrenchReading) -> None:
+        """take(item), and deliver what it completes in a batch of this subscriber's own."""
         readings = self.take(item)
         if readings is not None:
             self.deliver(WrenchBatch(readings))
 
+    def get(self, timeout_s: float | None = None) -> WrenchBatch | None:
+        """The oldest queued batch, waiting up to timeout_s; None on timeout or once closed."""
+        deadline = None if timeout_s is None else time.monotonic() + timeout_s
+        while True:
+            # Say so before looking: a batch queued after the look then writes the eventfd.
+            self._waiting = True
+            batch = self._pop()
+            if batch is not None or self.closed:
+                self._waiting = False
+                return batch
+            left_ms = None if deadline is None else (deadline - time.monotonic()) * 1e3
+            if left_ms is not None and left_ms <= 0:
+                self._waiting = False
+                return None
+            woken = self._poll.poll(left_ms)
+            self._waiting = False
+            if woken:
+                try:
+                    os.eventfd_read(self._wake_fd)  # back to zero
+                except BlockingIOError:
+                    pass
+
+    def _pop(self) -> WrenchBatch | None:
+        with self._lock:
+            return self._items.popleft() if self._items else None
+
+    def close(self) -> None:
+        self._fanout._remove(self)
+        self.closed = True
+        self._wake()
+
+    def _wake(self) -> None:
+        """Wake the stream. os.eventfd_write releases the GIL for the system call, so when the
+        woken thread takes this core (the kernel often runs a woken thread at once) it can also
+        take the GIL, instead of waiting behind a sampling thread that holds the GIL while it is
+        off the CPU: with a lock's release() that wait, on a loaded machine, was a third of the
+        GIL's time (profile in core.py's docstring)."""
+        os.eventfd_write(self._wake_fd, 1)
+
+    def __enter__(self) -> WrenchSubscription:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
 
 class WrenchFanout(Fanout[WrenchBatch]):
-    """Delivers every published reading to every open WrenchSubscription, with one shared
-    WrenchBatch for all whose batches hold the same samples."""
+    """Delivers every published reading to every open WrenchSubscription, the fastest first (the
+    operator's 1 kHz stream is woken before 100 Hz observers, whatever the order they came in),
+    with one shared WrenchBatch for all whose batches hold the same samples."""
+
+    def attach(self, subscription: WrenchSubscription) -> WrenchSubscription:
+        with self._lock:  # a stable sort: equal decimations keep the order they came in
+            self._subscriptions = tuple(sorted((*self._subscriptions, subscription),
+                                               key=lambda s: s.options.decimation))
+        return subscription
 
     def publish(self, reading: WrenchReading) -> None:  # type: ignore[override]
         shared: dict[tuple[int, ...], WrenchBatch] = {}

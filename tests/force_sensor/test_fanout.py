@@ -1,7 +1,12 @@
-"""One message for many subscribers is encoded once, and every subscriber's bytes decode to the
-message it would have got on its own: same samples, same batches, its own dropped_count."""
+"""The wrench fan-out: one message for many subscribers is encoded once, and every subscriber's
+bytes decode to the message it would have got on its own (same samples, same batches, its own
+dropped_count); the fastest subscriber is served first; a waiting stream wakes for a batch."""
 
 from __future__ import annotations
+
+import gc
+import os
+import threading
 
 import numpy as np
 
@@ -14,6 +19,7 @@ from services.force_sensor.subscribers import (
     WrenchSubscription,
 )
 from telerobot.v1 import force_sensor_pb2 as pb
+from tests.conftest import wait_for
 
 
 def reading(sequence: int) -> WrenchReading:
@@ -141,3 +147,51 @@ def test_a_subscriber_that_dropped_sends_the_shared_bytes_and_its_own_count():
         assert [s.sequence for s in message.samples] == [expected_sequence]
         assert message == pb.StreamWrenchResponse(samples=[reading_to_proto(batch.readings[0])],
                                                   dropped_count=3)
+
+
+def test_the_fastest_subscriber_is_served_first_whatever_the_order_they_came_in(monkeypatch):
+    fanout = WrenchFanout()
+    observer = fanout.attach(WrenchSubscription(fanout, StreamOptions(decimation=10)))
+    slower = fanout.attach(WrenchSubscription(fanout, StreamOptions(decimation=100)))
+    operator = fanout.attach(WrenchSubscription(fanout, StreamOptions()))
+    second_operator = fanout.attach(WrenchSubscription(fanout, StreamOptions()))
+    served = []
+    for name, subscription in (("observer", observer), ("slower", slower),
+                               ("operator", operator), ("second operator", second_operator)):
+        deliver = subscription.deliver
+        monkeypatch.setattr(subscription, "deliver",
+                            lambda batch, name=name, deliver=deliver: (served.append(name),
+                                                                       deliver(batch)))
+    fanout.publish(reading(1))  # the first sample: every one of them takes it
+    assert served == ["operator", "second operator", "observer", "slower"]
+
+
+def test_a_waiting_stream_is_woken_by_a_batch_and_by_close():
+    fanout = WrenchFanout()
+    subscription = fanout.attach(WrenchSubscription(fanout, StreamOptions()))
+    got: list = []
+    # get() with no timeout: only a delivery or close() ends it.
+    waiter = threading.Thread(target=lambda: [got.append(subscription.get()) for _ in range(2)])
+    waiter.start()
+    wait_for(lambda: subscription._waiting, 5.0, "the stream waiting for a batch")
+    fanout.publish(reading(1))
+    wait_for(lambda: got, 5.0, "the stream to take the batch")
+    assert [r.sequence for r in got[0]] == [1]
+    wait_for(lambda: subscription._waiting, 5.0, "the stream waiting again")
+    subscription.close()
+    waiter.join(5.0)
+    assert not waiter.is_alive() and got[1] is None
+    assert fanout.subscriber_count == 0
+
+
+def test_subscriptions_give_back_their_file_descriptors():
+    def open_fds() -> int:
+        return len(os.listdir("/proc/self/fd"))
+
+    fanout = WrenchFanout()
+    before = open_fds()
+    for _ in range(200):
+        with fanout.attach(WrenchSubscription(fanout, StreamOptions())):
+            fanout.publish(reading(1))
+    gc.collect()
+    assert open_fds() <= before
