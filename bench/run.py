@@ -100,12 +100,20 @@ class Progress:
         elapsed = time.monotonic() - self.started
         print(f"[{self.index:2d}/{self.total} {elapsed:5.0f}s] {text} ...", end="",
               file=sys.stderr, flush=True)
+        self._open = True  # the step's line waits for its figures
 
     def done(self, text: str) -> None:
-        print(f" {text}", file=sys.stderr, flush=True)
+        prefix = " " if self._open else "            ... "
+        print(f"{prefix}{text}", file=sys.stderr, flush=True)
+        self._open = False
 
     def note(self, text: str) -> None:
-        print(f"            {text}", file=sys.stderr, flush=True)
+        """A line of its own, even in the middle of a step's line."""
+        print(f"{chr(10) if self._open else ''}            {text}", file=sys.stderr,
+              flush=True)
+        self._open = False
+
+    _open = False
 
 
 class Station:
