@@ -49,7 +49,7 @@ from services.force_sensor.servicer import reading_to_proto
 from services.force_sensor.subscribers import StreamOptions
 from services.proxy_robot.core import ProxyRobotCore
 from services.runtime.errors import InvalidArgument, TelerobotError
-from services.runtime.process import ready_line, watch_parent
+from services.runtime.process import GIL_SWITCH_INTERVAL_S, ready_line, watch_parent
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2, types_pb2
@@ -57,8 +57,6 @@ from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2, types_pb2
 log = logging.getLogger("baseline")
 POLL_S = 0.1  # how often idle loops look at the stop flag
 SUBSCRIPTION_WAIT_S = 0.01
-# As the DecisionServer's process: busy threads hand the GIL over every 1 ms, not 5 ms.
-DECISION_GIL_SWITCH_INTERVAL_S = 0.001
 TELEOP_LEASE_S = 60.0  # every command renews it
 TELEOP_END = b"X"
 _MAPPINGS = {types_pb2.REFERENCE_FRAME_BASE: "BASE", types_pb2.REFERENCE_FRAME_TOOL: "TOOL"}
@@ -356,6 +354,7 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGTERM, lambda *_: stop.set())
     signal.signal(signal.SIGINT, lambda *_: stop.set())
     watch_parent(stop.set, stop)
+    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)  # as every service process sets it
     if args.transport == "zmq-teleop":
         return _serve_teleop(args, stop)
 
@@ -375,7 +374,6 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _serve_teleop(args: argparse.Namespace, stop: threading.Event) -> int:
-    sys.setswitchinterval(DECISION_GIL_SWITCH_INTERVAL_S)
     slave = GrpcSlave(args.proxy_robot_address, args.force_sensor_address)
     with tempfile.TemporaryDirectory(prefix="baseline_recordings_") as recordings:
         core = DecisionCore(slave, RecordingStore(Path(recordings)))

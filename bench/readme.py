@@ -23,7 +23,6 @@ END = "<!-- bench:table:end -->"
 
 # What each scenario measures, for a reader of the README (first match wins, as in goals.py).
 WHAT = (
-    ("command_1000_gil1ms", "diagnostic: `command_1000`, proxy_robot at a 1 ms GIL interval"),
     ("command_*", "ProxyRobot unary call → target at the servo, lockstep"),
     ("teleop_1000_lockstep", "diagnostic: `teleop_1000` sent lockstep (wait for each ack)"),
     ("teleop_*", "Teleoperate command → applied, streamed at the rate (pipelined)"),

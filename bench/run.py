@@ -132,23 +132,6 @@ class Station:
             self.address[child.name] = child.wait_ready(timeout_s=60.0)
         self.proxy = started[0]
 
-    def restart_proxy(self, switch_interval_s: float | None = None) -> None:
-        """A new proxy_robot process (on a new port: self.address follows), connected and
-        initialized; with `switch_interval_s`, its interpreter hands the GIL over at that
-        interval (a diagnostic: the service keeps CPython's default of 5 ms; the DecisionServer
-        sets 1 ms)."""
-        self.procs.stop(self.proxy)
-        if switch_interval_s is None:
-            self.proxy = self.procs.start_service("proxy_robot")
-        else:
-            self.proxy = self.procs.start("proxy_robot", [
-                "-c", "import runpy, sys; "
-                f"sys.setswitchinterval({switch_interval_s}); "
-                "runpy.run_module('services.proxy_robot', run_name='__main__')",
-                "--address", "127.0.0.1:0", "--grace-s", "0.5"])
-        self.address["proxy_robot"] = self.proxy.wait_ready(timeout_s=60.0)
-        self.arm_ready()
-
     def arm_ready(self) -> None:
         """ProxyRobot connected, initialized and not stopped; the sensor reading. Also brings
         them back after a hiccup (on an overloaded machine a world that has not stepped for
@@ -199,7 +182,7 @@ class Bench:
 
     def _count_steps(self) -> int:
         p = self.plan
-        counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
+        counts = {"command": 1, "force": len(p.force_rates), "baselines": 2,
                   "observers": len(p.observer_counts), "estop": 4, "decision": 5,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
@@ -336,29 +319,6 @@ class Bench:
             self._record(f"command_{rate}", results[str(rate)])
         self.progress.done("; ".join(f"{r}: {self._headline(f'command_{r}')}"
                                      for r in plan.command_rates))
-        self._command_diagnostic()
-
-    def _command_diagnostic(self) -> None:
-        """command_1000_gil1ms: command_1000 against a proxy whose interpreter hands the GIL
-        over every 1 ms (CPython's default is 5 ms; the world sets 0.5 ms, the DecisionServer
-        1 ms, proxy_robot nothing): does its setpoint thread wait for the GIL?"""
-        plan = self.plan
-        name = "command_1000_gil1ms"
-        self.progress.step(f"{name} (diagnostic): command_1000 with proxy_robot restarted with "
-                           "a 1 ms GIL switch interval")
-        try:
-            self.station.restart_proxy(0.001)
-            result = self._worker("command", {
-                "transport": "grpc", "address": self.station.address["proxy_robot"],
-                "shm": self.shm, "rates": [1000], "duration_s": plan.command_s},
-                60 + 3 * plan.command_s)["1000"]
-            result["diagnostic"] = "proxy_robot with sys.setswitchinterval(0.001)"
-            self._record(name, result)
-            self.progress.done(self._headline(name))
-        except ChildFailed as error:
-            self._fail([name], error)
-        finally:
-            self.station.restart_proxy()
 
     def force(self) -> None:
         for rate, decimation in self.plan.force_rates:
