@@ -641,8 +641,8 @@ class Bench:
 
     def closed_loop(self) -> None:
         plan = self.plan
-        self.progress.step(f"closed_loop: move 5 mm down into the table -> force > 2 N at the "
-                           f"operator, {plan.closed_loop_trials} trials")
+        self.progress.step(f"closed_loop: in contact (1 mm preload), press 2 mm further -> "
+                           f"force > 2 N at the operator, {plan.closed_loop_trials} trials")
         try:
             result = self._worker("closed_loop", {
                 "proxy_address": self.station.address["proxy_robot"],
