@@ -11,8 +11,9 @@ import os
 import signal
 import sys
 
+from services.runtime.config import env_name
 from services.runtime.process import run_service
-from services.world.service import WorldService
+from services.world.service import PHYSICS_THREAD_FIFO_PRIORITY, WorldService
 from services.world.shm_layout import add_shm_name_argument
 
 # The physics thread must get the GIL back soon after its sleep ends, even if a gRPC thread is
@@ -22,6 +23,14 @@ GIL_SWITCH_INTERVAL_S = 0.0005
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
     add_shm_name_argument(parser, "shared-memory segment of the hardware link")
+    parser.add_argument(
+        "--rt-priority", type=int,
+        default=int(os.environ.get(env_name("world", "rt_priority"),
+                                   PHYSICS_THREAD_FIFO_PRIORITY)),
+        choices=range(0, 100), metavar="0-99",
+        help=f"SCHED_FIFO priority of the physics thread where the OS allows it (default "
+             f"{PHYSICS_THREAD_FIFO_PRIORITY}); 0 asks for nice -10 only "
+             f"(env {env_name('world', 'rt_priority')})")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -31,7 +40,8 @@ def main(argv: list[str] | None = None) -> int:
     def build(args: argparse.Namespace) -> WorldService:
         # A crashed physics loop stops the process like a signal would, then exits 1 below.
         service = WorldService(args.shm_name,
-                               on_failure=lambda: os.kill(os.getpid(), signal.SIGTERM))
+                               on_failure=lambda: os.kill(os.getpid(), signal.SIGTERM),
+                               fifo_priority=args.rt_priority)
         built.append(service)
         return service
 

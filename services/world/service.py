@@ -4,6 +4,15 @@ The physics thread runs the RealtimeLoop; each step applies the drivers' new com
 order), steps the simulation and publishes the result. The service serves no telerobot gRPC
 contract (its link is shared memory): run_service gives it health, reflection, flags and a
 graceful stop.
+
+Priority: the physics thread asks the OS for real-time scheduling, SCHED_FIFO at a modest
+priority (``fifo_priority``, default 10), so the 1 kHz loop preempts ordinary work (rendering,
+gRPC threads, other processes) the moment its sleep ends. It does so only while the kernel's
+real-time throttling is on (/proc/sys/kernel/sched_rt_runtime_us not -1; Linux's default
+leaves 50 ms of every second to ordinary threads), so a runaway physics thread cannot lock a
+core. Without the privilege (CAP_SYS_NICE, or an RT budget in its cgroup), or with the
+throttling off, it falls back to nice -10, and without that to the default; the log says which
+it got. Other threads of the process keep the default scheduling.
 """
 
 from __future__ import annotations
@@ -27,9 +36,13 @@ log = logging.getLogger(__name__)
 STATS_LOG_PERIOD_S = 10.0
 FIRST_STEP_TIMEOUT_S = 10.0  # start() waits this long for the loop to run its first step
 STOP_TIMEOUT_S = 2.0  # close() waits this long for the physics thread
-# The physics thread asks the OS for priority over ordinary work (Linux nice is per thread; raising
-# it needs CAP_SYS_NICE, without which it runs at the default and says so).
+# The physics thread asks the OS for priority over ordinary work (see the module docstring):
+# SCHED_FIFO at this priority (1-99; 0: do not ask), else this nice value (Linux nice is per
+# thread), else the default. Both need CAP_SYS_NICE.
+PHYSICS_THREAD_FIFO_PRIORITY = 10
 PHYSICS_THREAD_NICE = -10
+RT_RUNTIME_PATH = "/proc/sys/kernel/sched_rt_runtime_us"
+RT_PERIOD_PATH = "/proc/sys/kernel/sched_rt_period_us"
 _NOT_SET = object()
 
 
@@ -39,8 +52,13 @@ class WorldService:
 
     def __init__(self, shm_name: str | None = None,
                  sim_factory: Callable[[], ArmSim] = ArmSim,
-                 on_failure: Callable[[], None] | None = None):
+                 on_failure: Callable[[], None] | None = None,
+                 fifo_priority: int = PHYSICS_THREAD_FIFO_PRIORITY,
+                 nice: int = PHYSICS_THREAD_NICE):
         self._shm_name = shm_name
+        self._fifo_priority = fifo_priority
+        self._nice = nice
+        self.physics_priority = "not started"  # what the physics thread got, once it runs
         self._sim_factory = sim_factory
         self._on_failure = on_failure
         self._stop = threading.Event()
@@ -69,8 +87,8 @@ class WorldService:
         self._spawn("loop-stats", self._report_stats)
         if not self._stepped.wait(FIRST_STEP_TIMEOUT_S) or self.failed:
             raise RuntimeError("the physics loop did not start")
-        log.info("world running: shared memory %r, servo at %.0f Hz", self.publisher.name,
-                 1.0 / sim.period_s)
+        log.info("world running: shared memory %r, servo at %.0f Hz, physics thread at %s",
+                 self.publisher.name, 1.0 / sim.period_s, self.physics_priority)
 
     def close(self) -> None:
         self._stop.set()
@@ -95,7 +113,7 @@ class WorldService:
         thread.start()
 
     def _run_physics(self) -> None:
-        _raise_thread_priority(PHYSICS_THREAD_NICE)
+        self.physics_priority = raise_thread_priority(self._fifo_priority, self._nice)
         try:
             self.loop.run(self._stop)
         except Exception:
@@ -135,10 +153,49 @@ def _log_mujoco_warning(message: str) -> None:
     log.warning("MuJoCo: %s", message.strip())
 
 
-def _raise_thread_priority(nice: int) -> None:
-    """Give the calling thread the nice value ``nice`` if the OS allows it."""
+def read_rt_throttling() -> tuple[int, int] | None:
+    """(runtime, period) in µs of the kernel's real-time throttling: real-time threads may use
+    `runtime` of every `period` (runtime -1: unlimited, throttling off); None if unknown."""
     try:
-        os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), nice)
+        with open(RT_RUNTIME_PATH) as runtime, open(RT_PERIOD_PATH) as period:
+            return int(runtime.read()), int(period.read())
+    except (OSError, ValueError):
+        return None
+
+
+def raise_thread_priority(fifo_priority: int, nice: int, *, system=os,
+                          rt_throttling: Callable[[], tuple[int, int] | None] = read_rt_throttling,
+                          thread_id: int | None = None) -> str:
+    """Give the calling thread SCHED_FIFO at `fifo_priority` where the OS allows it and the
+    kernel throttles real-time threads, else the nice value `nice`; returns what it got
+    ("SCHED_FIFO 10", "nice -10" or "default"). `system` stands for the os module (tests pass a
+    fake); `fifo_priority` 0 asks for the nice value only."""
+    thread_id = threading.get_native_id() if thread_id is None else thread_id
+    if fifo_priority > 0:
+        throttling = rt_throttling()
+        if not hasattr(system, "sched_setscheduler"):
+            why_not = "this OS has no SCHED_FIFO"
+        elif throttling is None:
+            why_not = f"the kernel's real-time throttling is unknown ({RT_RUNTIME_PATH})"
+        elif throttling[0] < 0:
+            why_not = ("the kernel's real-time throttling is off (sched_rt_runtime_us -1), so a "
+                       "runaway real-time thread could lock a core")
+        else:
+            policy = system.SCHED_FIFO | getattr(system, "SCHED_RESET_ON_FORK", 0)
+            try:
+                system.sched_setscheduler(thread_id, policy, system.sched_param(fifo_priority))
+            except OSError as exc:  # EPERM: no CAP_SYS_NICE, or no RT budget in the cgroup
+                why_not = f"no privilege ({exc.strerror or exc})"
+            else:
+                log.info("physics thread at SCHED_FIFO priority %d (real-time threads are "
+                         "throttled to %d µs of every %d µs)", fifo_priority, *throttling)
+                return f"SCHED_FIFO {fifo_priority}"
+        log.info("no SCHED_FIFO %d for the physics thread: %s; asking for nice %d instead",
+                 fifo_priority, why_not, nice)
+    try:
+        system.setpriority(system.PRIO_PROCESS, thread_id, nice)
     except (PermissionError, AttributeError):
         log.info("no privilege to set nice %d on the physics thread; it runs at the default",
                  nice)
+        return "default"
+    return f"nice {nice}"
