@@ -10,13 +10,15 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Sequence
 
+from google.protobuf.timestamp_pb2 import Timestamp
+
 from services.common import convert
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.settings import ThreadPriority
 from services.force_sensor.subscribers import StreamOptions, WrenchBatch, WrenchReading
 from services.runtime.errors import InvalidArgument, Unavailable
 from telerobot.v1 import force_sensor_pb2 as pb
-from telerobot.v1 import force_sensor_pb2_grpc
+from telerobot.v1 import force_sensor_pb2_grpc, types_pb2
 
 STREAM_POLL_S = 0.1  # how often an idle stream checks that its client is still there
 _MASK_PATHS = {"period", "threshold_force_n", "threshold_torque_nm", "thread_priority",
@@ -24,9 +26,15 @@ _MASK_PATHS = {"period", "threshold_force_n", "threshold_torque_nm", "thread_pri
 
 
 def reading_to_proto(reading: WrenchReading) -> pb.WrenchSample:
-    return pb.WrenchSample(sequence=reading.sequence,
-                           sample_time=convert.timestamp(reading.sample_time_ns),
-                           wrench=convert.wrench_to_proto(reading.force_n, reading.torque_nm))
+    """The sample as sent (convert.timestamp and convert.wrench_to_proto, spelled out: 6 us a
+    sample instead of 10, on the path of every stream's first copy of it)."""
+    fx, fy, fz = reading.force_n.tolist()
+    tx, ty, tz = reading.torque_nm.tolist()
+    seconds, nanos = divmod(reading.sample_time_ns, 1_000_000_000)
+    return pb.WrenchSample(
+        sequence=reading.sequence, sample_time=Timestamp(seconds=seconds, nanos=nanos),
+        wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(x=fx, y=fy, z=fz),
+                                torque_nm=types_pb2.Vector3(x=tx, y=ty, z=tz)))
 
 
 def encode_samples(readings: Sequence[WrenchReading]) -> bytes:

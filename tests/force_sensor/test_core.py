@@ -1,13 +1,17 @@
-"""ForceSensorCore's sampling arithmetic, without a world: the shortcuts the sampling thread
-takes give what the general functions give, to the bit."""
+"""The sampling thread's and the streams' shortcuts, without a world: they give what the general
+functions give, to the bit."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from services.common import convert
 from services.force_sensor import wrench_model
 from services.force_sensor.core import ForceSensorCore
+from services.force_sensor.servicer import reading_to_proto
+from services.force_sensor.subscribers import WrenchReading
 from services.robot_model import puma560
+from telerobot.v1 import force_sensor_pb2 as pb
 
 
 def test_the_sensor_rotation_is_the_kinematics_frame_pose():
@@ -24,3 +28,16 @@ def test_the_contact_wrench_cross_product_is_numpys():
     for _ in range(200):
         a, b = generator.normal(scale=10.0, size=(2, 3))
         assert np.array_equal(wrench_model._cross(a, b), np.cross(a, b))
+
+
+def test_a_sample_converts_as_the_general_conversions_would():
+    generator = np.random.default_rng(3)
+    for time_ns in (0, 1, 999_999_999, 1_767_225_600_123_456_789, -1, -1_000_000_001):
+        force, torque = generator.normal(size=(2, 3))
+        force[1], torque[0] = 0.0, -0.0
+        reading = WrenchReading(int(generator.integers(1, 2**40)), time_ns, force, torque)
+        general = pb.WrenchSample(sequence=reading.sequence,
+                                  sample_time=convert.timestamp(time_ns),
+                                  wrench=convert.wrench_to_proto(force, torque))
+        assert reading_to_proto(reading) == general
+        assert reading_to_proto(reading).SerializeToString() == general.SerializeToString()
