@@ -4,6 +4,31 @@ Every `period` (TimerValue) the thread reads the sensor, turns the reading into 
 wrench at the tool point (wrench_model.py), keeps it as the latest sample, and publishes it to
 the subscribers when it changed by more than the sensor's ThresholdValue. Each subscriber then
 applies its own decimation, change filter and batch size (subscribers.py).
+
+Where the time goes with many subscribers (py-spy --gil at 500 Hz for 8 s on this process,
+during the bench's observers_32: the operator at 1 kHz and 32 observers at 100 Hz, each its own
+gRPC client, on the shared 2-core VM):
+
+- Before (527e7e9): this thread held 74 % of the GIL's time. A third of it (32 %) went to
+  waking subscribers: Condition.notify releases a lock with the GIL held, and on a busy machine
+  the kernel often runs the woken thread at once, so the sampler waits off the CPU while every
+  other thread waits for its GIL. The contact wrench took 22 % (np.cross alone 17 %, ~20 us a
+  call), the change filters' arithmetic 5 % (done even with zero thresholds), the sensor
+  frame's pose 5 %; every stream encoded its own copy of each message (3-5 %); gRPC's send
+  path and polling thread most of the rest. The GIL was held only ~40 % of the time: the
+  process was short of CPU, shared with the world, the clients and the rest of the box.
+- After: one encoding per distinct batch (6 %, on the first stream to send it), streams woken
+  through an eventfd written without the GIL (5 %), the fastest subscriber first, and the
+  arithmetic of a sample (contact wrench, sensor frame, the change filters of 33 subscribers
+  with zero thresholds) at ~9 us instead of ~110. This thread now holds 41 % of the GIL's time,
+  the streams 39 % (gRPC's send path 23 %), gRPC's polling thread 16 %.
+- What is left is gRPC's synchronous server: each message costs its stream's thread two
+  wake-ups (for the batch, then when the polling thread has completed the send) and the polling
+  thread one, ~13 thread hand-offs per ms with 33 streams. With 32 observers the sampling step
+  (some 40 us of its own work) then took 0.4-1.8 ms at p50 and 3-13 ms at p99, so ticks are
+  missed and the operator gets what the sampler manages to take. A server without a thread per
+  stream (grpc.aio in services/runtime/server.py) is the next step; its event loop could
+  wait on the subscriptions' eventfds directly (loop.add_reader).
 """
 
 from __future__ import annotations
@@ -186,7 +211,7 @@ class ForceSensorCore:
         if self.readings.subscriber_count >= MAX_SUBSCRIBERS:
             raise ResourceExhausted(f"{MAX_SUBSCRIBERS} subscribers already; retry later",
                                     reason="TOO_MANY_SUBSCRIBERS")
-        return self.readings.attach(WrenchSubscription(self.readings, options))
+        return self.readings.subscribe(options)
 
     def close(self) -> None:
         self._stop_thread()

@@ -217,6 +217,9 @@ class WrenchFanout(Fanout[WrenchBatch]):
     operator's 1 kHz stream is woken before 100 Hz observers, whatever the order they came in),
     with one shared WrenchBatch for all whose batches hold the same samples."""
 
+    def subscribe(self, options: StreamOptions) -> WrenchSubscription:  # type: ignore[override]
+        return self.attach(WrenchSubscription(self, options))
+
     def attach(self, subscription: WrenchSubscription) -> WrenchSubscription:
         with self._lock:  # a stable sort: equal decimations keep the order they came in
             self._subscriptions = tuple(sorted((*self._subscriptions, subscription),
