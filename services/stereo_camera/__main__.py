@@ -7,12 +7,12 @@ Serves synchronized stereo pairs (section IV of the full paper) from one source,
   joint positions read from the world process's shared memory (--shm-name). Without a running
   world, streams and snapshots answer UNAVAILABLE saying so; the service itself still starts.
   By default (no shadows, no multisampling) a 640x480 pair costs 19-28 ms on Mesa's software
-  EGL (35-47 pairs/s rendered, 26-27 pairs/s delivered to a client decoding JPEG while the
-  world runs, on a shared 2-core machine). --sim-shadows on (--sim-shadow-map, default 1024)
-  makes it 55-110 ms, --sim-multisample 4 about twice the default; sim.py has the figures. A
-  GPU (MUJOCO_GL=egl on a real driver) makes any setting a few milliseconds. Rendering
-  competes for the same cores as the world's 1 kHz loop, which runs at real-time priority
-  where allowed (services/world/service.py).
+  EGL (35-47 pairs/s rendered; 26-30 pairs/s, the 30 fps cap, delivered to a client decoding
+  JPEG while the world runs, on a shared 2-core machine). --sim-shadows on (--sim-shadow-map,
+  default 1024) makes it 55-110 ms, --sim-multisample 4 about twice the default; sim.py has
+  the figures. A GPU (MUJOCO_GL=egl on a real driver) makes any setting a few milliseconds.
+  Rendering competes for the same cores as the world's 1 kHz loop, which runs at real-time
+  priority where allowed (services/world/service.py).
 - pattern: a synthetic test card with the tick drawn in both eyes (--pattern-cost-ms).
 - device / file: cv2.VideoCapture on --left and --right, or on one --side-by-side source, with
   an optional --calibration JSON file.
