@@ -23,8 +23,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--only", nargs="+", choices=GROUPS, default=(),
                         help="run only these groups of scenarios")
     parser.add_argument("--out", default=str(RESULTS_DIR), help="where results go")
+    parser.add_argument("--profile", action="store_true",
+                        help="after the decision group, py-spy the DecisionServer and ProxyRobot "
+                             "under Teleoperate at 1 kHz (bench/profile.py)")
     args = parser.parse_args(argv)
-    return run(Plan(quick=args.quick, only=tuple(args.only)), Path(args.out))
+    return run(Plan(quick=args.quick, only=tuple(args.only), profile=args.profile),
+               Path(args.out))
 
 
 if __name__ == "__main__":

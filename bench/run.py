@@ -54,6 +54,7 @@ class Plan:
     stereo_modes: tuple[str, ...] = ("single", "double")
     stereo_source_fps: float = 30.0
     only: tuple[str, ...] = field(default_factory=tuple)
+    profile: bool = False  # py-spy the DecisionServer and ProxyRobot at 1 kHz (bench/profile.py)
 
     @property
     def command_s(self) -> float:
@@ -183,7 +184,7 @@ class Bench:
     def _count_steps(self) -> int:
         p = self.plan
         counts = {"command": 1, "force": len(p.force_rates), "baselines": 2,
-                  "observers": len(p.observer_counts), "estop": 4, "decision": 5,
+                  "observers": len(p.observer_counts), "estop": 4, "decision": 5 + p.profile,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
         return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
@@ -509,6 +510,8 @@ class Bench:
         load (200 RunAction BusyWork on the low lane)."""
         teleop = [f"teleop_{rate}" for rate in self.plan.command_rates]
         self._with_decision_server(teleop + ["teleop_1000_lockstep"], self._teleop)
+        if self.plan.profile:
+            self._with_decision_server(["profile"], self._profile)
         self._teleop_baseline()
         self._with_decision_server(["estop_ds_idle", "estop_ds_busywork"], self._estop_ds)
 
@@ -528,6 +531,28 @@ class Bench:
             body(address)
         finally:
             self.procs.stop(server)
+
+    def _profile(self, address: str) -> None:
+        """Teleoperate at 1 kHz again, with py-spy on the DecisionServer and ProxyRobot."""
+        from bench.profile import Recording
+
+        seconds = self.plan.command_s + 1
+        self.progress.step(f"profile: Teleoperate at 1 kHz for {seconds:.0f} s with py-spy on "
+                           "decision_server and proxy_robot")
+        pids = {child.name: child.pid for child in self.procs.children
+                if child.name in ("decision_server", "proxy_robot")
+                and child.process.poll() is None}
+        recording = Recording(pids, seconds, self.out_dir)
+        try:
+            self._worker("teleop", {"transport": "grpc", "address": address, "shm": self.shm,
+                                    "rates": [1000], "duration_s": self.plan.command_s},
+                         60 + 3 * self.plan.command_s)
+        except ChildFailed as error:
+            self.progress.note(f"profile run failed: {error}")
+        summaries = recording.finish()
+        self.progress.done(f"raw stacks in {', '.join(str(p) for p in recording.paths.values())}")
+        for name, text in summaries.items():
+            print(f"\n== {name}, Teleoperate at 1 kHz: {text}", file=sys.stderr)
 
     def _teleop(self, address: str) -> None:
         plan = self.plan
