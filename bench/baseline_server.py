@@ -362,15 +362,19 @@ def main(argv: list[str] | None = None) -> int:
     try:
         cores.start()
         serve = serve_zmq if args.transport == "zmq" else serve_tcp
-        threads = serve(cores, stop)
-        for thread in threads:
-            thread.start()
-        stop.wait()
-        for thread in threads:
-            thread.join(2.0)
+        _run_until(serve(cores, stop), stop)
     finally:
         cores.close()
     return 0
+
+
+def _run_until(threads: list[threading.Thread], stop: threading.Event) -> None:
+    """Start the serving threads, and join them once `stop` is set."""
+    for thread in threads:
+        thread.start()
+    stop.wait()
+    for thread in threads:
+        thread.join(2.0)
 
 
 def _serve_teleop(args: argparse.Namespace, stop: threading.Event) -> int:
@@ -378,12 +382,7 @@ def _serve_teleop(args: argparse.Namespace, stop: threading.Event) -> int:
     with tempfile.TemporaryDirectory(prefix="baseline_recordings_") as recordings:
         core = DecisionCore(slave, RecordingStore(Path(recordings)))
         try:
-            threads = serve_teleop_zmq(core, stop)
-            for thread in threads:
-                thread.start()
-            stop.wait()
-            for thread in threads:
-                thread.join(2.0)
+            _run_until(serve_teleop_zmq(core, stop), stop)
         finally:
             core.close()
             slave.close()

@@ -39,6 +39,7 @@ import numpy as np
 from google.protobuf import duration_pb2, timestamp_pb2
 
 from bench import framing
+from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldwatch import WorldWatch
 from telerobot.v1 import proxy_robot_pb2, proxy_robot_pb2_grpc, types_pb2
@@ -257,24 +258,12 @@ def run_rate(transport: CommandTransport, watch: WorldWatch, rate_hz: float,
     before = watch.read()
     base_target = float(before["target"][0])
     watch.start()
-    period = 1.0 / rate_hz
     sends, acks, server_applied = [], [], []
-    skipped = failed = 0
+    failed = 0
     failures: list[str] = []
-    start = time.perf_counter() + 0.01
-    tick = 0
-    total_ticks = int(round(duration_s * rate_hz))
+    schedule = Schedule(rate_hz, int(round(duration_s * rate_hz)), lead_s=0.01)
     try:
-        while tick < total_ticks:
-            due = start + tick * period
-            now = time.perf_counter()
-            if now < due:
-                time.sleep(due - now)
-            elif now - due >= period:  # this tick's slot is gone: skip to the current one
-                missed = min(int((now - due) / period), total_ticks - tick)
-                skipped += missed
-                tick += missed
-                continue
+        for _ in schedule:
             sent_ns = time.time_ns()
             try:
                 applied_ns = transport.send(sign)
@@ -282,14 +271,13 @@ def run_rate(transport: CommandTransport, watch: WorldWatch, rate_hz: float,
                 failed += 1
                 if len(failures) < 5:
                     failures.append(str(error))
-                tick += 1
                 continue
             acks.append(time.time_ns() - sent_ns)
             sends.append(sent_ns)
             if applied_ns is not None:
                 server_applied.append((applied_ns - sent_ns) / 1e6)
-            tick += 1
-        elapsed = time.perf_counter() - start
+        elapsed = time.perf_counter() - schedule.start
+        skipped = schedule.skipped
         time.sleep(SETTLE_S)  # the last segment ends
     finally:
         watch.stop()

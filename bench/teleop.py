@@ -46,6 +46,7 @@ from google.protobuf import duration_pb2, timestamp_pb2
 
 from bench import framing
 from bench.command import TELEOP_STEP_M, acquire_control, release_control
+from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldloop import LoopMeter
 from telerobot.v1 import decision_server_pb2 as dpb
@@ -294,27 +295,19 @@ def stream_at_rate(stream: Stream, tracker: AckTracker, sequences: Iterator[int]
     """Send `ticks` commands on absolute deadlines at rate_hz, never waiting for an ack
     (stopping early if the stream ends): (commands sent, ticks skipped for lateness,
     time.time_ns() of the first send)."""
-    period = 1.0 / rate_hz
-    start = time.perf_counter() + 0.005
-    tick = skipped = sent = 0
+    schedule = Schedule(rate_hz, ticks)
+    sent = 0
     first_ns = None
-    while tick < ticks and not tracker.ended.is_set():
-        due = start + tick * period
-        now = time.perf_counter()
-        if now < due:
-            time.sleep(due - now)
-        elif now - due >= period:  # this tick's slot is gone: on to the current one
-            missed = min(int((now - due) / period), ticks - tick)
-            skipped += missed
-            tick += missed
-            continue
+    for _ in schedule:
+        if tracker.ended.is_set():
+            break
         sequence = next(sequences)
         request, sent_ns = _command(sequence, sign)
         tracker.sent(sequence, sent_ns)
         stream.send(request)
         first_ns = first_ns or sent_ns
         sent += 1
-        tick += 1
+    skipped = schedule.skipped
     return sent, skipped, first_ns
 
 
