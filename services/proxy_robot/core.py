@@ -60,8 +60,12 @@ REDUCED_FRACTIONS = (0.5, 0.25)
 # The arm has arrived when every joint is this close to its target and this slow.
 ARRIVAL_TOLERANCE_RAD = 2e-3
 ARRIVAL_SPEED_RAD_PER_S = 2e-2
-# How often the monitor samples the link (state stream, arrival, faults).
-STATE_PERIOD_S = 0.002
+# How often the monitor samples the link (state stream, arrival, faults): 100 Hz, the rate the
+# station's readers take the state at (the DecisionServer follows it every 10 ms). At 500 Hz the
+# monitor's FK and wake-ups competed with the moves it serves: a Teleoperate move's round trip
+# took 3.3-4.8 ms at p50 against 2.4-2.7 at 100 Hz (bench/README.md, Profiles). Stops, holds
+# and faults act at the hardware at once; the status shows them at the next sample.
+STATE_PERIOD_S = 0.01
 TOOL_OFFSET_LIMIT_M = 1.0
 RELEASE_TIMEOUT_S = 0.2  # the hardware applies a release within a servo period or two
 # Hold aims where the arm stops braking this hard: the servo's acceleration cap in the

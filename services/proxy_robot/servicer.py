@@ -36,10 +36,10 @@ STATE_QUEUE = 8  # state samples: only the newest matter to a slow reader
 
 
 class PeriodicSubscription(Subscription[RobotSnapshot]):
-    """State samples at most one per `period_ns` of sample time. The monitor publishes every
-    2 ms; filtering here, in the publisher's thread, spares a subscriber at 100 Hz four
-    wake-ups in five (in a profile under Teleoperate, those wake-ups were a third of
-    ProxyRobot's GIL time)."""
+    """State samples at most one per `period_ns` of sample time. Filtering here, in the
+    publisher's thread, spares a slower subscriber the wake-ups for samples it would drop (when
+    the monitor published every 2 ms, those were a third of ProxyRobot's GIL time in a profile
+    under Teleoperate)."""
 
     def __init__(self, fanout: Fanout[RobotSnapshot], capacity: int, period_ns: int):
         super().__init__(fanout, capacity)

@@ -22,7 +22,7 @@ from tests.fakes.clock import FakeClock
 from tests.in_process import refuse_processes, reject_process_fixtures
 
 TICK_S = interpolator_module.SETPOINT_PERIOD_S  # the setpoint thread's period, 1 ms
-TICKS_PER_SAMPLE = round(core_module.STATE_PERIOD_S / TICK_S)  # the monitor's, 2 ms
+TICKS_PER_SAMPLE = round(core_module.STATE_PERIOD_S / TICK_S)  # the monitor's period
 
 
 HERE = Path(__file__).resolve().parent

@@ -11,6 +11,7 @@ import grpc
 import numpy as np
 import pytest
 
+from services.proxy_robot import core as core_module
 from services.proxy_robot import servicer as servicer_module
 from services.proxy_robot.servicer import ProxyRobotServicer
 from services.proxy_robot.status import RobotStatus
@@ -139,7 +140,7 @@ def test_state_stream_honours_the_period(rig, robot, monkeypatch):
     ready(robot)
     stream = robot.StreamState(pb.StreamStateRequest(period={"nanos": 20_000_000}), timeout=10)
     subscriptions.get(timeout=SUBSCRIBE_TIMEOUT_S)
-    rig.run(0.2)  # 100 samples, 2 ms apart
+    rig.run(0.2)  # 20 samples, 10 ms apart
     stamps = [next(stream).state.sample_time.ToNanoseconds() for _ in range(6)]
     stream.cancel()
     assert np.diff(stamps).tolist() == [20_000_000] * 5
@@ -150,7 +151,7 @@ def test_state_stream_ends_unavailable_when_the_link_drops(rig, robot, monkeypat
     ready(robot)
     stream = robot.StreamState(pb.StreamStateRequest(), timeout=10)
     subscriptions.get(timeout=SUBSCRIBE_TIMEOUT_S)
-    rig.run(0.002)
+    rig.run(core_module.STATE_PERIOD_S)  # one monitor sample
     assert next(stream).state.status == types_pb2.ROBOT_STATUS_READY
     rig.arm.shut_down()
     rig.run_until_status(RobotStatus.NOT_CONNECTED, timeout_s=0.01)
@@ -207,7 +208,7 @@ def test_emergency_stop_and_reset(rig, robot):
 def test_a_stop_latched_at_the_hardware_shows_in_the_status(rig, robot):
     ready(robot)
     rig.arm.emergency_stop_link().stop()  # the band, past the driver
-    rig.run(0.002)
+    rig.run(core_module.STATE_PERIOD_S)  # the monitor's next sample sees the latch
     status = robot.GetStatus(pb.GetStatusRequest())
     assert status.status == types_pb2.ROBOT_STATUS_ESTOPPED
     assert "at the hardware" in status.reason
