@@ -12,11 +12,11 @@ and three threads in the server burn the GIL 1 ms in every 10 (the DecisionServe
 watchdogs and grpcio threads), so the GIL is contended as in the real process. Every server
 hands the GIL over every 1 ms, as the services do.
 
-Seen on the 2-core VM, quiet, 2026-11-23 (ack round trip p50 / p99 at 1 kHz, two runs each):
-sync 1.07 / 8.1, 1.20 / 7.2 and 1.18 / 3.8 ms; aio-inline 1.24 / 6.2 and 1.00 / 4.0 ms;
-aio-executor 60 / 137, 93 / 227 and 229 / 401 ms, with a growing backlog. So grpc.aio pays only when the work runs in the loop
-itself; each hand-over to a thread and back costs a GIL acquisition against busy threads, and
-at 1 kHz those add up to more than the budget.
+Seen on the 2-core VM, quiet, 2026-11-23 (ack round trip p50 / p99 at 1 kHz, in ms):
+sync 1.07 / 8.1, 1.20 / 7.2 and 1.18 / 3.8; aio-inline 1.24 / 6.2 and 1.00 / 4.0; aio-executor
+60 / 137, 93 / 227 and 229 / 401, with a growing backlog. So grpc.aio pays only when the work
+runs in the loop itself: each hand-over to a thread and back costs a GIL acquisition against
+busy threads, and at 1 kHz those add up to more than the budget.
 """
 
 from __future__ import annotations
