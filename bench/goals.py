@@ -101,7 +101,8 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
             if not final and not misses:
                 return {"goal": goal.text(), "pass": None,
                         "misses": [f"waits for {baseline}"]}
-            misses.append(f"{baseline} not measured in this run")
+            misses.append(f"{baseline} not measured in this run" if final
+                          else f"{baseline} not run yet")
         elif p99 is None or p99 > factor * base_p99:
             misses.append(f"p99 {_num(p99)} ms > {factor:g} x {base_p99:.3f}")
     if goal.max_overrun_pct is not None:
