@@ -1,18 +1,25 @@
 """Rotation helpers of the domain: angles, XYZ Euler angles, scaled increments.
 
 The checks and repairs of values received from outside (`finite_vector`, `rotation_matrix`,
-`gram_schmidt`) live in ``wire.checks``, shared with the clients; they are re-exported here.
+`gram_schmidt`) and a fast 3-vector cross product (`cross3`) live in ``wire.checks``, shared
+with the clients; they are re-exported here.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from wire.checks import ROTATION_TOLERANCE, finite_vector, gram_schmidt, rotation_matrix
+from wire.checks import (
+    ROTATION_TOLERANCE,
+    cross3,
+    finite_vector,
+    gram_schmidt,
+    rotation_matrix,
+)
 
 __all__ = [
-    "ROTATION_TOLERANCE", "euler_xyz", "finite_vector", "from_euler_xyz", "gram_schmidt",
-    "rotation_angle", "rotation_matrix", "scale_increment",
+    "ROTATION_TOLERANCE", "cross3", "euler_xyz", "finite_vector", "from_euler_xyz",
+    "gram_schmidt", "rotation_angle", "rotation_matrix", "scale_increment",
 ]
 
 

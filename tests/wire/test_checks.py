@@ -5,7 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from wire.checks import ROTATION_TOLERANCE, finite_vector, gram_schmidt, rotation_matrix
+from wire.checks import (
+    ROTATION_TOLERANCE,
+    cross3,
+    finite_vector,
+    gram_schmidt,
+    rotation_matrix,
+)
 from wire.errors import InvalidArgument
 
 
@@ -73,3 +79,10 @@ def test_gram_schmidt_keeps_the_first_column_and_makes_a_proper_rotation():
     np.testing.assert_allclose(result.T @ result, np.eye(3), atol=1e-12)
     assert np.linalg.det(result) == pytest.approx(1.0)
     np.testing.assert_allclose(result[:, 0], matrix[:, 0] / np.linalg.norm(matrix[:, 0]))
+
+
+def test_the_fast_cross_product_is_numpys_to_the_bit():
+    generator = np.random.default_rng(7)
+    for _ in range(200):
+        a, b = generator.normal(scale=10.0, size=(2, 3))
+        assert np.array_equal(cross3(a, b), np.cross(a, b))
