@@ -1,4 +1,5 @@
-"""Rotation helpers of the domain: angles, XYZ Euler angles, scaled increments.
+"""Rotation helpers of the domain: angles, XYZ Euler angles, scaled increments, and how an
+increment in the base or tool frame moves the tool.
 
 The checks and repairs of values received from outside (`finite_vector`, `rotation_matrix`,
 `gram_schmidt`) and a fast 3-vector cross product (`cross3`) live in ``wire.checks``, shared
@@ -8,6 +9,7 @@ with the clients; they are re-exported here.
 from __future__ import annotations
 
 import numpy as np
+import pinocchio as pin
 
 from wire.checks import (
     ROTATION_TOLERANCE,
@@ -19,7 +21,7 @@ from wire.checks import (
 
 __all__ = [
     "ROTATION_TOLERANCE", "cross3", "euler_xyz", "finite_vector", "from_euler_xyz",
-    "gram_schmidt", "rotation_angle", "rotation_matrix", "scale_increment",
+    "gram_schmidt", "moved_by", "rotation_angle", "rotation_matrix", "scale_increment",
 ]
 
 
@@ -57,3 +59,15 @@ def scale_increment(delta_position: np.ndarray, delta_rotation: np.ndarray,
         return delta_position * translation_scale, delta_rotation
     return (delta_position * translation_scale,
             from_euler_xyz(euler_xyz(delta_rotation) * rotation_scale))
+
+
+def moved_by(tool: pin.SE3, increment: pin.SE3, frame: str) -> pin.SE3:
+    """The tool pose after an increment (ΔM, ΔX) in `frame`, eq. 1: TOOL, in the tool frame
+    (tool · Δ); BASE, translated along the base axes and rotated about the tool point in base
+    axes (R⁺ = ΔM · R, p⁺ = p + ΔX). ProxyRobot moves the arm so; the DecisionServer composes
+    a backlog of increments by it."""
+    if frame == "TOOL":
+        return tool * increment
+    if frame == "BASE":
+        return pin.SE3(increment.rotation @ tool.rotation, tool.translation + increment.translation)
+    raise ValueError(f"an increment moves the tool in the BASE or TOOL frame, not {frame!r}")

@@ -30,6 +30,7 @@ import numpy as np
 import pinocchio as pin
 
 from services.common.fanout import Fanout
+from services.common.geometry import moved_by, rotation_angle
 from services.decision_server.arbitration import ControlView, Lease, LockManager
 from services.decision_server.assistance import Assistance, apply_assistance
 from services.decision_server.cobegin import Barriers, SimulatedProcessor
@@ -144,7 +145,7 @@ def merge_groups(increments: list[MasterIncrement]) -> list[list[MasterIncrement
     translation = rotation = 0.0
     for increment in increments:
         size = float(np.linalg.norm(increment.delta_position))
-        angle = float(np.linalg.norm(pin.log3(increment.delta_rotation)))
+        angle = rotation_angle(increment.delta_rotation)
         group = groups[-1] if groups else None
         if (group is not None and group[0].clutch_engaged == increment.clutch_engaged
                 and len(group) < MAX_MERGED_COMMANDS
@@ -158,16 +159,9 @@ def merge_groups(increments: list[MasterIncrement]) -> list[list[MasterIncrement
     return groups
 
 
-def moved_by(tool: pin.SE3, step: pin.SE3, mapping: str) -> pin.SE3:
-    """The tool pose after an increment in the mapping frame, as ProxyRobot applies it: in the
-    tool frame, or (BASE) translated in the base frame and rotated about the tool point."""
-    if mapping == "TOOL":
-        return tool * step
-    return pin.SE3(step.rotation @ tool.rotation, tool.translation + step.translation)
-
-
 def compose(first: pin.SE3, then: pin.SE3, mapping: str) -> pin.SE3:
-    """One increment with the effect of `first` followed by `then` (see `moved_by`)."""
+    """One increment with the effect of `first` followed by `then` (see
+    services.common.geometry.moved_by)."""
     if mapping == "TOOL":
         return first * then
     return pin.SE3(then.rotation @ first.rotation, first.translation + then.translation)

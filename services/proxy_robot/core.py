@@ -28,7 +28,7 @@ import numpy as np
 import pinocchio as pin
 
 from services.common.fanout import Fanout
-from services.common.geometry import finite_vector, rotation_angle
+from services.common.geometry import finite_vector, moved_by, rotation_angle
 from services.proxy_robot.interpolator import SetpointInterpolator
 from services.proxy_robot.status import (
     MOTION_STATUSES,
@@ -290,13 +290,11 @@ class ProxyRobotCore:
 
     def _apply_increment(self, q: np.ndarray, tool: pin.SE3, delta: pin.SE3,
                          frame: str) -> pin.SE3:
-        if frame == "TOOL":
-            return tool * delta
+        if frame in ("TOOL", "BASE"):
+            return moved_by(tool, delta, frame)
         if frame == "WRIST":
             flange = self._move_kinematics.flange_pose(q)
             return flange * delta * self._tool_frame
-        if frame == "BASE":
-            return pin.SE3(delta.rotation @ tool.rotation, tool.translation + delta.translation)
         raise InvalidArgument(f"unknown frame {frame!r}: use BASE, WRIST or TOOL",
                               reason="BAD_FRAME")
 
