@@ -5,7 +5,7 @@ IForceSensor). Reads requests, calls DecisionCore, converts answers and errors."
 from __future__ import annotations
 
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import grpc
 import numpy as np
@@ -174,11 +174,30 @@ def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
 
 # -- DecisionServer ---------------------------------------------------------------------------
 
+class _LastConverted:
+    """`convert(sample)`, computed once for the last sample seen (by identity). The (sample,
+    message) pair is swapped in whole, so concurrent streams always read a consistent one."""
+
+    def __init__(self, convert: Callable):
+        self._convert = convert
+        self._last: tuple[object, object] = (None, None)
+
+    def __call__(self, sample):
+        seen, message = self._last
+        if seen is not sample:
+            message = self._convert(sample)
+            self._last = (sample, message)
+        return message
+
+
 class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
     def __init__(self, core: DecisionCore):
         self._core = core
-        self._last_pose: tuple[object, types_pb2.Pose | None] = (None, None)
-        self._last_wrench: tuple[object, types_pb2.Wrench | None] = (None, None)
+        # The state and the wrench change at 100 Hz, acks go out at up to 1 kHz: each sample
+        # is converted once, for every ack that carries it.
+        self._pose_of = _LastConverted(lambda state: convert.pose_to_proto(state.tool_pose))
+        self._wrench_of = _LastConverted(
+            lambda wrench: convert.wrench_to_proto(wrench.force_n, wrench.torque_nm))
 
     def _ack(self, sequence: int, send_time, result: CommandResult) -> pb.TeleoperateResponse:
         ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
@@ -195,23 +214,6 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if wrench is not None:
             ack.tool_wrench.CopyFrom(self._wrench_of(wrench))
         return pb.TeleoperateResponse(ack=ack)
-
-    # The state and the wrench change at 100 Hz, acks go out at up to 1 kHz: each sample is
-    # converted once, for every ack that carries it. (A (sample, message) pair is swapped in
-    # whole, so concurrent streams read a consistent one.)
-    def _pose_of(self, state) -> types_pb2.Pose:
-        seen, message = self._last_pose
-        if seen is not state:
-            message = convert.pose_to_proto(state.tool_pose)
-            self._last_pose = (state, message)
-        return message
-
-    def _wrench_of(self, wrench) -> types_pb2.Wrench:
-        seen, message = self._last_wrench
-        if seen is not wrench:
-            message = convert.wrench_to_proto(wrench.force_n, wrench.torque_nm)
-            self._last_wrench = (wrench, message)
-        return message
 
     def Teleoperate(self, request_iterator, context):
         first = next(request_iterator, None)
