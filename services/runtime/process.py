@@ -74,14 +74,16 @@ def run_service(
     build: Callable[[argparse.Namespace], Service],
     argv: Sequence[str] | None = None,
     add_arguments: Callable[[argparse.ArgumentParser], None] | None = None,
+    switch_interval_s: float = GIL_SWITCH_INTERVAL_S,
 ) -> int:
-    """Run the service `name` until SIGINT/SIGTERM; returns the process exit code."""
+    """Run the service `name` until SIGINT/SIGTERM; returns the process exit code.
+    `switch_interval_s` is the process's GIL switch interval (the world's is shorter)."""
     parser = base_parser(name, description)
     if add_arguments:
         add_arguments(parser)
     args = parser.parse_args(argv)
     configure_logging(name, args.log_level)
-    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
+    sys.setswitchinterval(switch_interval_s)
 
     stop = threading.Event()
     _install_signal_handlers(stop)

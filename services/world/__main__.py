@@ -9,7 +9,6 @@ from __future__ import annotations
 import argparse
 import os
 import signal
-import sys
 
 from services.runtime.config import env_name
 from services.runtime.process import run_service
@@ -34,7 +33,6 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
     built: list[WorldService] = []
 
     def build(args: argparse.Namespace) -> WorldService:
@@ -46,7 +44,7 @@ def main(argv: list[str] | None = None) -> int:
         return service
 
     code = run_service("world", "The simulated PUMA 560 and wrist sensor (shared-memory link).",
-                       build, argv, _add_arguments)
+                       build, argv, _add_arguments, switch_interval_s=GIL_SWITCH_INTERVAL_S)
     if code == 0 and built and built[0].failed:
         return 1
     return code
