@@ -8,7 +8,7 @@ PROTOS := $(wildcard protos/telerobot/v1/*.proto)
 GEN_OUT ?= gen
 export MUJOCO_GL ?= egl
 
-.PHONY: install gen lint test serve teleop bench clean
+.PHONY: install gen lint test serve teleop bench certs clean
 
 install: $(VENV)/.installed node_modules/.installed
 
@@ -48,6 +48,13 @@ serve: $(VENV)/.installed
 # station if none answers. Artifacts land in runs/teleop-<time>/.
 teleop: $(VENV)/.installed
 	$(PY) -m clients.teleop $(TELEOP_ARGS)
+
+# A development PKI in var/pki: a CA, a certificate per service and per identity (admin,
+# operator, observer). HOSTS="name 10.0.0.2" adds names the servers answer on; FORCE=1 makes a
+# new CA. Then: TELEROBOT_TLS_DIR=var/pki make serve (and the same for make teleop).
+certs: $(VENV)/.installed
+	$(PY) -m services.security.pki --dir var/pki $(foreach h,$(HOSTS),--host $(h)) \
+		$(if $(filter-out 0,$(FORCE)),--force)
 
 bench: $(VENV)/.installed
 	@test $(VENV)/.installed-bench -nt pyproject.toml || { \

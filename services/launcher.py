@@ -30,6 +30,7 @@ import signal
 import sys
 import threading
 import time
+from pathlib import Path
 
 import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
@@ -38,6 +39,8 @@ from services.runtime import children
 from services.runtime.children import Child, ChildFailed
 from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
 from services.runtime.process import parse_ready_line, ready_line, watch_parent
+from services.runtime.tls import station_channel_security
+from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, open_channel
 
 log = logging.getLogger("launcher")
 
@@ -58,8 +61,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--grace-s", type=float, default=DEFAULT_GRACE_S,
                         help="how long each service may drain in-flight calls on stop")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
+    parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
+                        help=f"run every service with mutual TLS from this directory (env "
+                             f"{TLS_DIR_ENV}; `make certs` writes var/pki)")
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
+    health_security = station_channel_security(args.tls_dir or None, "launcher")
 
     stop = threading.Event()  # SIGINT, SIGTERM, or the parent gone
     wake = threading.Event()  # a stop request, or a child ended
@@ -79,6 +86,8 @@ def main(argv: list[str] | None = None) -> int:
     watch_parent(lambda: request_stop("the parent process is gone"), stop)
 
     env = {"TELEROBOT_GRACE_S": str(args.grace_s)}
+    if args.tls_dir:
+        env[TLS_DIR_ENV] = str(Path(args.tls_dir).resolve())
     station: list[Child] = []
     try:
         # One at a time: a service starts once the ones it depends on answer, so its first
@@ -89,7 +98,7 @@ def main(argv: list[str] | None = None) -> int:
                                    on_exit=lambda _child: wake.set())
             station.append(child)
             try:
-                address = _wait_until_serving(child, stop)
+                address = _wait_until_serving(child, stop, health_security)
             except ChildFailed as failed:
                 log.error("start-up failed: %s", failed)
                 return 1
@@ -101,7 +110,7 @@ def main(argv: list[str] | None = None) -> int:
             print(ready_line(name, address), flush=True)
         if stop.is_set():
             return 0
-        _print_banner(station)
+        _print_banner(station, args.tls_dir)
         dead = _supervise(station, stop, wake)
         if dead is not None:
             log.error("%s\nstopping the whole station (see the launcher's docstring for why)",
@@ -119,12 +128,13 @@ def _forward(_child: Child, line: str) -> None:
         print(line, file=sys.stderr, flush=True)
 
 
-def _wait_until_serving(child: Child, stop: threading.Event) -> str | None:
+def _wait_until_serving(child: Child, stop: threading.Event,
+                        security: ChannelSecurity) -> str | None:
     """The child's address once it printed its ready line and answers its health check with
     SERVING; None if a stop was requested first; ChildFailed if it died or took too long."""
     deadline = time.monotonic() + STARTUP_TIMEOUT_S
     address = child.wait_ready(timeout_s=STARTUP_TIMEOUT_S, cancel=stop)
-    while address is not None and not _is_serving(address):
+    while address is not None and not _is_serving(address, security):
         if child.returncode is not None:
             raise ChildFailed(child.describe())
         if time.monotonic() > deadline:
@@ -137,9 +147,9 @@ def _wait_until_serving(child: Child, stop: threading.Event) -> str | None:
     return address
 
 
-def _is_serving(address: str) -> bool:
+def _is_serving(address: str, security: ChannelSecurity) -> bool:
     try:
-        with grpc.insecure_channel(address) as channel:
+        with open_channel(address, security=security) as channel:
             reply = health_pb2_grpc.HealthStub(channel).Check(
                 health_pb2.HealthCheckRequest(service=""), timeout=1.0)
         return reply.status == health_pb2.HealthCheckResponse.SERVING
@@ -160,22 +170,35 @@ def _supervise(station: list[Child], stop: threading.Event,
             return dead
 
 
-def _print_banner(station: list[Child]) -> None:
+def _print_banner(station: list[Child], tls_dir: str) -> None:
     operator = next(c.address for c in station if c.name == "decision_server")
     width = max(len(c.name) for c in station)
-    lines = ["", f"{UP_LINE}. Ctrl-C stops it.", ""]
+    lines = ["", f"{UP_LINE}{' with mutual TLS' if tls_dir else ''}. Ctrl-C stops it.", ""]
     lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.pid})" for c in station]
-    lines += [
-        "",
-        f"The operator's address is {operator} (set {env_name('decision_server', 'address')} "
-        "to move it). Try:",
-        f"  grpcurl -plaintext {operator} list",
-        f"  grpcurl -plaintext {operator} grpc.health.v1.Health/Check",
-        "or, without grpcurl:",
-        f"  npx buf curl --protocol grpc --http2-prior-knowledge --list-methods http://{operator}",
-        "",
-    ]
-    print("\n".join(lines), flush=True)
+    lines += ["", f"The operator's address is {operator} (set "
+                  f"{env_name('decision_server', 'address')} to move it). Try:"]
+    if tls_dir:
+        pki = tls_dir.rstrip("/")
+        files = (f"{pki}/ca.pem", f"{pki}/operator.pem", f"{pki}/operator.key")
+        grpcurl = "grpcurl -cacert {} -cert {} -key {}".format(*files)
+        lines += [
+            f"  {grpcurl} {operator} list",
+            f"  {grpcurl} {operator} grpc.health.v1.Health/Check",
+            "or, without grpcurl:",
+            "  npx buf curl --protocol grpc --list-methods --cacert {} --cert {} --key {} "
+            .format(*files) + f"https://{operator}",
+            f"Clients: {TLS_DIR_ENV}={pki} (and {IDENTITY_ENV}=observer|operator|admin) "
+            "make teleop",
+        ]
+    else:
+        lines += [
+            f"  grpcurl -plaintext {operator} list",
+            f"  grpcurl -plaintext {operator} grpc.health.v1.Health/Check",
+            "or, without grpcurl:",
+            f"  npx buf curl --protocol grpc --http2-prior-knowledge --list-methods "
+            f"http://{operator}",
+        ]
+    print("\n".join([*lines, ""]), flush=True)
 
 
 if __name__ == "__main__":

@@ -85,6 +85,18 @@ class Cancelled(TelerobotError):
     status_name = "CANCELLED"
 
 
+class Unauthenticated(TelerobotError):
+    """No identity the server can trust: a bad, expired or revoked token, or none."""
+
+    status_name = "UNAUTHENTICATED"
+
+
+class PermissionDenied(TelerobotError):
+    """A known identity that may not do this: its role is too low, or the lease is another's."""
+
+    status_name = "PERMISSION_DENIED"
+
+
 def error_for_status(status_name: str, message: str, reason: str | None = None) -> TelerobotError:
     """The domain error for a gRPC status name ("OUT_OF_RANGE"), so an error that came back from
     another service can be raised again without the domain importing grpc."""

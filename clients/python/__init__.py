@@ -35,6 +35,7 @@ from clients.python.errors import (
     ResourceExhaustedError,
     RpcCancelledError,
     TelerobotRpcError,
+    UnauthenticatedError,
     UnavailableError,
     UnimplementedError,
 )
@@ -78,6 +79,7 @@ __all__ = [
     "AbortedError", "AlreadyExistsError", "DeadlineExceededError", "FailedPreconditionError",
     "InternalError", "InvalidArgumentError", "NotFoundError", "OutOfRangeError",
     "PermissionDeniedError", "ResourceExhaustedError", "RpcCancelledError", "TelerobotRpcError",
+    "UnauthenticatedError",
     "UnavailableError", "UnimplementedError",
     "Ack", "ActionRun", "BusyWork", "CartesianIncrement", "Cobegin", "CommandOutcome",
     "ControlMode", "ImageEncoding", "JointIncrement", "Lane", "Lease", "MoveResult", "Pose",

@@ -17,6 +17,9 @@ Conventions:
   forever). Streams have no deadline unless one is given.
 - ``lane`` on every method: "emergency", "high", "medium" or "low", sent as
   ``telerobot-lane`` metadata; None sends none and the server uses the RPC's declared lane.
+- ``security``: how an owned channel authenticates (``wire.tls.ChannelSecurity``); None takes
+  it from the environment: ``TELEROBOT_TLS_DIR`` with ``TELEROBOT_IDENTITY`` (a client
+  certificate) or ``TELEROBOT_TOKEN`` (a bearer token), plaintext when unset.
 - ``lease``: a lease id (or a function returning the current one) sent as
   ``telerobot-lease-id`` metadata on every call, which is what commanding calls need on the
   DecisionServer's port. Reads ignore it; ProxyRobot and ForceSensor on their own ports too.
@@ -43,6 +46,7 @@ import grpc
 from clients.python.errors import UnavailableError, from_rpc_error
 from wire.addresses import address_for
 from wire.metadata import LANE_METADATA_KEY, LANES, LEASE_METADATA_KEY
+from wire.tls import ChannelSecurity, open_channel
 
 DEFAULT_TIMEOUT_S = 5.0
 # No retries of any kind: a motion command must never be sent twice behind the caller's back.
@@ -62,16 +66,17 @@ class _ClientCore:
 
     def _setup(self, target, *, lease: LeaseSource, lane: str | None,
                default_timeout: float | None, options: Sequence[tuple[str, Any]],
-               channel_factory) -> None:
+               security: ChannelSecurity | None, aio: bool) -> None:
         if lane is not None:
             _check_lane(lane)
         self.default_timeout = default_timeout
         self.lane = lane
+        self.security = security  # None: from the environment
         self._lease = lease
         if target is None or isinstance(target, str):
             self.address = target or address_for(self.ADDRESS_NAME)
-            self._channel = channel_factory(
-                self.address, options=[*CHANNEL_OPTIONS, *self.EXTRA_OPTIONS, *options])
+            self._channel = open_channel(
+                self.address, [*CHANNEL_OPTIONS, *self.EXTRA_OPTIONS, *options], security, aio)
             self._owns_channel = True
         else:
             self.address = None
@@ -170,9 +175,10 @@ class SyncClient(_ClientCore):
 
     def __init__(self, target: str | grpc.Channel | None = None, *, lease: LeaseSource = None,
                  lane: str | None = None, default_timeout: float | None = DEFAULT_TIMEOUT_S,
-                 options: Sequence[tuple[str, Any]] = ()):
+                 options: Sequence[tuple[str, Any]] = (),
+                 security: ChannelSecurity | None = None):
         self._setup(target, lease=lease, lane=lane, default_timeout=default_timeout,
-                    options=options, channel_factory=grpc.insecure_channel)
+                    options=options, security=security, aio=False)
 
     def _unary(self, name: str, request, convert: Callable[[Any], Any],
                timeout: float | None, lane: str | None):
@@ -274,9 +280,10 @@ class AsyncClient(_ClientCore):
     def __init__(self, target: str | grpc.aio.Channel | None = None, *,
                  lease: LeaseSource = None, lane: str | None = None,
                  default_timeout: float | None = DEFAULT_TIMEOUT_S,
-                 options: Sequence[tuple[str, Any]] = ()):
+                 options: Sequence[tuple[str, Any]] = (),
+                 security: ChannelSecurity | None = None):
         self._setup(target, lease=lease, lane=lane, default_timeout=default_timeout,
-                    options=options, channel_factory=grpc.aio.insecure_channel)
+                    options=options, security=security, aio=True)
 
     async def _unary(self, name: str, request, convert: Callable[[Any], Any],
                      timeout: float | None, lane: str | None):

@@ -84,6 +84,7 @@ from clients.python.values import (
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
 from wire import convert
+from wire.tls import ChannelSecurity
 
 log = logging.getLogger(__name__)
 
@@ -679,7 +680,8 @@ class _DecisionMethods:
         if name not in self._facades:
             target = self.address if own_channel and self.address else self.channel
             self._facades[name] = cls(target, lease=self._held_lease_id, lane=self.lane,
-                                      default_timeout=self.default_timeout)
+                                      default_timeout=self.default_timeout,
+                                      security=self.security)
         return self._facades[name]
 
     def emergency_stop(self, reason: str = "", *, timeout: float | None = None,
@@ -700,10 +702,11 @@ class DecisionClient(_DecisionMethods, SyncClient):
 
     def __init__(self, target: str | grpc.Channel | None = None, *, lane: str | None = None,
                  default_timeout: float | None = DEFAULT_TIMEOUT_S,
-                 options: Sequence[tuple[str, Any]] = (), release_on_close: bool = True):
+                 options: Sequence[tuple[str, Any]] = (), release_on_close: bool = True,
+                 security: ChannelSecurity | None = None):
         self._init_decision(release_on_close)
         super().__init__(target, lease=self._held_lease_id, lane=lane,
-                         default_timeout=default_timeout, options=options)
+                         default_timeout=default_timeout, options=options, security=security)
 
     @property
     def robot(self) -> ProxyRobotClient:
@@ -754,10 +757,11 @@ class AsyncDecisionClient(_DecisionMethods, AsyncClient):
 
     def __init__(self, target: str | grpc.aio.Channel | None = None, *,
                  lane: str | None = None, default_timeout: float | None = DEFAULT_TIMEOUT_S,
-                 options: Sequence[tuple[str, Any]] = (), release_on_close: bool = True):
+                 options: Sequence[tuple[str, Any]] = (), release_on_close: bool = True,
+                 security: ChannelSecurity | None = None):
         self._init_decision(release_on_close)
         super().__init__(target, lease=self._held_lease_id, lane=lane,
-                         default_timeout=default_timeout, options=options)
+                         default_timeout=default_timeout, options=options, security=security)
 
     @property
     def robot(self) -> AsyncProxyRobotClient:

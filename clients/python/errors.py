@@ -97,7 +97,12 @@ class RpcCancelledError(TelerobotRpcError):
 
 
 class PermissionDeniedError(TelerobotRpcError):
-    """Not allowed."""
+    """Not allowed: the identity's role is too low (the message names the role needed), or
+    the lease is another identity's."""
+
+
+class UnauthenticatedError(TelerobotRpcError):
+    """No identity the server trusts: a bad, expired or revoked token, or none."""
 
 
 class InternalError(TelerobotRpcError):
@@ -117,6 +122,7 @@ _BY_CODE: dict[grpc.StatusCode, type[TelerobotRpcError]] = {
     grpc.StatusCode.UNIMPLEMENTED: UnimplementedError,
     grpc.StatusCode.CANCELLED: RpcCancelledError,
     grpc.StatusCode.PERMISSION_DENIED: PermissionDeniedError,
+    grpc.StatusCode.UNAUTHENTICATED: UnauthenticatedError,
     grpc.StatusCode.INTERNAL: InternalError,
 }
 

@@ -12,6 +12,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from services.runtime import children
 from services.runtime.children import ChildFailed
 from services.runtime.config import env_name
+from wire.tls import open_channel
 
 STARTUP_TIMEOUT_S = 90.0
 STOP_TIMEOUT_S = 10.0  # after SIGINT, the launcher drains every service well within this
@@ -19,7 +20,7 @@ STOP_TIMEOUT_S = 10.0  # after SIGINT, the launcher drains every service well wi
 
 def serving(address: str, timeout_s: float = 1.0) -> bool:
     try:
-        with grpc.insecure_channel(address) as channel:
+        with open_channel(address) as channel:  # TLS as the environment says
             reply = health_pb2_grpc.HealthStub(channel).Check(
                 health_pb2.HealthCheckRequest(), timeout=timeout_s)
         return reply.status == health_pb2.HealthCheckResponse.SERVING

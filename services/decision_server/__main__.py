@@ -23,7 +23,9 @@ from services.runtime.config import address_for
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
+from services.runtime.tls import station_channel_security
 from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
+from wire.tls import open_channel
 
 # Waiting for a lock or at a cobegin barrier holds a medium-lane thread, so give it more.
 LANES = {**DEFAULT_LANES,
@@ -34,15 +36,18 @@ LANES = {**DEFAULT_LANES,
 class DecisionService:
     args: argparse.Namespace
     lanes: dict = field(default_factory=lambda: LANES)
+    operator_door = True  # the one port that takes operators' commands (see services.runtime)
     core: DecisionCore | None = None
     _stereo_channel: grpc.Channel | None = None
 
     def bindings(self) -> Sequence[ServiceBinding]:
+        # The inner links present the DecisionServer's own certificate when TLS is on.
+        security = station_channel_security(self.args.tls_dir or None, "decision_server")
         slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address,
-                          self.args.emergency_stop_address or None)
+                          self.args.emergency_stop_address or None, security)
         self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir)))
-        self._stereo_channel = grpc.insecure_channel(self.args.stereo_camera_address,
-                                                     options=RECONNECT_OPTIONS)
+        self._stereo_channel = open_channel(self.args.stereo_camera_address,
+                                            RECONNECT_OPTIONS, security)
         stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
         return [binding(decision_server_pb2_grpc, "DecisionServer",
                         DecisionServerServicer(self.core)),

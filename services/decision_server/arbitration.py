@@ -6,6 +6,12 @@ a waiter) or fails at once, as the caller chooses. Every lock is a lease: it exp
 its holder renews it or uses it (each authorized call renews it), so a crashed operator never
 blocks the arm for longer than one lease. No gRPC here.
 
+A lease belongs to the identity that took it. When the server authenticates its callers (TLS),
+the holder is the caller's identity (services.security.caller), not the request's operator_id,
+and a lease id presented by anyone else is refused with PermissionDenied; only an admin may
+release another's lease. Without authentication (plaintext on loopback) the holder is the
+operator_id the client gives, as in the papers.
+
 Time comes from a Clock (services/runtime/clock.py): lease deadlines, wait deadlines and the
 reaper's period are all on its monotonic scale. A lease is valid up to its deadline and gone
 after it: every call sweeps expired leases before it looks, and a reaper sweeps when nobody
@@ -29,7 +35,10 @@ from services.runtime.errors import (
     FailedPrecondition,
     InvalidArgument,
     NotFound,
+    PermissionDenied,
 )
+from services.security.caller import Caller, current_caller
+from services.security.roles import Role
 
 DEFAULT_LEASE_S = 5.0
 MIN_LEASE_S, MAX_LEASE_S = 0.1, 60.0
@@ -50,6 +59,7 @@ class Lease:
     group: str
     duration_s: float
     expires_at: float  # on the LockManager's clock.monotonic() scale
+    identity: str | None = None  # the authenticated holder; None when nobody is authenticated
 
 
 @dataclass
@@ -59,6 +69,7 @@ class _Waiter:
     group: str
     duration_s: float
     deadline: float  # clock.monotonic()
+    identity: str | None = None
     granted: Lease | None = None
     ready: threading.Event = field(default_factory=threading.Event)
 
@@ -93,7 +104,11 @@ class LockManager:
 
     def acquire(self, operator_id: str, mode: ControlMode, group: str = "", wait: bool = False,
                 wait_timeout_s: float | None = None, lease_s: float = DEFAULT_LEASE_S) -> Lease:
-        """Grant a lease now, or queue for one (wait=True), or fail with Aborted."""
+        """Grant a lease now, or queue for one (wait=True), or fail with Aborted. An
+        authenticated caller holds it as its identity, whatever `operator_id` says."""
+        caller = current_caller()
+        identity = caller.identity if caller is not None else None
+        operator_id = identity or operator_id
         if not operator_id:
             raise InvalidArgument("operator_id is required: say who you are",
                                   reason="NO_OPERATOR")
@@ -104,11 +119,11 @@ class LockManager:
         with self._lock:
             expired = self._expire()
             if not self._queue and self._compatible(mode, group):
-                lease = self._grant(operator_id, mode, group, lease_s)
+                lease = self._grant(operator_id, mode, group, lease_s, identity)
             elif wait:
                 deadline = (self._clock.monotonic()
                             + min(wait_timeout_s or MAX_WAIT_S, MAX_WAIT_S))
-                waiter = _Waiter(operator_id, mode, group, lease_s, deadline)
+                waiter = _Waiter(operator_id, mode, group, lease_s, deadline, identity)
                 self._queue.append(waiter)
             else:
                 holders = self._describe_holders()
@@ -135,9 +150,12 @@ class LockManager:
         with self._lock:
             expired = self._expire()
             lease = self._holders.get(lease_id)
-            if lease is not None:
+            refusal = _not_the_holder(lease, current_caller())
+            if lease is not None and refusal is None:
                 lease.expires_at = self._clock.monotonic() + lease.duration_s
         self._notify(expired)
+        if refusal is not None:
+            raise refusal
         if lease is None:
             raise NotFound("no such lease (it expired or was released): acquire control "
                            "again", reason="NO_LEASE")
@@ -146,9 +164,14 @@ class LockManager:
     def release(self, lease_id: str) -> None:
         with self._lock:
             expired = self._expire()
-            lease = self._holders.pop(lease_id, None)
-            if lease is not None:
+            lease = self._holders.get(lease_id)
+            refusal = _not_the_holder(lease, current_caller(), admin_may=True)
+            if lease is not None and refusal is None:
+                del self._holders[lease_id]
                 self._promote()
+        if refusal is not None:
+            self._notify(expired)
+            raise refusal
         if lease is None:
             self._notify(expired)
             raise NotFound("no such lease (it expired or was released)", reason="NO_LEASE")
@@ -159,10 +182,13 @@ class LockManager:
         with self._lock:
             expired = self._expire()
             lease = self._holders.get(lease_id or "")
-            if lease is not None:
+            refusal = _not_the_holder(lease, current_caller())
+            if lease is not None and refusal is None:
                 lease.expires_at = self._clock.monotonic() + lease.duration_s
             holders = self._describe_holders()
         self._notify(expired)
+        if refusal is not None:
+            raise refusal
         if lease is not None:
             return lease
         hint = "send the lease id from AcquireControl in the telerobot-lease-id metadata key"
@@ -194,9 +220,10 @@ class LockManager:
             h.mode == ControlMode.COLLABORATIVE and h.group == group
             for h in self._holders.values())
 
-    def _grant(self, operator_id: str, mode: ControlMode, group: str, lease_s: float) -> Lease:
+    def _grant(self, operator_id: str, mode: ControlMode, group: str, lease_s: float,
+               identity: str | None) -> Lease:
         lease = Lease(uuid.uuid4().hex, operator_id, mode, group, lease_s,
-                      self._clock.monotonic() + lease_s)
+                      self._clock.monotonic() + lease_s, identity)
         self._holders[lease.lease_id] = lease
         return lease
 
@@ -205,7 +232,7 @@ class LockManager:
         while self._queue and self._compatible(self._queue[0].mode, self._queue[0].group):
             waiter = self._queue.pop(0)
             waiter.granted = self._grant(waiter.operator_id, waiter.mode, waiter.group,
-                                         waiter.duration_s)
+                                         waiter.duration_s, waiter.identity)
             waiter.ready.set()
 
     def _expire(self) -> list[str]:
@@ -253,3 +280,16 @@ class LockManager:
             with self._lock:
                 expired = self._expire()
             self._notify(expired)
+
+
+def _not_the_holder(lease: Lease | None, caller: Caller | None,
+                    admin_may: bool = False) -> PermissionDenied | None:
+    """The refusal for an authenticated caller presenting another identity's lease; None when
+    the caller may use it."""
+    if (lease is None or caller is None or lease.identity is None
+            or caller.identity == lease.identity or (admin_may and caller.role >= Role.ADMIN)):
+        return None
+    return PermissionDenied(
+        f"this lease belongs to {lease.identity!r}, not to {caller.identity!r}: acquire "
+        "control as yourself" + (" (an admin may release it)" if admin_may else ""),
+        reason="NOT_YOUR_LEASE")

@@ -26,6 +26,7 @@ from telerobot.v1 import (
     types_pb2,
 )
 from wire.metadata import LANE_METADATA_KEY, LEASE_METADATA_KEY
+from wire.tls import ChannelSecurity, open_channel
 
 log = logging.getLogger(__name__)
 
@@ -85,16 +86,21 @@ class GrpcSlave:
     each state sample to `on_state` and each event to `on_robot_event`."""
 
     def __init__(self, proxy_address: str, sensor_address: str,
-                 emergency_stop_address: str | None = None):
-        self.robot_channel = grpc.insecure_channel(proxy_address, options=RECONNECT_OPTIONS)
-        self.sensor_channel = grpc.insecure_channel(sensor_address, options=RECONNECT_OPTIONS)
+                 emergency_stop_address: str | None = None,
+                 security: ChannelSecurity | None = None):
+        security = security or ChannelSecurity()  # plaintext unless told
+
+        def channel(address: str) -> grpc.Channel:
+            return open_channel(address, RECONNECT_OPTIONS, security)
+
+        self.robot_channel = channel(proxy_address)
+        self.sensor_channel = channel(sensor_address)
         self.robot = proxy_robot_pb2_grpc.ProxyRobotStub(self.robot_channel)
         self.sensor = force_sensor_pb2_grpc.ForceSensorStub(self.sensor_channel)
         # The emergency-stop band (services/emergency_stop): the same EmergencyStop contract,
         # in a process that no ProxyRobot load can delay.
-        self.emergency_channel = (grpc.insecure_channel(emergency_stop_address,
-                                                        options=RECONNECT_OPTIONS)
-                                  if emergency_stop_address else None)
+        self.emergency_channel = channel(emergency_stop_address) if emergency_stop_address \
+            else None
         self.emergency = (proxy_robot_pb2_grpc.ProxyRobotStub(self.emergency_channel)
                           if self.emergency_channel is not None else None)
         self.on_state: Callable[[SlaveState], None] = lambda state: None

@@ -17,6 +17,10 @@ from services.runtime.lanes import Lane
 from wire.addresses import DEFAULT_HOST as DEFAULT_HOST  # re-exported
 from wire.addresses import DEFAULT_PORTS as DEFAULT_PORTS  # re-exported
 from wire.addresses import address_for, env_name
+from wire.tls import TLS_DIR_ENV
+
+# Set to 1: a service listens without TLS beyond loopback (and warns). Loudly named on purpose.
+PLAINTEXT_ENV = "TELEROBOT_ALLOW_PLAINTEXT_NETWORK"
 
 DEFAULT_GRACE_S = 2.0
 
@@ -37,6 +41,22 @@ def base_parser(service: str, description: str) -> argparse.ArgumentParser:
         "--grace-s", type=float,
         default=float(os.environ.get("TELEROBOT_GRACE_S", DEFAULT_GRACE_S)),
         help="on SIGINT/SIGTERM, how long in-flight calls may finish (env TELEROBOT_GRACE_S)",
+    )
+    parser.add_argument(
+        "--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
+        help=f"serve mutual TLS with <name>.pem/.key and ca.pem from this directory (env "
+             f"{TLS_DIR_ENV}; `make certs` writes var/pki); unset: plaintext, loopback only",
+    )
+    parser.add_argument(
+        "--token-address", default=os.environ.get(env_name(service, "token_address"), ""),
+        help="with --tls-dir, also listen here (TLS without client certificates) for callers "
+             f"with bearer tokens (env {env_name(service, 'token_address')})",
+    )
+    parser.add_argument(
+        "--allow-plaintext-network", action="store_true",
+        default=os.environ.get(PLAINTEXT_ENV, "") == "1",
+        help="DANGEROUS: listen without TLS on a non-loopback address, so that anyone who "
+             f"reaches the port can command the arm (env {PLAINTEXT_ENV}=1)",
     )
     parser.add_argument(
         "--client-lane-limit", type=Lane.parse,

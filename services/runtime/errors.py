@@ -16,8 +16,10 @@ from wire.errors import (
     InvalidArgument,
     NotFound,
     OutOfRange,
+    PermissionDenied,
     ResourceExhausted,
     TelerobotError,
+    Unauthenticated,
     Unavailable,
     Unimplemented,
     error_for_status,
@@ -25,6 +27,6 @@ from wire.errors import (
 
 __all__ = [
     "Aborted", "AlreadyExists", "Cancelled", "DeadlineExceeded", "FailedPrecondition",
-    "InvalidArgument", "NotFound", "OutOfRange", "ResourceExhausted", "TelerobotError",
-    "Unavailable", "Unimplemented", "error_for_status",
+    "InvalidArgument", "NotFound", "OutOfRange", "PermissionDenied", "ResourceExhausted",
+    "TelerobotError", "Unauthenticated", "Unavailable", "Unimplemented", "error_for_status",
 ]

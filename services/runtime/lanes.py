@@ -3,7 +3,8 @@
 Each lane has its own bounded queue, `static_threads` threads that live as long as the pool,
 and dynamic threads up to `max_threads` that retire when idle. An idle thread of a lower lane
 may run work of a higher lane (borrowing); a higher lane's threads never run lower work, so a
-saturated low lane cannot delay high-priority calls. Nothing here knows about gRPC.
+saturated low lane cannot delay high-priority calls. Nothing here knows about gRPC; an RPC's
+lane comes from its proto's `default_lane` option (`declared_lane`).
 
 Thread priorities are set with per-thread nice values where the OS allows. Under the GIL they
 are a hint: the isolation that matters is that a high lane never waits behind a low queue.
@@ -12,6 +13,7 @@ are a hint: the isolation that matters is that a high lane never waits behind a 
 from __future__ import annotations
 
 import enum
+import functools
 import logging
 import os
 import threading
@@ -21,6 +23,10 @@ from collections.abc import Callable
 from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
+
+from google.protobuf import descriptor_pool
+
+from telerobot.v1 import options_pb2
 
 log = logging.getLogger(__name__)
 
@@ -328,3 +334,31 @@ def _set_thread_nice(nice: int) -> None:
     except PermissionError:
         log.info("no privilege to set nice %d on %s; it runs at the default", nice,
                  threading.current_thread().name)
+
+
+# Lanes for the runtime's own services, which carry no `default_lane` option.
+_BUILTIN_LANES = {
+    "/grpc.health.v1.Health/Check": Lane.HIGH,
+    "/grpc.health.v1.Health/Watch": Lane.LOW,
+}
+_PROTO_LANES = {
+    options_pb2.LANE_EMERGENCY: Lane.EMERGENCY,
+    options_pb2.LANE_HIGH: Lane.HIGH,
+    options_pb2.LANE_MEDIUM: Lane.MEDIUM,
+    options_pb2.LANE_LOW: Lane.LOW,
+}
+LANE_TO_PROTO = {lane: value for value, lane in _PROTO_LANES.items()}
+
+
+@functools.lru_cache(maxsize=1024)  # looked up for every call: cached (methods are few)
+def declared_lane(method_path: str) -> Lane:
+    """The lane an RPC declares in its proto ("/pkg.Service/Method"); MEDIUM when it has none."""
+    if method_path in _BUILTIN_LANES:
+        return _BUILTIN_LANES[method_path]
+    service, _, method = method_path.lstrip("/").partition("/")
+    try:
+        descriptor = descriptor_pool.Default().FindMethodByName(f"{service}.{method}")
+    except KeyError:
+        return Lane.MEDIUM
+    options = descriptor.GetOptions()
+    return _PROTO_LANES.get(options.Extensions[options_pb2.default_lane], Lane.MEDIUM)

@@ -16,11 +16,19 @@ import signal
 import sys
 import threading
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Protocol
 
 from services.runtime.config import base_parser, configure_logging
 from services.runtime.errors import TelerobotError
-from services.runtime.server import ServiceBinding, create_server
+from services.runtime.server import (
+    PlaintextRefused,
+    ServerSecurity,
+    ServiceBinding,
+    create_server,
+)
+from services.security.audit import audit_log_for
+from services.security.tokens import TokenStore, tokens_file
 
 log = logging.getLogger(__name__)
 
@@ -63,9 +71,10 @@ class Service(Protocol):
     def close(self) -> None:
         """Release everything start() took. Called once, after the server stopped."""
 
-    # Optional: `lanes` (a dict of LaneConfig) sizes the service's lanes, and
+    # Optional: `lanes` (a dict of LaneConfig) sizes the service's lanes,
     # `on_emergency_call()` latches its stop the moment an EmergencyStop call arrives (on gRPC's
-    # polling thread: it must not block).
+    # polling thread: it must not block), and `operator_door = True` marks the DecisionServer,
+    # the one port that takes operators' commands (the others are the station's inner ports).
 
 
 def run_service(
@@ -90,11 +99,19 @@ def run_service(
     watch_parent(stop.set, stop)
 
     service = build(args)
-    server, port = create_server(
-        args.address, service.bindings(), client_lane_limit=args.client_lane_limit,
-        lanes=getattr(service, "lanes", None),  # a service may size its own lanes
-        on_emergency_call=getattr(service, "on_emergency_call", None),  # and stop on arrival
-    )
+    security = server_security(args, name, inner_port=not getattr(service, "operator_door",
+                                                                     False))
+    try:
+        server, port = create_server(
+            args.address, service.bindings(), client_lane_limit=args.client_lane_limit,
+            lanes=getattr(service, "lanes", None),  # a service may size its own lanes
+            on_emergency_call=getattr(service, "on_emergency_call", None),  # stop on arrival
+            security=security, allow_plaintext_network=args.allow_plaintext_network,
+        )
+    except (PlaintextRefused, OSError) as error:
+        log.error("not starting: %s", error)
+        service.close()
+        return 2
     server.start()
     try:
         service.start()
@@ -110,15 +127,34 @@ def run_service(
         return 1
     server.set_serving()
     host = args.address.rsplit(":", 1)[0]
-    log.info("serving %s on %s:%d", ", ".join(server.service_names) or "health only", host, port)
+    log.info("serving %s on %s:%d%s", ", ".join(server.service_names) or "health only", host,
+             port, " with mutual TLS" if security else " in plaintext")
+    if server.token_port:
+        log.info("bearer tokens from %s are taken on %s:%d (TLS, no client certificate)",
+                 security.tokens.path, security.token_address.rsplit(":", 1)[0],
+                 server.token_port)
     print(ready_line(name, f"{host}:{port}"), flush=True)
 
     stop.wait()
     log.info("stopping: draining calls for up to %.1f s", args.grace_s)
     server.stop(args.grace_s)
     service.close()
+    if security and security.audit:
+        security.audit.close()
     log.info("stopped")
     return 0
+
+
+def server_security(args: argparse.Namespace, name: str, inner_port: bool
+                    ) -> ServerSecurity | None:
+    """TLS for the service `name` when --tls-dir (TELEROBOT_TLS_DIR) is set; None otherwise."""
+    if not args.tls_dir:
+        return None
+    token_address = args.token_address or None
+    return ServerSecurity(
+        Path(args.tls_dir), name, inner_port, token_address,
+        tokens=TokenStore(tokens_file()) if token_address else None,
+        audit=audit_log_for(name))
 
 
 def _install_signal_handlers(stop: threading.Event) -> None:

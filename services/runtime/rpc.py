@@ -14,61 +14,44 @@
 - an emergency-lane call (EmergencyStop) calls the server's `on_emergency_call` hook the moment
   it arrives, on gRPC's polling thread, before its request is read or any thread picks it up:
   the service latches its stop there, so the stop never waits behind a busy pool or lane. The
-  handler then runs as usual (with the reason) and answers. Stopping early is always safe.
+  handler then runs as usual (with the reason) and answers. Stopping early is always safe;
+- with TLS on (`security`), each call is authenticated and authorized before its request is
+  decoded, runs as its caller (services.security.caller), and command-class calls are audited
+  (services/runtime/auth.py). The early stop needs no check on a port that requires client
+  certificates: the handshake already proved the caller is the station's. On a token port it
+  fires only for a call that carries a valid token.
 """
 
 from __future__ import annotations
 
 import contextlib
-import functools
 import logging
 import threading
 from collections.abc import Callable, Iterator
 from concurrent.futures import CancelledError
 
 import grpc
-from google.protobuf import descriptor_pool
 from google.protobuf.message import DecodeError, Message
 from google.rpc import code_pb2, error_details_pb2, status_pb2
 from grpc_status import rpc_status
 
+from services.runtime.auth import CallSecurity
 from services.runtime.errors import TelerobotError
-from services.runtime.lanes import Lane, LaneExecutor, LaneExecutorClosed, LaneFull
+from services.runtime.lanes import (  # noqa: F401 - LANE_TO_PROTO re-exported
+    LANE_TO_PROTO,
+    Lane,
+    LaneExecutor,
+    LaneExecutorClosed,
+    LaneFull,
+    declared_lane,
+)
 from services.runtime.validation import check_request
-from telerobot.v1 import options_pb2
+from services.security.caller import Caller, acting_as
 from wire.metadata import LANE_METADATA_KEY
 
 log = logging.getLogger(__name__)
 
 ERROR_DOMAIN = "telerobot.v1"
-
-# Lanes for the runtime's own services, which carry no `default_lane` option.
-_BUILTIN_LANES = {
-    "/grpc.health.v1.Health/Check": Lane.HIGH,
-    "/grpc.health.v1.Health/Watch": Lane.LOW,
-}
-_PROTO_LANES = {
-    options_pb2.LANE_EMERGENCY: Lane.EMERGENCY,
-    options_pb2.LANE_HIGH: Lane.HIGH,
-    options_pb2.LANE_MEDIUM: Lane.MEDIUM,
-    options_pb2.LANE_LOW: Lane.LOW,
-}
-LANE_TO_PROTO = {lane: value for value, lane in _PROTO_LANES.items()}
-
-
-@functools.lru_cache(maxsize=1024)  # looked up for every call: cached (methods are few)
-def declared_lane(method_path: str) -> Lane:
-    """The lane an RPC declares in its proto ("/pkg.Service/Method"); MEDIUM when it has none."""
-    if method_path in _BUILTIN_LANES:
-        return _BUILTIN_LANES[method_path]
-    service, _, method = method_path.lstrip("/").partition("/")
-    try:
-        descriptor = descriptor_pool.Default().FindMethodByName(f"{service}.{method}")
-    except KeyError:
-        return Lane.MEDIUM
-    options = descriptor.GetOptions()
-    return _PROTO_LANES.get(options.Extensions[options_pb2.default_lane], Lane.MEDIUM)
-
 
 def error_status(code: grpc.StatusCode, message: str, reason: str) -> status_pb2.Status:
     """A google.rpc.Status carrying an ErrorInfo(reason, domain) detail."""
@@ -92,9 +75,11 @@ class LaneInterceptor(grpc.ServerInterceptor):
     """Dispatches every call of a server onto its priority lane; see the module docstring."""
 
     def __init__(self, executor: LaneExecutor, client_lane_limit: Lane = Lane.HIGH,
-                 max_streams: int = 64, on_emergency_call: Callable[[], None] | None = None):
+                 max_streams: int = 64, on_emergency_call: Callable[[], None] | None = None,
+                 security: CallSecurity | None = None):
         self._executor = executor
         self._on_emergency_call = on_emergency_call
+        self._security = security
         self._client_lane_limit = client_lane_limit
         self._max_streams = max_streams
         self._open_streams = 0
@@ -109,10 +94,15 @@ class LaneInterceptor(grpc.ServerInterceptor):
         if handler is None:
             return None  # unknown method: grpcio answers UNIMPLEMENTED
         method = handler_call_details.method
-        if self._on_emergency_call is not None and declared_lane(method) == Lane.EMERGENCY:
+        metadata = handler_call_details.invocation_metadata
+        if (self._on_emergency_call is not None and declared_lane(method) == Lane.EMERGENCY
+                and self._may_stop_early(metadata)):
             self._emergency_arrived(method)
-        requested = _requested_lane(handler_call_details.invocation_metadata)
-        return self._wrap(handler, method, requested)
+        return self._wrap(handler, method, _requested_lane(metadata))
+
+    def _may_stop_early(self, metadata) -> bool:
+        security = self._security
+        return security is None or security.tokens is None or security.token_is_valid(metadata)
 
     def _emergency_arrived(self, method: str) -> None:
         try:
@@ -134,6 +124,21 @@ class LaneInterceptor(grpc.ServerInterceptor):
         encode = _passing_bytes(handler.response_serializer)
         # A stop is never refused for its words: an over-long reason is cut, not refused.
         emergency = declared_lane(method) == Lane.EMERGENCY
+        security = self._security
+        audited = security is not None and security.audited(method)
+
+        def admit(context) -> Caller | None:
+            if security is None:
+                return None
+            try:
+                return security.admit(method, context)
+            except TelerobotError as error:
+                abort_with_error(context, error)
+
+        def audit(caller: Caller | None, context):
+            if not audited:
+                return contextlib.nullcontext()
+            return _audited_call(security, method, caller, context)
 
         def resolve_lane(context) -> Lane:
             try:
@@ -147,8 +152,10 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
             def unary_unary(raw, context):
                 lane = resolve_lane(context)
+                caller = admit(context)
                 request = _decode_or_abort(decode, raw, context, emergency)
-                return self._run_on_lane(lane, behavior, request, context)
+                with audit(caller, context):
+                    return self._run_on_lane(lane, behavior, request, context, caller)
 
             return grpc.unary_unary_rpc_method_handler(unary_unary, None, encode)
 
@@ -157,8 +164,10 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
             def unary_stream(raw, context):
                 resolve_lane(context)
+                caller = admit(context)
                 request = _decode_or_abort(decode, raw, context)
-                yield from self._run_stream(behavior, request, context)
+                with audit(caller, context):
+                    yield from self._run_stream(behavior, request, context, caller)
 
             return grpc.unary_stream_rpc_method_handler(unary_stream, None, encode)
 
@@ -167,8 +176,10 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
             def stream_unary(raw_iterator, context):
                 resolve_lane(context)
-                with self._stream_slot(context):
-                    return _call(behavior, _decoded(raw_iterator, decode, context), context)
+                caller = admit(context)
+                with self._stream_slot(context), audit(caller, context):
+                    return _call(behavior, _decoded(raw_iterator, decode, context), context,
+                                 caller)
 
             return grpc.stream_unary_rpc_method_handler(stream_unary, None, encode)
 
@@ -176,16 +187,20 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
         def stream_stream(raw_iterator, context):
             resolve_lane(context)
-            yield from self._run_stream(behavior, _decoded(raw_iterator, decode, context),
-                                        context)
+            caller = admit(context)
+            with audit(caller, context):
+                yield from self._run_stream(behavior, _decoded(raw_iterator, decode, context),
+                                            context, caller)
 
         return grpc.stream_stream_rpc_method_handler(stream_stream, None, encode)
 
-    def _run_on_lane(self, lane: Lane, behavior: Callable, request, context):
+    def _run_on_lane(self, lane: Lane, behavior: Callable, request, context,
+                     caller: Caller | None = None):
         try:
             # On this gRPC thread when the lane has room (no hand-over to a lane thread and
             # back); queued on the lane otherwise.
-            future = self._executor.run_here(lane, lambda: _call(behavior, request, context))
+            future = self._executor.run_here(
+                lane, lambda: _call(behavior, request, context, caller))
         except LaneFull as exc:
             abort(context, grpc.StatusCode.RESOURCE_EXHAUSTED, str(exc), "LANE_SATURATED")
         except LaneExecutorClosed as exc:
@@ -197,8 +212,9 @@ class LaneInterceptor(grpc.ServerInterceptor):
             abort(context, grpc.StatusCode.CANCELLED, "the call was cancelled before it ran",
                   "CANCELLED")
 
-    def _run_stream(self, behavior: Callable, request, context) -> Iterator:
-        with self._stream_slot(context):
+    def _run_stream(self, behavior: Callable, request, context,
+                    caller: Caller | None = None) -> Iterator:
+        with self._stream_slot(context), acting_as(caller):
             try:
                 yield from behavior(request, context)
             except TelerobotError as error:
@@ -220,12 +236,37 @@ class LaneInterceptor(grpc.ServerInterceptor):
                 self._open_streams -= 1
 
 
-def _call(behavior: Callable, request, context):
-    """Run a handler, turning domain errors into status codes."""
+def _call(behavior: Callable, request, context, caller: Caller | None = None):
+    """Run a handler as `caller`, turning domain errors into status codes."""
     try:
-        return behavior(request, context)
+        if caller is None:
+            return behavior(request, context)
+        with acting_as(caller):
+            return behavior(request, context)
     except TelerobotError as error:
         abort_with_error(context, error)
+
+
+@contextlib.contextmanager
+def _audited_call(security: CallSecurity, method: str, caller: Caller | None, context):
+    """Record a command-class call in the audit log with how it ended."""
+    streaming = False
+    try:
+        yield
+    except GeneratorExit:  # a stream the client left: recorded as cancelled
+        streaming = True
+        raise
+    except BaseException:
+        code = context.code()
+        security.record(method, caller, context, code.name if code else "CANCELLED",
+                        context.details() or "")
+        raise
+    else:
+        code = context.code()
+        security.record(method, caller, context, code.name if code else "OK")
+    finally:
+        if streaming:
+            security.record(method, caller, context, "CANCELLED")
 
 
 def _passing_bytes(serialize: Callable | None) -> Callable | None:

@@ -1,25 +1,63 @@
-"""create_server: a gRPC server with priority lanes, health and reflection."""
+"""create_server: a gRPC server with priority lanes, health, reflection and, optionally, TLS.
+
+Security (see the README's Security section):
+- without TLS a server listens only on loopback; a non-loopback address is refused unless the
+  caller explicitly allows plaintext there (`--allow-plaintext-network`), and then it warns;
+- with TLS (`ServerSecurity`) its port requires a client certificate from the station's CA,
+  and every call is authorized by role (services/runtime/auth.py);
+- a server with a `token_address` also listens there with TLS but without client
+  certificates, for callers with bearer tokens. That port is a second grpc.Server on the same
+  servicers and lanes, so that its interceptor knows every caller on it came without a
+  certificate (gRPC tells an interceptor nothing about the port a call came in on).
+"""
 
 from __future__ import annotations
 
+import ipaddress
 import logging
 from collections.abc import Callable, Sequence
 from concurrent import futures
 from dataclasses import dataclass
+from pathlib import Path
 from types import ModuleType
+from typing import TYPE_CHECKING
 
 import grpc
 from grpc_health.v1 import health, health_pb2, health_pb2_grpc
 from grpc_reflection.v1alpha import reflection
 
+from services.runtime.auth import CallSecurity
 from services.runtime.lanes import Lane, LaneConfig, LaneExecutor
 from services.runtime.rpc import LaneInterceptor
+from services.runtime.tls import server_credentials
+
+if TYPE_CHECKING:
+    from services.security.audit import AuditLog
+    from services.security.tokens import TokenStore
 
 log = logging.getLogger(__name__)
 
 PACKAGE = "telerobot.v1"
 _SERVING = health_pb2.HealthCheckResponse.SERVING
 _NOT_SERVING = health_pb2.HealthCheckResponse.NOT_SERVING
+
+
+@dataclass(frozen=True)
+class ServerSecurity:
+    """TLS for a server: it presents `<name>.pem` from `tls_dir` and requires client
+    certificates signed by its `ca.pem`. `inner_port`: one of the station's inner services,
+    which take commands only from the station (services.security.roles)."""
+
+    tls_dir: Path
+    name: str
+    inner_port: bool = True
+    token_address: str | None = None  # also listen here for bearer-token callers
+    tokens: TokenStore | None = None
+    audit: AuditLog | None = None
+
+
+class PlaintextRefused(ValueError):
+    """A server asked to listen without TLS beyond loopback."""
 
 
 @dataclass(frozen=True)
@@ -40,17 +78,20 @@ def binding(grpc_module: ModuleType, service: str, servicer: object) -> ServiceB
 class TelerobotServer:
     """A started-or-not gRPC server with its lanes and health status."""
 
-    def __init__(self, server: grpc.Server, health_servicer: health.HealthServicer,
-                 executor: LaneExecutor, interceptor: LaneInterceptor, service_names: list[str]):
-        self.grpc_server = server
+    def __init__(self, servers: list[grpc.Server], health_servicer: health.HealthServicer,
+                 executor: LaneExecutor, interceptor: LaneInterceptor, service_names: list[str],
+                 token_port: int | None = None):
+        self.grpc_servers = servers  # the main port's, then the token port's if any
         self.health = health_servicer
         self.executor = executor
         self.interceptor = interceptor
         self.service_names = service_names
+        self.token_port = token_port
 
     def start(self) -> None:
         """Accept calls. Health stays NOT_SERVING until set_serving()."""
-        self.grpc_server.start()
+        for server in self.grpc_servers:
+            server.start()
 
     def set_serving(self) -> None:
         """Report SERVING for the whole server and every service."""
@@ -60,7 +101,9 @@ class TelerobotServer:
     def stop(self, grace_s: float) -> None:
         """Report NOT_SERVING, refuse new calls, let in-flight ones finish within grace_s."""
         self.health.enter_graceful_shutdown()
-        self.grpc_server.stop(grace_s).wait()
+        stopped = [server.stop(grace_s) for server in self.grpc_servers]
+        for event in stopped:
+            event.wait()
         self.executor.shutdown(wait=True, timeout_s=1.0)
 
 
@@ -72,43 +115,90 @@ def create_server(
     client_lane_limit: Lane = Lane.HIGH,
     max_streams: int = 64,
     on_emergency_call: Callable[[], None] | None = None,
+    security: ServerSecurity | None = None,
+    allow_plaintext_network: bool = False,
 ) -> tuple[TelerobotServer, int]:
     """Build a server bound to `address` (port 0 picks one); returns it and the bound port.
 
     Every service is reported NOT_SERVING until `set_serving()`, and is listed by reflection.
     `on_emergency_call` runs as an emergency-lane call arrives (see services.runtime.rpc).
+    Without `security`, a non-loopback `address` raises PlaintextRefused unless
+    `allow_plaintext_network`.
     """
+    if security is None and not is_loopback(address):
+        if not allow_plaintext_network:
+            raise PlaintextRefused(
+                f"refusing to listen on {address} without TLS: anyone on that network could "
+                "take the lock and move the arm. Run `make certs` and set TELEROBOT_TLS_DIR "
+                "(or --tls-dir), listen on 127.0.0.1, or pass --allow-plaintext-network")
+        log.warning("PLAINTEXT beyond loopback on %s: no authentication, no encryption. "
+                    "Anyone who reaches this port can command the arm.", address)
     executor = LaneExecutor(lanes, name="rpc")
-    interceptor = LaneInterceptor(executor, client_lane_limit, max_streams, on_emergency_call)
     lane_configs = lanes or {}
     capacity = sum(c.max_threads + c.queue_capacity for c in lane_configs.values()) or 512
-    # gRPC threads only receive calls and wait on the lanes (or carry a stream), so there
-    # must be one per call a lane can hold, plus the streams.
-    pool = futures.ThreadPoolExecutor(max_workers=capacity + max_streams + 16,
-                                      thread_name_prefix="grpc")
-    server = grpc.server(
-        pool,
-        interceptors=[interceptor],
-        # Two servers on one port would split calls between them silently: refuse instead.
-        options=[("grpc.so_reuseport", 0)],
-    )
-    names = []
-    for item in bindings:
-        item.add_to_server(item.servicer, server)
-        names.append(item.full_name)
-
+    names = [item.full_name for item in bindings]
     health_servicer = health.HealthServicer(experimental_non_blocking=True)
-    health_pb2_grpc.add_HealthServicer_to_server(health_servicer, server)
     for name in ["", *names]:
         health_servicer.set(name, _NOT_SERVING)
-    reflection.enable_server_reflection(
-        [*names, health.SERVICE_NAME, reflection.SERVICE_NAME], server
-    )
+
+    def build(call_security: CallSecurity | None, pool_size: int):
+        interceptor = LaneInterceptor(executor, client_lane_limit, max_streams,
+                                      on_emergency_call, call_security)
+        server = grpc.server(
+            futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc"),
+            interceptors=[interceptor],
+            # Two servers on one port would split calls between them silently: refuse instead.
+            options=[("grpc.so_reuseport", 0)],
+        )
+        for item in bindings:
+            item.add_to_server(item.servicer, server)
+        health_pb2_grpc.add_HealthServicer_to_server(health_servicer, server)
+        reflection.enable_server_reflection(
+            [*names, health.SERVICE_NAME, reflection.SERVICE_NAME], server)
+        return server, interceptor
+
+    # gRPC threads only receive calls and wait on the lanes (or carry a stream), so there
+    # must be one per call a lane can hold, plus the streams.
+    pool_size = capacity + max_streams + 16
+    main_security = (CallSecurity(security.inner_port, None, security.audit)
+                     if security else None)
+    server, interceptor = build(main_security, pool_size)
+    servers = [server]
     try:
-        port = server.add_insecure_port(address)
+        credentials = (server_credentials(security.tls_dir, security.name)
+                       if security else None)
+        port = _bind(server, address, credentials)
+        token_port = None
+        if security is not None and security.token_address:
+            token_server, _ = build(
+                CallSecurity(security.inner_port, security.tokens, security.audit), pool_size)
+            servers.append(token_server)
+            token_port = _bind(token_server, security.token_address, server_credentials(
+                security.tls_dir, security.name, require_client_certificate=False))
+    except BaseException:
+        executor.shutdown(wait=False)
+        raise
+    return TelerobotServer(servers, health_servicer, executor, interceptor, names,
+                           token_port), port
+
+
+def is_loopback(address: str) -> bool:
+    """Whether host:port names a loopback host (127.0.0.0/8, ::1, localhost)."""
+    host = address.rsplit(":", 1)[0].strip("[]")
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False  # a name, "0.0.0.0" parses; "" or a hostname may reach any interface
+
+
+def _bind(server: grpc.Server, address: str, credentials) -> int:
+    try:
+        port = (server.add_secure_port(address, credentials) if credentials
+                else server.add_insecure_port(address))
     except RuntimeError:
         port = 0
     if port == 0:
-        executor.shutdown(wait=False)
         raise OSError(f"cannot listen on {address}: the port is in use or the host is not local")
-    return TelerobotServer(server, health_servicer, executor, interceptor, names), port
+    return port

@@ -11,12 +11,13 @@ from collections.abc import Sequence
 
 import grpc
 
+from wire import tls
 from wire.stereo import LOW_LATENCY_OPTIONS, decode_pair
 
 __all__ = ["LOW_LATENCY_OPTIONS", "decode_pair", "open_channel"]
 
 
 def open_channel(address: str, options: Sequence[tuple[str, object]] = ()) -> grpc.Channel:
-    """An insecure channel to a StereoCamera at `address` with LOW_LATENCY_OPTIONS (and any
-    extra `options`)."""
-    return grpc.insecure_channel(address, options=[*LOW_LATENCY_OPTIONS, *options])
+    """A channel to a StereoCamera at `address` with LOW_LATENCY_OPTIONS (and any extra
+    `options`); TLS as the environment says (wire.tls)."""
+    return tls.open_channel(address, [*LOW_LATENCY_OPTIONS, *options])

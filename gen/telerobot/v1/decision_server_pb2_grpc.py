@@ -157,7 +157,7 @@ class DecisionServerServicer:
         an Init, or for a malformed message (fix the client); FAILED_PRECONDITION without the
         control lock, or when the arm is not READY or is e-stopped (reconnect after fixing);
         ABORTED when the lease is lost mid-stream (acquire control again).
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -165,7 +165,7 @@ class DecisionServerServicer:
 
     def GetAssistance(self, request, context):
         """GetAssistance returns the assistance configuration in force.
-        Lane: high.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -175,7 +175,7 @@ class DecisionServerServicer:
         """SetAssistance replaces the assistance configuration, at run time, all or none.
         Errors: INVALID_ARGUMENT for a zero constraint axis, NaN, or a non-positive scale;
         FAILED_PRECONDITION without the control lock.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -185,7 +185,7 @@ class DecisionServerServicer:
         """SetIndexing engages or releases the server-side clutch: while engaged, commands are
         acknowledged but not applied.
         Errors: FAILED_PRECONDITION without the control lock.
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -198,7 +198,7 @@ class DecisionServerServicer:
         Errors: ABORTED when it conflicts and `wait` is false (the message names the holder);
         DEADLINE_EXCEEDED when the wait timed out; INVALID_ARGUMENT for an empty operator id,
         an unspecified mode or a lease outside 0.1..60 s.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -207,7 +207,7 @@ class DecisionServerServicer:
     def RenewControl(self, request, context):
         """RenewControl extends a lease.
         Errors: NOT_FOUND for an unknown or expired lease (acquire again).
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -216,7 +216,7 @@ class DecisionServerServicer:
     def ReleaseControl(self, request, context):
         """ReleaseControl gives the lock up; the next waiter in the queue gets it. The arm holds.
         Errors: NOT_FOUND for an unknown or expired lease.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -224,7 +224,7 @@ class DecisionServerServicer:
 
     def GetControlState(self, request, context):
         """GetControlState returns who holds control and who waits.
-        Lane: high.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -234,7 +234,7 @@ class DecisionServerServicer:
         """StartRecording records every applied movement command, with its timing, under a name.
         Errors: INVALID_ARGUMENT for a name that is not [A-Za-z0-9_-]{1,64}; ALREADY_EXISTS for a
         name in use; FAILED_PRECONDITION while recording or without the control lock.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -243,7 +243,7 @@ class DecisionServerServicer:
     def StopRecording(self, request, context):
         """StopRecording ends the recording and saves it to disk.
         Errors: FAILED_PRECONDITION when not recording.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -251,7 +251,7 @@ class DecisionServerServicer:
 
     def ListRecordings(self, request, context):
         """ListRecordings lists the saved recordings.
-        Lane: low.
+        Lane: low. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -260,7 +260,7 @@ class DecisionServerServicer:
     def DeleteRecording(self, request, context):
         """DeleteRecording deletes a saved recording.
         Errors: NOT_FOUND for an unknown name; FAILED_PRECONDITION while it replays.
-        Lane: low.
+        Lane: low. Role: admin.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -272,7 +272,7 @@ class DecisionServerServicer:
         Errors: NOT_FOUND for an unknown name; FAILED_PRECONDITION without the control lock, while
         teleoperating or replaying, or when the arm is not READY; INVALID_ARGUMENT for a speed
         outside 0.1..10.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -281,7 +281,7 @@ class DecisionServerServicer:
     def StopReplay(self, request, context):
         """StopReplay interrupts a replay; the arm holds where it is.
         Errors: FAILED_PRECONDITION when no replay runs or without the control lock.
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -291,7 +291,7 @@ class DecisionServerServicer:
         """BeginCobegin opens a barrier for `action_count` parallel actions (Parma's cobegin). Actions
         sent with RunAction and its id start only when all of them have arrived, each on its lane.
         Errors: INVALID_ARGUMENT for a count outside 1..64 or a timeout outside 0..60 s.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -303,7 +303,7 @@ class DecisionServerServicer:
         Errors: NOT_FOUND for an unknown cobegin id; DEADLINE_EXCEEDED when the barrier times
         out (every action of that cobegin then fails, and none runs); FAILED_PRECONDITION for a
         motion action without the control lock; the action's own errors otherwise.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -313,7 +313,7 @@ class DecisionServerServicer:
         """StreamEvents forwards ProxyRobot's events and the DecisionServer's own (lock changes,
         watchdog holds, assistance changes, replay progress) until cancelled. This replaces the
         papers' shim classes: a client just reads a stream.
-        Lane: low.
+        Lane: low. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')

@@ -91,7 +91,7 @@ class ForceSensorServicer:
     def StartReading(self, request, context):
         """StartReading starts the sampling thread. A no-op when already reading.
         Errors: UNAVAILABLE when the sensor cannot be reached.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -100,7 +100,7 @@ class ForceSensorServicer:
     def StopReading(self, request, context):
         """StopReading stops the sampling thread; open streams stay open and resume on StartReading.
         A no-op when not reading.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -110,7 +110,7 @@ class ForceSensorServicer:
         """Tare takes the current reading as the new zero (bias), averaged over `duration`.
         Errors: FAILED_PRECONDITION when not reading (StartReading first); INVALID_ARGUMENT for a
         negative or over-1-s duration.
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -118,7 +118,7 @@ class ForceSensorServicer:
 
     def GetSensorConfig(self, request, context):
         """GetSensorConfig returns the configuration in force.
-        Lane: high.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -129,7 +129,7 @@ class ForceSensorServicer:
         Errors: INVALID_ARGUMENT for a period <= 0 or beyond the sensor's range, a NaN or negative
         threshold, an unknown priority or an unknown mask path; the configuration in force is
         then unchanged.
-        Lane: medium.
+        Lane: medium. Role: admin.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -138,7 +138,7 @@ class ForceSensorServicer:
     def GetWrench(self, request, context):
         """GetWrench returns the latest sample.
         Errors: FAILED_PRECONDITION when no sample has been taken yet (StartReading first).
-        Lane: high.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -151,7 +151,7 @@ class ForceSensorServicer:
         carries the count dropped so far. Samples carry their sequence number and sample time.
         Errors: INVALID_ARGUMENT for a negative decimation, batch size, queue or a NaN threshold;
         RESOURCE_EXHAUSTED past the server's subscriber cap.
-        Lane: high (the haptic path).
+        Lane: high (the haptic path). Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')

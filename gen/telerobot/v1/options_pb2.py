@@ -25,7 +25,7 @@ _sym_db = _symbol_database.Default()
 from google.protobuf import descriptor_pb2 as google_dot_protobuf_dot_descriptor__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1atelerobot/v1/options.proto\x12\x0ctelerobot.v1\x1a google/protobuf/descriptor.proto*^\n\x04Lane\x12\x14\n\x10LANE_UNSPECIFIED\x10\x00\x12\x12\n\x0eLANE_EMERGENCY\x10\x01\x12\r\n\tLANE_HIGH\x10\x02\x12\x0f\n\x0bLANE_MEDIUM\x10\x03\x12\x0c\n\x08LANE_LOW\x10\x04:J\n\x0c\x64\x65\x66\x61ult_lane\x12\x1e.google.protobuf.MethodOptions\x18\xb9\x8e\x03 \x01(\x0e\x32\x12.telerobot.v1.Lane:3\n\nmax_length\x12\x1d.google.protobuf.FieldOptions\x18\xba\x8e\x03 \x01(\x05\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1atelerobot/v1/options.proto\x12\x0ctelerobot.v1\x1a google/protobuf/descriptor.proto*^\n\x04Lane\x12\x14\n\x10LANE_UNSPECIFIED\x10\x00\x12\x12\n\x0eLANE_EMERGENCY\x10\x01\x12\r\n\tLANE_HIGH\x10\x02\x12\x0f\n\x0bLANE_MEDIUM\x10\x03\x12\x0c\n\x08LANE_LOW\x10\x04*d\n\x04Role\x12\x14\n\x10ROLE_UNSPECIFIED\x10\x00\x12\x11\n\rROLE_OBSERVER\x10\x01\x12\x11\n\rROLE_OPERATOR\x10\x02\x12\x10\n\x0cROLE_STATION\x10\x03\x12\x0e\n\nROLE_ADMIN\x10\x04:J\n\x0c\x64\x65\x66\x61ult_lane\x12\x1e.google.protobuf.MethodOptions\x18\xb9\x8e\x03 \x01(\x0e\x32\x12.telerobot.v1.Lane:F\n\x08min_role\x12\x1e.google.protobuf.MethodOptions\x18\xbb\x8e\x03 \x01(\x0e\x32\x12.telerobot.v1.Role:3\n\nmax_length\x12\x1d.google.protobuf.FieldOptions\x18\xba\x8e\x03 \x01(\x05\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
@@ -34,4 +34,6 @@ if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
   _globals['_LANE']._serialized_start=78
   _globals['_LANE']._serialized_end=172
+  _globals['_ROLE']._serialized_start=174
+  _globals['_ROLE']._serialized_end=274
 # @@protoc_insertion_point(module_scope)

@@ -129,7 +129,7 @@ class ProxyRobotServicer:
         """Connect opens the hardware link (in simulation, to the world process).
         NOT_CONNECTED -> CONNECTED; a no-op in any other status.
         Errors: UNAVAILABLE when the hardware does not answer.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -139,7 +139,7 @@ class ProxyRobotServicer:
         """Initialize brings the arm to a known state and enables motion: CONNECTED -> INITIALIZING
         -> READY. It returns once READY; the arm holds where it is (it does not move to home).
         Errors: FAILED_PRECONDITION when not CONNECTED (Connect first; Reset an e-stop first).
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -147,7 +147,7 @@ class ProxyRobotServicer:
 
     def Disconnect(self, request, context):
         """Disconnect holds the arm and closes the hardware link. Any status -> NOT_CONNECTED.
-        Lane: medium.
+        Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -155,7 +155,7 @@ class ProxyRobotServicer:
 
     def GetStatus(self, request, context):
         """GetStatus returns the status and why it was entered. Never fails for a bad status.
-        Lane: high.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -164,7 +164,7 @@ class ProxyRobotServicer:
     def GetState(self, request, context):
         """GetState returns the latest joints, flange pose and tool pose.
         Errors: FAILED_PRECONDITION when NOT_CONNECTED (Connect first).
-        Lane: high.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -172,7 +172,7 @@ class ProxyRobotServicer:
 
     def GetToolFrame(self, request, context):
         """GetToolFrame returns the tool frame definition (T_t, M_e^t): the tool frame in the flange frame.
-        Lane: high.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -182,7 +182,7 @@ class ProxyRobotServicer:
         """SetToolFrame sets the tool frame definition used by tool poses and tool-frame moves.
         Errors: INVALID_ARGUMENT for NaN, a non-rotation matrix, or an offset over 1 m;
         FAILED_PRECONDITION while MOVING (wait for READY).
-        Lane: medium.
+        Lane: medium. Role: admin.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -193,7 +193,7 @@ class ProxyRobotServicer:
         It returns once the target is accepted; the arm is MOVING until it gets there.
         Errors: INVALID_ARGUMENT for NaN/Inf or not six values; OUT_OF_RANGE past a joint limit or
         over the increment cap; FAILED_PRECONDITION unless READY or MOVING. Nothing moves on error.
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -206,7 +206,7 @@ class ProxyRobotServicer:
         OUT_OF_RANGE when the target is past the joint limits, the workspace, or the increment
         cap, or too near a singularity; FAILED_PRECONDITION unless READY or MOVING.
         Nothing moves on error.
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -217,7 +217,7 @@ class ProxyRobotServicer:
         braking at the servo's acceleration cap brings it to rest (a controlled stop). Motion
         commands are accepted again at once. The DecisionServer's watchdog uses it.
         Errors: FAILED_PRECONDITION when NOT_CONNECTED.
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -227,7 +227,7 @@ class ProxyRobotServicer:
         """StreamState sends the robot state at the period the client asks for, until cancelled.
         Errors: INVALID_ARGUMENT for a negative period; FAILED_PRECONDITION when NOT_CONNECTED.
         The stream ends with UNAVAILABLE if the hardware link drops: reconnect and resubscribe.
-        Lane: low.
+        Lane: low. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -236,7 +236,7 @@ class ProxyRobotServicer:
     def StreamRobotEvents(self, request, context):
         """StreamRobotEvents sends the proxy's events (data received, error, moved, status changed)
         as they happen, until cancelled. Events raised before the call are not replayed.
-        Lane: low.
+        Lane: low. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -246,7 +246,7 @@ class ProxyRobotServicer:
         """EmergencyStop latches a controlled stop: the arm holds its current position and refuses
         motion until Reset. Idempotent. On the DecisionServer's port it also stops teleoperation,
         replay and force control.
-        Lane: emergency.
+        Lane: emergency. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -257,7 +257,7 @@ class ProxyRobotServicer:
         is, READY if it was initialized, else CONNECTED.
         Errors: FAILED_PRECONDITION when NOT_CONNECTED; on the DecisionServer's port,
         FAILED_PRECONDITION without the control lock.
-        Lane: high.
+        Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')

@@ -69,7 +69,7 @@ class StereoCameraServicer:
     def GetStreamInfo(self, request, context):
         """GetStreamInfo returns what a stream with default settings would carry: size, encoding,
         per-eye calibration and baseline.
-        Lane: medium.
+        Lane: medium. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -80,7 +80,7 @@ class StereoCameraServicer:
         Errors: INVALID_ARGUMENT for an unknown encoding or transfer mode, a size larger than the
         source's, a JPEG quality outside 1..100, or max_fps < 0; FAILED_PRECONDITION when the
         source cannot be opened (the message names the device).
-        Lane: medium.
+        Lane: medium. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -89,7 +89,7 @@ class StereoCameraServicer:
     def GetSnapshot(self, request, context):
         """GetSnapshot returns the newest pair with its header.
         Errors: as StreamPairs; DEADLINE_EXCEEDED if no pair arrives before the deadline.
-        Lane: low.
+        Lane: low. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')

@@ -1,0 +1,105 @@
+"""Who is calling and whether they may: the runtime's side of the station's security.
+
+With TLS on, every call but Health is authenticated and authorized before its handler runs:
+- the caller is the verified client certificate's identity (CN) and role (OU), or, on a port
+  that takes tokens, the identity a bearer token (`authorization: Bearer ...`) was issued to;
+- the caller's role must reach the RPC's declared `min_role` (services.security.roles), else
+  PERMISSION_DENIED naming the role needed; no credentials or a bad token: UNAUTHENTICATED;
+- every command-class call (any RPC that needs the operator role or more, and EmergencyStop)
+  is written to the audit log with its outcome.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import grpc
+
+from services.runtime.lanes import Lane, declared_lane
+from services.security.caller import Caller
+from services.security.pki import CertificateError, identity_of
+from services.security.roles import Role, check_role, declared_role, required_role
+from wire.errors import TelerobotError, Unauthenticated
+
+if TYPE_CHECKING:
+    from services.security.audit import AuditLog
+    from services.security.tokens import TokenStore
+
+_BEARER = "bearer "
+
+
+@dataclass
+class CallSecurity:
+    """A server's rules for its calls. `tokens`: the port takes bearer tokens (and only
+    them: it asks for no certificate). `inner_port`: the station's inside (see roles)."""
+
+    inner_port: bool
+    tokens: TokenStore | None = None
+    audit: AuditLog | None = None
+
+    def admit(self, method: str, context: grpc.ServicerContext) -> Caller | None:
+        """The authenticated caller, allowed to call `method`; None for an open method
+        (Health). Raises Unauthenticated or PermissionDenied; an audited method's refusal is
+        recorded (with the identity, when it is known)."""
+        if required_role(method, self.inner_port) is None:
+            return None
+        caller = None
+        try:
+            caller = self.authenticate(context)
+            check_role(caller.role, method, self.inner_port)
+        except TelerobotError as error:
+            if self.audited(method):
+                self.record(method, caller, context, error.status_name, error.message)
+            raise
+        return caller
+
+    def authenticate(self, context: grpc.ServicerContext) -> Caller:
+        certificate = context.auth_context().get("x509_pem_cert")
+        if certificate:
+            try:
+                identity = identity_of(certificate[0])
+            except CertificateError as exc:
+                raise Unauthenticated(str(exc), "CERTIFICATE_WITHOUT_ROLE") from None
+            return Caller(identity.name, identity.role)
+        token = bearer_token(context.invocation_metadata())
+        if token is None or self.tokens is None:
+            raise Unauthenticated(
+                "no client certificate and no bearer token: present a certificate from the "
+                "station's CA, or a token (authorization: Bearer ...) on the token port",
+                "NO_CREDENTIALS")
+        grant = self.tokens.verify(token)
+        return Caller(grant.identity, grant.role)
+
+    def token_is_valid(self, metadata) -> bool:
+        """Whether call metadata carries a token this port would take (checked before the
+        call's context exists, for the early stop)."""
+        token = bearer_token(metadata)
+        if token is None or self.tokens is None:
+            return False
+        try:
+            self.tokens.verify(token)
+        except Unauthenticated:
+            return False
+        return True
+
+    def audited(self, method: str) -> bool:
+        """Whether `method` is command-class: it changes the arm, the lock or the settings."""
+        role = declared_role(method)
+        return self.audit is not None and (
+            declared_lane(method) == Lane.EMERGENCY or (role is not None and role >= Role.OPERATOR))
+
+    def record(self, method: str, caller: Caller | None, context: grpc.ServicerContext,
+               outcome: str, detail: str = "") -> None:
+        if self.audit is None:
+            return
+        self.audit.record(identity=caller.identity if caller else "",
+                          role=caller.role.label if caller else "", method=method,
+                          outcome=outcome, peer=context.peer(), detail=detail)
+
+
+def bearer_token(metadata) -> str | None:
+    for key, value in metadata or ():
+        if key == "authorization" and value[:len(_BEARER)].lower() == _BEARER:
+            return value[len(_BEARER):].strip()
+    return None

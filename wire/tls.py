@@ -1,0 +1,78 @@
+"""Channels with the station's TLS: a client certificate, or a bearer token, or plaintext.
+
+A client finds its credentials in the environment (or is given them):
+- ``TELEROBOT_TLS_DIR``: a directory with the CA's ``ca.pem`` and client certificates as
+  ``<identity>.pem`` and ``<identity>.key`` (``make certs`` writes one to var/pki). Unset:
+  plaintext, which the services accept only on loopback.
+- ``TELEROBOT_IDENTITY``: which certificate of the directory to present (default ``operator``;
+  the station's services present their own).
+- ``TELEROBOT_TOKEN``: a bearer token instead of a certificate (sent as ``authorization: Bearer
+  ...``, only ever over TLS; only the DecisionServer's token port takes it).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import grpc
+
+TLS_DIR_ENV = "TELEROBOT_TLS_DIR"
+IDENTITY_ENV = "TELEROBOT_IDENTITY"
+TOKEN_ENV = "TELEROBOT_TOKEN"
+DEFAULT_IDENTITY = "operator"
+
+
+@dataclass(frozen=True)
+class ChannelSecurity:
+    """How a channel authenticates; the default is plaintext."""
+
+    tls_dir: Path | None = None
+    identity: str = DEFAULT_IDENTITY  # the client certificate presented, unless a token is
+    token: str | None = None
+
+    @classmethod
+    def from_env(cls, identity: str | None = None) -> ChannelSecurity:
+        """From the environment; `identity` (a service's own) wins over TELEROBOT_IDENTITY."""
+        tls_dir = os.environ.get(TLS_DIR_ENV) or None
+        return cls(Path(tls_dir) if tls_dir else None,
+                   identity or os.environ.get(IDENTITY_ENV) or DEFAULT_IDENTITY,
+                   os.environ.get(TOKEN_ENV) or None)
+
+    @property
+    def secure(self) -> bool:
+        return self.tls_dir is not None
+
+    def credentials(self) -> grpc.ChannelCredentials:
+        """TLS credentials: the CA, and the identity's certificate or the token."""
+        if self.tls_dir is None:
+            raise ValueError("no TLS directory: set TELEROBOT_TLS_DIR (make certs writes "
+                             "var/pki) or use a plaintext channel on loopback")
+        root = _read(self.tls_dir / "ca.pem")
+        if self.token:
+            return grpc.composite_channel_credentials(
+                grpc.ssl_channel_credentials(root), grpc.access_token_call_credentials(self.token))
+        return grpc.ssl_channel_credentials(root, _read(self.tls_dir / f"{self.identity}.key"),
+                                            _read(self.tls_dir / f"{self.identity}.pem"))
+
+
+def open_channel(target: str, options: Sequence[tuple[str, object]] = (),
+                 security: ChannelSecurity | None = None, aio: bool = False):
+    """A channel to `target`: TLS when `security` (default: from the environment) has a TLS
+    directory, plaintext otherwise. `aio` makes a grpc.aio channel."""
+    security = security or ChannelSecurity.from_env()
+    grpc_module = grpc.aio if aio else grpc
+    if not security.secure:
+        return grpc_module.insecure_channel(target, options=list(options))
+    return grpc_module.secure_channel(target, security.credentials(), options=list(options))
+
+
+def _read(path: Path) -> bytes:
+    try:
+        return path.read_bytes()
+    except OSError as exc:
+        raise FileNotFoundError(f"cannot read {path}: {exc.strerror}; `make certs` writes the "
+                                "development certificates, or see the README's Security "
+                                "section for a real CA") from None
