@@ -107,6 +107,9 @@ def main(argv: list[str] | None = None) -> int:
             # The address it bound (a port 0 becomes a real one): the services started after
             # it, which may call it, find it through its variable.
             env[env_name(name, "address")] = address
+            for other, other_address in child.ready.items():  # a token port, if it has one
+                if other != name:
+                    print(ready_line(other, other_address), flush=True)
             print(ready_line(name, address), flush=True)
         if stop.is_set():
             return 0
@@ -175,6 +178,8 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
     width = max(len(c.name) for c in station)
     lines = ["", f"{UP_LINE}{' with mutual TLS' if tls_dir else ''}. Ctrl-C stops it.", ""]
     lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.pid})" for c in station]
+    lines += [f"  {name}  {address}  (bearer tokens: python -m services.security.tokens)"
+              for c in station for name, address in c.ready.items() if name != c.name]
     lines += ["", f"The operator's address is {operator} (set "
                   f"{env_name('decision_server', 'address')} to move it). Try:"]
     if tls_dir:

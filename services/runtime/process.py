@@ -25,6 +25,7 @@ from services.runtime.server import (
     PlaintextRefused,
     ServerSecurity,
     ServiceBinding,
+    check_plaintext,
     create_server,
 )
 from services.security.audit import audit_log_for
@@ -49,6 +50,11 @@ GIL_SWITCH_INTERVAL_S = 0.001
 def ready_line(name: str, address: str) -> str:
     """The line a process prints once `name` serves on `address` (host:port)."""
     return f"{READY_LINE_PREFIX} {name} {address}"
+
+
+def token_port_name(service: str) -> str:
+    """The name on the ready line of a service's bearer-token port."""
+    return f"{service}_tokens"
 
 
 def parse_ready_line(line: str) -> tuple[str, str] | None:
@@ -98,6 +104,11 @@ def run_service(
     _install_signal_handlers(stop)
     watch_parent(stop.set, stop)
 
+    try:  # before the service takes its hardware
+        check_plaintext(args.address, bool(args.tls_dir), args.allow_plaintext_network)
+    except PlaintextRefused as error:
+        log.error("not starting: %s", error)
+        return 2
     service = build(args)
     security = server_security(args, name, inner_port=not getattr(service, "operator_door",
                                                                      False))
@@ -130,9 +141,11 @@ def run_service(
     log.info("serving %s on %s:%d%s", ", ".join(server.service_names) or "health only", host,
              port, " with mutual TLS" if security else " in plaintext")
     if server.token_port:
-        log.info("bearer tokens from %s are taken on %s:%d (TLS, no client certificate)",
-                 security.tokens.path, security.token_address.rsplit(":", 1)[0],
-                 server.token_port)
+        token_address = f"{security.token_address.rsplit(':', 1)[0]}:{server.token_port}"
+        log.info("bearer tokens from %s are taken on %s (TLS, no client certificate)",
+                 security.tokens.path, token_address)
+        # Before the service's own line: whoever waits for that one knows this one too.
+        print(ready_line(token_port_name(name), token_address), flush=True)
     print(ready_line(name, f"{host}:{port}"), flush=True)
 
     stop.wait()

@@ -125,14 +125,7 @@ def create_server(
     Without `security`, a non-loopback `address` raises PlaintextRefused unless
     `allow_plaintext_network`.
     """
-    if security is None and not is_loopback(address):
-        if not allow_plaintext_network:
-            raise PlaintextRefused(
-                f"refusing to listen on {address} without TLS: anyone on that network could "
-                "take the lock and move the arm. Run `make certs` and set TELEROBOT_TLS_DIR "
-                "(or --tls-dir), listen on 127.0.0.1, or pass --allow-plaintext-network")
-        log.warning("PLAINTEXT beyond loopback on %s: no authentication, no encryption. "
-                    "Anyone who reaches this port can command the arm.", address)
+    check_plaintext(address, security is not None, allow_plaintext_network)
     executor = LaneExecutor(lanes, name="rpc")
     lane_configs = lanes or {}
     capacity = sum(c.max_threads + c.queue_capacity for c in lane_configs.values()) or 512
@@ -180,6 +173,20 @@ def create_server(
         raise
     return TelerobotServer(servers, health_servicer, executor, interceptor, names,
                            token_port), port
+
+
+def check_plaintext(address: str, tls: bool, allow_plaintext_network: bool) -> None:
+    """PlaintextRefused for a server without TLS on a non-loopback address, unless allowed
+    explicitly (then a loud warning)."""
+    if tls or is_loopback(address):
+        return
+    if not allow_plaintext_network:
+        raise PlaintextRefused(
+            f"refusing to listen on {address} without TLS: anyone on that network could take "
+            "the lock and move the arm. Run `make certs` and set TELEROBOT_TLS_DIR (or "
+            "--tls-dir), listen on 127.0.0.1, or pass --allow-plaintext-network")
+    log.warning("PLAINTEXT beyond loopback on %s: no authentication, no encryption. Anyone "
+                "who reaches this port can command the arm.", address)
 
 
 def is_loopback(address: str) -> bool:

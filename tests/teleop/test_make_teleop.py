@@ -1,6 +1,7 @@
 """`make teleop`'s program end to end: against a station started the way it starts one
 (clients.teleop.stack.local_station, every service on port 0), it runs the peg-in-hole task with
-force feedback and then with compliance, and leaves its video, plots and summary."""
+force feedback and then with compliance, and leaves its video, plots and summary. Once in
+plaintext and once with mutual TLS on every link (TELEROBOT_TLS_DIR, as the README says)."""
 
 from __future__ import annotations
 
@@ -14,15 +15,21 @@ import pytest
 
 from clients.teleop.stack import local_station
 from services.launcher import STATION
+from services.security import pki
 from tests.conftest import REPO
 from tests.world.conftest import unique_shm_name
 
 pytestmark = pytest.mark.e2e
 
 
-def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path):
+@pytest.mark.parametrize("tls", [False, True], ids=["plaintext", "tls"])
+def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls):
     env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
     env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
+    if tls:
+        pki.init(tmp_path / "pki")
+        env.update(TELEROBOT_TLS_DIR=str(tmp_path / "pki"),
+                   TELEROBOT_AUDIT_DIR=str(tmp_path / "audit"))
     out = tmp_path / "run"
     with local_station(env=env) as addresses:
         assert sorted(addresses) == sorted(STATION)
@@ -54,3 +61,9 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path):
     # the file holds every frame the summary counts.
     assert frames == summary["video_frames"] >= 10, (frames, summary)
     assert "feedback" in result.stdout and "compliance" in result.stdout
+    if tls:  # the operator drove as the identity of its certificate, and it is on record
+        records = [json.loads(line) for line in
+                   (tmp_path / "audit" / "decision_server.jsonl").read_text().splitlines()]
+        driven = {(r["identity"], r["method"].rsplit("/", 1)[1], r["outcome"]) for r in records}
+        assert {("operator", "AcquireControl", "OK"), ("operator", "Teleoperate", "OK")} \
+            <= driven, driven
