@@ -175,11 +175,12 @@ def _supervise(station: list[Child], stop: threading.Event,
 
 def _print_banner(station: list[Child], tls_dir: str) -> None:
     operator = next(c.address for c in station if c.name == "decision_server")
-    width = max(len(c.name) for c in station)
+    extra_ports = [(name, address) for c in station for name, address in c.ready.items()
+                   if name != c.name]  # a token port
+    width = max(len(name) for name in [*(c.name for c in station), *dict(extra_ports)])
     lines = ["", f"{UP_LINE}{' with mutual TLS' if tls_dir else ''}. Ctrl-C stops it.", ""]
     lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.pid})" for c in station]
-    lines += [f"  {name}  {address}  (bearer tokens: python -m services.security.tokens)"
-              for c in station for name, address in c.ready.items() if name != c.name]
+    lines += [f"  {name:<{width}}  {address}  (bearer tokens)" for name, address in extra_ports]
     lines += ["", f"The operator's address is {operator} (set "
                   f"{env_name('decision_server', 'address')} to move it). Try:"]
     if tls_dir:

@@ -64,6 +64,9 @@ def open_channel(target: str, options: Sequence[tuple[str, object]] = (),
     directory, plaintext otherwise. `aio` makes a grpc.aio channel."""
     security = security or ChannelSecurity.from_env()
     grpc_module = grpc.aio if aio else grpc
+    if security.token and not security.secure:
+        raise ValueError("a bearer token is sent only over TLS: set TELEROBOT_TLS_DIR to a "
+                         "directory holding the station's ca.pem")
     if not security.secure:
         return grpc_module.insecure_channel(target, options=list(options))
     return grpc_module.secure_channel(target, security.credentials(), options=list(options))

@@ -556,7 +556,8 @@ class _DecisionMethods:
             request.lease_duration.CopyFrom(convert.duration(lease_duration_s))
 
         def keep(response: pb.AcquireControlResponse) -> Lease:
-            self._held = Lease(response.lease_id, operator_id, enum_value(ControlMode, mode),
+            holder = response.operator_id or operator_id  # with TLS: the server's identity
+            self._held = Lease(response.lease_id, holder, enum_value(ControlMode, mode),
                                group, time_ns(response.expire_time), response.state)
             return self._held
 

@@ -314,7 +314,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         lease = self._core.locks.acquire(
             request.operator_id, mode, request.group, request.wait, wait_s,
             convert.seconds(request.lease_duration) or 5.0)
-        return pb.AcquireControlResponse(lease_id=lease.lease_id,
+        return pb.AcquireControlResponse(lease_id=lease.lease_id, operator_id=lease.operator_id,
                                          expire_time=_holder(lease, self._core.clock).expire_time,
                                          state=self._control_state())
 

@@ -431,8 +431,9 @@ class DecisionCore:
         if status not in ("READY", "MOVING"):
             raise FailedPrecondition(f"the arm is {status}: Connect and Initialize it first",
                                      reason=status)
-        session = TeleopSession(self, operator_id or lease.operator_id, lease, mapping,
-                                watchdog_s)
+        # An authenticated holder drives as itself, whatever the session's init says.
+        session = TeleopSession(self, lease.identity or operator_id or lease.operator_id, lease,
+                                mapping, watchdog_s)
         with self._lock:
             if self._replay is not None:
                 raise FailedPrecondition("a replay is running: stop it first",

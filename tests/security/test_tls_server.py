@@ -155,3 +155,8 @@ def test_the_early_stop_fires_only_for_callers_the_port_can_identify(pki, tmp_pa
         assert arrivals == [1, 1]
     finally:
         server.stop(0)
+
+
+def test_a_client_never_sends_a_token_in_plaintext():
+    with pytest.raises(ValueError, match="only over TLS"):
+        open_channel("127.0.0.1:1", security=ChannelSecurity(token="trb_secret"))

@@ -156,9 +156,11 @@ def test_a_lease_belongs_to_the_identity_that_took_it(station, pki):
             _channel(station, "decision_server", pki, "operator2") as thief, \
             _channel(station, "decision_server", pki, "admin") as admin:
         owner = decision_server_pb2_grpc.DecisionServerStub(mine)
-        lease = owner.AcquireControl(
+        granted = owner.AcquireControl(
             ds.AcquireControlRequest(operator_id="claims-to-be-admin",
-                                     mode=ds.CONTROL_MODE_EXCLUSIVE), timeout=10).lease_id
+                                     mode=ds.CONTROL_MODE_EXCLUSIVE), timeout=10)
+        lease = granted.lease_id
+        assert granted.operator_id == "operator"
         state = owner.GetControlState(ds.GetControlStateRequest(), timeout=10)
         assert [h.operator_id for h in state.state.holders] == ["operator"]  # not what it claimed
 

@@ -193,14 +193,16 @@ class AcquireControlRequest(_message.Message):
     def __init__(self, operator_id: _Optional[str] = ..., mode: _Optional[_Union[ControlMode, str]] = ..., group: _Optional[str] = ..., wait: _Optional[bool] = ..., wait_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., lease_duration: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
 
 class AcquireControlResponse(_message.Message):
-    __slots__ = ("lease_id", "expire_time", "state")
+    __slots__ = ("lease_id", "expire_time", "state", "operator_id")
     LEASE_ID_FIELD_NUMBER: _ClassVar[int]
     EXPIRE_TIME_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
+    OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
     lease_id: str
     expire_time: _timestamp_pb2.Timestamp
     state: ControlState
-    def __init__(self, lease_id: _Optional[str] = ..., expire_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., state: _Optional[_Union[ControlState, _Mapping]] = ...) -> None: ...
+    operator_id: str
+    def __init__(self, lease_id: _Optional[str] = ..., expire_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., state: _Optional[_Union[ControlState, _Mapping]] = ..., operator_id: _Optional[str] = ...) -> None: ...
 
 class RenewControlRequest(_message.Message):
     __slots__ = ("lease_id",)
