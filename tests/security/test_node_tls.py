@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import shutil
 import signal
 import subprocess
@@ -17,11 +16,12 @@ from pathlib import Path
 import pytest
 
 from services.runtime.children import refused_address
+from services.runtime.process import token_port_name
 from services.security import pki
 from services.security.roles import Role
 from services.security.tokens import TokenStore
 from telerobot.v1 import proxy_robot_pb2, proxy_robot_pb2_grpc
-from tests.conftest import REPO, start_station, station_env, wait_for
+from tests.conftest import REPO, start_station, station_env
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, TOKEN_ENV, ChannelSecurity, open_channel
 
 pytestmark = pytest.mark.e2e
@@ -30,7 +30,6 @@ SERVING = {"(server)": "SERVING", "telerobot.v1.ProxyRobot": "SERVING"}
 ARM_UP = ("ROBOT_STATUS_CONNECTED", "ROBOT_STATUS_READY", "ROBOT_STATUS_MOVING")
 CLIENT_ENV = (TLS_DIR_ENV, IDENTITY_ENV, TOKEN_ENV)
 # The DecisionServer logs its token port (and, newer, reports it on a ready line).
-TOKEN_PORT_LOGGED = re.compile(r"bearer tokens from .* are taken on (\S+) \(TLS")
 
 
 @dataclass
@@ -54,8 +53,8 @@ def tls_station(tmp_path_factory):
         TELEROBOT_DECISION_SERVER_TOKEN_ADDRESS="127.0.0.1:0",
         TELEROBOT_TOKENS_FILE=str(tokens)))
     try:
-        token_address = wait_for(lambda: _token_address(launcher), 10.0,
-                                 "the DecisionServer's token port")
+        # Printed before the DecisionServer's own ready line, which start_station waited for.
+        token_address = launcher.ready[token_port_name("decision_server")]
         station = TlsStation(base / "pki", base / "other_pki", launcher.ready["decision_server"],
                              launcher.ready["proxy_robot"], token_address, TokenStore(tokens))
         # Connect the arm (as admin: the inner port takes commands only from the station or an
@@ -67,16 +66,6 @@ def tls_station(tmp_path_factory):
         yield station
     finally:
         launcher.stop(signal.SIGINT)
-
-
-def _token_address(launcher) -> str | None:
-    if "decision_server_tokens" in launcher.ready:
-        return launcher.ready["decision_server_tokens"]
-    for line in list(launcher.lines):
-        found = TOKEN_PORT_LOGGED.search(line)
-        if found:
-            return found.group(1)
-    return None
 
 
 def _node(*args: str, **env: str) -> subprocess.CompletedProcess:
