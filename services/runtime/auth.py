@@ -6,7 +6,8 @@ With TLS on, every call but Health is authenticated and authorized before its ha
 - the caller's role must reach the RPC's declared `min_role` (services.security.roles), else
   PERMISSION_DENIED naming the role needed; no credentials or a bad token: UNAUTHENTICATED;
 - every command-class call (any RPC that needs the operator role or more, and EmergencyStop)
-  is written to the audit log with its outcome.
+  is written to the audit log with its outcome, except the station's own calls on its inner
+  ports (see `station_internal`).
 """
 
 from __future__ import annotations
@@ -88,6 +89,12 @@ class CallSecurity:
         role = declared_role(method)
         return self.audit is not None and (
             declared_lane(method) == Lane.EMERGENCY or (role is not None and role >= Role.OPERATOR))
+
+    def station_internal(self, caller: Caller | None) -> bool:
+        """A call between the station's own services: not audited on the inner ports. The
+        DecisionServer's audit already holds the operator's command behind it, and its moves
+        reach ProxyRobot at up to 1 kHz. (Refusals are audited whoever asked.)"""
+        return self.inner_port and caller is not None and caller.role is Role.STATION
 
     def record(self, method: str, caller: Caller | None, context: grpc.ServicerContext,
                outcome: str, detail: str = "") -> None:

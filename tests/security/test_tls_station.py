@@ -250,6 +250,21 @@ def test_command_calls_are_audited_with_identity_and_outcome(station, pki):
     assert not any(r["method"].endswith("/GetControlState") for r in records)
 
 
+def test_inner_ports_audit_everyone_but_the_station_itself(station, pki):
+    """The DecisionServer's moves reach ProxyRobot at up to 1 kHz as the station's identity:
+    those are not recorded there (the DecisionServer recorded the operator's call). An admin's
+    command, and every refusal, are."""
+    for identity in IDENTITIES:
+        with _channel(station, "proxy_robot", pki, identity) as channel:
+            _code(proxy_robot_pb2_grpc.ProxyRobotStub(channel).Hold, pr.HoldRequest())
+    records = [json.loads(line) for line in
+               (station["audit"] / "proxy_robot.jsonl").read_text().splitlines()]
+    holds = {(r["identity"], r["outcome"]) for r in records if r["method"].endswith("/Hold")}
+    assert ("admin", "OK") in holds, holds
+    assert {("observer", "PERMISSION_DENIED"), ("operator", "PERMISSION_DENIED")} <= holds
+    assert not any(identity == "decision_server" for identity, _ in holds), holds
+
+
 def test_anyone_identified_may_stop_the_arm_and_the_stop_is_audited(station, pki):
     """Last in this module: it leaves the arm e-stopped."""
     with _channel(station, "decision_server", pki, "observer") as channel:
