@@ -2,8 +2,10 @@
 
 The ladder is OBSERVER < OPERATOR < STATION < ADMIN; a role may do whatever the roles below it
 may. One rule on top of the declarations: the station's inner ports (ProxyRobot, ForceSensor,
-StereoCamera, the e-stop band) take operator-level calls only from STATION and ADMIN, so an
-operator cannot go around the DecisionServer's lock by calling ProxyRobot directly.
+StereoCamera, the e-stop band) take commands (operator- and admin-level calls) only from STATION
+and ADMIN, so an operator cannot go around the DecisionServer's lock by calling ProxyRobot
+directly, and the DecisionServer can forward what it allowed at its door (an admin's tool
+frame) as itself.
 """
 
 from __future__ import annotations
@@ -65,7 +67,7 @@ def declared_role(method_path: str) -> Role | None:
 def required_role(method_path: str, inner_port: bool) -> Role | None:
     """The least role a call needs on this server; None when the method is open to anyone."""
     role = declared_role(method_path)
-    if inner_port and role == Role.OPERATOR:
+    if inner_port and role is not None and role >= Role.OPERATOR:
         return Role.STATION  # commands reach the inner ports only through the DecisionServer
     return role
 
@@ -75,7 +77,7 @@ def check_role(role: Role, method_path: str, inner_port: bool) -> None:
     needed = required_role(method_path, inner_port)
     if needed is not None and role < needed:
         where = " on the station's inner port (call the DecisionServer)" if (
-            inner_port and declared_role(method_path) == Role.OPERATOR) else ""
+            inner_port and needed is Role.STATION) else ""
         raise PermissionDenied(
             f"{method_path} needs the {needed.label} role{where}; this identity is "
             f"{role.label}", "ROLE_TOO_LOW")

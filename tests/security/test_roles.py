@@ -55,9 +55,13 @@ def test_inner_ports_take_commands_only_from_the_station_and_admins():
     # Reads and stops stay open to observers on every port.
     check_role(Role.OBSERVER, "/telerobot.v1.ProxyRobot/GetState", inner_port=True)
     check_role(Role.OBSERVER, "/telerobot.v1.ProxyRobot/EmergencyStop", inner_port=True)
-    # An admin-level RPC stays admin-only on the inner ports (the station forwards as itself).
-    with pytest.raises(PermissionDenied, match="needs the admin role; this identity is station"):
-        check_role(Role.STATION, "/telerobot.v1.ProxyRobot/SetToolFrame", inner_port=True)
+    # An admin-level RPC: the DecisionServer checked the admin at its door and forwards it as
+    # itself; operators still cannot call it there.
+    check_role(Role.STATION, "/telerobot.v1.ProxyRobot/SetToolFrame", inner_port=True)
+    with pytest.raises(PermissionDenied, match="needs the station role"):
+        check_role(Role.OPERATOR, "/telerobot.v1.ProxyRobot/SetToolFrame", inner_port=True)
+    with pytest.raises(PermissionDenied, match="needs the admin role"):
+        check_role(Role.STATION, "/telerobot.v1.ProxyRobot/SetToolFrame", inner_port=False)
 
 
 def test_role_names_parse_both_ways():

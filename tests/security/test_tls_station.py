@@ -46,7 +46,7 @@ STUBS = {"DecisionServer": decision_server_pb2_grpc.DecisionServerStub,
          "ForceSensor": force_sensor_pb2_grpc.ForceSensorStub,
          "StereoCamera": stereo_camera_pb2_grpc.StereoCameraStub}
 # (port, service, method, request, least role there). The inner ports ask the STATION role for
-# what the DecisionServer's port asks the OPERATOR role.
+# what the DecisionServer's port asks the OPERATOR or ADMIN role.
 MATRIX = [
     ("decision_server", "DecisionServer", "GetControlState", ds.GetControlStateRequest(),
      Role.OBSERVER),
@@ -58,11 +58,12 @@ MATRIX = [
     ("decision_server", "ProxyRobot", "Hold", pr.HoldRequest(), Role.OPERATOR),
     ("proxy_robot", "ProxyRobot", "GetStatus", pr.GetStatusRequest(), Role.OBSERVER),
     ("proxy_robot", "ProxyRobot", "Hold", pr.HoldRequest(), Role.STATION),
-    ("proxy_robot", "ProxyRobot", "SetToolFrame", pr.SetToolFrameRequest(), Role.ADMIN),
+    ("proxy_robot", "ProxyRobot", "SetToolFrame", pr.SetToolFrameRequest(), Role.STATION),
     ("force_sensor", "ForceSensor", "GetSensorConfig", fs.GetSensorConfigRequest(),
      Role.OBSERVER),
     ("force_sensor", "ForceSensor", "StopReading", fs.StopReadingRequest(), Role.STATION),
-    ("force_sensor", "ForceSensor", "SetSensorConfig", fs.SetSensorConfigRequest(), Role.ADMIN),
+    ("force_sensor", "ForceSensor", "SetSensorConfig", fs.SetSensorConfigRequest(),
+     Role.STATION),
     ("stereo_camera", "StereoCamera", "GetStreamInfo", sc.GetStreamInfoRequest(),
      Role.OBSERVER),
     ("emergency_stop", "ProxyRobot", "GetStatus", pr.GetStatusRequest(), Role.OBSERVER),
@@ -248,6 +249,27 @@ def test_command_calls_are_audited_with_identity_and_outcome(station, pki):
     assert refused["outcome"] == "PERMISSION_DENIED" and refused["role"] == "observer"
     assert refused["time"].endswith("+00:00") and refused["peer"].startswith("ipv")
     assert not any(r["method"].endswith("/GetControlState") for r in records)
+
+
+def test_an_admin_sets_the_tool_frame_through_the_decision_server(station, pki):
+    """The DecisionServer checks the admin role at its door and forwards the call to the inner
+    ports as the station."""
+    with _channel(station, "decision_server", pki, "admin") as channel:
+        door = decision_server_pb2_grpc.DecisionServerStub(channel)
+        lease = door.AcquireControl(ds.AcquireControlRequest(
+            mode=ds.CONTROL_MODE_EXCLUSIVE), timeout=10).lease_id
+        try:
+            robot = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+            frame = robot.GetToolFrame(pr.GetToolFrameRequest(), timeout=10).flange_to_tool
+            frame.position_m.z += 0.01
+            reply = robot.SetToolFrame(pr.SetToolFrameRequest(flange_to_tool=frame),
+                                       timeout=10, metadata=((LEASE_METADATA_KEY, lease),))
+            assert abs(reply.flange_to_tool.position_m.z - frame.position_m.z) < 1e-9
+            frame.position_m.z -= 0.01
+            robot.SetToolFrame(pr.SetToolFrameRequest(flange_to_tool=frame), timeout=10,
+                               metadata=((LEASE_METADATA_KEY, lease),))
+        finally:
+            door.ReleaseControl(ds.ReleaseControlRequest(lease_id=lease), timeout=10)
 
 
 def test_inner_ports_audit_everyone_but_the_station_itself(station, pki):
