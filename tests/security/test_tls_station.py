@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import signal
+import subprocess
 import time
 
 import grpc
@@ -31,7 +32,7 @@ from telerobot.v1 import (
 from telerobot.v1 import force_sensor_pb2 as fs
 from telerobot.v1 import proxy_robot_pb2 as pr
 from telerobot.v1 import stereo_camera_pb2 as sc
-from tests.conftest import start_station, station_env, wait_for
+from tests.conftest import BUF, REPO, start_station, station_env, wait_for
 from wire.metadata import LEASE_METADATA_KEY
 from wire.tls import ChannelSecurity, open_channel
 
@@ -285,6 +286,27 @@ def test_inner_ports_audit_everyone_but_the_station_itself(station, pki):
     assert ("admin", "OK") in holds, holds
     assert {("observer", "PERMISSION_DENIED"), ("operator", "PERMISSION_DENIED")} <= holds
     assert not any(identity == "decision_server" for identity, _ in holds), holds
+
+
+def test_the_readmes_buf_curl_calls_work_over_tls(station, pki, tokens):
+    """The Security section's calls: a client certificate on the DecisionServer's port, and a
+    bearer token on its token port (reflection needs the token too: --reflect-header)."""
+    def buf_curl(*args: str) -> subprocess.CompletedProcess:
+        return subprocess.run([str(BUF), "curl", "--protocol", "grpc", "--cacert",
+                               str(pki / "ca.pem"), *args], cwd=REPO, capture_output=True,
+                              text=True, timeout=60)
+
+    operator = station["address"]["decision_server"]
+    listed = buf_curl("--cert", str(pki / "operator.pem"), "--key", str(pki / "operator.key"),
+                      "--list-methods", f"https://{operator}")
+    assert listed.returncode == 0, listed.stderr
+    assert "telerobot.v1.DecisionServer/Teleoperate" in listed.stdout
+    token_port = station["address"][token_port_name("decision_server")]
+    state = buf_curl("-H", f"authorization: Bearer {tokens['operator']}", "--reflect-header",
+                     "*", "-d", "{}",
+                     f"https://{token_port}/telerobot.v1.DecisionServer/GetControlState")
+    assert state.returncode == 0, state.stderr
+    assert "state" in json.loads(state.stdout)
 
 
 def test_anyone_identified_may_stop_the_arm_and_the_stop_is_audited(station, pki):
