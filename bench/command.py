@@ -43,6 +43,7 @@ from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldwatch import WorldWatch
 from telerobot.v1 import proxy_robot_pb2, proxy_robot_pb2_grpc, types_pb2
+from wire.tls import ChannelSecurity, open_channel
 
 DELTA_RAD = 1e-5
 CALL_TIMEOUT_S = 1.0
@@ -52,6 +53,8 @@ TELEOP_STEP_M = 1e-5  # Teleoperate: 10 um along base y per command
 LEASE_S = 60.0
 LEASE_RENEW_S = 5.0
 STREAM_TIMEOUT_S = 3600.0
+# A gRPC client's default: plaintext, whatever TELEROBOT_TLS_DIR the environment has.
+PLAINTEXT = ChannelSecurity()
 
 
 class CommandFailed(Exception):
@@ -77,13 +80,14 @@ class CommandTransport(Protocol):
 
 
 class GrpcUnaryTransport:
-    """ProxyRobot.MoveJointsIncremental, one unary call per command (default lane: high)."""
+    """ProxyRobot.MoveJointsIncremental, one unary call per command (default lane: high);
+    `security`: plaintext, or mutual TLS with a certificate of the station or an admin."""
 
     name = "grpc-unary"
     joint_space = True
 
-    def __init__(self, address: str):
-        self._channel = grpc.insecure_channel(address)
+    def __init__(self, address: str, security: ChannelSecurity = PLAINTEXT):
+        self._channel = open_channel(address, security=security)
         self._call = proxy_robot_pb2_grpc.ProxyRobotStub(self._channel).MoveJointsIncremental
 
     def send(self, sign: float) -> None:
@@ -156,12 +160,12 @@ class TeleoperateTransport:
     name = "grpc-teleoperate"
     joint_space = False
 
-    def __init__(self, address: str):
+    def __init__(self, address: str, security: ChannelSecurity = PLAINTEXT):
         from telerobot.v1 import decision_server_pb2 as dpb
         from telerobot.v1 import decision_server_pb2_grpc
 
         self._dpb = dpb
-        self._channel = grpc.insecure_channel(address)
+        self._channel = open_channel(address, security=security)
         self._stub = decision_server_pb2_grpc.DecisionServerStub(self._channel)
         self._lease = acquire_control(self._stub)
         self._stop = threading.Event()
@@ -339,10 +343,11 @@ def _applied(watch: WorldWatch, sends: list[int], base_target: float, sign: floa
 
 
 def measure(transport_kind: str, address: str, shm_name: str, rates: list[float],
-            duration_s: float) -> dict[str, dict]:
+            duration_s: float, **transport_options) -> dict[str, dict]:
     """run_rate for each rate over one connection (alternating the direction of motion from
-    one rate to the next, so the arm ends near where it started); {str(rate): result}."""
-    transport = TRANSPORTS[transport_kind](address)
+    one rate to the next, so the arm ends near where it started); {str(rate): result}.
+    `transport_options` go to the transport (`security` for the gRPC ones)."""
+    transport = TRANSPORTS[transport_kind](address, **transport_options)
     watch = WorldWatch(shm_name)
     try:
         return {str(int(rate)): run_rate(transport, watch, rate, duration_s,

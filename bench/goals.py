@@ -7,7 +7,8 @@ there to be compared with, not judged.
 
 A goal relative to a baseline (command_1000: p99 <= 1.5 x command_1000_zmq's) is judged
 against the baseline measured in the same run; until that baseline has run it is PENDING, and
-if the run never measured it (``--only`` without ``baselines``) it FAILs, saying why.
+if the run never measured it (``--only`` without ``baselines``) it FAILs, saying why. The TLS
+variants' goals (issue #13) are relative the same way, to their plaintext twins.
 """
 
 from __future__ import annotations
@@ -45,12 +46,14 @@ class Goal:
         return ", ".join(parts)
 
 
-_ISSUE, _BRIEF = "issue #12", "architecture brief"
+_ISSUE, _BRIEF, _TLS_ISSUE = "issue #12", "architecture brief", "issue #13"
 # First match wins: the exact names before the patterns.
 GOALS: tuple[tuple[str, Goal], ...] = (
     ("teleop_1000", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("teleop_50", Goal(p99_ms=2.0, source=_ISSUE)),
     ("command_1000", Goal(min_rate=990, p99_vs=("command_1000_zmq", 1.5), source=_ISSUE)),
+    ("teleop_1000_tls", Goal(p99_vs=("teleop_1000", 1.2), source=_TLS_ISSUE)),
+    ("command_1000_tls", Goal(p99_vs=("command_1000", 1.2), source=_TLS_ISSUE)),
     ("observers_16", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("observers_32", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("closed_loop", Goal(p50_ms=15.0, p99_ms=25.0, source=_ISSUE)),

@@ -19,6 +19,7 @@ from pathlib import Path
 
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
+from wire.tls import TLS_DIR_ENV
 
 __all__ = ["Child", "ChildFailed", "ProcessSet", "WORKER_READY", "unique_shm_name"]
 
@@ -39,7 +40,9 @@ class ProcessSet:
 
     def __init__(self, base_env: dict[str, str] | None = None):
         self.children: list[Child] = []
-        self.base_env = {"TELEROBOT_LOG_LEVEL": "WARNING", **(base_env or {})}
+        # Plaintext unless a child is given a TLS directory: a TELEROBOT_TLS_DIR in the
+        # caller's shell must not turn the bench's plaintext station into a TLS one.
+        self.base_env = {"TELEROBOT_LOG_LEVEL": "WARNING", TLS_DIR_ENV: "", **(base_env or {})}
         self.scratch = Path(tempfile.mkdtemp(prefix="telerobot_bench_"))
         self._result_paths: dict[Child, Path] = {}
 
@@ -50,19 +53,21 @@ class ProcessSet:
         return child
 
     def start_service(self, service: str, extra_args: list[str] | None = None,
-                      name: str | None = None) -> Child:
-        """`python -m services.<service>` on 127.0.0.1:0; `wait_ready()` it for its address."""
+                      name: str | None = None, env: dict[str, str] | None = None) -> Child:
+        """`python -m services.<service>` on 127.0.0.1:0 (`env` on top of the base one, e.g.
+        a TLS directory); `wait_ready()` it for its address."""
         return self.start(name or service, [
             "-m", f"services.{service}", "--address", "127.0.0.1:0",
-            "--grace-s", SERVICE_GRACE_S, *(extra_args or [])])
+            "--grace-s", SERVICE_GRACE_S, *(extra_args or [])], env)
 
     def run_service(self, service: str, extra_args: list[str] | None = None,
-                    timeout_s: float = 60.0) -> tuple[Child, str]:
+                    timeout_s: float = 60.0, name: str | None = None,
+                    env: dict[str, str] | None = None) -> tuple[Child, str]:
         """start_service, waited for until it is serving: (child, its host:port). ChildFailed
         (the child stopped) if it does not get there."""
-        child = self.start_service(service, extra_args)
+        child = self.start_service(service, extra_args, name, env)
         try:
-            return child, child.wait_ready(timeout_s=timeout_s)
+            return child, child.wait_ready(service, timeout_s=timeout_s)
         except ChildFailed:
             self.stop(child)
             raise

@@ -13,7 +13,8 @@ import fnmatch
 import json
 from pathlib import Path
 
-from bench import goals
+from bench import goals, report
+from bench.stats import ratio
 
 REPO = Path(__file__).resolve().parent.parent
 RESULTS = REPO / "bench" / "results" / "latest.json"
@@ -47,6 +48,9 @@ def scenarios(document: dict) -> dict[str, dict]:
 
 
 def _what(name: str, result: dict) -> str:
+    twin = report.plaintext_twin(name)
+    if twin is not None:
+        return f"`{twin}` with mutual TLS (client certificates, role checks, audit log)"
     if name.startswith("teleop_") and "mode" not in result and "lockstep" not in name:
         return "Teleoperate command → applied, lockstep (a run from before pipelining)"
     return next((text for pattern, text in WHAT if fnmatch.fnmatchcase(name, pattern)), "")
@@ -87,13 +91,18 @@ def _verdict(name: str, result: dict, results: dict[str, dict]) -> tuple[str, st
 
 
 def _baselines(name: str, results: dict[str, dict]) -> str:
+    """The baselines' figures (a TLS variant's: its plaintext twin's, and its p99 over it)."""
     parts = []
-    for transport in ("zmq", "tcp"):
-        base = results.get(f"{name}_{transport}")
+    for label, other in report.compared_with(name):
+        base = results.get(other)
         if base and base.get("p50_ms") is not None:
             rate = (f"{base['delivered_hz']:.0f} Hz, " if base.get("rate_hz")
                     and base.get("delivered_hz") is not None else "")
-            parts.append(f"{transport} {rate}{_ms(base['p50_ms'])} / {_ms(base['p99_ms'])}")
+            text = f"{label} {rate}{_ms(base['p50_ms'])} / {_ms(base['p99_ms'])}"
+            if label == report.PLAINTEXT:
+                p99_ratio = ratio(results[name].get("p99_ms"), base["p99_ms"])
+                text += f" (p99 ×{p99_ratio:.2f})" if p99_ratio is not None else ""
+            parts.append(text)
     return "; ".join(parts) or "–"
 
 
@@ -109,8 +118,8 @@ def table(document: dict) -> str:
         f"{'quick' if document.get('quick') else 'full'} run of {document.get('run_s')} s "
         f"at {document.get('time')}, on {machine.get('cores')} cores ({machine.get('cpu_model')},"
         f" Python {machine.get('python')}, load average {loads or '?'}). Latency in ms; "
-        "baselines: the same domain code over pyzmq and plain TCP in the same run "
-        "(delivered, p50 / p99).",
+        "baselines: the same domain code over pyzmq and plain TCP in the same run, and for a "
+        "`_tls` row the plaintext scenario it repeats (delivered, p50 / p99).",
         "",
         "| scenario | what | delivered | p50 | p99 | goal | result | baselines |",
         "|---|---|---|---|---|---|---|---|",

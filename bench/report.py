@@ -1,5 +1,5 @@
-"""Ratios against the baselines, the terminal table and results/latest.json (the goals and
-their PASS/FAIL are goals.py's)."""
+"""Ratios against the baselines (and of each TLS variant against its plaintext twin), the
+terminal table and results/latest.json (the goals and their PASS/FAIL are goals.py's)."""
 
 from __future__ import annotations
 
@@ -27,33 +27,65 @@ PAPERS = {
 }
 
 
+TLS_SUFFIX = "_tls"
+PLAINTEXT = "plaintext"  # what a TLS variant is compared with, as the ratios name it
+
+
 def family(name: str) -> str:
     return name.split("_", 1)[0]
 
 
+def plaintext_twin(name: str) -> str | None:
+    """The plaintext scenario a TLS variant repeats (command_1000_tls: command_1000)."""
+    return name.removesuffix(TLS_SUFFIX) if name.endswith(TLS_SUFFIX) else None
+
+
+def compared_with(name: str) -> list[tuple[str, str]]:
+    """(label, scenario) for each scenario whose figures `name`'s are divided by: a TLS
+    variant's plaintext twin; a project scenario's baselines of the same name (zmq, tcp)."""
+    if is_baseline(name):
+        return []
+    twin = plaintext_twin(name)
+    if twin is not None:
+        return [(PLAINTEXT, twin)]
+    return [(transport, f"{name}_{transport}") for transport in ("zmq", "tcp")]
+
+
+def comparison(result: dict, base: dict) -> dict[str, float | None]:
+    """result / base: p50, p99, the delivered rate when both stream, the ack round trip's p50
+    and p99 when the result has one. Empty when `base` has no latencies."""
+    if base.get("p50_ms") is None:
+        return {}
+    entry = {"p50": ratio(result.get("p50_ms"), base["p50_ms"]),
+             "p99": ratio(result.get("p99_ms"), base["p99_ms"])}
+    if result.get("rate_hz") and base.get("rate_hz"):
+        entry["delivered"] = ratio(result.get("delivered_hz"), base.get("delivered_hz"))
+    if "ack_p50_ms" in result:
+        entry["ack_p50"] = ratio(result.get("ack_p50_ms"), base.get("ack_p50_ms"))
+        entry["ack_p99"] = ratio(result.get("ack_p99_ms"), base.get("ack_p99_ms"))
+    return entry
+
+
+def ratio_text(entry: dict[str, float | None]) -> str:
+    return ", ".join(f"{key} x{fmt(value)}" for key, value in entry.items()) or "-"
+
+
 def add_ratios(results: dict[str, dict]) -> dict[str, dict]:
-    """Papers' figures, and project/baseline ratios on every project scenario that has a
-    baseline of the same name (teleop_1000 / teleop_1000_zmq, command_50 / command_50_tcp).
-    Returns {project scenario: {baseline transport: {p50, p99 (, ack_p50, ack_p99)}}}."""
+    """Papers' figures, and `ratio_vs_<label>` on every scenario measured in the run with
+    what it is compared with (compared_with: teleop_1000 / teleop_1000_zmq, command_50 /
+    command_50_tcp, command_1000_tls / command_1000).
+    Returns {scenario: {label: comparison}}."""
     ratios: dict[str, dict] = {}
     for name, result in results.items():
         paper = PAPERS.get(name) or (None if is_baseline(name) else PAPERS.get(family(name)))
         if paper:
             result["paper"] = paper
     for name, result in results.items():
-        if is_baseline(name):
-            continue
-        for transport in ("zmq", "tcp"):
-            base = results.get(f"{name}_{transport}")
-            if not base or base.get("p50_ms") is None:
-                continue
-            entry = {"p50": ratio(result.get("p50_ms"), base["p50_ms"]),
-                     "p99": ratio(result.get("p99_ms"), base["p99_ms"])}
-            if "ack_p50_ms" in result:
-                entry["ack_p50"] = ratio(result.get("ack_p50_ms"), base.get("ack_p50_ms"))
-                entry["ack_p99"] = ratio(result.get("ack_p99_ms"), base.get("ack_p99_ms"))
-            result[f"ratio_vs_{transport}"] = entry
-            ratios.setdefault(name, {})[transport] = entry
+        for label, other in compared_with(name):
+            entry = comparison(result, results.get(other) or {})
+            if entry:
+                result[f"ratio_vs_{label}"] = entry
+                ratios.setdefault(name, {})[label] = entry
     return ratios
 
 
@@ -107,16 +139,18 @@ def table(results: dict[str, dict]) -> str:
               if r.get("goal_misses")]
     if misses:
         lines += ["", "Goals missed:", *misses]
-    ratio_lines = []
+    baseline_lines, tls_lines = [], []
     for name, r in results.items():
-        for transport in ("zmq", "tcp"):
-            entry = r.get(f"ratio_vs_{transport}")
+        for label, other in compared_with(name):
+            entry = r.get(f"ratio_vs_{label}")
             if entry:
-                parts = [f"{key} x{fmt(value)}" for key, value in entry.items()]
-                ratio_lines.append(f"  {name} / {name}_{transport}: " + ", ".join(parts))
-    if ratio_lines:
+                (tls_lines if label == PLAINTEXT else baseline_lines).append(
+                    f"  {name} / {other}: {ratio_text(entry)}")
+    if baseline_lines:
         lines += ["", "Project / baseline (same payloads, same domain cores, same run):",
-                  *ratio_lines]
+                  *baseline_lines]
+    if tls_lines:
+        lines += ["", "Mutual TLS / plaintext (the same scenario, right after it):", *tls_lines]
     extras = _extras(results)
     if extras:
         lines += ["", *extras]

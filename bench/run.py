@@ -6,26 +6,34 @@ shared-memory name of its own, so it never meets a `make serve` or a test. Every
 client is a separate worker process (worker.py); the baselines' servers are separate processes
 too (baseline_server.py). Baselines run right after the project's scenarios they are compared
 with, in the same run.
+
+When the command or decision group runs, a twin of the station's services (proxy_robot,
+force_sensor, emergency_stop, and a DecisionServer when needed) serves mutual TLS with a PKI
+made for the run in its scratch directory; it joins the same world, which one of the two
+drives at a time. Its scenarios (`*_tls`) run right after their plaintext twins.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import signal
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import grpc
 
 from bench import goals, plots, report, stereo, worldloop
-from bench.procs import ChildFailed, ProcessSet, unique_shm_name
+from bench.procs import Child, ChildFailed, ProcessSet, unique_shm_name
 from bench.stats import ratio
 from bench.worldloop import LoopMeter
 from services.runtime.children import refused_address
+from services.security import pki
+from services.security.audit import AUDIT_DIR_ENV
 from services.world.shm_layout import SHM_NAME_ENV
 from telerobot.v1 import (
     force_sensor_pb2,
@@ -34,10 +42,15 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
     types_pb2,
 )
+from wire.tls import TLS_DIR_ENV, ChannelSecurity, open_channel
 
 RESULTS_DIR = Path(__file__).resolve().parent / "results"
 SETUP_TIMEOUT_S = 10.0
 OBSERVERS_PER_PROCESS = 8
+# With TLS, ProxyRobot's inner port takes commands only from the station's or an admin's
+# certificate: the bench's own set-up calls and the command worker present the admin one.
+ADMIN_IDENTITY = "admin"
+OPERATOR_IDENTITY = "operator"  # Teleoperate needs the operator role (and binds the lease)
 
 
 @dataclass(frozen=True)
@@ -83,6 +96,11 @@ class Plan:
     def wants(self, group: str) -> bool:
         return not self.only or group in self.only
 
+    @property
+    def tls(self) -> bool:
+        """Whether a group with a TLS variant runs (then the TLS station is started)."""
+        return self.wants("command") or self.wants("decision")
+
 
 GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
           "stereo")
@@ -118,30 +136,48 @@ class Progress:
 
 
 class Station:
-    """The slave station's processes for this run, and the set-up calls the bench makes."""
+    """The slave station's processes for this run, and the set-up calls the bench makes.
 
-    def __init__(self, procs: ProcessSet, shm_name: str):
+    With `tls_dir` (a PKI from services.security.pki) its services serve mutual TLS and write
+    their audit logs to `audit_dir`, and the bench's calls to them present the admin
+    certificate. `world`: a running world to join (its shared memory) instead of starting
+    one; only one station drives a world at a time (arm_ready, release)."""
+
+    def __init__(self, procs: ProcessSet, shm_name: str, tls_dir: Path | None = None,
+                 audit_dir: Path | None = None, world: Child | None = None):
         self.procs = procs
         self.shm = shm_name
+        self.tls_dir = tls_dir
+        self.security = ChannelSecurity(tls_dir, ADMIN_IDENTITY)  # plaintext without tls_dir
+        self.env = ({TLS_DIR_ENV: str(tls_dir), AUDIT_DIR_ENV: str(audit_dir)}
+                    if tls_dir else {})
+        self.suffix = "_tls" if tls_dir else ""  # of its processes' names
+        self.world = world
         self.address: dict[str, str] = {}  # service -> host:port, from its ready line
 
+    def client_params(self, identity: str) -> dict:
+        """A worker's parameters to reach this station: its TLS directory and the identity
+        whose certificate to present; none for plaintext."""
+        return {"tls_dir": str(self.tls_dir), "identity": identity} if self.tls_dir else {}
+
     def start(self) -> None:
-        _, self.address["world"] = self.procs.run_service("world")
-        started = [self.procs.start_service(name)
-                   for name in ("proxy_robot", "force_sensor", "emergency_stop")]
-        for child in started:
-            self.address[child.name] = child.wait_ready(timeout_s=60.0)
-        self.proxy = started[0]
+        if self.world is None:
+            self.world, self.address["world"] = self.procs.run_service("world")
+        services = ("proxy_robot", "force_sensor", "emergency_stop")
+        started = [self.procs.start_service(service, name=service + self.suffix, env=self.env)
+                   for service in services]
+        for service, child in zip(services, started, strict=True):
+            self.address[service] = child.wait_ready(service, timeout_s=60.0)
+        self.proxy, self.sensor = started[0], started[1]
 
     def arm_ready(self) -> None:
         """ProxyRobot connected, initialized and not stopped; the sensor reading. Also brings
         them back after a hiccup (on an overloaded machine a world that has not stepped for
         100 ms counts as gone: the proxy drops its link, the sensor stops sampling)."""
-        for child in self.procs.children:
-            if child.name in ("world", "proxy_robot", "force_sensor") and (
-                    child.process.poll() is not None):
+        for child in (self.world, self.proxy, self.sensor):
+            if child.process.poll() is not None:
                 raise ChildFailed(f"a station process died: {child.describe()}")
-        with grpc.insecure_channel(self.address["proxy_robot"]) as channel:
+        with open_channel(self.address["proxy_robot"], security=self.security) as channel:
             robot = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
             status = robot.GetStatus(proxy_robot_pb2.GetStatusRequest(),
                                      timeout=SETUP_TIMEOUT_S).status
@@ -153,17 +189,17 @@ class Station:
                                      timeout=SETUP_TIMEOUT_S).status
             if status == types_pb2.ROBOT_STATUS_CONNECTED:
                 robot.Initialize(proxy_robot_pb2.InitializeRequest(), timeout=SETUP_TIMEOUT_S)
-        with grpc.insecure_channel(self.address["force_sensor"]) as channel:
+        with open_channel(self.address["force_sensor"], security=self.security) as channel:
             sensor = force_sensor_pb2_grpc.ForceSensorStub(channel)
             sensor.StartReading(force_sensor_pb2.StartReadingRequest(), timeout=SETUP_TIMEOUT_S)
 
     def release(self) -> None:
         """ProxyRobot disconnected (the world's command record is free for another driver)
         and the sensor stopped (one sampler at a time)."""
-        with grpc.insecure_channel(self.address["proxy_robot"]) as channel:
+        with open_channel(self.address["proxy_robot"], security=self.security) as channel:
             proxy_robot_pb2_grpc.ProxyRobotStub(channel).Disconnect(
                 proxy_robot_pb2.DisconnectRequest(), timeout=SETUP_TIMEOUT_S)
-        with grpc.insecure_channel(self.address["force_sensor"]) as channel:
+        with open_channel(self.address["force_sensor"], security=self.security) as channel:
             force_sensor_pb2_grpc.ForceSensorStub(channel).StopReading(
                 force_sensor_pb2.StopReadingRequest(), timeout=SETUP_TIMEOUT_S)
 
@@ -175,6 +211,8 @@ class Bench:
         self.shm = unique_shm_name()
         self.procs = ProcessSet({SHM_NAME_ENV: self.shm})
         self.station = Station(self.procs, self.shm)
+        self.tls: Station | None = None  # the TLS twin, when plan.tls
+        self.driver = self.station  # the station driving the world (one at a time)
         self.results: dict[str, dict] = {}
         self.raw: dict[str, list[float]] = {}
         self.progress = Progress(self._count_steps(), on_step=self._mark_loop)
@@ -183,8 +221,8 @@ class Bench:
 
     def _count_steps(self) -> int:
         p = self.plan
-        counts = {"command": 1, "force": len(p.force_rates), "baselines": 2,
-                  "observers": len(p.observer_counts), "estop": 4, "decision": 5 + p.profile,
+        counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
+                  "observers": len(p.observer_counts), "estop": 4, "decision": 6 + p.profile,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
         return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
@@ -195,8 +233,11 @@ class Bench:
         started = time.monotonic()
         try:
             self.progress.step(f"starting the station (world, proxy_robot, force_sensor; "
-                               f"shared memory {self.shm})")
+                               f"shared memory {self.shm})"
+                               + (", and their twins with mutual TLS" if self.plan.tls else ""))
             self.station.start()
+            if self.plan.tls:
+                self.tls = self._start_tls_station()
             self.station.arm_ready()
             self.loop = LoopMeter(self.shm)
             self.progress.done("up")
@@ -217,6 +258,34 @@ class Bench:
             _remove_segment(self.shm)
         self.elapsed_s = time.monotonic() - started
         return self.results
+
+    def _start_tls_station(self) -> Station:
+        """proxy_robot, force_sensor and emergency_stop again, serving mutual TLS, on the same
+        world; the PKI and the audit logs in the run's scratch directory (removed with it)."""
+        tls_dir = self.procs.scratch / "pki"
+        pki.init(tls_dir)
+        station = Station(self.procs, self.shm, tls_dir, self.procs.scratch / "audit",
+                          world=self.station.world)
+        station.start()
+        return station
+
+    @contextlib.contextmanager
+    def _driving(self, station: Station) -> Iterator[Station]:
+        """`station` drives the world (its ProxyRobot connected, its sensor reading) while the
+        body runs; then the one that drove before does again."""
+        before = self.driver
+        before.release()
+        self.driver = station
+        try:
+            station.arm_ready()
+            yield station
+        finally:
+            try:
+                station.release()
+            except grpc.RpcError as error:  # gone: it drives nothing any more
+                self.progress.note(f"releasing the world failed: {_reason(error)}")
+            self.driver = before
+            before.arm_ready()
 
     def _record(self, name: str, result: dict) -> None:
         raw = result.pop("latencies_ms", None)
@@ -284,7 +353,7 @@ class Bench:
         self.progress.done(f"FAILED: {_reason(error)}; " + ", ".join(verdicts))
         print(str(error), file=sys.stderr)
         try:
-            self.station.arm_ready()  # for the scenarios after this one
+            self.driver.arm_ready()  # for the scenarios after this one
         except (ChildFailed, grpc.RpcError) as problem:
             print(f"the station did not come back: {problem}", file=sys.stderr)
 
@@ -298,11 +367,35 @@ class Bench:
                 raise
             why = _reason(error)
             self.progress.note(f"{kind} worker failed ({why}); retrying once")
-            self.station.arm_ready()
+            self.driver.arm_ready()
             result = self.procs.run_worker(kind, params, timeout_s)
             for entry in (result.values() if kind in ("command", "teleop") else [result]):
                 entry["retried_after"] = why
             return result
+
+    def _rate_worker(self, kind: str, transport: str, address: str, rates,
+                     station_params: dict | None = None, retry: bool = True) -> dict[str, dict]:
+        """A command or teleop worker: each of `rates` for plan.command_s over `transport` to
+        `address` (`station_params`: Station.client_params); {str(rate): result}."""
+        plan = self.plan
+        return self._worker(kind, {
+            "transport": transport, "address": address, "shm": self.shm, "rates": list(rates),
+            "duration_s": plan.command_s, **(station_params or {})},
+            60 + 3 * plan.command_s * len(rates), retry)
+
+    def _tls_twin(self, twin: str, measure: Callable[[Station], dict]) -> None:
+        """`<twin>_tls`: `measure(station)` on the TLS station, right after `twin` ran on the
+        plaintext one, so that both see the same machine."""
+        name = f"{twin}_tls"
+        self.progress.step(f"{name}: {twin} again, the station serving mutual TLS")
+        try:
+            with self._driving(self.tls) as tls:
+                result = measure(tls)
+        except (ChildFailed, grpc.RpcError) as error:
+            return self._fail([name], error)
+        self._record(name, result)
+        versus = report.comparison(result, self.results.get(twin, {}))
+        self.progress.done(f"{self._headline(name)} (/ {twin}: {report.ratio_text(versus)})")
 
     def commands(self) -> None:
         plan = self.plan
@@ -310,16 +403,22 @@ class Bench:
         self.progress.step(f"{', '.join(names)}: ProxyRobot.MoveJointsIncremental unary calls, "
                            f"lockstep, {plan.command_s:.0f} s each")
         try:
-            results = self._worker("command", {
-                "transport": "grpc", "address": self.station.address["proxy_robot"],
-                "shm": self.shm, "rates": list(plan.command_rates),
-                "duration_s": plan.command_s}, 60 + 3 * plan.command_s * len(names))
+            results = self._rate_worker("command", "grpc", self.station.address["proxy_robot"],
+                                        plan.command_rates)
         except ChildFailed as error:
-            return self._fail(names, error)
-        for rate in plan.command_rates:
-            self._record(f"command_{rate}", results[str(rate)])
-        self.progress.done("; ".join(f"{r}: {self._headline(f'command_{r}')}"
-                                     for r in plan.command_rates))
+            self._fail(names, error)
+        else:
+            for rate in plan.command_rates:
+                self._record(f"command_{rate}", results[str(rate)])
+            self.progress.done("; ".join(f"{r}: {self._headline(f'command_{r}')}"
+                                         for r in plan.command_rates))
+        self._tls_twin("command_1000", self._command_tls)
+
+    def _command_tls(self, tls: Station) -> dict:
+        """command_1000 on the TLS station's ProxyRobot, the worker presenting the admin
+        certificate (its inner port takes commands from the station or an admin)."""
+        return self._rate_worker("command", "grpc", tls.address["proxy_robot"], [1000],
+                                 tls.client_params(ADMIN_IDENTITY))["1000"]
 
     def force(self) -> None:
         for rate, decimation in self.plan.force_rates:
@@ -374,10 +473,8 @@ class Bench:
         try:
             command_address = server.wait_ready("baseline_command", timeout_s=60.0)
             force_address = server.wait_ready("baseline_force", timeout_s=10.0)
-            results = self._worker("command", {
-                "transport": transport, "address": command_address, "shm": self.shm,
-                "rates": list(plan.command_rates), "duration_s": plan.command_s},
-                60 + 3 * plan.command_s * len(plan.command_rates), retry=False)
+            results = self._rate_worker("command", transport, command_address,
+                                        plan.command_rates, retry=False)
             for rate in plan.command_rates:
                 self._record(f"command_{rate}_{transport}", results[str(rate)])
             for rate, decimation in plan.force_rates:
@@ -510,27 +607,38 @@ class Bench:
         load (200 RunAction BusyWork on the low lane)."""
         teleop = [f"teleop_{rate}" for rate in self.plan.command_rates]
         self._with_decision_server(teleop + ["teleop_1000_lockstep"], self._teleop)
+        self._tls_twin("teleop_1000", self._teleop_tls)
         if self.plan.profile:
             self._with_decision_server(["profile"], self._profile)
         self._teleop_baseline()
         self._with_decision_server(["estop_ds_idle", "estop_ds_busywork"], self._estop_ds)
 
-    def _with_decision_server(self, names: list[str], body: Callable[[str], None]) -> None:
-        """A DecisionServer process in front of the station while `body(address)` runs."""
+    @contextlib.contextmanager
+    def _decision_server(self, station: Station) -> Iterator[str]:
+        """A DecisionServer process in front of `station` (with its TLS, if any) while the
+        body runs: its address. ChildFailed if it does not start."""
+        server, address = self.procs.run_service("decision_server", [
+            "--proxy-robot-address", station.address["proxy_robot"],
+            "--force-sensor-address", station.address["force_sensor"],
+            "--stereo-camera-address", refused_address(),  # no camera in these scenarios
+            "--emergency-stop-address", station.address["emergency_stop"],
+            "--recordings-dir", str(self.procs.scratch / "recordings")],
+            name="decision_server" + station.suffix, env=station.env)
         try:
-            server, address = self.procs.run_service("decision_server", [
-                "--proxy-robot-address", self.station.address["proxy_robot"],
-                "--force-sensor-address", self.station.address["force_sensor"],
-                "--stereo-camera-address", refused_address(),  # no camera in these scenarios
-                "--emergency-stop-address", self.station.address["emergency_stop"],
-                "--recordings-dir", str(self.procs.scratch / "recordings")])
-        except ChildFailed as error:
-            self.progress.step(f"starting the DecisionServer for {', '.join(names)}")
-            return self._fail(names, error)
-        try:
-            body(address)
+            yield address
         finally:
             self.procs.stop(server)
+
+    def _with_decision_server(self, names: list[str], body: Callable[[str], None]) -> None:
+        """A DecisionServer process in front of the station while `body(address)` runs (it
+        deals with its own failures); if it does not start, `names` fail."""
+        with contextlib.ExitStack() as stack:
+            try:
+                address = stack.enter_context(self._decision_server(self.station))
+            except ChildFailed as error:
+                self.progress.step(f"starting the DecisionServer for {', '.join(names)}")
+                return self._fail(names, error)
+            body(address)
 
     def _profile(self, address: str) -> None:
         """Teleoperate at 1 kHz again, with py-spy on the DecisionServer and ProxyRobot."""
@@ -544,9 +652,7 @@ class Bench:
                 and child.process.poll() is None}
         recording = Recording(pids, seconds, self.out_dir)
         try:
-            self._worker("teleop", {"transport": "grpc", "address": address, "shm": self.shm,
-                                    "rates": [1000], "duration_s": self.plan.command_s},
-                         60 + 3 * self.plan.command_s)
+            self._rate_worker("teleop", "grpc", address, [1000])
         except ChildFailed as error:
             self.progress.note(f"profile run failed: {error}")
         summaries = recording.finish()
@@ -560,9 +666,7 @@ class Bench:
         self.progress.step(f"{name} (diagnostic): Teleoperate at 1 kHz offered, each command "
                            f"waited for (the old way), {plan.command_s:.0f} s")
         try:
-            result = self._worker("command", {
-                "transport": "teleop", "address": address, "shm": self.shm, "rates": [1000],
-                "duration_s": plan.command_s}, 60 + 3 * plan.command_s)["1000"]
+            result = self._rate_worker("command", "teleop", address, [1000])["1000"]
             result["diagnostic"] = "lockstep: each command waits for the previous one's ack"
             self._record(name, result)
             self.progress.done(self._headline(name))
@@ -572,10 +676,7 @@ class Bench:
         self.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate, commands streamed "
                            f"at the offered rate (pipelined), {plan.command_s:.0f} s each")
         try:
-            results = self._worker("teleop", {
-                "transport": "grpc", "address": address, "shm": self.shm,
-                "rates": list(plan.command_rates), "duration_s": plan.command_s},
-                60 + 3 * plan.command_s * len(names))
+            results = self._rate_worker("teleop", "grpc", address, plan.command_rates)
         except ChildFailed as error:
             return self._fail(names, error)
         for rate in plan.command_rates:
@@ -586,6 +687,13 @@ class Bench:
                                                lockstep_p99_ms=lockstep["p99_ms"])
         self.progress.done("; ".join(f"{r}: {self._headline(f'teleop_{r}')}"
                                      for r in plan.command_rates))
+
+    def _teleop_tls(self, tls: Station) -> dict:
+        """teleop_1000 through a DecisionServer of the TLS station (which presents its own
+        certificate to ProxyRobot), the worker presenting an operator's."""
+        with self._decision_server(tls) as address:
+            return self._rate_worker("teleop", "grpc", address, [1000],
+                                     tls.client_params(OPERATOR_IDENTITY))["1000"]
 
     def _teleop_baseline(self) -> None:
         """teleop_1000_zmq: the DecisionServer's DecisionCore and GrpcSlave (to this station's
@@ -600,9 +708,7 @@ class Bench:
             "--force-sensor-address", self.station.address["force_sensor"]])
         try:
             address = server.wait_ready("baseline_teleop", timeout_s=60.0)
-            result = self._worker("teleop", {
-                "transport": "zmq", "address": address, "shm": self.shm, "rates": [1000],
-                "duration_s": plan.command_s}, 60 + 3 * plan.command_s)["1000"]
+            result = self._rate_worker("teleop", "zmq", address, [1000])["1000"]
         except ChildFailed as error:
             return self._fail([name], error)
         finally:

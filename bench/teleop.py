@@ -45,12 +45,13 @@ import grpc
 from google.protobuf import duration_pb2, timestamp_pb2
 
 from bench import framing
-from bench.command import TELEOP_STEP_M, acquire_control, release_control
+from bench.command import PLAINTEXT, TELEOP_STEP_M, acquire_control, release_control
 from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldloop import LoopMeter
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import decision_server_pb2_grpc, types_pb2
+from wire.tls import ChannelSecurity, open_channel
 
 WARMUP_COMMANDS = 20
 DRAIN_S = 1.0  # after the last send, acks still count this long
@@ -120,12 +121,13 @@ class GrpcStream:
 
 class GrpcTeleop:
     """DecisionServer.Teleoperate: one control lease for the run (each command renews it), a
-    stream per rate."""
+    stream per rate. `security`: plaintext, or mutual TLS with an operator's certificate (the
+    lease is bound to that identity)."""
 
     name = "grpc-teleoperate pipelined"
 
-    def __init__(self, address: str):
-        self._channel = grpc.insecure_channel(address)
+    def __init__(self, address: str, security: ChannelSecurity = PLAINTEXT):
+        self._channel = open_channel(address, security=security)
         self._stub = decision_server_pb2_grpc.DecisionServerStub(self._channel)
         self._lease = acquire_control(self._stub)
 
@@ -380,10 +382,10 @@ def _summarize(books: tuple[list, list[str], int], error: str | None, transport:
 
 
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
-            duration_s: float) -> dict[str, dict]:
+            duration_s: float, **client_options) -> dict[str, dict]:
     """run_rate for each rate (a session each, the direction of motion alternating);
-    {str(rate): result}."""
-    client = CLIENTS[transport_kind](address)
+    {str(rate): result}. `client_options` go to the client (`security` for gRPC)."""
+    client = CLIENTS[transport_kind](address, **client_options)
     loop = LoopMeter(shm_name) if shm_name else None
     try:
         return {str(int(rate)): run_rate(client, rate, duration_s,

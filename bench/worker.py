@@ -4,6 +4,8 @@ Every client of the bench runs here, apart from the orchestrator, so the orchest
 threads never share an interpreter (and its GIL) with a measurement. Kinds and their
 parameters are in KINDS below. A long-running worker (observers, load) prints BENCH_READY once
 it is up and runs until SIGTERM or its `max_s`. The result is written as JSON to OUT_PATH.
+The command and teleop kinds reach a TLS station given `tls_dir` and `identity` (which of the
+directory's certificates to present), explicitly: never from the environment.
 
 Every worker sets the interpreter's switch interval to 0.5 ms (from 5 ms), as the world process
 does, so a thread woken by the network gets the GIL back soon: the same for the project's
@@ -17,9 +19,11 @@ import os
 import signal
 import sys
 import threading
+from pathlib import Path
 
 from bench.procs import WORKER_READY
 from services.runtime.process import watch_parent
+from wire.tls import ChannelSecurity
 
 SWITCH_INTERVAL_S = 0.0005
 
@@ -34,16 +38,26 @@ def _stop_on_signal() -> threading.Event:
     return stop
 
 
+def _channel_security(p: dict) -> dict:
+    """{"security": ...} for a gRPC client of a TLS station (`tls_dir`, and the `identity`
+    whose certificate it presents); nothing for a plaintext one."""
+    if not p.get("tls_dir"):
+        return {}
+    return {"security": ChannelSecurity(Path(p["tls_dir"]), p["identity"])}
+
+
 def _command(p: dict) -> dict:
     from bench.command import measure
 
-    return measure(p["transport"], p["address"], p["shm"], p["rates"], p["duration_s"])
+    return measure(p["transport"], p["address"], p["shm"], p["rates"], p["duration_s"],
+                   **_channel_security(p))
 
 
 def _teleop(p: dict) -> dict:
     from bench.teleop import measure
 
-    return measure(p["transport"], p["address"], p.get("shm"), p["rates"], p["duration_s"])
+    return measure(p["transport"], p["address"], p.get("shm"), p["rates"], p["duration_s"],
+                   **_channel_security(p))
 
 
 def _force(p: dict) -> dict:
