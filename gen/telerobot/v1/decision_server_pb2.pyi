@@ -41,6 +41,13 @@ class ReplayState(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     REPLAY_STATE_RUNNING: _ClassVar[ReplayState]
     REPLAY_STATE_FINISHED: _ClassVar[ReplayState]
     REPLAY_STATE_INTERRUPTED: _ClassVar[ReplayState]
+
+class DependencyState(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    DEPENDENCY_STATE_UNSPECIFIED: _ClassVar[DependencyState]
+    DEPENDENCY_STATE_SERVING: _ClassVar[DependencyState]
+    DEPENDENCY_STATE_NOT_SERVING: _ClassVar[DependencyState]
+    DEPENDENCY_STATE_RESTARTING: _ClassVar[DependencyState]
 COMMAND_OUTCOME_UNSPECIFIED: CommandOutcome
 COMMAND_OUTCOME_APPLIED: CommandOutcome
 COMMAND_OUTCOME_MODIFIED: CommandOutcome
@@ -57,6 +64,10 @@ REPLAY_STATE_UNSPECIFIED: ReplayState
 REPLAY_STATE_RUNNING: ReplayState
 REPLAY_STATE_FINISHED: ReplayState
 REPLAY_STATE_INTERRUPTED: ReplayState
+DEPENDENCY_STATE_UNSPECIFIED: DependencyState
+DEPENDENCY_STATE_SERVING: DependencyState
+DEPENDENCY_STATE_NOT_SERVING: DependencyState
+DEPENDENCY_STATE_RESTARTING: DependencyState
 
 class TeleoperateRequest(_message.Message):
     __slots__ = ("init", "command", "heartbeat")
@@ -395,7 +406,7 @@ class StreamEventsRequest(_message.Message):
     def __init__(self, include_data_received: _Optional[bool] = ...) -> None: ...
 
 class StreamEventsResponse(_message.Message):
-    __slots__ = ("sequence", "event_time", "robot", "control_changed", "watchdog_hold", "assistance_changed", "replay_progress")
+    __slots__ = ("sequence", "event_time", "robot", "control_changed", "watchdog_hold", "assistance_changed", "replay_progress", "dependency_changed")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     EVENT_TIME_FIELD_NUMBER: _ClassVar[int]
     ROBOT_FIELD_NUMBER: _ClassVar[int]
@@ -403,6 +414,7 @@ class StreamEventsResponse(_message.Message):
     WATCHDOG_HOLD_FIELD_NUMBER: _ClassVar[int]
     ASSISTANCE_CHANGED_FIELD_NUMBER: _ClassVar[int]
     REPLAY_PROGRESS_FIELD_NUMBER: _ClassVar[int]
+    DEPENDENCY_CHANGED_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     event_time: _timestamp_pb2.Timestamp
     robot: _proxy_robot_pb2.StreamRobotEventsResponse
@@ -410,7 +422,8 @@ class StreamEventsResponse(_message.Message):
     watchdog_hold: WatchdogHoldEvent
     assistance_changed: AssistanceChangedEvent
     replay_progress: ReplayProgressEvent
-    def __init__(self, sequence: _Optional[int] = ..., event_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., robot: _Optional[_Union[_proxy_robot_pb2.StreamRobotEventsResponse, _Mapping]] = ..., control_changed: _Optional[_Union[ControlChangedEvent, _Mapping]] = ..., watchdog_hold: _Optional[_Union[WatchdogHoldEvent, _Mapping]] = ..., assistance_changed: _Optional[_Union[AssistanceChangedEvent, _Mapping]] = ..., replay_progress: _Optional[_Union[ReplayProgressEvent, _Mapping]] = ...) -> None: ...
+    dependency_changed: DependencyChangedEvent
+    def __init__(self, sequence: _Optional[int] = ..., event_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., robot: _Optional[_Union[_proxy_robot_pb2.StreamRobotEventsResponse, _Mapping]] = ..., control_changed: _Optional[_Union[ControlChangedEvent, _Mapping]] = ..., watchdog_hold: _Optional[_Union[WatchdogHoldEvent, _Mapping]] = ..., assistance_changed: _Optional[_Union[AssistanceChangedEvent, _Mapping]] = ..., replay_progress: _Optional[_Union[ReplayProgressEvent, _Mapping]] = ..., dependency_changed: _Optional[_Union[DependencyChangedEvent, _Mapping]] = ...) -> None: ...
 
 class ControlChangedEvent(_message.Message):
     __slots__ = ("state", "reason")
@@ -451,6 +464,38 @@ class ReplayProgressEvent(_message.Message):
     state: ReplayState
     detail: str
     def __init__(self, name: _Optional[str] = ..., commands_replayed: _Optional[int] = ..., command_count: _Optional[int] = ..., state: _Optional[_Union[ReplayState, str]] = ..., detail: _Optional[str] = ...) -> None: ...
+
+class DependencyChangedEvent(_message.Message):
+    __slots__ = ("dependency", "previous_state")
+    DEPENDENCY_FIELD_NUMBER: _ClassVar[int]
+    PREVIOUS_STATE_FIELD_NUMBER: _ClassVar[int]
+    dependency: Dependency
+    previous_state: DependencyState
+    def __init__(self, dependency: _Optional[_Union[Dependency, _Mapping]] = ..., previous_state: _Optional[_Union[DependencyState, str]] = ...) -> None: ...
+
+class GetDependenciesRequest(_message.Message):
+    __slots__ = ()
+    def __init__(self) -> None: ...
+
+class GetDependenciesResponse(_message.Message):
+    __slots__ = ("dependencies",)
+    DEPENDENCIES_FIELD_NUMBER: _ClassVar[int]
+    dependencies: _containers.RepeatedCompositeFieldContainer[Dependency]
+    def __init__(self, dependencies: _Optional[_Iterable[_Union[Dependency, _Mapping]]] = ...) -> None: ...
+
+class Dependency(_message.Message):
+    __slots__ = ("name", "state", "reason", "change_time", "restarts")
+    NAME_FIELD_NUMBER: _ClassVar[int]
+    STATE_FIELD_NUMBER: _ClassVar[int]
+    REASON_FIELD_NUMBER: _ClassVar[int]
+    CHANGE_TIME_FIELD_NUMBER: _ClassVar[int]
+    RESTARTS_FIELD_NUMBER: _ClassVar[int]
+    name: str
+    state: DependencyState
+    reason: str
+    change_time: _timestamp_pb2.Timestamp
+    restarts: int
+    def __init__(self, name: _Optional[str] = ..., state: _Optional[_Union[DependencyState, str]] = ..., reason: _Optional[str] = ..., change_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., restarts: _Optional[int] = ...) -> None: ...
 
 class AssistanceConfig(_message.Message):
     __slots__ = ("mapping", "floating_tool_frame", "constraint", "force_control", "scaling")

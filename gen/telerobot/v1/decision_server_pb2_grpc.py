@@ -131,6 +131,11 @@ class DecisionServerStub:
                 request_serializer=telerobot_dot_v1_dot_decision__server__pb2.StreamEventsRequest.SerializeToString,
                 response_deserializer=telerobot_dot_v1_dot_decision__server__pb2.StreamEventsResponse.FromString,
                 _registered_method=True)
+        self.GetDependencies = channel.unary_unary(
+                '/telerobot.v1.DecisionServer/GetDependencies',
+                request_serializer=telerobot_dot_v1_dot_decision__server__pb2.GetDependenciesRequest.SerializeToString,
+                response_deserializer=telerobot_dot_v1_dot_decision__server__pb2.GetDependenciesResponse.FromString,
+                _registered_method=True)
 
 
 class DecisionServerServicer:
@@ -311,9 +316,24 @@ class DecisionServerServicer:
 
     def StreamEvents(self, request, context):
         """StreamEvents forwards ProxyRobot's events and the DecisionServer's own (lock changes,
-        watchdog holds, assistance changes, replay progress) until cancelled. This replaces the
-        papers' shim classes: a client just reads a stream.
+        watchdog holds, assistance changes, replay progress, dependency changes) until cancelled.
+        This replaces the papers' shim classes: a client just reads a stream.
         Lane: low. Role: observer.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def GetDependencies(self, request, context):
+        """GetDependencies says how each service the DecisionServer depends on is: ProxyRobot
+        (`proxy_robot`), ForceSensor (`force_sensor`), StereoCamera (`stereo_camera`) and the
+        emergency-stop band (`emergency_stop`, absent when the server was configured without one).
+        A dependency is SERVING when its health check says so, RESTARTING when it does not answer
+        and the station's launcher is restarting it, NOT_SERVING otherwise; `reason` says why. The
+        same states are in this server's health, under the service name
+        `telerobot.v1.DecisionServer/<name>` (SERVING or NOT_SERVING), and each change is a
+        `dependency_changed` event in StreamEvents. Never fails for a dependency that is down.
+        Lane: high. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -406,6 +426,11 @@ def add_DecisionServerServicer_to_server(servicer, server):
                     servicer.StreamEvents,
                     request_deserializer=telerobot_dot_v1_dot_decision__server__pb2.StreamEventsRequest.FromString,
                     response_serializer=telerobot_dot_v1_dot_decision__server__pb2.StreamEventsResponse.SerializeToString,
+            ),
+            'GetDependencies': grpc.unary_unary_rpc_method_handler(
+                    servicer.GetDependencies,
+                    request_deserializer=telerobot_dot_v1_dot_decision__server__pb2.GetDependenciesRequest.FromString,
+                    response_serializer=telerobot_dot_v1_dot_decision__server__pb2.GetDependenciesResponse.SerializeToString,
             ),
     }
     generic_handler = grpc.method_handlers_generic_handler(
@@ -879,6 +904,33 @@ class DecisionServer:
             '/telerobot.v1.DecisionServer/StreamEvents',
             telerobot_dot_v1_dot_decision__server__pb2.StreamEventsRequest.SerializeToString,
             telerobot_dot_v1_dot_decision__server__pb2.StreamEventsResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def GetDependencies(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/telerobot.v1.DecisionServer/GetDependencies',
+            telerobot_dot_v1_dot_decision__server__pb2.GetDependenciesRequest.SerializeToString,
+            telerobot_dot_v1_dot_decision__server__pb2.GetDependenciesResponse.FromString,
             options,
             channel_credentials,
             insecure,
