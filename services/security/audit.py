@@ -14,6 +14,8 @@ import itertools
 import json
 import logging
 import os
+import queue
+import threading
 import time
 from collections.abc import Callable
 from logging.handlers import RotatingFileHandler
@@ -71,7 +73,11 @@ class _AuditFileHandler(RotatingFileHandler):
 
 
 class AuditLog:
-    """Appends audit records to `path`; thread-safe (the handler holds a lock per record)."""
+    """Appends audit records to `path`, thread-safe. A call hands its record to a writer
+    thread and goes on: the file's system calls (a stat and a seek for rotation, the write,
+    the flush) each give the interpreter lock away and cost a command about 0.3 ms of round
+    trip when done on the call's own thread (measured at 1 kHz on ProxyRobot). `flush()`
+    waits until everything recorded so far is written."""
 
     def __init__(self, path: Path, max_bytes: int = 10_000_000, backups: int = 5,
                  clock: Callable[[], float] = time.time):
@@ -88,6 +94,11 @@ class AuditLog:
         self._logger = logging.Logger(f"{__name__}.{next(_instance_numbers)}", logging.INFO)
         self._logger.propagate = False
         self._logger.addHandler(self._handler)
+        self._pending: queue.SimpleQueue = queue.SimpleQueue()
+        self._closed = False
+        self._writer = threading.Thread(target=self._write_records, daemon=True,
+                                        name=f"audit-{path.stem}")
+        self._writer.start()
 
     @property
     def path(self) -> Path:
@@ -95,20 +106,41 @@ class AuditLog:
 
     def record(self, *, identity: str, role: str, method: str, outcome: str, peer: str = "",
                detail: str = "") -> None:
-        """Append one record. Never raises: auditing must not fail the call it records."""
-        try:
-            line = json.dumps({
-                "time": datetime.datetime.fromtimestamp(self._clock(), datetime.UTC)
-                .isoformat(timespec="microseconds"),
-                "identity": str(identity), "role": str(role), "method": str(method),
-                "outcome": str(outcome), "peer": str(peer),
-                "detail": str(detail)[:MAX_DETAIL_CHARS],
-            })  # json escapes newlines and quotes, so a client's string cannot forge a line
-            self._logger.info(line)
-        except Exception:
-            _log.warning("cannot make an audit record for %r", method, exc_info=True)
+        """Append one record (on the writer thread). Never raises: auditing must not fail the
+        call it records."""
+        if not self._closed:
+            self._pending.put((self._clock(), identity, role, method, outcome, peer, detail))
+
+    def flush(self, timeout_s: float = 5.0) -> None:
+        """Wait until every record made before this call is written."""
+        written = threading.Event()
+        self._pending.put(written)
+        written.wait(timeout_s)
 
     def close(self) -> None:
-        """Flush and close the file; later records are dropped."""
+        """Write what is pending and close the file; later records are dropped."""
+        if self._closed:
+            return
+        self._closed = True
+        self._pending.put(None)
+        self._writer.join(5.0)
         self._logger.removeHandler(self._handler)
         self._handler.close()
+
+    def _write_records(self) -> None:
+        while (item := self._pending.get()) is not None:
+            if isinstance(item, threading.Event):
+                item.set()
+                continue
+            when, identity, role, method, outcome, peer, detail = item
+            try:
+                line = json.dumps({
+                    "time": datetime.datetime.fromtimestamp(when, datetime.UTC)
+                    .isoformat(timespec="microseconds"),
+                    "identity": str(identity), "role": str(role), "method": str(method),
+                    "outcome": str(outcome), "peer": str(peer),
+                    "detail": str(detail)[:MAX_DETAIL_CHARS],
+                })  # json escapes newlines and quotes, so a client's string cannot forge a line
+                self._logger.info(line)
+            except Exception:
+                _log.warning("cannot make an audit record for %r", method, exc_info=True)

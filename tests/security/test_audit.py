@@ -132,11 +132,14 @@ def test_a_failed_write_warns_once_per_outage_and_never_raises(path, caplog):
     with caplog.at_level(logging.WARNING, logger="services.security.audit"):
         record(log, detail="lost 1")
         record(log, detail="lost 2")
+        log.flush()
         assert len(caplog.records) == 1 and "cannot write the audit log" in caplog.text
         log._handler.stream = working
         record(log, detail="kept")
+        log.flush()
         log._handler.stream = FullDisk()
         record(log, detail="lost 3")
+        log.flush()
         assert len(caplog.records) == 2
     log._handler.stream = working
     log.close()

@@ -280,10 +280,14 @@ def test_inner_ports_audit_everyone_but_the_station_itself(station, pki):
     for identity in IDENTITIES:
         with _channel(station, "proxy_robot", pki, identity) as channel:
             _code(proxy_robot_pb2_grpc.ProxyRobotStub(channel).Hold, pr.HoldRequest())
-    records = [json.loads(line) for line in
-               (station["audit"] / "proxy_robot.jsonl").read_text().splitlines()]
-    holds = {(r["identity"], r["outcome"]) for r in records if r["method"].endswith("/Hold")}
-    assert ("admin", "OK") in holds, holds
+    path = station["audit"] / "proxy_robot.jsonl"
+
+    def holds():  # records are written by the audit log's own thread, just after the reply
+        records = [json.loads(line) for line in path.read_text().splitlines()]
+        found = {(r["identity"], r["outcome"]) for r in records if r["method"].endswith("/Hold")}
+        return found if ("admin", "OK") in found else None
+
+    holds = wait_for(holds, what="the admin's Hold in ProxyRobot's audit log")
     assert {("observer", "PERMISSION_DENIED"), ("operator", "PERMISSION_DENIED")} <= holds
     assert not any(identity == "decision_server" for identity, _ in holds), holds
 
