@@ -2,10 +2,18 @@
 
 It starts every service in turn, each once the one before answers its health check with
 SERVING (dependencies first), prints the addresses, and supervises them. On Ctrl-C or SIGTERM
-it stops them all (SIGTERM, then SIGKILL after a deadline) and exits. If a child dies on its
-own, the launcher says which and how, shows its last log lines, and stops the whole station: a
-slave station with a part missing is not safe to operate, and a supervisor above (systemd, a
-shell loop) can restart the group cleanly.
+it stops them all (SIGTERM, then SIGKILL after a deadline) and exits.
+
+If a child ends on its own, the launcher says which and how, shows its last log lines, and
+restarts it on the same address after a capped back-off (services.runtime.restart): the arm
+holds meanwhile (each layer's watchdog, see the README's Faults), and the rest of the station,
+the stop button and the video included, keeps serving. Two exceptions stop the whole station:
+the world (the hardware link: nothing can be commanded without it) and a child that failed too
+often (5 times within 60 s), which a supervisor above (systemd) can take over. When several
+children are down, the emergency-stop band is restarted first. What the launcher knows about
+each child is in the file TELEROBOT_SUPERVISOR_STATE names (services.runtime.supervisor_state),
+which it sets for its children: the DecisionServer reports a dependency as restarting from it,
+and a restarted ProxyRobot learns from TELEROBOT_RESTARTED_BECAUSE why it was restarted.
 
 Children run in their own process group, so a terminal's Ctrl-C reaches only the launcher, which
 then drains each child once; each child also stops by itself if the launcher is killed. Started
@@ -28,6 +36,7 @@ import logging
 import os
 import signal
 import sys
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -39,6 +48,16 @@ from services.runtime import children
 from services.runtime.children import Child, ChildFailed
 from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
 from services.runtime.process import parse_ready_line, ready_line, watch_parent
+from services.runtime.restart import RestartPolicy, RestartTracker
+from services.runtime.supervisor_state import (
+    GAVE_UP,
+    RESTARTED_BECAUSE_ENV,
+    RESTARTING,
+    RUNNING,
+    SUPERVISOR_STATE_ENV,
+    ChildState,
+    write_state,
+)
 from services.runtime.tls import station_channel_security
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, open_channel
 
@@ -64,6 +83,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
                         help=f"run every service with mutual TLS from this directory (env "
                              f"{TLS_DIR_ENV}; `make certs` writes var/pki)")
+    parser.add_argument("--max-failures", type=int,
+                        default=int(os.environ.get("TELEROBOT_MAX_FAILURES",
+                                                   RestartPolicy.max_failures)),
+                        help="a child that ends this many times within 60 s is given up on, "
+                             "and the station stops (env TELEROBOT_MAX_FAILURES)")
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
     health_security = station_channel_security(args.tls_dir or None, "launcher")
@@ -88,41 +112,130 @@ def main(argv: list[str] | None = None) -> int:
     env = {"TELEROBOT_GRACE_S": str(args.grace_s)}
     if args.tls_dir:
         env[TLS_DIR_ENV] = str(Path(args.tls_dir).resolve())
-    station: list[Child] = []
-    try:
-        # One at a time: a service starts once the ones it depends on answer, so its first
-        # calls to them do not fail and leave its channels backing off.
-        for name in STATION:
-            child = children.start(name, ["-m", f"services.{name}"], env=env,
-                                   max_lines=_LOG_TAIL_LINES, on_line=_forward,
-                                   on_exit=lambda _child: wake.set())
-            station.append(child)
-            try:
-                address = _wait_until_serving(child, stop, health_security)
-            except ChildFailed as failed:
-                log.error("start-up failed: %s", failed)
+    with tempfile.TemporaryDirectory(prefix="telerobot-station-") as run_dir:
+        env[SUPERVISOR_STATE_ENV] = str(Path(run_dir) / "supervisor.json")
+        station = _Station(env, health_security, stop, wake,
+                           RestartPolicy(max_failures=args.max_failures))
+        try:
+            # One at a time: a service starts once the ones it depends on answer, so its first
+            # calls to them do not fail and leave its channels backing off.
+            for name in STATION:
+                try:
+                    address = station.start(name)
+                except ChildFailed as failed:
+                    log.error("start-up failed: %s", failed)
+                    return 1
+                if address is None:  # stopped during start-up
+                    return 0
+                for other, other_address in station.children[name].ready.items():
+                    if other != name:  # a token port, if it has one
+                        print(ready_line(other, other_address), flush=True)
+                print(ready_line(name, address), flush=True)
+            _print_banner(list(station.children.values()), args.tls_dir)
+            failure = station.supervise()
+            if failure is not None:
+                log.error("%s", failure)
                 return 1
-            if address is None:  # stopped during start-up
-                break
-            # The address it bound (a port 0 becomes a real one): the services started after
-            # it, which may call it, find it through its variable.
-            env[env_name(name, "address")] = address
-            for other, other_address in child.ready.items():  # a token port, if it has one
-                if other != name:
-                    print(ready_line(other, other_address), flush=True)
-            print(ready_line(name, address), flush=True)
-        if stop.is_set():
+            log.info("%s; stopping the station",
+                     stop_reason[0] if stop_reason else "stop requested")
             return 0
-        _print_banner(station, args.tls_dir)
-        dead = _supervise(station, stop, wake)
-        if dead is not None:
-            log.error("%s\nstopping the whole station (see the launcher's docstring for why)",
-                      dead.describe())
-            return 1
-        log.info("%s; stopping the station", stop_reason[0] if stop_reason else "stop requested")
-        return 0
-    finally:
-        children.stop_all(reversed(station), args.grace_s + STOP_MARGIN_S)
+        finally:
+            children.stop_all(reversed(list(station.children.values())),
+                              args.grace_s + STOP_MARGIN_S)
+
+
+class _Station:
+    """The children, by name, each restarted under the policy when it ends on its own."""
+
+    def __init__(self, env: dict[str, str], security: ChannelSecurity, stop: threading.Event,
+                 wake: threading.Event, policy: RestartPolicy):
+        self.env = env  # every child's; a started child's bound address is added to it
+        self.children: dict[str, Child] = {}
+        self._security = security
+        self._stop = stop
+        self._wake = wake
+        self._trackers = {name: RestartTracker(policy) for name in STATION}
+        self._states: dict[str, ChildState] = {}
+        self._state_path = Path(env[SUPERVISOR_STATE_ENV])
+
+    def start(self, name: str, restarted_because: str | None = None) -> str | None:
+        """Start `name` and wait until it serves; its address, or None if a stop came first.
+        ChildFailed if it died or did not serve in time."""
+        extra = {RESTARTED_BECAUSE_ENV: restarted_because} if restarted_because else {}
+        child = children.start(name, ["-m", f"services.{name}"], env={**self.env, **extra},
+                               max_lines=_LOG_TAIL_LINES, on_line=_forward,
+                               on_exit=lambda _child: self._wake.set())
+        self.children[name] = child
+        address = _wait_until_serving(child, self._stop, self._security)
+        if address is not None:
+            # The address it bound (a port 0 becomes a real one): the services started after
+            # it find it through its variable, and a restart binds the same one.
+            self.env[env_name(name, "address")] = address
+            self._set_state(name, RUNNING, self._trackers[name].restarts)
+        return address
+
+    def supervise(self) -> str | None:
+        """Restart children that end on their own until a stop request (None), or until the
+        world ends or a child fails too often (why the station must stop)."""
+        due: dict[str, float] = {}  # child -> when to restart it
+        while True:
+            timeout = min([1.0, *(t - time.monotonic() for t in due.values())])
+            self._wake.wait(max(timeout, 0.0))
+            self._wake.clear()
+            if self._stop.is_set():
+                return None
+            now = time.monotonic()
+            for name, child in self.children.items():
+                if name in due or not child.exited.is_set():
+                    continue
+                if name == "world":
+                    return (f"{child.describe()}\nthe hardware link is gone: stopping the whole "
+                            "station")
+                delay = self._trackers[name].failed(now)
+                if delay is None:
+                    self._set_state(name, GAVE_UP, self._trackers[name].restarts,
+                                    child.how_it_ended())
+                    return (f"{child.describe()}\n{name} failed "
+                            f"{self._trackers[name].describe_limit()}: stopping the station")
+                log.error("%s\nrestarting %s in %.1f s", child.describe(), name, delay)
+                self._set_state(name, RESTARTING, self._trackers[name].restarts,
+                                child.how_it_ended())
+                due[name] = now + delay
+            # The stop button first, then in start order (dependencies first).
+            ready = sorted((n for n, t in due.items() if t <= now), key=_restart_order)
+            for name in ready:
+                del due[name]
+                if not self._restart(name):
+                    return None
+
+    def _restart(self, name: str) -> bool:
+        """Start `name` again; False if a stop request came first. A restart that fails is
+        noticed as another failure by `supervise`."""
+        because = self._states[name].last_exit
+        self._trackers[name].restarts += 1
+        try:
+            address = self.start(name, restarted_because=because)
+        except ChildFailed as failed:
+            log.error("restarting %s failed: %s", name, failed)
+            self.children[name].stop()  # if it hangs without serving; then it has exited
+            self._wake.set()
+            return True
+        if address is None:
+            return False
+        log.warning("%s restarted on %s (restart %d; it %s)", name, address,
+                    self._trackers[name].restarts, because)
+        return True
+
+    def _set_state(self, name: str, state: str, restarts: int, last_exit: str = "") -> None:
+        previous = self._states.get(name)
+        self._states[name] = ChildState(state, restarts,
+                                        last_exit or (previous.last_exit if previous else ""),
+                                        time.time())
+        write_state(self._state_path, self._states)
+
+
+def _restart_order(name: str) -> int:
+    return -1 if name == "emergency_stop" else STATION.index(name)
 
 
 def _forward(_child: Child, line: str) -> None:
@@ -158,19 +271,6 @@ def _is_serving(address: str, security: ChannelSecurity) -> bool:
         return reply.status == health_pb2.HealthCheckResponse.SERVING
     except grpc.RpcError:
         return False
-
-
-def _supervise(station: list[Child], stop: threading.Event,
-               wake: threading.Event) -> Child | None:
-    """Wait for a stop request (None) or the first child that ends (that child)."""
-    while True:
-        wake.wait(1.0)
-        wake.clear()
-        if stop.is_set():
-            return None
-        dead = next((child for child in station if child.exited.is_set()), None)
-        if dead is not None:
-            return dead
 
 
 def _print_banner(station: list[Child], tls_dir: str) -> None:

@@ -7,12 +7,14 @@ It reaches the arm through the hardware link: in simulation, the world process's
 from __future__ import annotations
 
 import argparse
+import os
 
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.servicer import ProxyRobotServicer
 from services.runtime.core_service import CoreService
 from services.runtime.process import run_service
 from services.runtime.server import binding
+from services.runtime.supervisor_state import RESTARTED_BECAUSE_ENV
 from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink
 from telerobot.v1 import proxy_robot_pb2_grpc
@@ -25,8 +27,11 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
 def build(args: argparse.Namespace) -> CoreService:
     # The link opens on Connect, as the papers' ConnectRobot does; close() holds the arm.
     core = ProxyRobotCore(lambda: SharedMemoryArmLink(args.shm_name))
+    # Restarted by the launcher after a crash: take the arm back where it is held, at once.
+    because = os.environ.get(RESTARTED_BECAUSE_ENV)
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],
-                       core.close, on_emergency_call=core.hold_now)
+                       core.close, on_emergency_call=core.hold_now,
+                       on_start=(lambda: core.reattach(because)) if because else None)
 
 
 if __name__ == "__main__":

@@ -136,7 +136,7 @@ class ProxyRobotCore:
 
     # -- life cycle -------------------------------------------------------------------------
 
-    def connect(self) -> RobotStatus:
+    def connect(self, reason: str = "hardware link open") -> RobotStatus:
         """Open the hardware link. Unavailable when it does not answer."""
         with self._lock:
             if self._status != RobotStatus.NOT_CONNECTED:
@@ -153,8 +153,16 @@ class ProxyRobotCore:
             if sample.hold_latched:
                 self._set_status(RobotStatus.ESTOPPED, "the hardware holds a latched stop; Reset")
             else:
-                self._set_status(RobotStatus.CONNECTED, "hardware link open")
+                self._set_status(RobotStatus.CONNECTED, reason)
             return self._status
+
+    def reattach(self, previous_end: str) -> RobotStatus:
+        """After a restart: open the link to the arm the previous process drove, without
+        moving it (its target is where the hardware holds it), and say why motion needs a new
+        Initialize. Unavailable when the hardware does not answer."""
+        return self.connect(
+            f"restarted by the station's supervisor: the previous ProxyRobot {previous_end}; "
+            "the arm held where it was. Initialize to move again")
 
     def initialize(self) -> RobotStatus:
         """CONNECTED -> INITIALIZING -> READY: hold where the arm is and accept motion."""

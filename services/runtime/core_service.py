@@ -16,12 +16,16 @@ class CoreService:
     served: Sequence[ServiceBinding]
     release: Callable[[], None]
     on_emergency_call: Callable[[], None] | None = None  # see services.runtime.process.Service
+    # Usually nothing: the domain opens its hardware when a client asks, as the papers'
+    # components do. A restarted ProxyRobot reattaches to the arm it left.
+    on_start: Callable[[], None] | None = None
 
     def bindings(self) -> Sequence[ServiceBinding]:
         return self.served
 
     def start(self) -> None:
-        pass  # the domain opens its hardware when a client asks, as the papers' components do
+        if self.on_start is not None:
+            self.on_start()
 
     def close(self) -> None:
         self.release()

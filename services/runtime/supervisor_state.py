@@ -19,6 +19,8 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 SUPERVISOR_STATE_ENV = "TELEROBOT_SUPERVISOR_STATE"
+# Set for a restarted child: how its previous process ended ("was killed by signal 9 (SIGKILL)").
+RESTARTED_BECAUSE_ENV = "TELEROBOT_RESTARTED_BECAUSE"
 
 RUNNING = "running"  # started and serving (or starting for the first time)
 RESTARTING = "restarting"  # ended on its own; waiting for its back-off or starting again
