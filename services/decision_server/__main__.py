@@ -9,13 +9,14 @@ from __future__ import annotations
 
 import argparse
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import grpc
 
 from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
+from services.decision_server.dependencies import SERVING, DependencyWatch
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
 from services.decision_server.supervisor import DecisionCore
@@ -27,6 +28,9 @@ from services.runtime.tls import station_channel_security
 from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
 from wire.tls import open_channel
 
+# Each dependency's health entry on this server: telerobot.v1.DecisionServer/<dependency>.
+DEPENDENCY_HEALTH_PREFIX = "telerobot.v1.DecisionServer/"
+HEALTH_ANSWER_TIMEOUT_S = 2.0
 # Waiting for a lock or at a cobegin barrier holds a medium-lane thread, so give it more.
 LANES = {**DEFAULT_LANES,
          Lane.MEDIUM: LaneConfig(static_threads=2, max_threads=32, queue_capacity=64)}
@@ -38,6 +42,8 @@ class DecisionService:
     lanes: dict = field(default_factory=lambda: LANES)
     operator_door = True  # the one port that takes operators' commands (see services.runtime)
     core: DecisionCore | None = None
+    dependencies: DependencyWatch | None = None
+    _slave: GrpcSlave | None = None
     _stereo_channel: grpc.Channel | None = None
 
     def bindings(self) -> Sequence[ServiceBinding]:
@@ -48,21 +54,39 @@ class DecisionService:
         self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir)))
         self._stereo_channel = open_channel(self.args.stereo_camera_address,
                                             RECONNECT_OPTIONS, security)
+        slave.watch_health("stereo_camera", self._stereo_channel)
+        self._slave = slave
+        # Each dependency's state, from its health and the launcher's state file; every change
+        # is an event (and, once attached, a health entry).
+        self.dependencies = DependencyWatch(slave.health, self.core.clock)
+        self.dependencies.subscribe(self.core.emit)
         stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
         return [binding(decision_server_pb2_grpc, "DecisionServer",
-                        DecisionServerServicer(self.core)),
+                        DecisionServerServicer(self.core, self.dependencies)),
                 *(binding(module, name, servicer)
                   for module, name, servicer in make_facades(self.core, slave.robot,
                                                              slave.sensor, stereo))]
 
+    def attach_health(self, set_status: Callable[[str, bool], None]) -> None:
+        """Report each dependency in this server's health, as it is now and as it changes."""
+        self.dependencies.subscribe(
+            lambda change: set_status(DEPENDENCY_HEALTH_PREFIX + change.dependency.name,
+                                      change.dependency.state == SERVING), current=True)
+
     def start(self) -> None:
-        pass  # the backends are reached per call; their absence is UNAVAILABLE, not a crash
+        # The backends are reached per call; their absence is UNAVAILABLE, not a crash. Their
+        # first health answers come within milliseconds: wait for them, so the first states
+        # are not "no answer yet".
+        self._slave.wait_health(HEALTH_ANSWER_TIMEOUT_S)
+        self.dependencies.start()
 
     def on_emergency_call(self) -> None:
         if self.core is not None:
             self.core.slave.stop_now()
 
     def close(self) -> None:
+        if self.dependencies is not None:
+            self.dependencies.close()
         if self.core is not None:
             self.core.close()
             self.core.slave.close()

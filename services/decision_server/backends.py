@@ -13,6 +13,7 @@ import grpc
 import numpy as np
 import pinocchio as pin
 from google.rpc import error_details_pb2
+from grpc_health.v1 import health_pb2, health_pb2_grpc
 from grpc_status import rpc_status
 
 from services.common import convert
@@ -83,7 +84,9 @@ def call(method: Callable, request, metadata=(), timeout: float | None = CALL_TI
 class GrpcSlave:
     """The `Slave` port over gRPC: the arm and its sensor behind their own services. Follows
     ProxyRobot's state and events and the sensor's wrench on background streams, handing
-    each state sample to `on_state` and each event to `on_robot_event`."""
+    each state sample to `on_state` and each event to `on_robot_event`, and each dependency's
+    standard health (`health()`): the arm, the sensor, the band, and any channel given to
+    `watch_health` (the camera's)."""
 
     def __init__(self, proxy_address: str, sensor_address: str,
                  emergency_stop_address: str | None = None,
@@ -110,16 +113,22 @@ class GrpcSlave:
         self._closed = threading.Event()
         self._streams_lock = threading.Lock()
         self._streams: set = set()  # open calls, cancelled on close
-        self._stream_errors: dict[str, str] = {}  # background stream -> why it is down
+        self._health_calls: set = set()  # open health watches, cancelled on close
+        self._health: dict[str, str] = {}  # dependency -> "ok" or why not
+        self._health_answered: dict[str, threading.Event] = {}  # set at the first answer
         for target, name in ((self._follow_state, "proxy_robot"),
                              (self._follow_wrench, "force_sensor"),
                              (self._follow_events, "proxy_robot events")):
             threading.Thread(target=target, name=f"follow-{name}", daemon=True).start()
+        self.watch_health("proxy_robot", self.robot_channel)
+        self.watch_health("force_sensor", self.sensor_channel)
+        if self.emergency_channel is not None:
+            self.watch_health("emergency_stop", self.emergency_channel)
 
     def close(self) -> None:
         self._closed.set()
         with self._streams_lock:
-            streams = list(self._streams)
+            streams = [*self._streams, *self._health_calls]
         for stream in streams:
             stream.cancel()
         self.robot_channel.close()
@@ -219,9 +228,24 @@ class GrpcSlave:
             force_sensor_pb2.StreamWrenchRequest(decimation=decimation, queue_capacity=4)))
 
     def health(self) -> dict[str, str]:
-        errors = dict(self._stream_errors)
-        return {"proxy_robot": errors.get("proxy_robot", "ok"),
-                "force_sensor": errors.get("force_sensor", "ok")}
+        return dict(self._health)
+
+    def watch_health(self, name: str, channel: grpc.Channel) -> None:
+        """Follow the standard health (grpc.health.v1.Health/Watch, the whole server's) of the
+        dependency `name` at the other end of `channel`, on a thread, until close(); health()
+        then says "ok" while it reports SERVING, and why not otherwise."""
+        self._health[name] = "UNAVAILABLE: no health answer yet"
+        self._health_answered[name] = threading.Event()
+        stub = health_pb2_grpc.HealthStub(channel)
+        threading.Thread(target=self._watch_health, args=(name, stub),
+                         name=f"health-{name}", daemon=True).start()
+
+    def wait_health(self, timeout_s: float) -> bool:
+        """Wait until every watched dependency answered (or failed to) once; whether all
+        did within `timeout_s`."""
+        deadline = time.monotonic() + timeout_s
+        return all(answered.wait(max(0.0, deadline - time.monotonic()))
+                   for answered in list(self._health_answered.values()))
 
     def open_streams(self) -> int:
         """Calls open now: the three background streams, plus any wrench stream being read."""
@@ -231,16 +255,36 @@ class GrpcSlave:
     # -- background streams -----------------------------------------------------------------
 
     @contextlib.contextmanager
-    def _opened(self, stream):
+    def _opened(self, stream, registry: set | None = None):
         """Track an open call so close() can cancel it; forget it when it ends."""
+        registry = self._streams if registry is None else registry
         with self._streams_lock:
-            self._streams.add(stream)
+            registry.add(stream)
         try:
             yield stream
         finally:
             stream.cancel()
             with self._streams_lock:
-                self._streams.discard(stream)
+                registry.discard(stream)
+
+    def _watch_health(self, name: str, stub: health_pb2_grpc.HealthStub) -> None:
+        serving = health_pb2.HealthCheckResponse.SERVING
+        while not self._closed.is_set():
+            try:
+                with self._opened(stub.Watch(health_pb2.HealthCheckRequest()),
+                                  self._health_calls) as call:
+                    for reply in call:
+                        self._health[name] = "ok" if reply.status == serving else (
+                            f"{health_pb2.HealthCheckResponse.ServingStatus.Name(reply.status)}:"
+                            " its health check says it is not serving")
+                        self._health_answered[name].set()
+                self._health[name] = "UNAVAILABLE: its health stream ended"
+            except grpc.RpcError as error:
+                if self._closed.is_set():
+                    return
+                self._health[name] = f"{error.code().name}: {error.details()}"
+            self._health_answered[name].set()
+            self._closed.wait(RETRY_S)
 
     @staticmethod
     def _state_from(state: types_pb2.RobotState) -> SlaveState:
@@ -253,15 +297,12 @@ class GrpcSlave:
             try:
                 with self._opened(open_stream()) as stream:
                     for message in stream:
-                        self._stream_errors.pop(name, None)
                         on_message(message)
             except grpc.RpcError as error:
                 if self._closed.is_set():
                     return
-                self._stream_errors[name] = f"{error.code().name}: {error.details()}"
                 log.debug("%s stream: %s; retrying", name, error.details())
             except (TelerobotError, ValueError) as error:
-                self._stream_errors[name] = str(error)
                 log.warning("%s stream: %s", name, error)
             self._closed.wait(RETRY_S)
 

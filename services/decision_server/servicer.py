@@ -16,6 +16,7 @@ from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
 from services.decision_server.arbitration import ControlMode, ControlView, Lease
 from services.decision_server.backends import forwarding_servicer
+from services.decision_server.dependencies import Dependency, DependencyChanged, DependencyWatch
 from services.decision_server.supervisor import (
     AssistanceChanged,
     CommandResult,
@@ -149,6 +150,17 @@ def recording_to_proto(info) -> pb.Recording:
                         duration=duration, command_count=info.command_count)
 
 
+def _dependency_state(state: str) -> int:
+    return pb.DependencyState.Value(f"DEPENDENCY_STATE_{state}")
+
+
+def dependency_to_proto(dependency: Dependency) -> pb.Dependency:
+    return pb.Dependency(name=dependency.name, state=_dependency_state(dependency.state),
+                         reason=dependency.reason,
+                         change_time=convert.timestamp(dependency.change_time_ns),
+                         restarts=dependency.restarts)
+
+
 def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
     message = pb.StreamEventsResponse(sequence=event.sequence,
                                       event_time=convert.timestamp(event.time_ns))
@@ -169,6 +181,10 @@ def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
         message.replay_progress.CopyFrom(pb.ReplayProgressEvent(
             name=payload.name, commands_replayed=payload.replayed, command_count=payload.total,
             state=pb.ReplayState.Value(f"REPLAY_STATE_{payload.state}"), detail=payload.detail))
+    elif isinstance(payload, DependencyChanged):
+        message.dependency_changed.CopyFrom(pb.DependencyChangedEvent(
+            dependency=dependency_to_proto(payload.dependency),
+            previous_state=_dependency_state(payload.previous_state)))
     return message
 
 
@@ -191,8 +207,14 @@ class _LastConverted:
 
 
 class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
-    def __init__(self, core: DecisionCore):
+    def __init__(self, core: DecisionCore, dependencies: DependencyWatch | None = None):
+        """`dependencies`: the watch whose changes reach the core's events (the process's,
+        polling on its thread); None makes one here that looks only when GetDependencies asks."""
         self._core = core
+        if dependencies is None:
+            dependencies = DependencyWatch(core.slave.health, core.clock)
+            dependencies.subscribe(core.emit)
+        self._dependencies = dependencies
         # The state and the wrench change at 100 Hz, acks go out at up to 1 kHz: each sample
         # is converted once, for every ack that carries it.
         self._pose_of = _LastConverted(lambda state: convert.pose_to_proto(state.tool_pose))
@@ -384,6 +406,12 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                                     arrive_time=convert.timestamp(arrive),
                                     start_time=convert.timestamp(start),
                                     end_time=convert.timestamp(end))
+
+    def GetDependencies(self, request, context):
+        # A fresh look (cheap: cached health answers and a small file), so the answer is
+        # current even between the watch's polls; a change seen here is raised as an event.
+        return pb.GetDependenciesResponse(
+            dependencies=[dependency_to_proto(d) for d in self._dependencies.poll()])
 
     def StreamEvents(self, request, context):
         with self._core.events.subscribe(256) as events:

@@ -89,7 +89,9 @@ class Slave(Protocol):
         """Every `decimation`-th sample until cancelled; Unavailable if it ends otherwise."""
 
     def health(self) -> dict[str, str]:
-        """Each dependency ("proxy_robot", "force_sensor", …) and how it is: "ok", or why
-        not."""
+        """Each dependency the DecisionServer has ("proxy_robot", "force_sensor",
+        "stereo_camera", and "emergency_stop" when it has the band) and whether it answers:
+        "ok" while its health check says it serves, why not otherwise, for people
+        ("UNAVAILABLE: failed to connect to all addresses…"). Never blocks or raises."""
 
     def close(self) -> None: ...

@@ -19,6 +19,8 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Protocol
 
+from grpc_health.v1 import health_pb2
+
 from services.runtime.config import base_parser, configure_logging
 from services.runtime.errors import TelerobotError
 from services.runtime.server import (
@@ -79,8 +81,11 @@ class Service(Protocol):
 
     # Optional: `lanes` (a dict of LaneConfig) sizes the service's lanes,
     # `on_emergency_call()` latches its stop the moment an EmergencyStop call arrives (on gRPC's
-    # polling thread: it must not block), and `operator_door = True` marks the DecisionServer,
-    # the one port that takes operators' commands (the others are the station's inner ports).
+    # polling thread: it must not block), `operator_door = True` marks the DecisionServer,
+    # the one port that takes operators' commands (the others are the station's inner ports),
+    # and `attach_health(set_status)`, called once the server exists (before start()), gives
+    # the service `set_status(service_name, serving)` to report health entries of its own
+    # (the DecisionServer's `telerobot.v1.DecisionServer/<dependency>`), from any thread.
 
 
 def run_service(
@@ -123,6 +128,11 @@ def run_service(
         log.error("not starting: %s", error)
         service.close()
         return 2
+    attach_health = getattr(service, "attach_health", None)
+    if attach_health is not None:
+        attach_health(lambda service_name, serving: server.health.set(
+            service_name, health_pb2.HealthCheckResponse.SERVING if serving
+            else health_pb2.HealthCheckResponse.NOT_SERVING))
     server.start()
     try:
         service.start()

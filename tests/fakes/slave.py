@@ -111,6 +111,10 @@ class FakeSlave:
         self.wrench_delay_s = 0.0  # how late samples arrive (a backlog on a loaded machine)
         self.publish_state = True  # False: the state stream lags (samples held back)
         self.reachable = True
+        # What health() says of each dependency: "ok" or why not (a test sets them); the arm
+        # and the sensor also say "unreachable" while `reachable` is False.
+        self.dependency_health = {"proxy_robot": "ok", "force_sensor": "ok",
+                                  "stereo_camera": "ok", "emergency_stop": "ok"}
         self.on_state = lambda state: None
         self.on_robot_event = lambda message: None
         self._lock = threading.Lock()
@@ -251,8 +255,10 @@ class FakeSlave:
                 self._subscribers.remove(subscription)
 
     def health(self) -> dict[str, str]:
-        ok = "ok" if self.reachable else "unreachable"
-        return {"proxy_robot": ok, "force_sensor": ok}
+        health = dict(self.dependency_health)
+        if not self.reachable:
+            health.update(proxy_robot="unreachable", force_sensor="unreachable")
+        return health
 
     def close(self) -> None:
         self.end_wrench_streams()

@@ -1,0 +1,185 @@
+"""Each dependency's state (services/decision_server/dependencies.py): from its health and the
+launcher's state file, on a fake slave and a fake clock; then through GetDependencies and
+StreamEvents on an in-process server."""
+
+from __future__ import annotations
+
+import pytest
+
+from services.decision_server.dependencies import (
+    NOT_SERVING,
+    RECONNECT_GRACE_S,
+    RESTARTING_STATE,
+    SERVING,
+    UNSPECIFIED,
+    DependencyChanged,
+    DependencyWatch,
+    assess,
+)
+from services.runtime.supervisor_state import (
+    GAVE_UP,
+    RESTARTING,
+    RUNNING,
+    ChildState,
+    read_state,
+    write_state,
+)
+from telerobot.v1 import decision_server_pb2 as pb
+from tests.conftest import wait_for
+from tests.fakes.clock import FakeClock
+from tests.fakes.slave import FakeSlave
+
+REFUSED = "UNAVAILABLE: failed to connect to all addresses; last error: Connection refused"
+KILLED = "was killed by signal 9 (SIGKILL)"
+
+
+@pytest.fixture
+def watched(tmp_path):
+    """A watch over a fake slave's health and a launcher state file in tmp_path, on a fake
+    clock; every change it raised, in order."""
+    clock = FakeClock()
+    slave = FakeSlave(clock)
+    state_file = tmp_path / "supervisor.json"
+    watch = DependencyWatch(slave.health, clock, lambda: read_state(state_file))
+    changes: list[DependencyChanged] = []
+    watch.subscribe(changes.append)
+    yield watch, slave, clock, state_file, changes
+    watch.close()
+
+
+def by_name(dependencies) -> dict:
+    return {d.name: d for d in dependencies}
+
+
+def test_assess_combines_the_answer_with_what_the_launcher_knows():
+    now = 1_000_000.0
+    assert assess("ok", None, now) == (SERVING, "", 0)
+    assert assess("ok", ChildState(RUNNING, restarts=2), now) == (SERVING, "", 2)
+    # Down and not supervised, or supervised as running: the transport's reason.
+    assert assess(REFUSED, None, now) == (NOT_SERVING, REFUSED, 0)
+    assert assess(REFUSED, ChildState(RUNNING, 1, KILLED, since=now - 60), now) == (
+        NOT_SERVING, REFUSED, 1)
+    # Down while the launcher restarts it: its reason, naming the restart under way.
+    state, reason, restarts = assess(REFUSED, ChildState(RESTARTING, 1, KILLED), now)
+    assert (state, restarts) == (RESTARTING_STATE, 1)
+    assert reason == f"restarting after it {KILLED}; restart 2"
+    # Restarted and serving on the launcher's side, not reconnected here yet: still restarting
+    # for a moment, not a blip of NOT_SERVING.
+    state, reason, _ = assess(REFUSED, ChildState(RUNNING, 2, KILLED, since=now - 1), now)
+    assert state == RESTARTING_STATE and reason.startswith("restarted (restart 2)")
+    assert assess(REFUSED, ChildState(RUNNING, 2, KILLED, since=now - 1 - RECONNECT_GRACE_S),
+                  now)[0] == NOT_SERVING
+    # The launcher restarting it, but it answers already: serving.
+    assert assess("ok", ChildState(RESTARTING, 1, KILLED), now)[0] == SERVING
+    # Given up on: not serving, and why the launcher stopped trying.
+    state, reason, _ = assess(REFUSED, ChildState(GAVE_UP, 4, KILLED), now)
+    assert state == NOT_SERVING and REFUSED in reason and "gave up" in reason
+
+
+def test_serving_then_down_then_restarting_then_serving_raises_one_event_per_change(watched):
+    watch, slave, clock, state_file, changes = watched
+    first = by_name(watch.poll())
+    assert list(first) == ["proxy_robot", "force_sensor", "stereo_camera", "emergency_stop"]
+    assert {d.state for d in first.values()} == {SERVING}
+    assert [c.previous_state for c in changes] == [UNSPECIFIED] * 4  # first seen
+    changes.clear()
+    watch.poll()
+    assert changes == []  # nothing changed
+
+    clock.advance(1.0)
+    slave.dependency_health["force_sensor"] = REFUSED
+    sensor = by_name(watch.poll())["force_sensor"]
+    assert (sensor.state, sensor.reason, sensor.restarts) == (NOT_SERVING, REFUSED, 0)
+    assert sensor.change_time_ns == clock.time_ns()
+    assert [(c.dependency, c.previous_state) for c in changes] == [(sensor, SERVING)]
+    # The same state with other words from the transport: no event, the newer reason.
+    clock.advance(0.1)
+    slave.dependency_health["force_sensor"] = "UNAVAILABLE: Socket closed"
+    again = by_name(watch.poll())["force_sensor"]
+    assert again.reason == "UNAVAILABLE: Socket closed"
+    assert again.change_time_ns == sensor.change_time_ns and len(changes) == 1
+
+    clock.advance(0.1)
+    write_state(state_file, {"force_sensor": ChildState(RESTARTING, 0, KILLED)})
+    restarting = by_name(watch.poll())["force_sensor"]
+    assert restarting.state == RESTARTING_STATE and restarting.restarts == 0
+    assert restarting.reason == f"restarting after it {KILLED}; restart 1"
+    assert [(c.dependency, c.previous_state) for c in changes[1:]] == [
+        (restarting, NOT_SERVING)]
+
+    clock.advance(0.1)
+    write_state(state_file, {"force_sensor": ChildState(RUNNING, 1, KILLED, clock.time())})
+    assert by_name(watch.poll())["force_sensor"].restarts == 1  # restarted, not here yet:
+    assert len(changes) == 2  # still RESTARTING, no event
+    slave.dependency_health["force_sensor"] = "ok"
+    back = by_name(watch.poll())["force_sensor"]
+    assert (back.state, back.reason, back.restarts) == (SERVING, "", 1)
+    assert [(c.dependency, c.previous_state) for c in changes[2:]] == [(back, RESTARTING_STATE)]
+    assert [c.dependency.name for c in changes] == ["force_sensor"] * 3  # the others: quiet
+    assert by_name(watch.dependencies())["proxy_robot"].state == SERVING
+
+
+def test_without_a_band_there_are_three_and_listeners_can_get_the_current_states(watched):
+    watch, slave, _, _, _ = watched
+    del slave.dependency_health["emergency_stop"]  # configured without one
+    slave.reachable = False
+    watch.poll()
+    seen = []
+    watch.subscribe(seen.append, current=True)
+    assert {(c.dependency.name, c.dependency.state) for c in seen} == {
+        ("proxy_robot", NOT_SERVING), ("force_sensor", NOT_SERVING),
+        ("stereo_camera", SERVING)}
+
+
+def test_the_thread_polls_on_its_clock(watched):
+    watch, slave, clock, _, changes = watched
+    watch.start()
+    assert len(changes) == 4  # start() looks once at once
+    wait_for(lambda: clock.waiters() == 1, what="the watch to wait for its next poll")
+    slave.dependency_health["stereo_camera"] = REFUSED
+    assert len(changes) == 4  # no time has passed: no look
+    clock.advance(0.1)
+    wait_for(lambda: len(changes) == 5, what="the change, on the next poll")
+    assert changes[-1].dependency.state == NOT_SERVING
+    assert changes[-1].dependency.name == "stereo_camera"
+
+
+def test_a_failing_listener_does_not_stop_the_others(watched):
+    watch, slave, _, _, changes = watched
+
+    def broken(change):
+        raise RuntimeError("boom")
+
+    watch.subscribe(broken)
+    watch.poll()
+    assert len(changes) == 4
+
+
+# -- through the DecisionServer's contract ----------------------------------------------------
+
+def test_get_dependencies_and_the_event_through_grpc(fake_station):
+    station, slave = fake_station
+    reply = station.decisions.GetDependencies(pb.GetDependenciesRequest(), timeout=5)
+    assert [(d.name, d.state) for d in reply.dependencies] == [
+        (name, pb.DEPENDENCY_STATE_SERVING)
+        for name in ("proxy_robot", "force_sensor", "stereo_camera", "emergency_stop")]
+    assert all(d.reason == "" and d.change_time.seconds > 0 for d in reply.dependencies)
+
+    stream = station.decisions.StreamEvents(pb.StreamEventsRequest(), timeout=10)
+    wait_for(lambda: station.core.events.subscriber_count >= 1,
+             what="the event stream to subscribe")
+    slave.dependency_health["force_sensor"] = REFUSED
+    sensor = station.decisions.GetDependencies(pb.GetDependenciesRequest(),
+                                               timeout=5).dependencies[1]
+    assert (sensor.name, sensor.state, sensor.reason) == (
+        "force_sensor", pb.DEPENDENCY_STATE_NOT_SERVING, REFUSED)
+    slave.dependency_health["force_sensor"] = "ok"
+    station.decisions.GetDependencies(pb.GetDependenciesRequest(), timeout=5)
+    received = [next(stream) for _ in range(2)]
+    stream.cancel()
+    assert [m.WhichOneof("event") for m in received] == ["dependency_changed"] * 2
+    down, up = (m.dependency_changed for m in received)
+    assert (down.dependency, down.previous_state) == (sensor, pb.DEPENDENCY_STATE_SERVING)
+    assert (up.dependency.name, up.dependency.state, up.previous_state) == (
+        "force_sensor", pb.DEPENDENCY_STATE_SERVING, pb.DEPENDENCY_STATE_NOT_SERVING)
+    assert received[1].sequence == received[0].sequence + 1
