@@ -4,7 +4,13 @@ StreamEvents on an in-process server."""
 
 from __future__ import annotations
 
+import os
+import signal
+import time
+
+import grpc
 import pytest
+from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.decision_server.dependencies import (
     NOT_SERVING,
@@ -16,16 +22,19 @@ from services.decision_server.dependencies import (
     DependencyWatch,
     assess,
 )
+from services.runtime import children
 from services.runtime.supervisor_state import (
     GAVE_UP,
     RESTARTING,
     RUNNING,
+    SUPERVISOR_STATE_ENV,
     ChildState,
     read_state,
     write_state,
 )
 from telerobot.v1 import decision_server_pb2 as pb
-from tests.conftest import wait_for
+from telerobot.v1 import decision_server_pb2_grpc
+from tests.conftest import start_service, wait_for
 from tests.fakes.clock import FakeClock
 from tests.fakes.slave import FakeSlave
 
@@ -183,3 +192,94 @@ def test_get_dependencies_and_the_event_through_grpc(fake_station):
     assert (up.dependency.name, up.dependency.state, up.previous_state) == (
         "force_sensor", pb.DEPENDENCY_STATE_SERVING, pb.DEPENDENCY_STATE_NOT_SERVING)
     assert received[1].sequence == received[0].sequence + 1
+
+
+# -- a real dependency killed (e2e) -----------------------------------------------------------
+
+def _dependencies(stub) -> dict:
+    reply = stub.GetDependencies(pb.GetDependenciesRequest(), timeout=5)
+    return {d.name: d for d in reply.dependencies}
+
+
+def _health(channel, dependency: str | None) -> int:
+    """The DecisionServer's health entry for `dependency`, or its own (None)."""
+    service = f"telerobot.v1.DecisionServer/{dependency}" if dependency else ""
+    return health_pb2_grpc.HealthStub(channel).Check(health_pb2.HealthCheckRequest(
+        service=service), timeout=5).status
+
+
+@pytest.mark.e2e
+def test_a_killed_sensor_is_not_serving_then_restarting_then_serving(world, backends,
+                                                                      tmp_path):
+    """A DecisionServer process in front of the real ProxyRobot and band, and a ForceSensor and
+    a StereoCamera of this test's own: SIGKILL the sensor, and GetDependencies, the health
+    service and the events say so; the launcher's state file (written here as the launcher
+    would) makes it RESTARTING; a new sensor on the same address makes it SERVING again."""
+    sensor_env = {"TELEROBOT_WORLD_SHM": world.shm_name}
+    sensor = start_service("force_sensor", env=sensor_env)
+    started = [sensor]
+    try:
+        started.append(start_service(
+            "stereo_camera", "--source", "pattern", "--width", "64", "--height", "48",
+            "--fps", "5"))
+        state_file = tmp_path / "supervisor.json"
+        started.append(start_service(
+            "decision_server", "--proxy-robot-address", backends.proxy_address,
+            "--force-sensor-address", sensor.address,
+            "--stereo-camera-address", started[1].address,
+            "--emergency-stop-address", backends.emergency_address,
+            "--recordings-dir", str(tmp_path / "recordings"),
+            env={SUPERVISOR_STATE_ENV: str(state_file)}))
+        with grpc.insecure_channel(started[2].address) as channel:
+            stub = decision_server_pb2_grpc.DecisionServerStub(channel)
+            wait_for(lambda: {d.state for d in _dependencies(stub).values()} == {
+                pb.DEPENDENCY_STATE_SERVING}, 10, "every dependency to serve")
+            assert list(_dependencies(stub)) == [
+                "proxy_robot", "force_sensor", "stereo_camera", "emergency_stop"]
+            assert _health(channel, "force_sensor") == health_pb2.HealthCheckResponse.SERVING
+            events = stub.StreamEvents(pb.StreamEventsRequest(), timeout=60)
+            # An event of another kind, to know the stream has subscribed.
+            lease = stub.AcquireControl(pb.AcquireControlRequest(
+                operator_id="watcher", mode=pb.CONTROL_MODE_EXCLUSIVE), timeout=5).lease_id
+            stub.ReleaseControl(pb.ReleaseControlRequest(lease_id=lease), timeout=5)
+            assert next(events).WhichOneof("event") == "control_changed"
+
+            os.kill(sensor.pid, signal.SIGKILL)
+            down = wait_for(lambda: (d := _dependencies(stub)["force_sensor"]).state ==
+                            pb.DEPENDENCY_STATE_NOT_SERVING and d, 10, "the sensor down")
+            assert down.reason.startswith("UNAVAILABLE"), down.reason
+            assert _health(channel, "force_sensor") == \
+                health_pb2.HealthCheckResponse.NOT_SERVING
+            assert _health(channel, None) == health_pb2.HealthCheckResponse.SERVING  # itself
+            assert _dependencies(stub)["proxy_robot"].state == pb.DEPENDENCY_STATE_SERVING
+
+            write_state(state_file, {"force_sensor": ChildState(
+                RESTARTING, 0, KILLED, time.time())})
+            restarting = wait_for(lambda: (d := _dependencies(stub)["force_sensor"]).state ==
+                                  pb.DEPENDENCY_STATE_RESTARTING and d, 10, "restarting")
+            assert restarting.reason == f"restarting after it {KILLED}; restart 1"
+
+            started.append(start_service("force_sensor", "--address", sensor.address,
+                                         env=sensor_env))
+            write_state(state_file, {"force_sensor": ChildState(RUNNING, 1, KILLED,
+                                                                 time.time())})
+            back = wait_for(lambda: (d := _dependencies(stub)["force_sensor"]).state ==
+                            pb.DEPENDENCY_STATE_SERVING and d, 10, "the sensor back")
+            assert back.restarts == 1 and back.reason == ""
+            assert _health(channel, "force_sensor") == health_pb2.HealthCheckResponse.SERVING
+
+            changes = []
+            for event in events:
+                if event.WhichOneof("event") == "dependency_changed":
+                    changes.append(event.dependency_changed)
+                    if changes[-1].dependency.state == pb.DEPENDENCY_STATE_SERVING:
+                        break
+            events.cancel()
+            assert [(c.dependency.name, c.previous_state, c.dependency.state)
+                    for c in changes] == [
+                ("force_sensor", pb.DEPENDENCY_STATE_SERVING, pb.DEPENDENCY_STATE_NOT_SERVING),
+                ("force_sensor", pb.DEPENDENCY_STATE_NOT_SERVING,
+                 pb.DEPENDENCY_STATE_RESTARTING),
+                ("force_sensor", pb.DEPENDENCY_STATE_RESTARTING, pb.DEPENDENCY_STATE_SERVING)]
+    finally:
+        children.stop_all(started)
