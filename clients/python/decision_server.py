@@ -30,9 +30,9 @@ with an error (ABORTED when the lease is lost, INVALID_ARGUMENT for a malformed 
 later call on the session raises that error: the session is over, open a new one. Nothing is
 ever resent: a command is sent exactly once.
 
-Returns: `Lease`, `Recording`, `Cobegin`, `ActionRun`, `Ack` (``values.py``); the proto
-``AssistanceConfig`` and ``ControlState`` (nested configuration records, clearest as protos),
-and proto ``StreamEventsResponse`` events (their oneof says which event).
+Returns: `Lease`, `Recording`, `Cobegin`, `ActionRun`, `Ack`, `Dependency` (``values.py``);
+the proto ``AssistanceConfig`` and ``ControlState`` (nested configuration records, clearest as
+protos), and proto ``StreamEventsResponse`` events (their oneof says which event).
 """
 
 from __future__ import annotations
@@ -71,6 +71,7 @@ from clients.python.values import (
     CartesianIncrement,
     Cobegin,
     ControlMode,
+    Dependency,
     JointIncrement,
     Lane,
     Lease,
@@ -668,6 +669,16 @@ class _DecisionMethods:
                            lambda r: ActionRun(r.action_id, enum_value(Lane, r.lane),
                                                time_ns(r.arrive_time), time_ns(r.start_time),
                                                time_ns(r.end_time)), timeout, lane)
+
+    # -- dependencies ----------------------------------------------------------------------------
+    def get_dependencies(self, *, timeout: float | None = None, lane: str | None = None
+                         ) -> list[Dependency]:
+        """How each service the DecisionServer depends on is (proxy_robot, force_sensor,
+        stereo_camera, emergency_stop): SERVING, NOT_SERVING or RESTARTING, and why. Changes
+        also come as ``dependency_changed`` events (`Dependency.from_proto` reads them)."""
+        return self._unary("GetDependencies", pb.GetDependenciesRequest(),
+                           lambda r: [Dependency.from_proto(d) for d in r.dependencies],
+                           timeout, lane)
 
     # -- events ----------------------------------------------------------------------------------
     def stream_events(self, include_data_received: bool = False, *,

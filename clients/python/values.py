@@ -35,6 +35,7 @@ ReferenceFrame = _proto_enum("ReferenceFrame", types_pb2.ReferenceFrame, "REFERE
 ControlMode = _proto_enum("ControlMode", ds_pb.ControlMode, "CONTROL_MODE_")
 CommandOutcome = _proto_enum("CommandOutcome", ds_pb.CommandOutcome, "COMMAND_OUTCOME_")
 ReplayState = _proto_enum("ReplayState", ds_pb.ReplayState, "REPLAY_STATE_")
+DependencyState = _proto_enum("DependencyState", ds_pb.DependencyState, "DEPENDENCY_STATE_")
 ImageEncoding = _proto_enum("ImageEncoding", sc_pb.ImageEncoding, "IMAGE_ENCODING_")
 TransferMode = _proto_enum("TransferMode", sc_pb.TransferMode, "TRANSFER_MODE_")
 SensorThreadPriority = _proto_enum("SensorThreadPriority", fs_pb.SensorThreadPriority,
@@ -194,6 +195,27 @@ class Recording:
     def from_proto(cls, recording: ds_pb.Recording) -> Recording:
         return cls(recording.name, time_ns(recording.create_time), seconds(recording.duration),
                    recording.command_count)
+
+
+@dataclass(frozen=True)
+class Dependency:
+    """One service the DecisionServer depends on (GetDependencies, and the dependency_changed
+    event): proxy_robot, force_sensor, stereo_camera or emergency_stop."""
+
+    name: str
+    state: DependencyState  # SERVING, NOT_SERVING or RESTARTING
+    reason: str  # why not serving, for people; empty while serving
+    change_time_ns: int  # when it entered this state (the server's clock)
+    restarts: int  # how often the station's launcher restarted it
+
+    @classmethod
+    def from_proto(cls, dependency: ds_pb.Dependency) -> Dependency:
+        return cls(dependency.name, enum_value(DependencyState, dependency.state),
+                   dependency.reason, time_ns(dependency.change_time), dependency.restarts)
+
+    @property
+    def serving(self) -> bool:
+        return self.state == DependencyState.SERVING
 
 
 @dataclass(frozen=True)

@@ -3,9 +3,11 @@
 It connects to the DecisionServer at TELEROBOT_DECISION_SERVER_ADDRESS (default
 127.0.0.1:50051), starting a local station first if nothing answers there; takes control;
 runs the scripted peg-in-hole task with force feedback to the operator, then with active
-compliance on the server; shows a live status line; and leaves in runs/teleop-<time>/ the
-stereo video with the AR overlay (stereo.mp4), plots (force.png, tool_path.png, latency.png)
-and summary.json, then prints a summary table.
+compliance on the server; shows a live status line, and a line of its own whenever one of the
+station's services (ProxyRobot, ForceSensor, StereoCamera, the band) changes state; and leaves
+in runs/teleop-<time>/ the stereo video with the AR overlay (stereo.mp4), plots (force.png,
+tool_path.png, latency.png) and summary.json (with the dependencies' final states), then
+prints a summary table.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -21,6 +24,7 @@ import numpy as np
 from clients.ar import RobotModel
 from clients.python.decision_server import DecisionClient
 from clients.teleop.artifacts import plot, write_summary
+from clients.teleop.dependencies import DependencyMonitor, as_json, describe
 from clients.teleop.stack import station_at
 from clients.teleop.task import PegInHole, Result
 from clients.teleop.video import StereoView
@@ -31,13 +35,16 @@ RETRACT_STEP_M = 0.04
 
 
 class StatusLine:
-    """One terminal line, rewritten four times a second."""
+    """One terminal line, rewritten four times a second; `note(text)` puts a line of its own
+    above it (from any thread)."""
 
     def __init__(self, stream=sys.stdout):
         self._stream = stream
         self._last = 0.0
         self._started = time.monotonic()
         self._count = 0
+        self._width = 0  # of the status line on screen
+        self._lock = threading.Lock()
 
     def __call__(self, *, mode, clutch, force, commands, acks, round_trips) -> None:
         now = time.monotonic()
@@ -48,13 +55,25 @@ class StatusLine:
         line = (f"[{mode:10}] {'CLUTCH ' if clutch else 'engaged'}  cmd {commands / elapsed:5.1f}/s"
                 f"  acks {acks / elapsed:5.1f}/s  rtt p50 {np.median(recent):5.1f} ms"
                 f"  F {force:6.2f} N  lock held")
-        self._stream.write("\r" + line)
-        self._stream.flush()
+        with self._lock:
+            self._stream.write("\r" + line)
+            self._stream.flush()
+            self._width = len(line)
         self._last = now
+
+    def note(self, text: str) -> None:
+        """`text` on a line of its own, over the status line (which the next update redraws)."""
+        with self._lock:
+            self._stream.write("\r" + text.ljust(self._width) + "\n")
+            self._stream.flush()
+            self._width = 0
+        self._last = 0.0
 
     def restart(self) -> None:
         self._started = time.monotonic()
-        self._stream.write("\n")
+        with self._lock:
+            self._stream.write("\n")
+            self._width = 0
 
 
 def retract(client: DecisionClient, start: np.ndarray) -> None:
@@ -116,17 +135,26 @@ def main(argv: list[str] | None = None) -> int:
                 view = StereoView(client.camera, model, out, args.calibration)
                 view.start()
             status, results, traces = StatusLine(), [], []
-            for mode in args.modes:
+            # The station's services as the session goes: what is down now, then every change.
+            monitor = DependencyMonitor(client, status.note).start()
+            for dependency in monitor.initial():
+                if not dependency.serving:
+                    status.note(describe(dependency))
+            try:
+                for mode in args.modes:
+                    retract(client, start)
+                    status.restart()
+                    run = PegInHole(client, mode, model, status)
+                    results.append(run.run())
+                    traces.append(run.trace)
+                    client.renew_control()
+                print()
                 retract(client, start)
-                status.restart()
-                run = PegInHole(client, mode, model, status)
-                results.append(run.run())
-                traces.append(run.trace)
-                client.renew_control()
-            print()
-            retract(client, start)
-            if view is not None:
-                view.stop()
+                if view is not None:
+                    view.stop()
+            finally:
+                monitor.stop()
+            dependencies = monitor.final()
     artifacts = plot(traces, out)
     summary = {
         "station": "started locally" if started else f"found at {args.address}",
@@ -136,6 +164,9 @@ def main(argv: list[str] | None = None) -> int:
         "video_error": view.error if view else None,
         "cameras_identified_now": bool(view and view.identified_now),
         "plots": [str(path) for path in artifacts],
+        # Each of the station's services at the end, and every change during the session.
+        "dependencies": dependencies,
+        "dependency_changes": [as_json(d) for d in monitor.changes],
     }
     write_summary(summary, out)
     print(table(results))
