@@ -18,7 +18,12 @@ from grpc_status import rpc_status
 
 from services.common import convert
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
-from services.runtime.errors import TelerobotError, Unavailable, error_for_status
+from services.runtime.errors import (
+    DeadlineExceeded,
+    TelerobotError,
+    Unavailable,
+    error_for_status,
+)
 from telerobot.v1 import (
     force_sensor_pb2,
     force_sensor_pb2_grpc,
@@ -155,6 +160,15 @@ class GrpcSlave:
     def hold(self, reason: str) -> None:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
 
+    def sensor_is_reading(self, timeout_s: float) -> bool:
+        try:
+            reply = call(self.sensor.GetSensorConfig, force_sensor_pb2.GetSensorConfigRequest(),
+                         timeout=timeout_s)
+        except DeadlineExceeded:
+            raise Unavailable(f"no answer within {timeout_s * 1e3:.0f} ms",
+                              reason="SENSOR_SILENT") from None
+        return reply.config.reading
+
     def emergency_stop(self, reason: str) -> str:
         """Latch through the band and through ProxyRobot at once: the band is fast under any
         ProxyRobot load, ProxyRobot records the reason, stops its interpolator and is the path
@@ -283,6 +297,8 @@ class GrpcSlave:
                 if self._closed.is_set():
                     return
                 self._health[name] = f"{error.code().name}: {error.details()}"
+            except ValueError:  # its channel was closed under it: the server is stopping
+                return
             self._health_answered[name].set()
             self._closed.wait(RETRY_S)
 

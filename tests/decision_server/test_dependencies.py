@@ -12,6 +12,7 @@ import grpc
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
+from services.decision_server.backends import GrpcSlave
 from services.decision_server.dependencies import (
     NOT_SERVING,
     RECONNECT_GRACE_S,
@@ -23,6 +24,7 @@ from services.decision_server.dependencies import (
     assess,
 )
 from services.runtime import children
+from services.runtime.server import create_server
 from services.runtime.supervisor_state import (
     GAVE_UP,
     RESTARTING,
@@ -283,3 +285,31 @@ def test_a_killed_sensor_is_not_serving_then_restarting_then_serving(world, back
                 ("force_sensor", pb.DEPENDENCY_STATE_RESTARTING, pb.DEPENDENCY_STATE_SERVING)]
     finally:
         children.stop_all(started)
+
+
+# -- GrpcSlave's health watches, against an in-process server ----------------------------------
+
+def test_grpc_slave_watches_each_dependency_s_health():
+    """One server (health only) plays the arm, the sensor, the band and the camera: its
+    health changes reach health() for each, and so does its end."""
+    server, port = create_server("127.0.0.1:0", [])
+    server.start()
+    server.set_serving()
+    address = f"127.0.0.1:{port}"
+    slave = GrpcSlave(address, address, address)
+    camera = grpc.insecure_channel(address)
+    try:
+        slave.watch_health("stereo_camera", camera)
+        assert slave.wait_health(5.0)
+        names = {"proxy_robot", "force_sensor", "emergency_stop", "stereo_camera"}
+        wait_for(lambda: slave.health() == dict.fromkeys(names, "ok"), what="all ok")
+        server.health.set("", health_pb2.HealthCheckResponse.NOT_SERVING)
+        wait_for(lambda: set(slave.health().values()) == {
+            "NOT_SERVING: its health check says it is not serving"}, what="not serving")
+        server.stop(0)
+        wait_for(lambda: all(v.startswith("UNAVAILABLE") for v in slave.health().values()),
+                 what="unavailable")
+    finally:
+        slave.close()
+        camera.close()
+        server.stop(0)
