@@ -18,6 +18,7 @@ from clients.ar import (
     save_identification,
 )
 from clients.ar.adapters import projections_from_header
+from clients.python.errors import UnavailableError
 from clients.python.stereo_camera import StereoCameraClient
 from clients.teleop.artifacts import VideoRecorder
 from services.robot_model import workspace
@@ -26,6 +27,7 @@ log = logging.getLogger(__name__)
 
 WIDTH_PX, HEIGHT_PX = 320, 240
 MAX_FPS = 10.0
+RESUME_AFTER_S = 0.5  # while the camera is away, try again this often
 
 
 def reference_points() -> np.ndarray:
@@ -50,6 +52,7 @@ class StereoView:
         self.recorder: VideoRecorder | None = None
         self.error: str | None = None
         self.identified_now = False
+        self.pauses = 0  # times the camera went away and the video waited for it
 
     def start(self) -> None:
         self._thread.start()
@@ -76,21 +79,32 @@ class StereoView:
         return StereoOverlay.from_identification(identification)
 
     def _run(self) -> None:
-        try:
-            stream = self._camera.stream_pairs(width_px=WIDTH_PX, height_px=HEIGHT_PX,
-                                               max_fps=MAX_FPS, timeout=None)
-            overlay = composer = None
-            for frame in stream:
+        overlay = composer = None
+        while not self._stop.is_set():
+            try:
+                stream = self._camera.stream_pairs(width_px=WIDTH_PX, height_px=HEIGHT_PX,
+                                                   max_fps=MAX_FPS, timeout=None)
+                for frame in stream:
+                    if self._stop.is_set():
+                        stream.cancel()
+                        return
+                    if overlay is None:
+                        overlay = self._overlay(frame.header)
+                        composer = SideBySideComposer(WIDTH_PX, HEIGHT_PX)
+                        self.recorder = VideoRecorder(self._out / "stereo.mp4",
+                                                      *composer.frame_size)
+                    left, right, _ = overlay.draw(frame.left, frame.right,
+                                                  self._model.tool_point)
+                    self.recorder.add(composer.compose(left, right))
+                return
+            except UnavailableError as error:  # the camera restarts: pause, then resume
                 if self._stop.is_set():
-                    stream.cancel()
-                    break
-                if overlay is None:
-                    overlay = self._overlay(frame.header)
-                    composer = SideBySideComposer(WIDTH_PX, HEIGHT_PX)
-                    self.recorder = VideoRecorder(self._out / "stereo.mp4", *composer.frame_size)
-                left, right, _ = overlay.draw(frame.left, frame.right, self._model.tool_point)
-                self.recorder.add(composer.compose(left, right))
-        except Exception as error:  # noqa: BLE001 - the task goes on without video; say why
-            if not self._stop.is_set():
-                self.error = str(error)
-                log.warning("stereo view stopped: %s", error)
+                    return
+                self.pauses += 1
+                log.warning("video paused (%s); resuming when the camera is back", error)
+                self._stop.wait(RESUME_AFTER_S)
+            except Exception as error:  # noqa: BLE001 - the task goes on without video; say why
+                if not self._stop.is_set():
+                    self.error = str(error)
+                    log.warning("stereo view stopped: %s", error)
+                return

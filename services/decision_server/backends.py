@@ -288,11 +288,18 @@ class GrpcSlave:
                 with self._opened(stub.Watch(health_pb2.HealthCheckRequest()),
                                   self._health_calls) as call:
                     for reply in call:
-                        self._health[name] = "ok" if reply.status == serving else (
+                        self._health_answered[name].set()
+                        if reply.status == serving:
+                            self._health[name] = "ok"
+                            continue
+                        self._health[name] = (
                             f"{health_pb2.HealthCheckResponse.ServingStatus.Name(reply.status)}:"
                             " its health check says it is not serving")
-                        self._health_answered[name].set()
-                self._health[name] = "UNAVAILABLE: its health stream ended"
+                        # A server says so as it starts to drain: leave (the call would hold
+                        # its stop for its whole grace period) and look again later.
+                        break
+                    else:
+                        self._health[name] = "UNAVAILABLE: its health stream ended"
             except grpc.RpcError as error:
                 if self._closed.is_set():
                     return

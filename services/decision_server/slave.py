@@ -66,6 +66,10 @@ class Slave(Protocol):
     def hold(self, reason: str) -> None:
         """A controlled stop without a latch."""
 
+    def sensor_is_reading(self, timeout_s: float) -> bool:
+        """Whether the sensor is sampling, asked of the sensor itself; Unavailable when it does
+        not answer within `timeout_s` (down, or hung)."""
+
     def emergency_stop(self, reason: str) -> str:
         """Latch a stop at the hardware; returns the status after it (ESTOPPED)."""
 

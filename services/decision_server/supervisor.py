@@ -53,6 +53,13 @@ from services.runtime.errors import (
 
 log = logging.getLogger(__name__)
 
+# The sensor's wrench reaches the DecisionServer at 100 Hz: after 30 ms without one the
+# sensor is asked whether it is alive, and may take 20 ms to answer (see sensor_lost). So a
+# hung sensor holds the arm within about 30 + 20 ms plus one command period.
+SENSOR_QUIET_NS = 30_000_000
+SENSOR_PROBE_S = 0.02
+SENSOR_ALIVE_S = 0.1  # a quiet sensor that answered (a change threshold) is asked this often
+
 DEFAULT_WATCHDOG_S = 0.1
 MIN_WATCHDOG_S, MAX_WATCHDOG_S = 0.01, 5.0
 MIN_REPLAY_SPEED, MAX_REPLAY_SPEED = 0.1, 10.0
@@ -186,6 +193,7 @@ class TeleopSession:
         self._last_activity = self._clock.monotonic()
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
         self._held = False
+        self._sensor_was_lost = False
         self._closed = threading.Event()
         self._activity = threading.Event()
         self._watchdog = threading.Thread(target=self._watch, name=f"watchdog-{self.session_id}",
@@ -217,6 +225,7 @@ class TeleopSession:
         self._touch()
         self.core.locks.require(self.lease.lease_id)  # FailedPrecondition ends the stream
         assistance, indexing, latched = self.core.snapshot()
+        sensor_lost = self._sensor_check()
         results: list[CommandResult] = []
         for group in merge_groups(increments):
             first = group[0]
@@ -224,12 +233,29 @@ class TeleopSession:
                 self._target = None  # the reference follows the hand; re-read the pose after
                 results += [CommandResult("INDEXED", "indexing is engaged", i.receive_time_ns,
                                           i.receive_time_ns) for i in group]
-            elif latched:
-                results += [CommandResult("REJECTED", f"the arm is {latched}: Reset it first",
-                                          i.receive_time_ns, i.receive_time_ns) for i in group]
+            elif latched or sensor_lost:
+                why = f"the arm is {latched}: Reset it first" if latched else sensor_lost
+                results += [CommandResult("REJECTED", why, i.receive_time_ns,
+                                          i.receive_time_ns) for i in group]
             else:
                 results += self._move(assistance, group)
         return results
+
+    def _sensor_check(self) -> str | None:
+        """Why the sensor is lost (see DecisionCore.sensor_lost); the first time, the arm is
+        told to hold, so a move in flight stops too. Once it is back, the next move starts from
+        the arm's measured pose."""
+        lost = self.core.sensor_lost()
+        if lost and not self._sensor_was_lost:
+            log.warning("session %s: %s", self.session_id, lost)
+            with self._moving:
+                try:
+                    self.core.slave.hold(lost)
+                except TelerobotError as error:  # the arm's own watchdogs hold it anyway
+                    log.warning("could not hold the arm: %s", error.message)
+            self._target = None
+        self._sensor_was_lost = bool(lost)
+        return lost
 
     def _move(self, assistance: Assistance, group: list[MasterIncrement]) -> list[CommandResult]:
         """One move for a group of motion commands: each gets the assistance at the pose the
@@ -328,6 +354,8 @@ class DecisionCore:
         self._force_lease: Lease | None = None  # the lease that switched force control on
         self._force_loop: ForceLoop | None = None
         self._indexing = False
+        self._sensor_streamed = False  # a fresh wrench was seen (see sensor_lost)
+        self._sensor_alive_until = 0.0
         # The arm's latest status, from state samples and from the answers of stop and reset;
         # an older sample never overrides a newer answer.
         self._state: SlaveState | None = None
@@ -389,6 +417,31 @@ class DecisionCore:
 
     def wrench(self) -> SlaveWrench | None:
         return self.slave.wrench()
+
+    def sensor_lost(self) -> str | None:
+        """Why the force sensor is lost, or None. The operator moves by what it feels, so
+        without the sensor the arm must not move. Lost: its process is down, or its wrench
+        went stale after it had been streaming and the sensor does not answer within
+        SENSOR_PROBE_S (a hung process answers nothing, not even its health). A sensor that
+        answers that it stopped reading (StopReading), or never streamed, is not lost; one
+        that reads but streams nothing (a change threshold) is not either. A restarted sensor
+        resumes reading by itself, and motion with it."""
+        health = self.slave.health().get("force_sensor", "ok")
+        if health != "ok":
+            return f"the force sensor is unavailable ({health}); the arm holds"
+        wrench = self.slave.wrench()
+        now = self.clock.monotonic()
+        if wrench is not None and self.clock.time_ns() - wrench.sample_time_ns <= SENSOR_QUIET_NS:
+            self._sensor_streamed, self._sensor_alive_until = True, 0.0
+            return None
+        if not self._sensor_streamed or now < self._sensor_alive_until:
+            return None
+        try:
+            self._sensor_streamed = self.slave.sensor_is_reading(SENSOR_PROBE_S)
+        except Unavailable as error:
+            return f"the force sensor went silent ({error.message}); the arm holds"
+        self._sensor_alive_until = now + SENSOR_ALIVE_S  # quiet but alive: ask again later
+        return None
 
     # -- the arm's status: one source of truth ----------------------------------------------
 

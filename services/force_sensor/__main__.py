@@ -8,6 +8,7 @@ world's link (read only), to remove the tool's weight in any orientation.
 from __future__ import annotations
 
 import argparse
+import logging
 import os
 
 from services.force_sensor.core import ForceSensorCore
@@ -16,9 +17,12 @@ from services.force_sensor.servicer import ForceSensorServicer
 from services.runtime.core_service import CoreService
 from services.runtime.process import run_service
 from services.runtime.server import binding
+from services.runtime.supervisor_state import RESTARTED_BECAUSE_ENV
 from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2_grpc
+
+log = logging.getLogger("force_sensor")
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -51,8 +55,18 @@ def build(args: argparse.Namespace) -> CoreService:
 
     # Sampling starts on StartReading, as in the papers; close() releases the links.
     core = ForceSensorCore(wrench_link, lambda: SharedMemoryArmLink(args.shm_name))
+    because = os.environ.get(RESTARTED_BECAUSE_ENV)
     return CoreService([binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(core))],
-                       core.close)
+                       core.close,
+                       on_start=(lambda: _resume_reading(core, because)) if because else None)
+
+
+def _resume_reading(core: ForceSensorCore, previous_end: str) -> None:
+    """Restarted by the launcher after a crash: read again at once (the DecisionServer holds
+    the arm until the wrench flows). What the old process was told is gone with it."""
+    core.start_reading()
+    log.warning("restarted (the previous ForceSensor %s) and reading again, with the default "
+                "settings and tool frame and no tare: Tare again at no load", previous_end)
 
 
 if __name__ == "__main__":

@@ -108,6 +108,7 @@ class FakeSlave:
         self.commands: list[Command] = []  # everything the core asked of the arm, in order
         self.sensor_flange_to_tool = self.kinematics.flange_T_tool
         self.sensor_reading = True
+        self.sensor_hung = False  # a hung sensor process: no samples, no answers
         self.wrench_delay_s = 0.0  # how late samples arrive (a backlog on a loaded machine)
         self.publish_state = True  # False: the state stream lags (samples held back)
         self.reachable = True
@@ -204,6 +205,13 @@ class FakeSlave:
             self.q_target = self.q.copy()
             self.commands.append(Command("hold", reason))
 
+    def sensor_is_reading(self, timeout_s: float) -> bool:
+        self._check_reachable()
+        if self.sensor_hung:
+            raise Unavailable(f"no answer within {timeout_s * 1e3:.0f} ms",
+                              reason="SENSOR_SILENT")
+        return self.sensor_reading
+
     def emergency_stop(self, reason: str) -> str:
         self._check_reachable()
         self.latch_at_hardware(reason)
@@ -236,7 +244,7 @@ class FakeSlave:
             return self._state()
 
     def wrench(self) -> SlaveWrench | None:
-        return self._latest_wrench if self.sensor_reading else None
+        return self._latest_wrench if self.sensor_reading and not self.sensor_hung else None
 
     def wrench_stream(self, decimation: int) -> _Subscription:
         return _Subscription(self, decimation)
