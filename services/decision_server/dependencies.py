@@ -86,6 +86,13 @@ def assess(answer: str, supervised: ChildState | None, now_s: float) -> tuple[st
     return NOT_SERVING, answer, restarts
 
 
+def _well_formed(child: ChildState) -> bool:
+    """Whether a launcher's entry has the types it should (the file is another process's)."""
+    return (isinstance(child.state, str) and isinstance(child.last_exit, str)
+            and type(child.restarts) is int and 0 <= child.restarts < 2**31
+            and isinstance(child.since, int | float))
+
+
 Listener = Callable[[DependencyChanged], None]
 
 
@@ -119,7 +126,8 @@ class DependencyWatch:
         """Look once: update every dependency's state, tell the listeners of each change, and
         return them all (in ORDER)."""
         answers = self._health()
-        supervised = self._supervisor_state()
+        supervised = {name: child for name, child in self._supervisor_state().items()
+                      if _well_formed(child)}
         with self._lock:
             now_ns = self._clock.time_ns()
             for name, answer in answers.items():

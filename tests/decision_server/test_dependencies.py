@@ -130,6 +130,15 @@ def test_serving_then_down_then_restarting_then_serving_raises_one_event_per_cha
     assert by_name(watch.dependencies())["proxy_robot"].state == SERVING
 
 
+def test_a_malformed_launcher_entry_is_ignored(watched):
+    watch, slave, _, state_file, _ = watched
+    slave.dependency_health["force_sensor"] = REFUSED
+    state_file.write_text('{"services": {"force_sensor": {"state": "restarting", '
+                          '"restarts": "two", "last_exit": 9}}}')
+    sensor = by_name(watch.poll())["force_sensor"]
+    assert (sensor.state, sensor.reason, sensor.restarts) == (NOT_SERVING, REFUSED, 0)
+
+
 def test_without_a_band_there_are_three_and_listeners_can_get_the_current_states(watched):
     watch, slave, _, _, _ = watched
     del slave.dependency_health["emergency_stop"]  # configured without one
