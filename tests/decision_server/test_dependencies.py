@@ -5,6 +5,7 @@ StreamEvents on an in-process server."""
 from __future__ import annotations
 
 import os
+import re
 import signal
 import time
 
@@ -36,7 +37,7 @@ from services.runtime.supervisor_state import (
 )
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
-from tests.conftest import start_service, wait_for
+from tests.conftest import start_service, start_station, station_env, wait_for
 from tests.fakes.clock import FakeClock
 from tests.fakes.slave import FakeSlave
 
@@ -322,3 +323,53 @@ def test_grpc_slave_watches_each_dependency_s_health():
         slave.close()
         camera.close()
         server.stop(0)
+
+
+@pytest.mark.e2e
+def test_through_the_launcher_a_killed_camera_is_restarting_then_serving(tmp_path):
+    """The whole station (the launcher restarts a child that dies, and says so in its state
+    file): SIGKILL the camera, and the DecisionServer reports it RESTARTING with the
+    launcher's reason, then SERVING with one restart, in its events and its health."""
+    launcher = start_station(station_env(
+        TELEROBOT_STEREO_CAMERA_SOURCE="pattern", TELEROBOT_STEREO_CAMERA_WIDTH="64",
+        TELEROBOT_STEREO_CAMERA_HEIGHT="48", TELEROBOT_STEREO_CAMERA_FPS="5",
+        TELEROBOT_RECORDINGS_DIR=str(tmp_path / "recordings"), TELEROBOT_LOG_LEVEL="WARNING"))
+    try:
+        pid = next(int(match.group(1)) for line in launcher.lines
+                   if (match := re.search(r"^\s*stereo_camera\s.*\(pid (\d+)\)", line)))
+        with grpc.insecure_channel(launcher.ready["decision_server"]) as channel:
+            stub = decision_server_pb2_grpc.DecisionServerStub(channel)
+            wait_for(lambda: {d.state for d in _dependencies(stub).values()} == {
+                pb.DEPENDENCY_STATE_SERVING}, 10, "every dependency to serve")
+            events = stub.StreamEvents(pb.StreamEventsRequest(), timeout=120)
+            lease = stub.AcquireControl(pb.AcquireControlRequest(
+                operator_id="watcher", mode=pb.CONTROL_MODE_EXCLUSIVE), timeout=5).lease_id
+            stub.ReleaseControl(pb.ReleaseControlRequest(lease_id=lease), timeout=5)
+            assert next(events).WhichOneof("event") == "control_changed"  # subscribed
+
+            os.kill(pid, signal.SIGKILL)
+            restarting = wait_for(lambda: (d := _dependencies(stub)["stereo_camera"]).state ==
+                                  pb.DEPENDENCY_STATE_RESTARTING and d, 10, "restarting")
+            assert "killed by signal 9" in restarting.reason, restarting.reason
+            assert _health(channel, "stereo_camera") == \
+                health_pb2.HealthCheckResponse.NOT_SERVING
+            back = wait_for(lambda: (d := _dependencies(stub)["stereo_camera"]).state ==
+                            pb.DEPENDENCY_STATE_SERVING and d, 60, "the camera back")
+            assert back.restarts == 1
+            assert _health(channel, "stereo_camera") == health_pb2.HealthCheckResponse.SERVING
+
+            states = []
+            for event in events:
+                if event.WhichOneof("event") == "dependency_changed":
+                    change = event.dependency_changed
+                    assert change.dependency.name == "stereo_camera"  # the others: quiet
+                    states.append(change.dependency.state)
+                    if change.dependency.state == pb.DEPENDENCY_STATE_SERVING:
+                        break
+            events.cancel()
+            # The health watch may see the camera gone before the launcher writes its state.
+            assert states in ([pb.DEPENDENCY_STATE_RESTARTING, pb.DEPENDENCY_STATE_SERVING],
+                              [pb.DEPENDENCY_STATE_NOT_SERVING, pb.DEPENDENCY_STATE_RESTARTING,
+                               pb.DEPENDENCY_STATE_SERVING]), states
+    finally:
+        launcher.stop(signal.SIGINT)
