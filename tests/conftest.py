@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
+import grpc
 import pytest
 
 # MuJoCo picks its GL backend at import: headless rendering needs EGL, set before any test
@@ -150,3 +152,39 @@ def pid_alive(pid: int) -> bool:
     # A zombie still answers kill(0); it is gone for our purposes once its parent reaped it.
     with open(f"/proc/{pid}/stat") as stat:
         return stat.read().split()[2] != "Z"
+
+
+def service_pid(launcher: Child, name: str) -> int | None:
+    """The pid of the launcher's child running services.<name> now (None between a death and
+    its restart)."""
+    out = subprocess.run(["pgrep", "-P", str(launcher.process.pid)], capture_output=True,
+                         text=True).stdout
+    for pid in map(int, out.split()):
+        try:
+            with open(f"/proc/{pid}/cmdline") as cmdline:
+                if f"services.{name}" in cmdline.read():
+                    return pid
+        except FileNotFoundError:
+            continue
+    return None
+
+
+def health_serving(address: str) -> bool:
+    """Whether the server at `address` (plaintext) says SERVING within a second."""
+    from grpc_health.v1 import health_pb2, health_pb2_grpc
+
+    try:
+        with grpc.insecure_channel(address) as channel:
+            reply = health_pb2_grpc.HealthStub(channel).Check(health_pb2.HealthCheckRequest(),
+                                                              timeout=1)
+        return reply.status == health_pb2.HealthCheckResponse.SERVING
+    except grpc.RpcError:
+        return False
+
+
+def restarted(launcher: Child, name: str, old_pid: int) -> int | None:
+    """The new pid of `name` once the launcher restarted it and it serves; None before."""
+    pid = service_pid(launcher, name)
+    if pid is None or pid == old_pid or not health_serving(launcher.ready[name]):
+        return None
+    return pid

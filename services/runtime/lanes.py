@@ -24,9 +24,8 @@ from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
 
-from google.protobuf import descriptor_pool
-
 from telerobot.v1 import options_pb2
+from wire.options import method_options
 
 log = logging.getLogger(__name__)
 
@@ -355,10 +354,7 @@ def declared_lane(method_path: str) -> Lane:
     """The lane an RPC declares in its proto ("/pkg.Service/Method"); MEDIUM when it has none."""
     if method_path in _BUILTIN_LANES:
         return _BUILTIN_LANES[method_path]
-    service, _, method = method_path.lstrip("/").partition("/")
-    try:
-        descriptor = descriptor_pool.Default().FindMethodByName(f"{service}.{method}")
-    except KeyError:
+    options = method_options(method_path)
+    if options is None:
         return Lane.MEDIUM
-    options = descriptor.GetOptions()
     return _PROTO_LANES.get(options.Extensions[options_pb2.default_lane], Lane.MEDIUM)

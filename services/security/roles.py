@@ -13,10 +13,9 @@ from __future__ import annotations
 import enum
 import functools
 
-from google.protobuf import descriptor_pool
-
 from telerobot.v1 import options_pb2
 from wire.errors import PermissionDenied
+from wire.options import method_options
 
 
 class Role(enum.IntEnum):
@@ -55,12 +54,8 @@ def declared_role(method_path: str) -> Role | None:
     A method that declares none needs ADMIN: a forgotten option fails closed."""
     if method_path in _BUILTIN_ROLES:
         return _BUILTIN_ROLES[method_path]
-    service, _, method = method_path.lstrip("/").partition("/")
-    try:
-        descriptor = descriptor_pool.Default().FindMethodByName(f"{service}.{method}")
-    except KeyError:
-        return Role.ADMIN
-    value = descriptor.GetOptions().Extensions[options_pb2.min_role]
+    options = method_options(method_path)
+    value = options.Extensions[options_pb2.min_role] if options is not None else 0
     return Role(value) if value else Role.ADMIN
 
 

@@ -19,15 +19,12 @@ from __future__ import annotations
 import math
 import os
 import signal
-import subprocess
 import threading
 import time
 from dataclasses import dataclass, field
 
-import grpc
 import numpy as np
 import pytest
-from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from clients.python import (
     DecisionClient,
@@ -37,7 +34,7 @@ from clients.python import (
 )
 from services.world.seqlock import TornRead
 from services.world.shm_layout import WorldSegment, attach_untracked
-from tests.conftest import start_station, station_env, wait_for
+from tests.conftest import restarted, service_pid, start_station, station_env, wait_for
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow]
 
@@ -147,29 +144,6 @@ class Operator:
         self._thread.join(10)
 
 
-def _pid(launcher, name: str) -> int:
-    out = subprocess.run(["pgrep", "-P", str(launcher.process.pid)], capture_output=True,
-                         text=True).stdout
-    for pid in map(int, out.split()):
-        try:
-            with open(f"/proc/{pid}/cmdline") as cmdline:
-                if f"services.{name}" in cmdline.read():
-                    return pid
-        except FileNotFoundError:
-            continue
-    raise LookupError(name)
-
-
-def _serving(address: str) -> bool:
-    try:
-        with grpc.insecure_channel(address) as channel:
-            return health_pb2_grpc.HealthStub(channel).Check(
-                health_pb2.HealthCheckRequest(), timeout=1).status \
-                == health_pb2.HealthCheckResponse.SERVING
-    except grpc.RpcError:
-        return False
-
-
 def _hold_time_s(watch: ArmWatch, fault_ns: int) -> float | None:
     """Seconds from the fault to the first step after which the arm stays under the hold speed
     for 50 ms; None if it never does within a second."""
@@ -203,7 +177,7 @@ def test_every_fault_holds_the_arm_and_the_station_recovers(station, fault):
     rows = []
     for victim in VICTIMS:
         wait_for(watch.moving, timeout_s=20, what=f"the operator driving before {victim}")
-        pid = _pid(launcher, victim)
+        pid = service_pid(launcher, victim)
         fault_ns = time.monotonic_ns()
         if fault == "kill":
             os.kill(pid, signal.SIGKILL)
@@ -220,7 +194,7 @@ def test_every_fault_holds_the_arm_and_the_station_recovers(station, fault):
         hold = _hold_time_s(watch, fault_ns)
         fastest = max(speed for _, speed in during)
         if fault == "kill":
-            wait_for(lambda v=victim, p=pid: _pid_serving(launcher, v, p),
+            wait_for(lambda v=victim, p=pid: restarted(launcher, v, p),
                      timeout_s=BACK_WITHIN_S, what=f"{victim} back within 5 s")
         back_s = (time.monotonic_ns() - fault_ns) / 1e9
         rows.append((victim, hold, fastest, back_s))
@@ -253,11 +227,3 @@ def test_recordings_made_across_the_faults_are_whole(station):
 def _watched_for(watch: ArmWatch, since_ns: int, seconds: float) -> bool:
     samples = watch.since(since_ns)
     return bool(samples) and samples[-1][0] - since_ns > seconds * 1e9
-
-
-def _pid_serving(launcher, name: str, old_pid: int) -> bool:
-    try:
-        pid = _pid(launcher, name)
-    except LookupError:
-        return False
-    return pid != old_pid and _serving(launcher.ready[name])

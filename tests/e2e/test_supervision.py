@@ -5,47 +5,22 @@ from __future__ import annotations
 
 import os
 import signal
-import subprocess
 
 import grpc
 import pytest
-from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from telerobot.v1 import proxy_robot_pb2, proxy_robot_pb2_grpc, types_pb2
-from tests.conftest import pid_alive, start_station, station_env, wait_for
+from tests.conftest import (
+    health_serving,
+    pid_alive,
+    restarted,
+    service_pid,
+    start_station,
+    station_env,
+    wait_for,
+)
 
 pytestmark = pytest.mark.e2e
-
-
-def _service_pid(launcher, name: str) -> int:
-    out = subprocess.run(["pgrep", "-P", str(launcher.process.pid)], capture_output=True,
-                         text=True).stdout
-    for pid in map(int, out.split()):
-        try:
-            with open(f"/proc/{pid}/cmdline") as cmdline:
-                if f"services.{name}" in cmdline.read():
-                    return pid
-        except FileNotFoundError:
-            continue
-    raise LookupError(name)
-
-
-def _serving(address: str) -> bool:
-    try:
-        with grpc.insecure_channel(address) as channel:
-            reply = health_pb2_grpc.HealthStub(channel).Check(health_pb2.HealthCheckRequest(),
-                                                              timeout=2)
-        return reply.status == health_pb2.HealthCheckResponse.SERVING
-    except grpc.RpcError:
-        return False
-
-
-def _restarted(launcher, name: str, old_pid: int) -> int | None:
-    try:
-        pid = _service_pid(launcher, name)
-    except LookupError:
-        return None
-    return pid if pid != old_pid and _serving(launcher.ready[name]) else None
 
 
 @pytest.fixture(scope="module")
@@ -57,12 +32,12 @@ def station():
 
 
 def test_a_killed_sensor_is_restarted_on_its_address_and_the_stop_button_stays(station):
-    victim = _service_pid(station, "force_sensor")
+    victim = service_pid(station, "force_sensor")
     os.kill(victim, signal.SIGKILL)
     # The band and the operator's door serve all along.
-    assert _serving(station.ready["emergency_stop"])
-    assert _serving(station.ready["decision_server"])
-    wait_for(lambda: _restarted(station, "force_sensor", victim), timeout_s=5,
+    assert health_serving(station.ready["emergency_stop"])
+    assert health_serving(station.ready["decision_server"])
+    wait_for(lambda: restarted(station, "force_sensor", victim), timeout_s=5,
              what="force_sensor restarted and serving within 5 s")
     assert station.process.poll() is None
     output = "\n".join(station.lines)
@@ -75,9 +50,9 @@ def test_a_restarted_proxy_robot_reattaches_holding_and_says_why(station):
         robot.Connect(proxy_robot_pb2.ConnectRequest(), timeout=30)
         robot.Initialize(proxy_robot_pb2.InitializeRequest(), timeout=30)
         before = robot.GetState(proxy_robot_pb2.GetStateRequest(), timeout=5).state
-    victim = _service_pid(station, "proxy_robot")
+    victim = service_pid(station, "proxy_robot")
     os.kill(victim, signal.SIGKILL)
-    wait_for(lambda: _restarted(station, "proxy_robot", victim), timeout_s=5,
+    wait_for(lambda: restarted(station, "proxy_robot", victim), timeout_s=5,
              what="proxy_robot restarted and serving within 5 s")
     with grpc.insecure_channel(station.ready["proxy_robot"]) as channel:
         robot = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
@@ -94,11 +69,11 @@ def test_a_restarted_proxy_robot_reattaches_holding_and_says_why(station):
 def test_a_child_failing_too_often_stops_the_station():
     launcher = start_station(station_env(TELEROBOT_MAX_FAILURES="2"))
     try:
-        first = _service_pid(launcher, "stereo_camera")
+        first = service_pid(launcher, "stereo_camera")
         os.kill(first, signal.SIGKILL)
-        second = wait_for(lambda: _restarted(launcher, "stereo_camera", first), timeout_s=10,
+        second = wait_for(lambda: restarted(launcher, "stereo_camera", first), timeout_s=10,
                           what="the first restart")
-        others = [_service_pid(launcher, name) for name in ("world", "proxy_robot")]
+        others = [service_pid(launcher, name) for name in ("world", "proxy_robot")]
         os.kill(second, signal.SIGKILL)
         assert launcher.wait(timeout_s=15) == 1
         launcher.exited.wait(5)
@@ -112,8 +87,8 @@ def test_a_child_failing_too_often_stops_the_station():
 def test_the_world_dying_stops_the_whole_station():
     launcher = start_station(station_env())
     try:
-        world = _service_pid(launcher, "world")
-        others = [_service_pid(launcher, name) for name in ("proxy_robot", "decision_server")]
+        world = service_pid(launcher, "world")
+        others = [service_pid(launcher, name) for name in ("proxy_robot", "decision_server")]
         os.kill(world, signal.SIGKILL)
         assert launcher.wait(timeout_s=15) == 1
         launcher.exited.wait(5)
