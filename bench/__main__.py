@@ -3,7 +3,8 @@
 Starts a slave station of its own on free loopback ports, measures every scenario against its
 baselines in the same run, prints a table, and writes bench/results/latest.json,
 raw_latencies.json and PNG plots. --quick (`make bench QUICK=1`) shortens every scenario so the
-whole run takes under 3 minutes.
+whole run takes under 3 minutes. The soak (issue #16) runs only when asked for:
+`python -m bench --only soak [--soak-minutes N]` (10 minutes; 1 with --quick).
 """
 
 from __future__ import annotations
@@ -21,14 +22,18 @@ def main(argv: list[str] | None = None) -> int:
                         default=os.environ.get("QUICK", "") not in ("", "0"),
                         help="shorter scenarios, the whole run under 3 minutes (env QUICK=1)")
     parser.add_argument("--only", nargs="+", choices=GROUPS, default=(),
-                        help="run only these groups of scenarios")
+                        help="run only these groups of scenarios (soak runs only if named)")
+    parser.add_argument("--soak-minutes", type=float, default=None, metavar="N",
+                        help="the soak's length (default 10 minutes, 1 with --quick)")
     parser.add_argument("--out", default=str(RESULTS_DIR), help="where results go")
     parser.add_argument("--profile", action="store_true",
                         help="after the decision group, py-spy the DecisionServer and ProxyRobot "
                              "under Teleoperate at 1 kHz (bench/profile.py)")
     args = parser.parse_args(argv)
-    return run(Plan(quick=args.quick, only=tuple(args.only), profile=args.profile),
-               Path(args.out))
+    if args.soak_minutes is not None and args.soak_minutes <= 0:
+        parser.error("--soak-minutes must be > 0")
+    return run(Plan(quick=args.quick, only=tuple(args.only), profile=args.profile,
+                    soak_minutes=args.soak_minutes), Path(args.out))
 
 
 if __name__ == "__main__":

@@ -93,6 +93,14 @@ STREAMS: dict[str, Callable] = {"grpc": _grpc_messages, "zmq": _zmq_messages,
 TRANSPORT_NAMES = {"grpc": "grpc-stream", "zmq": "zmq-pubsub", "tcp": "tcp-struct"}
 
 
+def sequence_gaps(last: int | None, sequence: int, decimation: int) -> int:
+    """Samples missing between a subscriber's sample `last` and the next one, `sequence`
+    (every `decimation`-th sample is the subscriber's)."""
+    if last is None or sequence - last <= decimation:
+        return 0
+    return (sequence - last) // decimation - 1
+
+
 def measure_stream(transport: str, address: str, decimation: int, duration_s: float,
                    on_first: Callable[[], None] | None = None) -> dict:
     """Receive the wrench stream for WARMUP_S + duration_s; the scenario's summary."""
@@ -117,8 +125,7 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
             first_dropped = message.dropped_count
         for sample in message.samples:
             latencies.append((now_ns - sample.sample_time.ToNanoseconds()) / 1e6)
-            if last_sequence is not None and sample.sequence - last_sequence > decimation:
-                gaps += (sample.sequence - last_sequence) // decimation - 1
+            gaps += sequence_gaps(last_sequence, sample.sequence, decimation)
             last_sequence = sample.sequence
         arrivals.append(now_ns)
         server_dropped = message.dropped_count - (first_dropped or 0)
@@ -142,16 +149,31 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
 def observe(address: str, count: int, decimation: int, max_s: float,
             ready: Callable[[], None], stop: threading.Event) -> dict:
     """`count` observers, one thread and one connection each, streaming until `stop` (or
-    max_s); calls ready() once every one has its first sample. Counts per observer."""
+    max_s); calls ready() once every one has its first sample. Counts per observer, and what
+    each lost after ready(): the server's drops for it (`dropped_count`) and the gaps in its
+    samples' sequence numbers."""
     counts = [0] * count
     first = [threading.Event() for _ in range(count)]
     errors: list[str] = []
+    marked = threading.Event()  # ready() was called: losses count from here
+    dropped_at_mark: list[int | None] = [None] * count
+    dropped, gaps = [0] * count, [0] * count
 
     def run(index: int):
+        last = None
         try:
             for message in _grpc_messages(address, decimation, max_s, stop):
                 counts[index] += len(message.samples)
                 first[index].set()
+                if not marked.is_set():
+                    last = message.samples[-1].sequence if message.samples else last
+                    continue
+                if dropped_at_mark[index] is None:
+                    dropped_at_mark[index] = message.dropped_count
+                dropped[index] = message.dropped_count - dropped_at_mark[index]
+                for sample in message.samples:
+                    gaps[index] += sequence_gaps(last, sample.sequence, decimation)
+                    last = sample.sequence
         except Exception as error:  # reported with the result, not raised from a thread
             errors.append(f"observer {index}: {error}")
             first[index].set()
@@ -166,6 +188,7 @@ def observe(address: str, count: int, decimation: int, max_s: float,
     ready()
     marks = list(counts)
     mark_time = time.monotonic()
+    marked.set()
     stop.wait(max(0.0, max_s - (mark_time - started)))
     elapsed = time.monotonic() - mark_time
     delivered = [c - m for c, m in zip(counts, marks, strict=True)]
@@ -177,4 +200,6 @@ def observe(address: str, count: int, decimation: int, max_s: float,
             "observer_delivered_hz_mean": round(total / elapsed / count, 2) if count else None,
             "observer_delivered_hz_min": (round(min(delivered) / elapsed, 2) if count
                                           else None),
+            "observer_samples": total, "observer_duration_s": round(elapsed, 3),
+            "observer_server_dropped": sum(dropped), "observer_sequence_gaps": sum(gaps),
             "errors": errors[:5]}

@@ -9,6 +9,9 @@ A goal relative to a baseline (command_1000: p99 <= 1.5 x command_1000_zmq's) is
 against the baseline measured in the same run; until that baseline has run it is PENDING, and
 if the run never measured it (``--only`` without ``baselines``) it FAILs, saying why. The TLS
 variants' goals (issue #13) are relative the same way, to their plaintext twins.
+
+The soak's goal (issue #16) is of another kind: no station process's memory grows steadily
+(`rss_misses`) and nothing is lost (`loss_misses`); bench/README.md says why these bounds.
 """
 
 from __future__ import annotations
@@ -29,6 +32,8 @@ class Goal:
     p99_ms: float | None = None
     p99_vs: tuple[str, float] | None = None  # (baseline scenario, factor) from the same run
     max_overrun_pct: float | None = None  # the world loop's overruns, % of its steps
+    max_rss_slope: float | None = None  # MiB/min, sustained, of every station process (soak)
+    no_loss: bool = False  # soak: every command acked, no watchdog trip, no lease lost...
     source: str = ""
 
     def text(self) -> str:
@@ -43,10 +48,15 @@ class Goal:
             parts.append(f"p99 <= {self.p99_vs[1]:g} x {self.p99_vs[0]}")
         if self.max_overrun_pct is not None:
             parts.append(f"overruns <= {self.max_overrun_pct:g} %")
+        if self.max_rss_slope is not None:
+            parts.append(f"RSS growth <= {self.max_rss_slope:g} MiB/min per process")
+        if self.no_loss:
+            parts.append("no loss")
         return ", ".join(parts)
 
 
-_ISSUE, _BRIEF, _TLS_ISSUE = "issue #12", "architecture brief", "issue #13"
+_ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE = ("issue #12", "architecture brief", "issue #13",
+                                           "issue #16")
 # First match wins: the exact names before the patterns.
 GOALS: tuple[tuple[str, Goal], ...] = (
     ("teleop_1000", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
@@ -62,7 +72,15 @@ GOALS: tuple[tuple[str, Goal], ...] = (
     ("stereo_pattern_*", Goal(p99_ms=30.0, source=_BRIEF)),
     ("force_1000", Goal(p99_ms=2.0, source=_BRIEF)),
     ("world_loop", Goal(max_overrun_pct=0.1, source=_ISSUE)),
+    ("soak", Goal(max_rss_slope=2.0, no_loss=True, source=_SOAK_ISSUE)),
 )
+
+# A process's RSS grows "steadily" when, after the warm-up, its least squares slope is over
+# the goal's bound AND the slope over the second half of that window is still over half the
+# bound (a step early on, e.g. a pool or a cache filling up once, flattens out) AND the growth
+# the slope makes over the window is over RSS_NOISE_MIB (what an allocator's arenas and gRPC's
+# buffers move by without a leak; it keeps a short soak's slope from judging a few MiB).
+RSS_NOISE_MIB = 4.0
 
 
 def is_baseline(name: str) -> bool:
@@ -112,7 +130,81 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
         pct = result.get("overrun_pct")
         if pct is None or pct > goal.max_overrun_pct:
             misses.append(f"overruns {_num(pct)} % > {goal.max_overrun_pct:g}")
+    if goal.max_rss_slope is not None:
+        misses += rss_misses(result.get("rss") or {}, goal.max_rss_slope)
+    if goal.no_loss:
+        misses += loss_misses(result)
     return {"goal": goal.text(), "pass": not misses, "misses": misses}
+
+
+def growing(trend: dict, limit: float) -> bool:
+    """Whether one process's RSS trend (soak.rss_trend) grows steadily faster than `limit`
+    MiB/min (see RSS_NOISE_MIB)."""
+    rate, late, growth = (trend.get("slope_mib_min"), trend.get("late_slope_mib_min"),
+                          trend.get("growth_mib"))
+    if rate is None or late is None or growth is None:
+        return False
+    return rate > limit and late > limit / 2 and growth > RSS_NOISE_MIB
+
+
+def rss_misses(rss: dict[str, dict], limit: float) -> list[str]:
+    """What the soak's memory fell short by: each process growing steadily (`growing`), and
+    a process with too few samples to tell."""
+    if not rss:
+        return ["no RSS sampled"]
+    misses = []
+    for name, trend in rss.items():
+        if trend.get("slope_mib_min") is None or trend.get("late_slope_mib_min") is None:
+            misses.append(f"{name}: too few RSS samples")
+        elif growing(trend, limit):
+            misses.append(f"{name} RSS +{trend['slope_mib_min']:.2f} MiB/min > {limit:g} "
+                          f"(late +{trend['late_slope_mib_min']:.2f}, "
+                          f"+{trend['growth_mib']:.1f} MiB)")
+    return misses
+
+
+def loss_misses(result: dict) -> list[str]:
+    """What the soak lost: commands not acked, refused, or never sent because the stream
+    ended; a watchdog trip; a lease lost; a station process gone; a side stream (observers,
+    stereo, events) that failed. Late ticks the client skipped are its own, not losses; so
+    are wrench samples and stereo pairs the servers dropped for a slow reader (both streams
+    are latest-wins by design): they are reported, not judged."""
+    misses = []
+    teleop = result.get("teleop") or {}
+    if teleop.get("status") == "failed" or "sent" not in teleop:
+        misses.append(f"Teleoperate failed: {teleop.get('reason', 'no result')}"[:200])
+    else:
+        for key, what in (("unacked", "commands unacked"), ("refused", "commands refused"),
+                          ("unsent", "commands unsent (the stream ended early)")):
+            if teleop.get(key):
+                misses.append(f"{teleop[key]} {what}")
+        if teleop.get("sent", 0) == 0:
+            misses.append("no command sent")
+    events = result.get("events") or {}
+    if events.get("status") == "failed" or "watchdog_trips" not in events:
+        misses.append(f"events not followed: {events.get('reason', 'no result')}"[:200])
+    else:
+        if events["watchdog_trips"]:
+            misses.append(f"{events['watchdog_trips']} watchdog trips")
+        if events.get("leases_lost"):
+            misses.append(f"{events['leases_lost']} leases lost")
+        if events.get("errors") or events.get("ended_early"):
+            misses.append(f"the events stream ended: {'; '.join(events.get('errors') or [])}"
+                          [:200])
+        if events.get("sequence_gaps"):
+            misses.append(f"{events['sequence_gaps']} events not received (the counts may be "
+                          "short)")
+    if result.get("exited"):
+        misses.append(f"exited during the soak: {', '.join(result['exited'])}")
+    for side, label in (("observers", "observers"), ("stereo", "stereo")):
+        entry = result.get(side) or {}
+        if entry.get("status") in ("failed", "pending"):
+            misses.append(f"{label} {entry['status']}: {entry.get('reason', '')}"[:200])
+        elif entry.get("errors"):
+            errors = entry["errors"]
+            misses.append(f"{label}: {errors if isinstance(errors, int) else len(errors)} "
+                          "streams failed")
+    return misses
 
 
 def verdict_text(judged: dict) -> str:

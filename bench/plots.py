@@ -114,4 +114,23 @@ def write_plots(out_dir: Path, results: dict[str, dict], raw: dict[str, list[flo
         figure.savefig(path, dpi=110)
         plt.close(figure)
         written.append(path)
+
+    series = (results.get("soak") or {}).get("rss_series")
+    if series and series.get("t_s"):
+        minutes = np.asarray(series["t_s"], dtype=float) / 60.0
+        figure, axis = plt.subplots(figsize=(10, 4.8))
+        for name, values in series["rss_mib"].items():
+            axis.plot(minutes, [np.nan if v is None else v for v in values], label=name)
+        warmup = results["soak"].get("warmup_fraction", 0.0) * minutes[-1]
+        axis.axvspan(0, warmup, color="grey", alpha=0.15, label="warm-up (not fitted)")
+        axis.set_xlabel("minutes into the soak")
+        axis.set_ylabel("RSS (MiB)")
+        axis.set_title("soak: RSS of every station process")
+        axis.grid(True, alpha=0.3)
+        axis.legend(fontsize=8)
+        figure.tight_layout()
+        path = out_dir / "soak_rss.png"
+        figure.savefig(path, dpi=110)
+        plt.close(figure)
+        written.append(path)
     return written

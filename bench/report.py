@@ -193,6 +193,8 @@ def _extras(results: dict[str, dict]) -> list[str]:
                          f"{r.get('dropped_steps')} dropped over the run; since the world "
                          f"started (start-up included) {since.get('overruns')} of "
                          f"{since.get('steps')} ({fmt(since.get('overrun_pct'), 2)} %)")
+        elif name == "soak":
+            lines += _soak_lines(r)
         elif name == "closed_loop":
             lines.append(f"  {name}: = call ack p50 {fmt(r.get('ack_p50_ms'), 2)} ms; "
                          f"send->contact sample p50 {fmt(r.get('motion_p50_ms'), 1)} ms; "
@@ -200,6 +202,37 @@ def _extras(results: dict[str, dict]) -> list[str]:
                          f"{fmt(r.get('feedback_p99_ms'), 3)} ms")
     if lines:
         lines.insert(0, "Details:")
+    return lines
+
+
+def _soak_lines(r: dict) -> list[str]:
+    """The soak's details: each station process's RSS, then its streams and events."""
+    lines = [f"  soak: {r.get('minutes')} min; RSS (MiB) first -> last, slope after the "
+             f"warm-up (MiB/min; over its second half), CPU % of a core:"]
+    for process, e in (r.get("rss") or {}).items():
+        lines.append(f"    {process}: {fmt(e.get('start_mib'), 1)} -> {fmt(e.get('end_mib'), 1)}"
+                     f", slope {fmt(e.get('slope_mib_min'), 3)} "
+                     f"({fmt(e.get('late_slope_mib_min'), 3)}), CPU {fmt(e.get('cpu_pct'), 0)} %"
+                     f", threads {(e.get('threads') or {}).get('start')} -> "
+                     f"{(e.get('threads') or {}).get('end')}, fds "
+                     f"{(e.get('fds') or {}).get('start')} -> {(e.get('fds') or {}).get('end')}")
+    teleop, observers = r.get("teleop") or {}, r.get("observers") or {}
+    camera, events = r.get("stereo") or {}, r.get("events") or {}
+    lines.append(f"    teleop: {teleop.get('sent')} sent, {teleop.get('unacked')} unacked "
+                 f"({teleop.get('ack_gaps')} gaps), {teleop.get('refused')} refused, "
+                 f"{teleop.get('late_skipped')} late ticks skipped; ack p50 "
+                 f"{fmt(teleop.get('ack_p50_ms'), 1)} / p99 {fmt(teleop.get('ack_p99_ms'), 1)} ms")
+    lines.append(f"    observers: {fmt(observers.get('observer_delivered_hz_mean'), 1)} Hz each "
+                 f"of {fmt(observers.get('observer_rate_hz'), 0)}, "
+                 f"{observers.get('observer_sequence_gaps')} samples missing "
+                 f"({observers.get('observer_server_dropped')} dropped by the server)")
+    lines.append(f"    stereo: {camera.get('pairs')} pairs, {fmt(camera.get('delivered_hz'), 1)} "
+                 f"fps, p50 {fmt(camera.get('p50_ms'), 1)} / p99 {fmt(camera.get('p99_ms'), 1)} "
+                 f"ms, {camera.get('dropped')} skipped {camera.get('reason') or ''}".rstrip())
+    lines.append(f"    events: {events.get('events')} ({events.get('kinds')}); "
+                 f"{events.get('control_changes')} control changes, {events.get('leases_lost')} "
+                 f"leases lost, {events.get('watchdog_holds')} watchdog holds "
+                 f"({events.get('watchdog_trips')} trips), {events.get('sequence_gaps')} missed")
     return lines
 
 

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import grpc
 
-from bench import goals, plots, report, stereo, worldloop
+from bench import goals, plots, report, soak, stereo, worldloop
 from bench.procs import Child, ChildFailed, ProcessSet, unique_shm_name
 from bench.stats import ratio
 from bench.worldloop import LoopMeter
@@ -68,6 +68,7 @@ class Plan:
     stereo_source_fps: float = 30.0
     only: tuple[str, ...] = field(default_factory=tuple)
     profile: bool = False  # py-spy the DecisionServer and ProxyRobot at 1 kHz (bench/profile.py)
+    soak_minutes: float | None = None  # the soak's length; None: 10 minutes, 1 when quick
 
     @property
     def command_s(self) -> float:
@@ -93,8 +94,21 @@ class Plan:
     def stereo_pairs(self) -> int:
         return 20 if self.quick else 120
 
+    @property
+    def soak_s(self) -> float:
+        if self.soak_minutes is not None:
+            return 60.0 * self.soak_minutes
+        return 60.0 if self.quick else 600.0
+
+    @property
+    def soak_sample_s(self) -> float:
+        """How often the soak reads every station process's RSS."""
+        return 2.0 if self.soak_s <= 120.0 else 5.0
+
     def wants(self, group: str) -> bool:
-        return not self.only or group in self.only
+        """Whether `group` runs: the ones asked for with --only, else every default group
+        (the soak runs only when asked for: it takes 10 minutes)."""
+        return group in self.only if self.only else group in DEFAULT_GROUPS
 
     @property
     def tls(self) -> bool:
@@ -103,7 +117,8 @@ class Plan:
 
 
 GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
-          "stereo")
+          "stereo", "soak")
+DEFAULT_GROUPS = tuple(group for group in GROUPS if group != "soak")  # `make bench`
 
 
 class Progress:
@@ -224,7 +239,7 @@ class Bench:
         counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
                   "observers": len(p.observer_counts), "estop": 4, "decision": 6 + p.profile,
                   "closed_loop": 1,
-                  "stereo": len(p.stereo_sources) * len(p.stereo_modes)}
+                  "stereo": len(p.stereo_sources) * len(p.stereo_modes), "soak": 1}
         return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
 
     # -- running ----------------------------------------------------------------------------
@@ -246,7 +261,7 @@ class Bench:
                 ("baselines", self.baselines), ("observers", self.observers),
                 ("estop", self.estop), ("decision", self.decision),
                 ("closed_loop", self.closed_loop),
-                ("stereo", self.stereo)]
+                ("stereo", self.stereo), ("soak", self.soak)]
             for group, step in steps:
                 if self.plan.wants(group):
                     step()
@@ -614,13 +629,15 @@ class Bench:
         self._with_decision_server(["estop_ds_idle", "estop_ds_busywork"], self._estop_ds)
 
     @contextlib.contextmanager
-    def _decision_server(self, station: Station) -> Iterator[str]:
+    def _decision_server(self, station: Station, stereo_address: str | None = None
+                         ) -> Iterator[str]:
         """A DecisionServer process in front of `station` (with its TLS, if any) while the
-        body runs: its address. ChildFailed if it does not start."""
+        body runs: its address. ChildFailed if it does not start. `stereo_address`: a stereo
+        camera serving (the soak's); none by default."""
         server, address = self.procs.run_service("decision_server", [
             "--proxy-robot-address", station.address["proxy_robot"],
             "--force-sensor-address", station.address["force_sensor"],
-            "--stereo-camera-address", refused_address(),  # no camera in these scenarios
+            "--stereo-camera-address", stereo_address or refused_address(),
             "--emergency-stop-address", station.address["emergency_stop"],
             "--recordings-dir", str(self.procs.scratch / "recordings")],
             name="decision_server" + station.suffix, env=station.env)
@@ -783,6 +800,10 @@ class Bench:
             return self._fail(["closed_loop"], error)
         self._record("closed_loop", result)
         self.progress.done(self._headline("closed_loop"))
+
+    def soak(self) -> None:
+        """The station under a steady load for minutes: RSS, losses, events (soak.py)."""
+        soak.run(self)
 
     def stereo(self) -> None:
         plan = self.plan

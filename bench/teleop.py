@@ -16,10 +16,13 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
   ack's arrival at the client minus the send time; ``server_receive_*``: the ack's
   ``receive_time`` minus the send time;
 - ``dropped`` = ticks not sent (late, or the stream ended) + commands still unacked DRAIN_S
-  after the last send (``unacked``) + commands acked with another outcome (``refused``);
+  after the last send (``unacked``; the soak waits longer, ``drain_s``) + commands acked with
+  another outcome (``refused``); ``ack_gaps``: the unacked commands sent before one that was
+  acked (skipped, not late);
 - every command is TELEOP_STEP_M along base y (the direction flips from one rate to the next,
-  so the arm comes back); each rate has a stream (a session) of its own, after WARMUP_COMMANDS
-  sent the same way and waited for.
+  so the arm comes back; a long stream, the soak's, flips every ``swing`` commands too); each
+  rate has a stream (a session) of its own, after WARMUP_COMMANDS sent the same way and
+  waited for. The soak also asks for ``windows``: the latency per minute of the stream.
 
 Transports (the same MasterCommand and TeleoperateResponse bytes on both):
 
@@ -85,19 +88,21 @@ class Stream(Protocol):
         """Release what the stream holds (after its reader has ended)."""
 
 
-def init_request(lease_id: str) -> dpb.TeleoperateRequest:
+def init_request(lease_id: str, watchdog_s: float = WATCHDOG_S) -> dpb.TeleoperateRequest:
+    watchdog = duration_pb2.Duration()
+    watchdog.FromNanoseconds(int(round(watchdog_s * 1e9)))
     return dpb.TeleoperateRequest(init=dpb.TeleoperateInit(
         operator_id="bench", lease_id=lease_id, mapping=types_pb2.REFERENCE_FRAME_BASE,
-        watchdog_timeout=duration_pb2.Duration(seconds=WATCHDOG_S)))
+        watchdog_timeout=watchdog))
 
 
 # -- gRPC -------------------------------------------------------------------------------------
 
 class GrpcStream:
-    def __init__(self, stub, lease_id: str):
+    def __init__(self, stub, lease_id: str, watchdog_s: float = WATCHDOG_S):
         self._requests: queue.SimpleQueue = queue.SimpleQueue()
         self._call = stub.Teleoperate(iter(self._requests.get, None), timeout=STREAM_TIMEOUT_S)
-        self._requests.put(init_request(lease_id))
+        self._requests.put(init_request(lease_id, watchdog_s))
 
     def send(self, request: dpb.TeleoperateRequest) -> None:
         self._requests.put(request)
@@ -122,17 +127,19 @@ class GrpcStream:
 class GrpcTeleop:
     """DecisionServer.Teleoperate: one control lease for the run (each command renews it), a
     stream per rate. `security`: plaintext, or mutual TLS with an operator's certificate (the
-    lease is bound to that identity)."""
+    lease is bound to that identity). `watchdog_s`: each session's watchdog."""
 
     name = "grpc-teleoperate pipelined"
 
-    def __init__(self, address: str, security: ChannelSecurity = PLAINTEXT):
+    def __init__(self, address: str, security: ChannelSecurity = PLAINTEXT,
+                 watchdog_s: float = WATCHDOG_S):
         self._channel = open_channel(address, security=security)
         self._stub = decision_server_pb2_grpc.DecisionServerStub(self._channel)
         self._lease = acquire_control(self._stub)
+        self._watchdog_s = watchdog_s
 
     def open(self) -> GrpcStream:
-        return GrpcStream(self._stub, self._lease)
+        return GrpcStream(self._stub, self._lease, self._watchdog_s)
 
     def close(self) -> None:
         release_control(self._stub, self._lease)
@@ -229,6 +236,7 @@ class AckTracker:
     def __init__(self):
         self._lock = threading.Lock()
         self._pending: dict[int, int] = {}  # sequence -> send time (time.time_ns)
+        self._highest = 0  # the highest sequence acked (counted or not)
         self._drained = threading.Event()
         self.ended = threading.Event()
         self.error: str | None = None
@@ -241,10 +249,13 @@ class AckTracker:
             self._acks: list[tuple[int, int, int, int, int]] = []  # sent, arrived, receive,
             self._refusals: list[str] = []                         # apply, outcome
 
-    def close_books(self) -> tuple[list[tuple[int, int, int, int, int]], list[str], int]:
-        """(acks, refusals, commands still unacked) as of now; later acks are not counted."""
+    def close_books(self) -> tuple[list[tuple[int, int, int, int, int]], list[str], int, int]:
+        """(acks, refusals, commands still unacked, gaps) as of now; later acks are not
+        counted. Gaps: the unacked commands sent before one that was acked (the server acks in
+        order, so these were skipped, not merely late)."""
         with self._lock:
-            books = self._acks, self._refusals, len(self._pending)
+            gaps = sum(1 for sequence in self._pending if sequence < self._highest)
+            books = self._acks, self._refusals, len(self._pending), gaps
             self._pending.clear()
             self._acks, self._refusals = [], []
             return books
@@ -267,6 +278,7 @@ class AckTracker:
                 times = (arrived, ack.receive_time.ToNanoseconds(),
                          ack.apply_time.ToNanoseconds())
                 with self._lock:
+                    self._highest = max(self._highest, ack.sequence)
                     sent = self._pending.pop(ack.sequence, None)
                     if not self._pending:
                         self._drained.set()
@@ -293,10 +305,12 @@ def _command(sequence: int, sign: float) -> tuple[dpb.TeleoperateRequest, int]:
 
 
 def stream_at_rate(stream: Stream, tracker: AckTracker, sequences: Iterator[int],
-                   rate_hz: float, ticks: int, sign: float) -> tuple[int, int, int | None]:
+                   rate_hz: float, ticks: int, sign: float, swing: int | None = None
+                   ) -> tuple[int, int, int | None]:
     """Send `ticks` commands on absolute deadlines at rate_hz, never waiting for an ack
     (stopping early if the stream ends): (commands sent, ticks skipped for lateness,
-    time.time_ns() of the first send)."""
+    time.time_ns() of the first send). `swing`: the direction flips every `swing` sequence
+    numbers (a long stream goes back and forth instead of leaving the workspace)."""
     schedule = Schedule(rate_hz, ticks)
     sent = 0
     first_ns = None
@@ -304,7 +318,8 @@ def stream_at_rate(stream: Stream, tracker: AckTracker, sequences: Iterator[int]
         if tracker.ended.is_set():
             break
         sequence = next(sequences)
-        request, sent_ns = _command(sequence, sign)
+        request, sent_ns = _command(sequence, sign if swing is None
+                                    else sign * (-1.0) ** ((sequence // swing) % 2))
         tracker.sent(sequence, sent_ns)
         stream.send(request)
         first_ns = first_ns or sent_ns
@@ -314,9 +329,12 @@ def stream_at_rate(stream: Stream, tracker: AckTracker, sequences: Iterator[int]
 
 
 def run_rate(client, rate_hz: float, duration_s: float, sign: float,
-             loop: LoopMeter | None) -> dict:
+             loop: LoopMeter | None, swing: int | None = None,
+             window_s: float | None = None, drain_s: float = DRAIN_S) -> dict:
     """One Teleoperate session streaming at rate_hz for duration_s; the scenario's summary and
-    raw latencies."""
+    raw latencies. `swing`: see stream_at_rate; `window_s`: the summary adds the latency
+    and the acked commands of every window of that length (`windows`), to see a drift;
+    `drain_s`: how long acks still count after the last send."""
     stream = client.open()
     tracker = AckTracker()
     reader = None
@@ -330,14 +348,14 @@ def run_rate(client, rate_hz: float, duration_s: float, sign: float,
                                   daemon=True)
         reader.start()
         sequences = itertools.count(1)
-        stream_at_rate(stream, tracker, sequences, rate_hz, WARMUP_COMMANDS, sign)
+        stream_at_rate(stream, tracker, sequences, rate_hz, WARMUP_COMMANDS, sign, swing)
         tracker.wait_drained(DRAIN_S)
         tracker.forget()
         if loop is not None:
             loop.mark()
         sent, skipped, first_ns = stream_at_rate(stream, tracker, sequences, rate_hz, ticks,
-                                                 sign)
-        tracker.wait_drained(DRAIN_S)
+                                                 sign, swing)
+        tracker.wait_drained(drain_s)
         world_loop = loop.since_mark() if loop is not None else None
         books = tracker.close_books()
         stream.end()
@@ -348,14 +366,37 @@ def run_rate(client, rate_hz: float, duration_s: float, sign: float,
         if reader is not None:
             reader.join(CLOSE_S)
         stream.close()
-    return _summarize(books, tracker.error, client.name, rate_hz, ticks, sent, skipped,
-                      first_ns, world_loop)
+    result = _summarize(books, tracker.error, client.name, rate_hz, ticks, sent, skipped,
+                        first_ns, world_loop)
+    if window_s:
+        result["windows"] = windows(books[0], first_ns, window_s)
+    return result
 
 
-def _summarize(books: tuple[list, list[str], int], error: str | None, transport: str,
+def windows(acks: list[tuple[int, int, int, int, int]], first_ns: int | None,
+            window_s: float) -> list[dict]:
+    """The accepted acks by the window of `window_s` their command was sent in (from
+    `first_ns`): its start (s), commands acked, p50 and p99 (command sent -> applied, ms)."""
+    if first_ns is None:
+        return []
+    buckets: dict[int, list[float]] = {}
+    for sent, _, _, apply, outcome in acks:
+        if outcome in ACCEPTED:
+            index = int((sent - first_ns) / 1e9 // window_s)
+            buckets.setdefault(index, []).append((apply - sent) / 1e6)
+    rows = []
+    for index in sorted(buckets):
+        figures = summary(buckets[index], None, 0, 1, 0)
+        rows.append({"t_s": round(index * window_s, 3), "acked": len(buckets[index]),
+                     "p50_ms": figures["p50_ms"], "p99_ms": figures["p99_ms"],
+                     "max_ms": figures["max_ms"]})
+    return rows
+
+
+def _summarize(books: tuple[list, list[str], int, int], error: str | None, transport: str,
                rate_hz: float, ticks: int, sent: int, skipped: int, first_ns: int | None,
                world_loop: dict | None) -> dict:
-    acks, refusals, unacked = books
+    acks, refusals, unacked, gaps = books
     accepted = [a for a in acks if a[4] in ACCEPTED]
     applied_ms = [(apply - sent) / 1e6 for sent, _, _, apply, _ in accepted]
     ack_ms = [(arrived - sent) / 1e6 for sent, arrived, _, _, _ in acks]
@@ -371,7 +412,7 @@ def _summarize(books: tuple[list, list[str], int], error: str | None, transport:
         applied_ms, rate_hz, len(accepted), window_s, ticks - sent + unacked + refused,
         transport=transport, mode="pipelined", duration_s=round(window_s, 3),
         applied_means="the server's apply_time (target handed to ProxyRobot) - send time",
-        sent=sent, late_skipped=skipped, unacked=unacked, refused=refused,
+        sent=sent, late_skipped=skipped, unacked=unacked, ack_gaps=gaps, refused=refused,
         ack_p50_ms=ack["p50_ms"], ack_p99_ms=ack["p99_ms"], ack_max_ms=ack["max_ms"],
         server_receive_p50_ms=received["p50_ms"], server_receive_p99_ms=received["p99_ms"],
         failures=refusals + ([error] if error else []))
@@ -382,14 +423,17 @@ def _summarize(books: tuple[list, list[str], int], error: str | None, transport:
 
 
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
-            duration_s: float, **client_options) -> dict[str, dict]:
+            duration_s: float, swing: int | None = None, window_s: float | None = None,
+            drain_s: float = DRAIN_S, **client_options) -> dict[str, dict]:
     """run_rate for each rate (a session each, the direction of motion alternating);
-    {str(rate): result}. `client_options` go to the client (`security` for gRPC)."""
+    {str(rate): result}. `client_options` go to the client (`security` for gRPC, and
+    `watchdog_s`); `swing`, `window_s`, `drain_s`: see run_rate (the soak's long stream)."""
     client = CLIENTS[transport_kind](address, **client_options)
     loop = LoopMeter(shm_name) if shm_name else None
     try:
         return {str(int(rate)): run_rate(client, rate, duration_s,
-                                         1.0 if index % 2 == 0 else -1.0, loop)
+                                         1.0 if index % 2 == 0 else -1.0, loop, swing,
+                                         window_s, drain_s)
                 for index, rate in enumerate(rates)}
     finally:
         if loop is not None:

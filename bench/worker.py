@@ -2,10 +2,11 @@
 
 Every client of the bench runs here, apart from the orchestrator, so the orchestrator's own
 threads never share an interpreter (and its GIL) with a measurement. Kinds and their
-parameters are in KINDS below. A long-running worker (observers, load) prints BENCH_READY once
-it is up and runs until SIGTERM or its `max_s`. The result is written as JSON to OUT_PATH.
-The command and teleop kinds reach a TLS station given `tls_dir` and `identity` (which of the
-directory's certificates to present), explicitly: never from the environment.
+parameters are in KINDS below. A long-running worker (observers, load, events) prints
+BENCH_READY once it is up and runs until SIGTERM or its `max_s`. The result is written as
+JSON to OUT_PATH. The command and teleop kinds reach a TLS station given `tls_dir` and
+`identity` (which of the directory's certificates to present), explicitly: never from the
+environment.
 
 Every worker sets the interpreter's switch interval to 0.5 ms (from 5 ms), as the world process
 does, so a thread woken by the network gets the GIL back soon: the same for the project's
@@ -56,8 +57,11 @@ def _command(p: dict) -> dict:
 def _teleop(p: dict) -> dict:
     from bench.teleop import measure
 
+    options = {key: p[key] for key in ("swing", "window_s", "drain_s") if p.get(key)}
+    if p.get("watchdog_s"):  # the session's watchdog (the soak's); else teleop's own
+        options["watchdog_s"] = p["watchdog_s"]
     return measure(p["transport"], p["address"], p.get("shm"), p["rates"], p["duration_s"],
-                   **_channel_security(p))
+                   **options, **_channel_security(p))
 
 
 def _force(p: dict) -> dict:
@@ -94,13 +98,23 @@ def _closed_loop(p: dict) -> dict:
 
 
 def _stereo(p: dict) -> dict:
-    from bench.stereo import run_stereo
+    from bench.stereo import run_stereo, run_stereo_for
 
+    if p.get("duration_s"):  # the soak's: for a time, not a number of pairs
+        return run_stereo_for(p["address"], p["mode"], p["duration_s"], p["source_fps"])
     return run_stereo(p["address"], p["mode"], p["pairs"], p["source_fps"])
 
 
+def _events(p: dict) -> dict:
+    from bench.soak import follow_events
+
+    stop = _stop_on_signal()
+    return follow_events(p["address"], p["max_s"], _ready, stop)
+
+
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
-         "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo}
+         "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo,
+         "events": _events}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -78,3 +78,39 @@ def test_a_stream_that_never_says_ready_fails():
         assert "ready" in str(error)
     else:
         raise AssertionError("no StreamFailed")
+
+
+def test_an_unacked_command_before_an_acked_one_is_a_gap():
+    stream = EchoStream(ignore={22})
+    result = teleop.run_rate(EchoClient(stream), rate_hz=200.0, duration_s=0.1, sign=1.0,
+                             loop=None, drain_s=0.2)
+    assert result["unacked"] == 1 and result["ack_gaps"] == 1
+
+
+def test_a_long_stream_swings_back_and_forth():
+    class Recorder(EchoStream):
+        def __init__(self):
+            super().__init__()
+            self.deltas = {}
+
+        def send(self, request):
+            self.deltas[request.command.sequence] = request.command.delta_position_m.y
+            super().send(request)
+
+    stream = Recorder()
+    teleop.run_rate(EchoClient(stream), rate_hz=1000.0, duration_s=0.05, sign=1.0, loop=None,
+                    swing=10)
+    signs = {sequence: delta > 0 for sequence, delta in stream.deltas.items()}
+    assert signs[1] and not signs[10] and not signs[19] and signs[20]
+
+
+def test_windows_split_the_acks_by_when_they_were_sent():
+    first = 1_000_000_000
+    applied = teleop.dpb.COMMAND_OUTCOME_APPLIED
+    acks = [(first + i * 100_000_000, 0, 0, first + i * 100_000_000 + (i + 1) * 1_000_000,
+             applied) for i in range(20)]  # one every 0.1 s, latency 1..20 ms
+    acks.append((first, 0, 0, first, teleop.dpb.COMMAND_OUTCOME_REJECTED))  # not counted
+    rows = teleop.windows(acks, first, 1.0)
+    assert [(r["t_s"], r["acked"]) for r in rows] == [(0.0, 10), (1.0, 10)]
+    assert rows[0]["max_ms"] == 10.0 and rows[1]["max_ms"] == 20.0
+    assert teleop.windows(acks, None, 1.0) == []
