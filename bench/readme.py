@@ -186,6 +186,17 @@ def _events_text(events: dict) -> str:
             f"{events.get('dependency_changes')}{f' ({changes})' if changes else ''}.")
 
 
+def _sensor_rate(observers: dict) -> str:
+    """An observer gets every Nth sample the sensor takes (N = 1000 Hz / its rate): so, with
+    none missing, its rate x N is the rate the sensor sampled at."""
+    rate, mean = observers.get("observer_rate_hz"), observers.get("observer_delivered_hz_mean")
+    if not rate or mean is None:
+        return ""
+    every = round(1000.0 / rate)
+    return (f"; each gets every {every}th sample the sensor takes, so it sampled at about "
+            f"{mean * every:.0f} Hz (of 1000)")
+
+
 def soak_block(document: dict, source: str = "bench/results/latest.json") -> str:
     """The soak's Markdown block: the run, its verdict, each process's memory, the streams,
     the world loop and the DecisionServer's events."""
@@ -252,7 +263,7 @@ def soak_block(document: dict, source: str = "bench/results/latest.json") -> str
         f"{_num(observers.get('observer_delivered_hz_min'), 1)}) | "
         f"{observers.get('observer_sequence_gaps')} samples missing "
         f"({observers.get('observer_server_dropped')} dropped by the sensor for them) | – | "
-        f"{observers.get('observer_samples')} samples |")
+        f"{observers.get('observer_samples')} samples{_sensor_rate(observers)} |")
     lines.append(
         f"| stereo | {_num(camera.get('rate_hz'), 0)} fps | "
         f"{_num(camera.get('delivered_hz'), 1)} fps | pairs skipped: {camera.get('dropped')} | "
