@@ -42,8 +42,8 @@ HOLD_SPEED_RAD_S = 0.002  # the fastest joint under this: the arm holds
 HOLD_WITHIN_S = 0.1
 BACK_WITHIN_S = 5.0
 HANG_S = 2.0
-STEP_M = 0.0004  # per command, at 50 Hz: the tool moves at 20 mm/s
-COMMAND_PERIOD_S = 0.02
+STEP_M = 0.0002  # per command, at 100 Hz: the tool moves at 20 mm/s
+COMMAND_PERIOD_S = 0.01
 # The operator drives the tool at 20 mm/s; no joint of the PUMA moves faster than this for it
 # here, so a faster one is motion nobody asked for.
 MAX_DRIVEN_SPEED_RAD_S = 0.5
@@ -94,7 +94,7 @@ class ArmWatch:
 
 @dataclass
 class Operator:
-    """Drives the arm back and forth along the base x axis at 50 Hz, as a scripted operator
+    """Drives the arm back and forth along the base x axis at 100 Hz, as a scripted operator
     station; when its session breaks it starts over (re-acquire, re-initialize, reopen).
     Every error it met is kept."""
 
@@ -129,7 +129,7 @@ class Operator:
                     with station.teleoperate(watchdog_timeout_s=0.1) as session:
                         self.sessions += 1
                         while not self.stop.is_set():
-                            direction = math.copysign(1.0, math.sin(tick * math.pi / 50))
+                            direction = math.copysign(1.0, math.sin(tick * math.pi / 100))
                             session.send([direction * STEP_M, 0.0, 0.0], np.eye(3))
                             self.acked += 1
                             tick += 1
