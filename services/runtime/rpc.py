@@ -250,23 +250,18 @@ def _call(behavior: Callable, request, context, caller: Caller | None = None):
 @contextlib.contextmanager
 def _audited_call(security: CallSecurity, method: str, caller: Caller | None, context):
     """Record a command-class call in the audit log with how it ended."""
-    streaming = False
     try:
         yield
-    except GeneratorExit:  # a stream the client left: recorded as cancelled
-        streaming = True
+    except GeneratorExit:  # the client left a stream
+        security.record(method, caller, context, "CANCELLED")
         raise
-    except BaseException:
+    except BaseException:  # an abort (its code is set) or the call cancelled under it
         code = context.code()
         security.record(method, caller, context, code.name if code else "CANCELLED",
                         context.details() or "")
         raise
-    else:
-        code = context.code()
-        security.record(method, caller, context, code.name if code else "OK")
-    finally:
-        if streaming:
-            security.record(method, caller, context, "CANCELLED")
+    code = context.code()
+    security.record(method, caller, context, code.name if code else "OK")
 
 
 def _passing_bytes(serialize: Callable | None) -> Callable | None:
