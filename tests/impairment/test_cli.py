@@ -1,0 +1,74 @@
+"""python -m services.impairment: its units, its up/down options and a run by hand."""
+
+from __future__ import annotations
+
+import argparse
+import signal
+
+import grpc
+import pytest
+from grpc_health.v1 import health_pb2, health_pb2_grpc
+
+from services.impairment.__main__ import (
+    build_parser,
+    parse_bandwidth,
+    parse_duration,
+    profiles,
+)
+from services.impairment.link import LinkProfile
+from services.runtime.server import create_server
+from tests.conftest import start_process
+
+
+@pytest.mark.parametrize("text, seconds", [("50ms", 0.05), ("3s", 3.0), ("0.5s", 0.5),
+                                           ("250us", 250e-6), ("0", 0.0), ("10 MS", 0.01)])
+def test_durations_need_a_unit(text, seconds):
+    assert parse_duration(text) == pytest.approx(seconds)
+
+
+@pytest.mark.parametrize("text", ["50", "5m", "fast", "-1s"])
+def test_a_duration_without_a_known_unit_is_refused(text):
+    with pytest.raises(argparse.ArgumentTypeError, match="50ms"):
+        parse_duration(text)
+
+
+def test_bandwidths_are_in_bits_per_second():
+    assert parse_bandwidth("1mbit") == 1e6
+    assert parse_bandwidth("500kbit") == 5e5
+    assert parse_bandwidth("0") == 0.0
+    with pytest.raises(argparse.ArgumentTypeError):
+        parse_bandwidth("1mbps")  # tc reads bps as bytes: refused rather than guessed
+
+
+def test_a_direction_s_own_option_wins_over_the_shared_one():
+    args = build_parser().parse_args([
+        "--listen", "127.0.0.1:0", "--target", "127.0.0.1:1", "--delay", "50ms",
+        "--jitter", "5ms", "--down-delay", "80ms", "--up-bandwidth", "1mbit",
+        "--stall-prob", "0.01", "--stall-for", "200ms", "--seed", "7"])
+    up, down = profiles(args)
+    assert up == LinkProfile(delay_s=0.05, jitter_s=0.005, bandwidth_bps=1e6,
+                             stall_probability=0.01, stall_s=0.2, seed=7)
+    assert down == LinkProfile(delay_s=0.08, jitter_s=0.005, stall_probability=0.01,
+                               stall_s=0.2, seed=8)
+
+
+def test_by_hand_it_says_where_it_listens_what_it_does_and_cuts_on_time():
+    server, port = create_server("127.0.0.1:0", [])
+    server.start()
+    server.set_serving()
+    proxy = start_process(["-m", "services.impairment", "--listen", "127.0.0.1:0",
+                           "--target", f"127.0.0.1:{port}", "--delay", "20ms",
+                           "--cut-at", "300ms", "--cut-for", "200ms", "--cut-mode", "reset"])
+    try:
+        address = proxy.wait_ready("impairment", timeout_s=30)
+        proxy.wait_line("up (client -> target): delay 20 ms, unlimited bandwidth, seed 0")
+        with grpc.insecure_channel(address) as channel:
+            response = health_pb2_grpc.HealthStub(channel).Check(
+                health_pb2.HealthCheckRequest(), timeout=5, wait_for_ready=True)
+        assert response.status == health_pb2.HealthCheckResponse.SERVING
+        proxy.wait_line("link cut for 0.2 s (reset)", timeout_s=10)
+        proxy.wait_line("link back", timeout_s=10)
+        assert proxy.stop(signal.SIGTERM) == 0
+    finally:
+        proxy.stop()
+        server.stop(0)
