@@ -56,6 +56,20 @@ class ServerSecurity:
     audit: AuditLog | None = None
 
 
+# The server pings each client as the clients ping it (wire.tls.KEEPALIVE_OPTIONS), so a dead,
+# hung or cut client is noticed in about 2 s (measured 2.0 s for a SIGSTOPped client) and
+# its streams end (a Teleoperate session then closes and holds the arm), and it takes the
+# clients' pings at that rate instead of answering them with GOAWAY "too_many_pings".
+SERVER_KEEPALIVE_OPTIONS = (
+    ("grpc.keepalive_time_ms", 1000),
+    ("grpc.keepalive_timeout_ms", 1000),
+    ("grpc.http2.ping_timeout_ms", 1000),  # see wire.tls.KEEPALIVE_OPTIONS
+    ("grpc.keepalive_permit_without_calls", 1),
+    ("grpc.http2.min_recv_ping_interval_without_data_ms", 500),
+    ("grpc.http2.max_ping_strikes", 0),
+)
+
+
 class PlaintextRefused(ValueError):
     """A server asked to listen without TLS beyond loopback."""
 
@@ -141,7 +155,7 @@ def create_server(
             futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc"),
             interceptors=[interceptor],
             # Two servers on one port would split calls between them silently: refuse instead.
-            options=[("grpc.so_reuseport", 0)],
+            options=[("grpc.so_reuseport", 0), *SERVER_KEEPALIVE_OPTIONS],
         )
         for item in bindings:
             item.add_to_server(item.servicer, server)

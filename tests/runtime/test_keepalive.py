@@ -1,0 +1,90 @@
+"""Keepalives: a peer that stops answering (a hung process, a cut link) is noticed in seconds
+on both sides, not after TCP's minutes; its streams end with UNAVAILABLE (a Teleoperate session
+then closes and holds the arm). A ping a second with a second to answer: about 2 s."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import grpc
+import pytest
+from grpc_health.v1 import health_pb2, health_pb2_grpc
+
+from services.runtime.server import create_server
+from tests.conftest import REPO, wait_for
+from wire.tls import open_channel
+
+# Well past the ~2 s the keepalives take, far under the minutes TCP alone would.
+NOTICED_WITHIN_S = 5.0
+
+_SERVE = """
+import sys, time
+from services.runtime.server import create_server
+server, port = create_server("127.0.0.1:0", [])
+server.start(); server.set_serving()
+print(port, flush=True)
+time.sleep(120)
+"""
+_WATCH = """
+import sys, time
+from grpc_health.v1 import health_pb2, health_pb2_grpc
+from wire.tls import open_channel
+stream = health_pb2_grpc.HealthStub(open_channel(sys.argv[1])).Watch(
+    health_pb2.HealthCheckRequest())
+next(stream)
+print("watching", flush=True)
+time.sleep(120)
+"""
+
+
+def _python(code: str, *args: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-c", code, *args], cwd=REPO, text=True,
+                            stdout=subprocess.PIPE, env={**os.environ, "PYTHONPATH": str(REPO)})
+
+
+@pytest.fixture
+def hung():
+    """Processes the test stopped: continued and killed after it."""
+    stopped: list[subprocess.Popen] = []
+    yield stopped
+    for process in stopped:
+        os.kill(process.pid, signal.SIGCONT)
+        process.kill()
+        process.wait(10)
+
+
+def test_a_client_notices_a_hung_server(hung):
+    server = _python(_SERVE)
+    hung.append(server)
+    port = int(server.stdout.readline())
+    with open_channel(f"127.0.0.1:{port}") as channel:
+        stream = health_pb2_grpc.HealthStub(channel).Watch(health_pb2.HealthCheckRequest())
+        assert next(stream).status == health_pb2.HealthCheckResponse.SERVING
+        os.kill(server.pid, signal.SIGSTOP)
+        started = time.monotonic()
+        with pytest.raises(grpc.RpcError) as failure:
+            next(stream)
+    assert failure.value.code() == grpc.StatusCode.UNAVAILABLE
+    assert time.monotonic() - started < NOTICED_WITHIN_S
+
+
+def test_a_server_notices_a_hung_client(hung):
+    server, port = create_server("127.0.0.1:0", [])
+    server.start()
+    server.set_serving()
+    try:
+        client = _python(_WATCH, f"127.0.0.1:{port}")
+        hung.append(client)
+        assert client.stdout.readline().strip() == "watching"
+        assert server.interceptor.open_streams == 1
+        os.kill(client.pid, signal.SIGSTOP)
+        started = time.monotonic()
+        wait_for(lambda: server.interceptor.open_streams == 0, timeout_s=NOTICED_WITHIN_S,
+                 what="the server to end the hung client's stream")
+        assert time.monotonic() - started < NOTICED_WITHIN_S
+    finally:
+        server.stop(0)
