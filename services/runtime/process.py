@@ -124,7 +124,7 @@ def run_service(
             on_emergency_call=getattr(service, "on_emergency_call", None),  # stop on arrival
             security=security, allow_plaintext_network=args.allow_plaintext_network,
         )
-    except (PlaintextRefused, OSError) as error:
+    except (PlaintextRefused, OSError, ValueError) as error:  # a port, or TLS files, refused
         log.error("not starting: %s", error)
         service.close()
         return 2
