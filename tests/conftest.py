@@ -154,12 +154,16 @@ def pid_alive(pid: int) -> bool:
         return stat.read().split()[2] != "Z"
 
 
+def child_pids(pid: int) -> list[int]:
+    """The pids of a process's children now."""
+    out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout
+    return [int(p) for p in out.split()]
+
+
 def service_pid(launcher: Child, name: str) -> int | None:
     """The pid of the launcher's child running services.<name> now (None between a death and
     its restart)."""
-    out = subprocess.run(["pgrep", "-P", str(launcher.process.pid)], capture_output=True,
-                         text=True).stdout
-    for pid in map(int, out.split()):
+    for pid in child_pids(launcher.process.pid):
         try:
             with open(f"/proc/{pid}/cmdline") as cmdline:
                 if f"services.{name}" in cmdline.read():

@@ -16,6 +16,7 @@ from services.runtime.children import refused_address
 from tests.conftest import (
     BUF,
     REPO,
+    child_pids,
     pid_alive,
     start_station,
     station_env,
@@ -25,11 +26,6 @@ from tests.conftest import (
 pytestmark = pytest.mark.e2e
 
 SERVICES = ["ProxyRobot", "ForceSensor", "StereoCamera", "DecisionServer"]
-
-
-def _child_pids(pid: int) -> list[int]:
-    out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout
-    return [int(p) for p in out.split()]
 
 
 def _serving(address: str, service: str = "") -> int:
@@ -186,7 +182,7 @@ def test_node_client_reports_an_unreachable_server():
 
 def test_sigint_stops_the_whole_group_within_5_s_with_no_orphans(station):
     launcher, _ = station
-    children = _child_pids(launcher.process.pid)
+    children = child_pids(launcher.process.pid)
     assert len(children) == len(STATION)
     launcher.process.send_signal(signal.SIGINT)
     assert launcher.wait(timeout_s=5.0) == 0  # TimeoutExpired if it takes longer
@@ -195,7 +191,7 @@ def test_sigint_stops_the_whole_group_within_5_s_with_no_orphans(station):
 
 def test_children_stop_by_themselves_when_the_launcher_is_killed():
     launcher = start_station(station_env())
-    children = _child_pids(launcher.process.pid)
+    children = child_pids(launcher.process.pid)
     launcher.stop(signal.SIGKILL)
     wait_for(lambda: not any(pid_alive(pid) for pid in children), timeout_s=5,
              what="every child to notice and stop")

@@ -3,6 +3,7 @@ the station serves; the world's death, or a child failing too often, stops the s
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 
@@ -66,34 +67,39 @@ def test_a_restarted_proxy_robot_reattaches_holding_and_says_why(station):
     assert moved < 1e-3, moved  # held where it was
 
 
-def test_a_child_failing_too_often_stops_the_station():
-    launcher = start_station(station_env(TELEROBOT_MAX_FAILURES="2"))
+@contextlib.contextmanager
+def _own_station(**settings: str):
+    """A station of the test's own, killed after it if it did not stop by itself."""
+    launcher = start_station(station_env(**settings))
     try:
+        yield launcher
+    finally:
+        if launcher.process.poll() is None:
+            launcher.stop(signal.SIGKILL)
+
+
+def _assert_killing_stops_the_station(launcher, victim: int, others: list[int], why: str):
+    """SIGKILL `victim`: the launcher exits 1 saying `why`, with `others` stopped before."""
+    os.kill(victim, signal.SIGKILL)
+    assert launcher.wait(timeout_s=15) == 1
+    launcher.exited.wait(5)
+    assert why in "\n".join(launcher.lines)
+    assert not [pid for pid in others if pid_alive(pid)]
+
+
+def test_a_child_failing_too_often_stops_the_station():
+    with _own_station(TELEROBOT_MAX_FAILURES="2") as launcher:
         first = service_pid(launcher, "stereo_camera")
         os.kill(first, signal.SIGKILL)
         second = wait_for(lambda: restarted(launcher, "stereo_camera", first), timeout_s=10,
                           what="the first restart")
         others = [service_pid(launcher, name) for name in ("world", "proxy_robot")]
-        os.kill(second, signal.SIGKILL)
-        assert launcher.wait(timeout_s=15) == 1
-        launcher.exited.wait(5)
-        assert "stereo_camera failed 2 failures within 60 s" in "\n".join(launcher.lines)
-        assert not [pid for pid in others if pid_alive(pid)]
-    finally:
-        if launcher.process.poll() is None:
-            launcher.stop(signal.SIGKILL)
+        _assert_killing_stops_the_station(launcher, second, others,
+                                          "stereo_camera failed 2 failures within 60 s")
 
 
 def test_the_world_dying_stops_the_whole_station():
-    launcher = start_station(station_env())
-    try:
-        world = service_pid(launcher, "world")
+    with _own_station() as launcher:
         others = [service_pid(launcher, name) for name in ("proxy_robot", "decision_server")]
-        os.kill(world, signal.SIGKILL)
-        assert launcher.wait(timeout_s=15) == 1
-        launcher.exited.wait(5)
-        assert "the hardware link is gone" in "\n".join(launcher.lines)
-        assert not [pid for pid in others if pid_alive(pid)]
-    finally:
-        if launcher.process.poll() is None:
-            launcher.stop(signal.SIGKILL)
+        _assert_killing_stops_the_station(launcher, service_pid(launcher, "world"), others,
+                                          "the hardware link is gone")

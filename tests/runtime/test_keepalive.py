@@ -21,23 +21,24 @@ from wire.tls import open_channel
 # Well past the ~2 s the keepalives take, far under the minutes TCP alone would.
 NOTICED_WITHIN_S = 5.0
 
+# Each child runs until the test kills it (signal.pause: no timer to outlast).
 _SERVE = """
-import sys, time
+import signal
 from services.runtime.server import create_server
 server, port = create_server("127.0.0.1:0", [])
 server.start(); server.set_serving()
 print(port, flush=True)
-time.sleep(120)
+signal.pause()
 """
 _WATCH = """
-import sys, time
+import signal, sys
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 from wire.tls import open_channel
 stream = health_pb2_grpc.HealthStub(open_channel(sys.argv[1])).Watch(
     health_pb2.HealthCheckRequest())
 next(stream)
 print("watching", flush=True)
-time.sleep(120)
+signal.pause()
 """
 
 
