@@ -56,10 +56,12 @@ certs: $(VENV)/.installed
 	$(PY) -m services.security.pki --dir var/pki $(foreach h,$(HOSTS),--host $(h)) \
 		$(if $(filter-out 0,$(FORCE)),--force)
 
+# ONLY="group ..." runs only those groups of bench/run.py (e.g. ONLY=network, ONLY=soak:
+# not in the default run, they take minutes).
 bench: $(VENV)/.installed
 	@test $(VENV)/.installed-bench -nt pyproject.toml || { \
 		$(PY) -m pip install --quiet -e '.[dev,bench]' && touch $(VENV)/.installed-bench; }
-	$(PY) -m bench $(if $(filter-out 0,$(QUICK)),--quick)
+	$(PY) -m bench $(if $(filter-out 0,$(QUICK)),--quick) $(if $(ONLY),--only $(ONLY))
 	$(PY) -m bench.readme  # README's Performance table, from bench/results/latest.json
 
 clean:
