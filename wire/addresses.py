@@ -18,6 +18,7 @@ DEFAULT_PORTS = {
     "force_sensor": 50053,
     "stereo_camera": 50054,
     "emergency_stop": 50055,  # the emergency-stop band: ProxyRobot.EmergencyStop past the driver
+    "web_console": 50080,  # HTTP: the browser console's page, Connect and WebSocket (#18)
 }
 
 
