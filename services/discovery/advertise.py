@@ -26,6 +26,7 @@ import socket
 from collections.abc import Iterator
 from contextlib import contextmanager
 
+from zeroconf import Error as ZeroconfError
 from zeroconf import IPVersion, ServiceInfo, Zeroconf
 
 from services.discovery.interfaces import listen_addresses
@@ -135,21 +136,25 @@ def advertised(decision_address: str, *, tls: bool, token_address: str | None = 
                              name=name)
         if advertisement is not None:
             advertisement.start()
-    except (DiscoveryError, OSError) as exc:
+    except (DiscoveryError, OSError, ZeroconfError) as exc:
         log.warning("not advertising the station on the network: %s", exc)
-        advertisement = None
+        yield None
+        return
     if advertisement is None:
-        log.debug("not advertising: the DecisionServer listens on %s only", decision_address)
-    else:
-        log.info("advertising the station as %r (%s) on %s, port %d", advertisement.name,
-                 SERVICE_TYPE, ", ".join(advertisement.addresses), advertisement.port)
+        if mode == "auto":
+            log.info("not advertising the station: its DecisionServer listens on loopback only "
+                     "(%s); --advertise or %s=1 to advertise it anyway", decision_address,
+                     ADVERTISE_ENV)
+        yield None
+        return
+    log.info("advertising the station as %r (%s) on %s, port %d", advertisement.name,
+             SERVICE_TYPE, ", ".join(advertisement.addresses), advertisement.port)
     try:
         yield advertisement
     finally:
-        if advertisement is not None:
-            try:
-                advertisement.close()
-            except OSError as exc:
-                log.warning("withdrawing the station's advertisement: %s", exc)
-            else:
-                log.info("withdrew the station's advertisement")
+        try:
+            advertisement.close()
+        except (OSError, ZeroconfError) as exc:
+            log.warning("withdrawing the station's advertisement: %s", exc)
+        else:
+            log.info("withdrew the station's advertisement")
