@@ -44,10 +44,11 @@ from pathlib import Path
 import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
+from services.discovery.advertise import ADVERTISE_ENV, advertised
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
 from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
-from services.runtime.process import parse_ready_line, ready_line, watch_parent
+from services.runtime.process import parse_ready_line, ready_line, token_port_name, watch_parent
 from services.runtime.restart import RestartPolicy, RestartTracker
 from services.runtime.supervisor_state import (
     GAVE_UP,
@@ -88,6 +89,14 @@ def main(argv: list[str] | None = None) -> int:
                                                    RestartPolicy.max_failures)),
                         help="a child that ends this many times within 60 s is given up on, "
                              "and the station stops (env TELEROBOT_MAX_FAILURES)")
+    # Discovery: operator stations on the network find the station (services/discovery).
+    parser.add_argument("--advertise", dest="advertise", action="store_const", const="1",
+                        default=os.environ.get(ADVERTISE_ENV) or "auto",
+                        help=f"advertise the station over mDNS (_telerobot._tcp) even when its "
+                             f"DecisionServer is on loopback (env {ADVERTISE_ENV}=1|0|auto; "
+                             "default auto: when it listens beyond loopback)")
+    parser.add_argument("--no-advertise", dest="advertise", action="store_const", const="0",
+                        help="do not advertise the station")
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
     health_security = station_channel_security(args.tls_dir or None, "launcher")
@@ -132,7 +141,11 @@ def main(argv: list[str] | None = None) -> int:
                         print(ready_line(other, other_address), flush=True)
                 print(ready_line(name, address), flush=True)
             _print_banner(list(station.children.values()), args.tls_dir)
-            failure = station.supervise()
+            door = station.children["decision_server"]
+            # Withdrawn on leaving the block, before the children stop: however it ends.
+            with advertised(door.address, tls=bool(args.tls_dir), mode=args.advertise,
+                            token_address=door.ready.get(token_port_name("decision_server"))):
+                failure = station.supervise()
             if failure is not None:
                 log.error("%s", failure)
                 return 1
