@@ -39,6 +39,7 @@ import sys
 import tempfile
 import threading
 import time
+import urllib.request
 from pathlib import Path
 
 import grpc
@@ -67,7 +68,9 @@ log = logging.getLogger("launcher")
 # Start order: dependencies first (the world stands in for the hardware). Stop order is the
 # reverse, so the hardware goes last.
 STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
-           "decision_server"]
+           "decision_server", "web_console"]
+# Children that answer HTTP, not gRPC: their health is GET /healthz (the browser console).
+HTTP_CHILDREN = {"web_console"}
 STARTUP_TIMEOUT_S = 60.0
 # The banner's first line.
 UP_LINE = "Slave station is up"
@@ -263,7 +266,8 @@ def _wait_until_serving(child: Child, stop: threading.Event,
     SERVING; None if a stop was requested first; ChildFailed if it died or took too long."""
     deadline = time.monotonic() + STARTUP_TIMEOUT_S
     address = child.wait_ready(timeout_s=STARTUP_TIMEOUT_S, cancel=stop)
-    while address is not None and not _is_serving(address, security):
+    serving = _http_serving if child.name in HTTP_CHILDREN else _is_serving
+    while address is not None and not serving(address, security):
         if child.returncode is not None:
             raise ChildFailed(child.describe())
         if time.monotonic() > deadline:
@@ -286,6 +290,14 @@ def _is_serving(address: str, security: ChannelSecurity) -> bool:
         return False
 
 
+def _http_serving(address: str, _security: ChannelSecurity) -> bool:
+    try:
+        with urllib.request.urlopen(f"http://{address}/healthz", timeout=1.0) as reply:
+            return reply.status == 200
+    except OSError:
+        return False
+
+
 def _print_banner(station: list[Child], tls_dir: str) -> None:
     operator = next(c.address for c in station if c.name == "decision_server")
     extra_ports = [(name, address) for c in station for name, address in c.ready.items()
@@ -294,6 +306,9 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
     lines = ["", f"{UP_LINE}{' with mutual TLS' if tls_dir else ''}. Ctrl-C stops it.", ""]
     lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.pid})" for c in station]
     lines += [f"  {name:<{width}}  {address}  (bearer tokens)" for name, address in extra_ports]
+    console = next((c.address for c in station if c.name == "web_console"), None)
+    if console:
+        lines += ["", f"The web console: http://{console}/ (in any browser on this host)"]
     lines += ["", f"The operator's address is {operator} (set "
                   f"{env_name('decision_server', 'address')} to move it). Try:"]
     if tls_dir:
