@@ -1,0 +1,98 @@
+"""The console's ASGI application: the page and its assets, the Connect bridge, the
+Teleoperate WebSocket, and /healthz for the launcher."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from urllib.parse import urlsplit
+
+from services.web_console import teleoperate
+from services.web_console.bridge import ConnectBridge, Upstream
+
+STATIC_DIR = Path(__file__).resolve().parent / "static"
+HEALTH_PATH = "/healthz"
+CONTRACT_PREFIX = "/telerobot.v1."
+_TYPES = {".html": "text/html; charset=utf-8", ".js": "text/javascript; charset=utf-8",
+          ".css": "text/css; charset=utf-8", ".map": "application/json", ".png": "image/png",
+          ".svg": "image/svg+xml"}
+# The page may load only its own assets and talk only to its own origin.
+_SECURITY_HEADERS = [
+    (b"content-security-policy",
+     b"default-src 'self'; img-src 'self' blob: data:; connect-src 'self' ws: wss:; "
+     b"style-src 'self'; script-src 'self'; frame-ancestors 'none'"),
+    (b"x-content-type-options", b"nosniff"),
+    (b"cache-control", b"no-cache"),
+]
+
+
+def _assets() -> dict[str, Path]:
+    """URL path -> file: every file in static/ (only these are ever served), / the page."""
+    files = {f"/{p.name}": p for p in STATIC_DIR.iterdir() if p.is_file()}
+    if "/index.html" in files:
+        files["/"] = files["/index.html"]
+    return files
+
+
+def same_origin(scope) -> bool:
+    """Whether a WebSocket handshake comes from a page of this console (browsers always send
+    Origin; a page elsewhere must not drive the arm through a user's loopback console)."""
+    headers = dict(scope.get("headers") or ())
+    origin, host = headers.get(b"origin"), headers.get(b"host")
+    if origin is None or host is None:
+        return False
+    return urlsplit(origin.decode("latin-1")).netloc == host.decode("latin-1")
+
+
+class ConsoleApp:
+    """Routes: /telerobot.v1.* (Connect), /ws/teleoperate (WebSocket), /healthz, assets."""
+
+    def __init__(self, upstream: Upstream, auth: str):
+        self.upstream = upstream
+        self.auth = auth  # "token" or "none": the page asks for a token only with "token"
+        self.bridge = ConnectBridge(upstream)
+        self.assets = _assets()
+
+    async def __call__(self, scope, receive, send) -> None:
+        if scope["type"] == "lifespan":
+            return await self._lifespan(receive, send)
+        path = scope["path"]
+        if scope["type"] == "websocket":
+            if path != teleoperate.PATH or not same_origin(scope):
+                await receive()
+                await send({"type": "websocket.close", "code": teleoperate.CLOSE_POLICY})
+                return
+            return await teleoperate.serve(scope, receive, send, self.upstream)
+        if path.startswith(CONTRACT_PREFIX):
+            return await self.bridge(scope, receive, send)
+        if scope["method"] not in ("GET", "HEAD"):
+            return await _respond(send, 405, b"method not allowed\n",
+                                  extra=[(b"allow", b"GET, HEAD")])
+        if path == HEALTH_PATH:
+            return await _respond(send, 200, b"SERVING\n")
+        asset = self.assets.get(path)
+        if asset is None:
+            return await _respond(send, 404, b"not found\n")
+        body = asset.read_bytes()
+        if asset.name == "index.html":
+            body = body.replace(b"{{AUTH}}", self.auth.encode())
+        kind = _TYPES.get(asset.suffix, "application/octet-stream")
+        await _respond(send, 200, b"" if scope["method"] == "HEAD" else body, kind,
+                       length=len(body))
+
+    async def _lifespan(self, receive, send) -> None:
+        while True:
+            message = await receive()
+            if message["type"] == "lifespan.startup":
+                await send({"type": "lifespan.startup.complete"})
+            elif message["type"] == "lifespan.shutdown":
+                await send({"type": "lifespan.shutdown.complete"})
+                return
+
+
+async def _respond(send, status: int, body: bytes, kind: str = "text/plain; charset=utf-8",
+                   extra=(), length: int | None = None) -> None:
+    headers = [(b"content-type", kind.encode()),
+               (b"content-length", str(len(body) if length is None else length).encode()),
+               *_SECURITY_HEADERS, *extra]
+    await send({"type": "http.response.start", "status": status, "headers": headers})
+    await send({"type": "http.response.body", "body": body})

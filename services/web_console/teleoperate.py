@@ -1,0 +1,119 @@
+"""DecisionServer.Teleoperate for browsers: a WebSocket whose binary messages are
+TeleoperateRequest (browser to station) and TeleoperateResponse (station to browser), each one
+protobuf message, forwarded as they are on one gRPC stream.
+
+The stream lives exactly as long as the socket: a tab that closes, reloads or loses its link
+ends the socket, the gateway cancels the stream, and the DecisionServer's watchdog holds the
+arm (a stream that ends is a hold, as for any client). A tab that stays open but goes quiet
+(hidden, frozen) trips the watchdog by its timeout. When the DecisionServer ends the stream,
+the socket closes with 1000 for OK, or 4000 + the gRPC status code (4009 FAILED_PRECONDITION,
+4010 ABORTED: the lock was lost, ...) and the status message as its reason.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+
+import grpc
+
+from services.web_console.bridge import Upstream
+
+log = logging.getLogger(__name__)
+
+PATH = "/ws/teleoperate"
+METHOD = "/telerobot.v1.DecisionServer/Teleoperate"
+SUBPROTOCOL = "telerobot.v1.teleoperate"
+# A browser cannot set headers on a WebSocket: its bearer token rides as a second offered
+# subprotocol, "bearer.<token>" (never echoed back), and its lease in the init message.
+TOKEN_SUBPROTOCOL_PREFIX = "bearer."
+MAX_MESSAGE_BYTES = 64 * 1024
+CLOSE_NORMAL = 1000
+CLOSE_UNSUPPORTED_DATA = 1003
+CLOSE_POLICY = 1008
+CLOSE_TOO_BIG = 1009
+CLOSE_GRPC_BASE = 4000  # + the gRPC status code
+_MAX_REASON_BYTES = 120  # a close frame's reason holds 123 bytes
+
+
+def close_code(code: grpc.StatusCode) -> int:
+    """The WebSocket close code that reports a gRPC status."""
+    return CLOSE_NORMAL if code is grpc.StatusCode.OK else CLOSE_GRPC_BASE + code.value[0]
+
+
+def _reason(text: str) -> str:
+    data = text.encode()[:_MAX_REASON_BYTES]
+    return data.decode(errors="ignore")
+
+
+async def serve(scope, receive, send, upstream: Upstream) -> None:
+    """One browser's Teleoperate session, an ASGI websocket scope."""
+    message = await receive()
+    if message["type"] != "websocket.connect":
+        return
+    offered = list(scope.get("subprotocols") or ())
+    if SUBPROTOCOL not in offered:
+        # Refused before the handshake completes: the browser sees a failed connection (403).
+        await send({"type": "websocket.close", "code": CLOSE_POLICY})
+        return
+    tokens = [p[len(TOKEN_SUBPROTOCOL_PREFIX):] for p in offered
+              if p.startswith(TOKEN_SUBPROTOCOL_PREFIX)]
+    metadata = [("authorization", f"Bearer {tokens[0]}")] if tokens else []
+    await send({"type": "websocket.accept", "subprotocol": SUBPROTOCOL})
+    if upstream.refusal:
+        await send({"type": "websocket.close",
+                    "code": close_code(grpc.StatusCode.UNAUTHENTICATED),
+                    "reason": _reason(upstream.refusal)})
+        return
+    call = upstream.channel.stream_stream(METHOD)(metadata=metadata)
+    peer = scope.get("client")
+
+    async def browser_to_station() -> tuple[int, str] | None:
+        """Until the browser leaves (None) or breaks the rules (the close to send)."""
+        while True:
+            message = await receive()
+            if message["type"] == "websocket.disconnect":
+                return None
+            data = message.get("bytes")
+            if data is None:
+                return (CLOSE_UNSUPPORTED_DATA,
+                        "send binary TeleoperateRequest messages, not text")
+            if len(data) > MAX_MESSAGE_BYTES:
+                return CLOSE_TOO_BIG, f"a message is at most {MAX_MESSAGE_BYTES} bytes"
+            try:
+                await call.write(data)
+            except (grpc.aio.AioRpcError, asyncio.InvalidStateError):
+                return None  # the stream ended; station_to_browser reports how
+
+    async def station_to_browser() -> tuple[int, str]:
+        try:
+            async for response in call:
+                await send({"type": "websocket.send", "bytes": response})
+        except grpc.aio.AioRpcError as error:
+            return close_code(error.code()), error.details() or ""
+        return CLOSE_NORMAL, "the station ended the session"
+
+    inbound = asyncio.ensure_future(browser_to_station())
+    outbound = asyncio.ensure_future(station_to_browser())
+    try:
+        done, _ = await asyncio.wait({inbound, outbound}, return_when=asyncio.FIRST_COMPLETED)
+        if inbound in done:
+            close = inbound.result()
+            call.cancel()  # the stream ends now: the DecisionServer holds the arm
+            outbound.cancel()
+            if close is not None:
+                await send({"type": "websocket.close", "code": close[0],
+                            "reason": _reason(close[1])})
+            log.info("teleoperate from %s ended by the browser%s", peer,
+                     f" ({close[1]})" if close else "")
+        else:
+            code, reason = outbound.result()
+            inbound.cancel()
+            with contextlib.suppress(Exception):  # the browser may be gone already
+                await send({"type": "websocket.close", "code": code, "reason": _reason(reason)})
+            log.info("teleoperate from %s ended by the station: %d %s", peer, code, reason)
+    finally:
+        call.cancel()
+        for task in (inbound, outbound):
+            task.cancel()
