@@ -9,15 +9,14 @@ addresses of a private /30 that exist nowhere else; it removes them after.
 from __future__ import annotations
 
 import os
-import shutil
 import subprocess
 import sys
-import uuid
 
 import pytest
 
 from services.security.pki import init
 from tests.conftest import REPO, start_process
+from tests.netns import linked_namespaces, python_in_namespace, unavailable_reason
 from tests.world.conftest import unique_shm_name
 
 pytestmark = pytest.mark.e2e
@@ -41,45 +40,17 @@ def test_a_service_refuses_to_listen_on_every_interface_in_plaintext():
 
 @pytest.fixture
 def namespace():
-    if os.geteuid() != 0 or shutil.which("ip") is None:
-        pytest.skip("network namespaces need root and iproute2")
-    name = f"trt-{uuid.uuid4().hex[:6]}"
-    outside, inside = f"vo{name[4:]}", f"vi{name[4:]}"
-    steps = [
-        ["ip", "netns", "add", name],
-        ["ip", "link", "add", outside, "type", "veth", "peer", "name", inside],
-        ["ip", "link", "set", inside, "netns", name],
-        ["ip", "addr", "add", f"{HOST_ADDRESS}/30", "dev", outside],
-        ["ip", "link", "set", outside, "up"],
-        ["ip", "-n", name, "addr", "add", f"{NAMESPACE_ADDRESS}/30", "dev", inside],
-        ["ip", "-n", name, "link", "set", inside, "up"],
-        ["ip", "-n", name, "link", "set", "lo", "up"],
-    ]
-    try:
-        for step in steps:
-            subprocess.run(step, check=True, capture_output=True, text=True)
+    if (reason := unavailable_reason()) is not None:
+        pytest.skip(reason)
+    with linked_namespaces(HOST_ADDRESS, NAMESPACE_ADDRESS,
+                           left_in_this_namespace=True) as (_, name):
         yield name
-    finally:
-        subprocess.run(["ip", "link", "del", outside], capture_output=True)
-        subprocess.run(["ip", "netns", "del", name], capture_output=True)
-
-
-def _in_namespace(namespace: str, args: list[str]) -> list[str]:
-    """`python <args>` run inside the namespace (setns before anything starts a thread)."""
-    enter = (
-        "import ctypes, os, runpy, sys\n"
-        f"fd = os.open('/run/netns/{namespace}', os.O_RDONLY)\n"
-        "if ctypes.CDLL(None, use_errno=True).setns(fd, 0x40000000) != 0:\n"  # CLONE_NEWNET
-        "    raise OSError(ctypes.get_errno(), 'setns')\n"
-        f"sys.argv = {['python', *args[2:]]!r}\n"
-        f"runpy.run_module({args[1]!r}, run_name='__main__', alter_sys=True)\n")
-    return ["-c", enter]
 
 
 def test_in_a_namespace_plaintext_is_refused_and_tls_or_the_flag_starts(namespace, tmp_path):
     address = f"{NAMESPACE_ADDRESS}:0"
     env = {"TELEROBOT_WORLD_SHM": unique_shm_name()}
-    refused = start_process(_in_namespace(namespace, _world_args(address)), env, "world")
+    refused = start_process(python_in_namespace(namespace, _world_args(address)), env, "world")
     assert refused.exited.wait(60) and refused.returncode == 2  # its output read to the end
     assert any("refusing to listen on 10.213.7.2:0 without TLS" in line
                for line in refused.lines)
@@ -91,7 +62,7 @@ def test_in_a_namespace_plaintext_is_refused_and_tls_or_the_flag_starts(namespac
         "flag": {"TELEROBOT_ALLOW_PLAINTEXT_NETWORK": "1"},
     }
     for what, settings in variants.items():
-        world = start_process(_in_namespace(namespace, _world_args(address)),
+        world = start_process(python_in_namespace(namespace, _world_args(address)),
                               {**env, **settings, "TELEROBOT_WORLD_SHM": unique_shm_name()},
                               "world")
         try:
