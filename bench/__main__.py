@@ -4,7 +4,9 @@ Starts a slave station of its own on free loopback ports, measures every scenari
 baselines in the same run, prints a table, and writes bench/results/latest.json,
 raw_latencies.json and PNG plots. --quick (`make bench QUICK=1`) shortens every scenario so the
 whole run takes under 3 minutes. The soak (issue #16) runs only when asked for:
-`python -m bench --only soak [--soak-minutes N]` (10 minutes; 1 with --quick).
+`python -m bench --only soak [--soak-minutes N]` (10 minutes; 1 with --quick); so does the
+network experiment (issue #14, bench/network.py): `python -m bench --only network` (about 8
+minutes; --quick: fewer round trips), which merges its row into an existing latest.json.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ def main(argv: list[str] | None = None) -> int:
                         default=os.environ.get("QUICK", "") not in ("", "0"),
                         help="shorter scenarios, the whole run under 3 minutes (env QUICK=1)")
     parser.add_argument("--only", nargs="+", choices=GROUPS, default=(),
-                        help="run only these groups of scenarios (soak runs only if named)")
+                        help="run only these groups (soak and network run only if named)")
     parser.add_argument("--soak-minutes", type=float, default=None, metavar="N",
                         help="the soak's length (default 10 minutes, 1 with --quick)")
     parser.add_argument("--out", default=str(RESULTS_DIR), help="where results go")

@@ -11,6 +11,8 @@ from importlib import metadata
 from pathlib import Path
 
 from bench.goals import is_baseline, verdict_text
+from bench.network import NAME as NETWORK
+from bench.network import terminal_lines as network_lines
 from bench.stats import ratio
 
 # What the papers report for the same path, for the table's last column.
@@ -24,6 +26,7 @@ PAPERS = {
     "estop_under_load": "Parma: no inversion",
     "estop_ds_busywork": "Parma: no inversion",
     "teleop_50": "50 Hz; 1 ms call",
+    "network": "campus routes: 183 ms round trip",
 }
 
 
@@ -195,6 +198,8 @@ def _extras(results: dict[str, dict]) -> list[str]:
                          f"{since.get('steps')} ({fmt(since.get('overrun_pct'), 2)} %)")
         elif name == "soak":
             lines += _soak_lines(r)
+        elif name == NETWORK and "rows" in r:
+            lines += network_lines(r)
         elif name == "closed_loop":
             lines.append(f"  {name}: = call ack p50 {fmt(r.get('ack_p50_ms'), 2)} ms; "
                          f"send->contact sample p50 {fmt(r.get('motion_p50_ms'), 1)} ms; "

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import grpc
 
-from bench import goals, plots, report, soak, stereo, worldloop
+from bench import goals, network, plots, report, soak, stereo, worldloop
 from bench.procs import Child, ChildFailed, ProcessSet, unique_shm_name
 from bench.stats import ratio
 from bench.worldloop import LoopMeter
@@ -107,7 +107,7 @@ class Plan:
 
     def wants(self, group: str) -> bool:
         """Whether `group` runs: the ones asked for with --only, else every default group
-        (the soak runs only when asked for: it takes 10 minutes)."""
+        (the soak and the network experiment run only when asked for: they take minutes)."""
         return group in self.only if self.only else group in DEFAULT_GROUPS
 
     @property
@@ -117,8 +117,9 @@ class Plan:
 
 
 GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
-          "stereo", "soak")
-DEFAULT_GROUPS = tuple(group for group in GROUPS if group != "soak")  # `make bench`
+          "stereo", "soak", "network")
+# `make bench`; the soak and the network experiment (bench/network.py) take minutes.
+DEFAULT_GROUPS = tuple(group for group in GROUPS if group not in ("soak", "network"))
 
 
 class Progress:
@@ -239,7 +240,8 @@ class Bench:
         counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
                   "observers": len(p.observer_counts), "estop": 4, "decision": 6 + p.profile,
                   "closed_loop": 1,
-                  "stereo": len(p.stereo_sources) * len(p.stereo_modes), "soak": 1}
+                  "stereo": len(p.stereo_sources) * len(p.stereo_modes), "soak": 1,
+                  "network": len(network.row_specs(p.quick))}
         return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
 
     # -- running ----------------------------------------------------------------------------
@@ -261,7 +263,7 @@ class Bench:
                 ("baselines", self.baselines), ("observers", self.observers),
                 ("estop", self.estop), ("decision", self.decision),
                 ("closed_loop", self.closed_loop),
-                ("stereo", self.stereo), ("soak", self.soak)]
+                ("stereo", self.stereo), ("soak", self.soak), ("network", self.network)]
             for group, step in steps:
                 if self.plan.wants(group):
                     step()
@@ -805,6 +807,10 @@ class Bench:
         """The station under a steady load for minutes: RSS, losses, events (soak.py)."""
         soak.run(self)
 
+    def network(self) -> None:
+        """The peg-in-hole task across the impairment link (network.py)."""
+        network.run(self)
+
     def stereo(self) -> None:
         plan = self.plan
         names = [f"stereo_{s}_{m}" for s in plan.stereo_sources for m in plan.stereo_modes]
@@ -854,10 +860,24 @@ class Bench:
         info = {"machine": machine, "quick": self.plan.quick,
                 "run_s": round(self.elapsed_s, 1), "world_shm": self.shm}
         latest = self.out_dir / "latest.json"
-        report.write_json(latest, self.results, ratios, info)
+        row = self.results.get(network.NAME)
+        figures = []
+        if row is not None and "rows" in row:
+            # The network row carries its own run, so that it can live beside another's.
+            row["run"] = {"time": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **info,
+                          "world_loop": self.results.get("world_loop")}
+            figures.append(network.plot(row, self.out_dir / network.PLOT_FILE))
+            # The network group alone: into the latest.json there, the rest of it kept.
+            if set(self.plan.only) == {network.NAME} and network.merge(latest, row):
+                return [latest, *figures]
+        written = dict(self.results)
+        previous = network.previous_row(latest) if row is None else None
+        if previous is not None:  # a run without the network group keeps the one there
+            written[network.NAME] = previous
+        report.write_json(latest, written, ratios, info)
         raw = self.out_dir / "raw_latencies.json"
         raw.write_text(json.dumps(self.raw))
-        return [latest, raw, *plots.write_plots(self.out_dir, self.results, self.raw)]
+        return [latest, raw, *plots.write_plots(self.out_dir, self.results, self.raw), *figures]
 
 
 def _reason(error: Exception) -> str:

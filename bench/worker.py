@@ -112,9 +112,15 @@ def _events(p: dict) -> dict:
     return follow_events(p["address"], p["max_s"], _ready, stop)
 
 
+def _network(p: dict) -> dict:
+    from bench.network import task
+
+    return task(p, _ready)  # BENCH_READY once the task starts: a cut is timed from it
+
+
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
          "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo,
-         "events": _events}
+         "events": _events, "network": _network}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,0 +1,387 @@
+"""network: the papers' experiment across a delayed link (issue #14).
+
+The peg-in-hole task of `make teleop` (clients/teleop/task.py, imported, not copied) in both
+modes, feedback and compliance, with services/impairment's link between the operator's client
+and the DecisionServer only (the operator's path: the station's own calls stay on loopback):
+
+- round trips of 0, 50, 100, 200 and 400 ms (ROUND_TRIPS_MS), half each way, jitter ±10 % of
+  the one-way delay, and the papers' campus routes' 183 ms (CAMPUS_RTT_MS);
+- on the campus link again, with a cut of CUT_S in the middle of the task (CUT_AT_S after it
+  starts). Until the client resumes sessions by itself, such a row may end with an error: it is
+  reported as failed with the error's text. The row needs no change once it resumes.
+
+Every row has a seed of its own (a hash of its name), so a row's delays repeat from run to run.
+Each run is a worker process of its own (`python -m bench.worker network`): it acquires control,
+connects, initializes, starts and tares the sensor at home as `make teleop` does, runs the task,
+and releases control. The link runs in the orchestrator, which does little else meanwhile.
+
+One result row, `network`, holds a row per run (`rows`) and the run it came from (`run`), so a
+run of this group alone merges it into an existing latest.json instead of replacing the whole
+run there (`merge`), and a run without it keeps the one there (`previous_row`).
+`plot` draws the peak force against the round trip, a line per mode.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import time
+import zlib
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from services.impairment import ImpairmentProxy, LinkProfile
+
+NAME = "network"
+MODES = ("feedback", "compliance")
+ROUND_TRIPS_MS = (0.0, 50.0, 100.0, 200.0, 400.0)
+QUICK_ROUND_TRIPS_MS = (0.0,)  # and the campus routes, as always
+CAMPUS_RTT_MS = 183.0  # MTDF paper, section V: "overall round-trip delay is 183 ms"
+JITTER_FRACTION = 0.10  # of the one-way delay
+CUT_S = 3.0
+CUT_AT_S = 5.0  # after the task starts: mid-approach in both modes (they last 12-20 s)
+# A stall is what a lost route does: nothing moves, TCP resends once it is back; the
+# keepalives (a ping a second, a second to answer) notice it before the link returns.
+CUT_MODE = "stall"
+OPERATOR = "bench-network"
+LEASE_S = 30.0  # as make teleop's: outlives the cut
+CALL_TIMEOUT_S = 10.0
+ROW_TIMEOUT_S = 240.0  # a whole run at 400 ms, with its set-up, takes about a minute
+PLOT_FILE = "network_peak_force.png"
+PAPERS = ("MTDF paper, section V: three campus routes streaming video, force and commands at "
+          "once; commands at 50 Hz, force at 120 Hz, stereo at 17 fps; force and stereo "
+          "delays 8 and 83 ms; overall round trip 183 ms (5.5 Hz) with the slave arm operated "
+          "at 10 Hz. Of the peg-in-hole task it says that active compliance at the server is "
+          "more effective than the operator's reaction through force feedback, with no forces.")
+
+
+@dataclass(frozen=True)
+class RowSpec:
+    """One run of the task: a mode, a link, maybe a cut."""
+
+    mode: str
+    round_trip_ms: float
+    cut_s: float = 0.0
+
+    @property
+    def name(self) -> str:
+        return f"{self.mode}_{self.round_trip_ms:g}ms" + ("_cut" if self.cut_s else "")
+
+    @property
+    def seed(self) -> int:
+        """The row's own, the same in every run (crc32: Python's hash() is salted)."""
+        return zlib.crc32(self.name.encode())
+
+
+def row_specs(quick: bool) -> list[RowSpec]:
+    """The runs in order: each round trip in both modes (next to each other, so both see the
+    same machine), the campus routes' among them, then the cuts on the campus link."""
+    trips = sorted({*(QUICK_ROUND_TRIPS_MS if quick else ROUND_TRIPS_MS), CAMPUS_RTT_MS})
+    specs = [RowSpec(mode, trip) for trip in trips for mode in MODES]
+    specs += [RowSpec(mode, CAMPUS_RTT_MS, CUT_S) for mode in MODES]
+    return specs
+
+
+def link_profiles(round_trip_ms: float, seed: int) -> tuple[LinkProfile, LinkProfile]:
+    """(up, down): half the round trip each way, jitter JITTER_FRACTION of that; down draws
+    from seed + 1, as the impairment CLI does."""
+    one_way_s = round_trip_ms / 2e3
+    return tuple(LinkProfile(delay_s=one_way_s, jitter_s=JITTER_FRACTION * one_way_s,
+                             seed=seed + offset) for offset in (0, 1))
+
+
+def home_position() -> list[float]:
+    """The tool's position at the world's home configuration, straight above the hole: where
+    the task starts (make teleop starts where the arm is, which is home on a fresh station)."""
+    from services.robot_model.kinematics import PumaKinematics
+
+    kinematics = PumaKinematics()
+    return [float(v) for v in kinematics.tool_pose(kinematics.home_q).translation]
+
+
+# -- the orchestrator's side -------------------------------------------------------------------
+
+def run(bench) -> None:
+    """The network group: a step per run, one result row (bench is run.Bench)."""
+    from bench.procs import ChildFailed
+
+    plan, started = bench.plan, time.monotonic()
+    specs = row_specs(plan.quick)
+    try:
+        with bench._decision_server(bench.station) as address:
+            home = home_position()
+            rows = [_run_row(bench, address, spec, home) for spec in specs]
+    except ChildFailed as error:
+        bench.progress.step("network: starting the DecisionServer")
+        return bench._fail([NAME], error)
+    result = {
+        "rows": rows, "round_trips_ms": sorted({spec.round_trip_ms for spec in specs}),
+        "jitter_fraction": JITTER_FRACTION, "campus_rtt_ms": CAMPUS_RTT_MS,
+        "cut": {"s": CUT_S, "at_s": CUT_AT_S, "mode": CUT_MODE, "round_trip_ms": CAMPUS_RTT_MS},
+        "papers": PAPERS, "elapsed_s": round(time.monotonic() - started, 1),
+        "succeeded": sum(1 for row in rows if row["success"]), "runs": len(rows),
+        # No latency of its own for the other groups' columns.
+        "rate_hz": None, "delivered_hz": None, "p50_ms": None, "p99_ms": None,
+        # The world loop over every run (each row has its own), not just since the last.
+        "world_loop": {key: sum((row.get("world_loop") or {}).get(key) or 0 for row in rows)
+                       for key in ("steps", "overruns", "dropped_steps")}}
+    bench._record(NAME, result)
+
+
+def _run_row(bench, address: str, spec: RowSpec, home: list[float]) -> dict:
+    from bench.procs import ChildFailed
+    from bench.run import _reason
+
+    cut = f", a {spec.cut_s:g} s {CUT_MODE} cut {CUT_AT_S:g} s into the task" if spec.cut_s else ""
+    bench.progress.step(f"network {spec.name}: peg-in-hole ({spec.mode}), round trip "
+                        f"{spec.round_trip_ms:g} ms ± {100 * JITTER_FRACTION:g} %{cut}")
+    up, down = link_profiles(spec.round_trip_ms, spec.seed)
+    events: list[str] = []  # the proxy's lines: connections, cuts
+    proxy = ImpairmentProxy("127.0.0.1:0", address, up=up, down=down, report=events.append)
+    with proxy:
+        child = bench.procs.start_worker(NAME, {"address": proxy.address, "mode": spec.mode,
+                                                "home": home}, name=f"network_{spec.mode}")
+        cut_at = None
+        try:
+            if spec.cut_s:
+                bench.procs.wait_worker_ready(child, ROW_TIMEOUT_S)  # the task has started
+                time.sleep(CUT_AT_S)
+                if child.process.poll() is None:
+                    cut_at = time.monotonic()
+                    proxy.cut(spec.cut_s, CUT_MODE)
+            outcome = bench.procs.finish_worker(child, ROW_TIMEOUT_S)
+        except ChildFailed as error:
+            if child.process.poll() is None:
+                bench.procs.stop(child)
+            outcome = {"success": False, "error": _reason(error)}
+        stats = dataclasses.asdict(proxy.stats)
+    row = {"name": spec.name, "mode": spec.mode, "round_trip_ms": spec.round_trip_ms,
+           "one_way_delay_ms": up.delay_s * 1e3, "jitter_ms": up.jitter_s * 1e3,
+           "seed": spec.seed, "cut_s": spec.cut_s,
+           "cut": {"at_s": CUT_AT_S, "mode": CUT_MODE, "happened": cut_at is not None}
+           if spec.cut_s else None,
+           **_blank(), **outcome, "proxy": stats, "world_loop": bench._loop_since_mark(),
+           "link_events": [line for line in events if "cut" in line or "back" in line
+                           or "reset" in line or "held" in line]}
+    bench.progress.done(row_text(row))
+    return row
+
+
+def _blank() -> dict:
+    return {"success": False, "error": None, "duration_s": None, "depth_m": None,
+            "peak_force_n": None, "final_force_n": None, "round_trip_p50_ms": None,
+            "round_trip_p99_ms": None, "commands": None, "acks": None}
+
+
+def row_text(row: dict) -> str:
+    """A row's figures on one line (the progress line)."""
+    parts = ["success" if row["success"] else "FAILED"]
+    for key, unit, digits in (("duration_s", "s", 1), ("peak_force_n", "N peak", 1),
+                              ("final_force_n", "N final", 1)):
+        if row.get(key) is not None:
+            parts.append(f"{row[key]:.{digits}f} {unit}")
+    if row.get("round_trip_p50_ms") is not None:
+        parts.append(f"round trip p50 {row['round_trip_p50_ms']:.1f} / p99 "
+                     f"{row['round_trip_p99_ms']:.1f} ms")
+    if row.get("error"):
+        parts.append(f"error: {row['error'][:200]}")
+    return ", ".join(parts)
+
+
+# -- the worker's side (python -m bench.worker network) ----------------------------------------
+
+def task(params: dict, ready: Callable[[], None]) -> dict:
+    """One run of the task through `params["address"]` (the link): make teleop's set-up, then
+    PegInHole. A failure of the run itself (a cut the session did not survive) is the result,
+    with the error's text and the figures up to it; a failure before it raises."""
+    import numpy as np
+
+    from clients.ar import RobotModel
+    from clients.python.decision_server import DecisionClient
+    from clients.teleop.__main__ import retract
+    from clients.teleop.task import PegInHole
+
+    # Released here, not on leaving: a failed release must not lose the run's figures.
+    with DecisionClient(params["address"], default_timeout=CALL_TIMEOUT_S,
+                        release_on_close=False) as client:
+        # A lease left by the run before (killed with it) lapses within LEASE_S: wait for it.
+        client.acquire_control(OPERATOR, wait=True, wait_timeout_s=LEASE_S + 5,
+                               lease_duration_s=LEASE_S, timeout=LEASE_S + 15)
+        try:
+            # make teleop's set-up (clients/teleop/__main__.py main()), which has no function
+            # of its own to import.
+            client.robot.connect()
+            if client.robot.get_status().status.name in ("ESTOPPED", "FAULT"):
+                client.robot.reset()
+            if client.robot.get_status().status.name == "CONNECTED":
+                client.robot.initialize()
+            client.sensor.start_reading()
+            retract(client, np.asarray(params["home"]))  # out of the hole the run before left
+            client.sensor.tare(0.2)
+            model = RobotModel(client.robot.get_state().tool_pose)
+            peg = PegInHole(client, params["mode"], model)
+            started = time.monotonic()
+            ready()  # the orchestrator times a cut from here
+            try:
+                return {**dataclasses.asdict(peg.run()), "error": None}
+            except Exception as error:  # noqa: BLE001 - the row reports what ended the run
+                return _partial(peg, time.monotonic() - started, error)
+        finally:
+            try:
+                client.release_control(timeout=LEASE_S)
+            except Exception:  # noqa: BLE001 - it lapses within LEASE_S; the next run waits
+                pass
+
+
+def _partial(peg, duration_s: float, error: Exception) -> dict:
+    """A run that ended with an error: what its trace holds up to then."""
+    import numpy as np
+
+    forces = [-f[2] for f in peg.trace.force_n]
+    trips = peg.trace.round_trip_ms
+    return {"mode": peg.mode, "success": False, "duration_s": duration_s, "depth_m": None,
+            "peak_force_n": float(max(forces)) if forces else None,
+            "final_force_n": float(forces[-1]) if forces else None,
+            "round_trip_p50_ms": float(np.percentile(trips, 50)) if trips else None,
+            "round_trip_p99_ms": float(np.percentile(trips, 99)) if trips else None,
+            "commands": peg._commands, "acks": len(peg._acks),
+            "error": f"{type(error).__name__}: {error}"}
+
+
+# -- latest.json --------------------------------------------------------------------------------
+
+def previous_row(latest: Path) -> dict | None:
+    """The network row of an existing latest.json, if it holds one (with its own `run`)."""
+    try:
+        row = json.loads(latest.read_text()).get(NAME)
+    except (OSError, ValueError):
+        return None
+    return row if isinstance(row, dict) and "run" in row else None
+
+
+def merge(latest: Path, row: dict) -> bool:
+    """Put `row` into an existing latest.json in place of its network row, leaving the rest
+    (another run's scenarios and metadata) as it was. False if there is no such file."""
+    try:
+        document = json.loads(latest.read_text())
+    except (OSError, ValueError):
+        return False
+    document[NAME] = row
+    latest.write_text(json.dumps(document, indent=2, default=str))
+    return True
+
+
+# -- the figure --------------------------------------------------------------------------------
+
+def plot(result: dict, path: Path) -> Path:
+    """Peak force against the link's round trip, a line per mode (runs without a cut), the
+    cut runs as crosses, the papers' campus routes marked."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import FuncFormatter
+
+    figure, axis = plt.subplots(figsize=(8, 5))
+    colors = {"feedback": "tab:red", "compliance": "tab:blue"}
+    rows = result.get("rows", [])
+    for mode in MODES:
+        line = sorted((r for r in rows if r["mode"] == mode and not r.get("cut_s")
+                       and r.get("peak_force_n") is not None), key=lambda r: r["round_trip_ms"])
+        if line:
+            axis.plot([r["round_trip_ms"] for r in line], [r["peak_force_n"] for r in line],
+                      "-o", color=colors.get(mode), label=mode)
+            failed = [r for r in line if not r["success"]]
+            if failed:
+                axis.plot([r["round_trip_ms"] for r in failed],
+                          [r["peak_force_n"] for r in failed], "o", mfc="white",
+                          color=colors.get(mode), label=f"{mode}: task failed")
+        cuts = [r for r in rows if r["mode"] == mode and r.get("cut_s")
+                and r.get("peak_force_n") is not None]
+        if cuts:
+            axis.plot([r["round_trip_ms"] for r in cuts], [r["peak_force_n"] for r in cuts],
+                      "x", ms=10, mew=2, color=colors.get(mode),
+                      label=f"{mode}, {cuts[0]['cut_s']:g} s cut"
+                            + ("" if all(r["success"] for r in cuts) else " (failed)"))
+    campus = result.get("campus_rtt_ms", CAMPUS_RTT_MS)
+    axis.axvline(campus, color="grey", linestyle="--", linewidth=1)
+    axis.text(campus, 0.98, f" papers' campus routes, {campus:g} ms", rotation=90, va="top",
+              ha="right", fontsize=8, color="grey", transform=axis.get_xaxis_transform())
+    axis.set_yscale("log")  # feedback's hundreds of newtons and compliance's few on one axis
+    axis.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+    axis.set_xlabel("link round trip set (ms), jitter ±10 % of each way")
+    axis.set_ylabel("peak contact force (N, log scale)")
+    axis.set_title("peg-in-hole across a delayed link: peak force per mode")
+    axis.grid(True, which="both", alpha=0.3)
+    axis.legend(fontsize=8)
+    figure.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
+    return path
+
+
+# -- text ---------------------------------------------------------------------------------------
+
+def _num(value, digits: int = 1) -> str:
+    return "–" if value is None else f"{value:.{digits}f}"
+
+
+def table_rows(result: dict) -> list[tuple[str, ...]]:
+    """(mode, round trip set, cut, measured p50 / p99, success, time, peak, final, note) per
+    run; the campus routes' round trip named as such."""
+    campus = result.get("campus_rtt_ms", CAMPUS_RTT_MS)
+    out = []
+    for row in result.get("rows", []):
+        trip = f"{row['round_trip_ms']:g} ms"
+        if row["round_trip_ms"] == campus:
+            trip += " (campus)"
+        cut = (f"{row['cut_s']:g} s at {row['cut']['at_s']:g} s ({row['cut']['mode']})"
+               if row.get("cut_s") else "–")
+        measured = (f"{_num(row.get('round_trip_p50_ms'))} / {_num(row.get('round_trip_p99_ms'))}"
+                    if row.get("round_trip_p50_ms") is not None else "–")
+        proxy = row.get("proxy") or {}
+        note = row.get("error") or ""
+        if proxy.get("connections", 0) > 1:  # the client reconnected through the link
+            note = f"{proxy['connections']} connections; {note}".rstrip("; ")
+        out.append((row["mode"], trip, cut, measured, "yes" if row["success"] else "NO",
+                    _num(row.get("duration_s")), _num(row.get("peak_force_n")),
+                    _num(row.get("final_force_n")), note))
+    return out
+
+
+HEADER = ("mode", "round trip set", "cut", "measured p50 / p99 ms", "success", "time s",
+          "peak N", "final N", "note")
+
+
+def terminal_lines(result: dict) -> list[str]:
+    """The group's table for the bench's terminal report."""
+    rows = [HEADER, *[(*row[:-1], row[-1][:100]) for row in table_rows(result)]]
+    widths = [max(len(row[i]) for row in rows) for i in range(len(HEADER))]
+    return ["  network: the peg-in-hole task across the impairment link"] + [
+        "    " + "  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)).rstrip()
+        for row in rows]
+
+
+def campus_comparison(result: dict) -> str:
+    """What this run shows on the papers' campus round trip, next to what they report."""
+    campus = result.get("campus_rtt_ms", CAMPUS_RTT_MS)
+    at = {row["mode"]: row for row in result.get("rows", [])
+          if row["round_trip_ms"] == campus and not row.get("cut_s")}
+    feedback, compliance = at.get("feedback"), at.get("compliance")
+    if not feedback or not compliance or None in (feedback.get("peak_force_n"),
+                                                  compliance.get("peak_force_n")):
+        return f"No complete pair of runs at the campus routes' {campus:g} ms in this run."
+    ratio = (feedback["peak_force_n"] / compliance["peak_force_n"]
+             if compliance["peak_force_n"] else None)
+    trips = " and ".join(f"{mode} {_num(row.get('round_trip_p50_ms'))} ms"
+                         for mode, row in at.items())
+    return (f"At the campus routes' {campus:g} ms: with force feedback the peak is "
+            f"{_num(feedback['peak_force_n'])} N, with compliance at the server "
+            f"{_num(compliance['peak_force_n'])} N"
+            + (f" ({ratio:.0f}× less)" if ratio and ratio >= 1 else "")
+            + f"; success {'yes' if feedback['success'] else 'no'} / "
+              f"{'yes' if compliance['success'] else 'no'}. The measured round trip (p50: "
+              f"{trips}) adds the station's own time to the link's, as the papers' 183 ms "
+              "includes their arm's.")
