@@ -1,0 +1,80 @@
+"""A whole station through the launcher (the web console included) and headless Chromium from
+Debian's `chromium` package, driven by Playwright (its own browser download cannot reach its
+servers here; `make test` installs the package when it is missing)."""
+
+from __future__ import annotations
+
+import os
+import signal
+from pathlib import Path
+
+import grpc
+import pytest
+
+from telerobot.v1 import decision_server_pb2_grpc, proxy_robot_pb2, proxy_robot_pb2_grpc
+from tests.conftest import start_station, station_env
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                 "--no-first-run", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync"]
+# Screenshots go here when set (docs/ for the README's), else to the test's tmp_path.
+SHOTS_ENV = "TELEROBOT_WEB_CONSOLE_SHOTS"
+
+
+@pytest.fixture(scope="session")
+def console_station():
+    """The station, started by the launcher like `make serve`; `.ready` has every address."""
+    launcher = start_station(station_env())
+    yield launcher
+    launcher.stop(signal.SIGINT)
+
+
+@pytest.fixture(scope="session")
+def console_url(console_station) -> str:
+    return f"http://{console_station.ready['web_console']}"
+
+
+@pytest.fixture(scope="session")
+def playwright_driver():
+    if not Path(CHROMIUM).exists():
+        pytest.fail(f"{CHROMIUM} is missing: `make test` installs Debian's chromium package "
+                    "(apt-get install -y chromium)")
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as driver:
+        yield driver
+
+
+@pytest.fixture
+def browser(playwright_driver, tmp_path):
+    """A fresh Chromium (its own user-data-dir), closed after the test."""
+    context = playwright_driver.chromium.launch_persistent_context(
+        str(tmp_path / "profile"), executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True,
+        viewport={"width": 1400, "height": 1000})
+    yield context
+    context.close()
+
+
+@pytest.fixture
+def shots(tmp_path) -> Path:
+    directory = Path(os.environ.get(SHOTS_ENV) or tmp_path)
+    directory.mkdir(parents=True, exist_ok=True)
+    return directory
+
+
+@pytest.fixture
+def robot(console_station):
+    """ProxyRobot on its own port: the arm as the station knows it, past the console."""
+    with grpc.insecure_channel(console_station.ready["proxy_robot"]) as channel:
+        yield proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+
+
+@pytest.fixture
+def decision(console_station):
+    with grpc.insecure_channel(console_station.ready["decision_server"]) as channel:
+        yield decision_server_pb2_grpc.DecisionServerStub(channel)
+
+
+def arm_state(robot) -> proxy_robot_pb2.GetStateResponse:
+    return robot.GetState(proxy_robot_pb2.GetStateRequest(), timeout=5).state

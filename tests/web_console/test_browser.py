@@ -1,0 +1,168 @@
+"""The web console in a real browser against a real station: video, the lock, driving with
+the keyboard, the stop button, and a tab closed mid-drive."""
+
+from __future__ import annotations
+
+import threading
+
+import grpc
+import pytest
+
+from telerobot.v1 import decision_server_pb2, proxy_robot_pb2, types_pb2
+from tests.conftest import wait_for
+from tests.web_console.conftest import arm_state
+
+pytestmark = [pytest.mark.e2e, pytest.mark.slow]
+
+STATUS = types_pb2.RobotStatus
+
+
+def status_of(robot) -> str:
+    """The arm's status as ProxyRobot reports it (GetStatus answers before Connect too)."""
+    return STATUS.Name(robot.GetStatus(proxy_robot_pb2.GetStatusRequest(), timeout=5).status)
+
+
+def open_console(browser, url):
+    page = browser.new_page()
+    errors: list[str] = []
+    page.on("pageerror", lambda error: errors.append(str(error)))
+    page.goto(url)
+    page.errors = errors
+    return page
+
+
+def text(page, selector: str) -> str:
+    return page.locator(selector).text_content() or ""
+
+
+def take_lock(page) -> None:
+    """Queue for the lock (a lease an earlier test left lapses within 5 s) until held."""
+    page.click("#lock-queue")
+    wait_for(lambda: page.locator("#lock-state").get_attribute("data-held") == "yes",
+             timeout_s=20, what=f"the lock; page says {text(page, '#message')!r}")
+
+
+def ready_arm(page, robot) -> None:
+    """Connect, initialize or reset through the page's buttons until the arm is READY."""
+    def step():
+        status = status_of(robot)
+        if status == "ROBOT_STATUS_READY":
+            return True
+        button = {"ROBOT_STATUS_NOT_CONNECTED": "#arm-connect",
+                  "ROBOT_STATUS_CONNECTED": "#arm-initialize",
+                  "ROBOT_STATUS_ESTOPPED": "#arm-reset"}.get(status)
+        if button:
+            page.click(button)
+            wait_for(lambda: status_of(robot) != status, timeout_s=20,
+                     what=f"{button} to change {status}; page says {text(page, '#message')!r}")
+        return False
+    wait_for(step, timeout_s=60, what="a READY arm")
+
+
+def start_driving(page) -> None:
+    page.click("#drive-toggle")
+    wait_for(lambda: text(page, "#drive-state") == "driving", timeout_s=10,
+             what=f"the Teleoperate session; page says {text(page, '#message')!r}")
+
+
+def tool_z(robot) -> float:
+    return arm_state(robot).tool_pose.position_m.z
+
+
+def test_the_page_shows_live_stereo_video(browser, console_url, robot, shots):
+    page = open_console(browser, console_url)
+    eyes = [page.locator("#left-eye"), page.locator("#right-eye")]
+    first = wait_for(lambda: int(eyes[0].get_attribute("data-sequence")) or None,
+                     timeout_s=30, what="a first stereo pair drawn")
+    # A later pair replaces it, in both eyes: the sequence moves on and the pixels are there.
+    wait_for(lambda: all(int(eye.get_attribute("data-sequence")) > first for eye in eyes),
+             timeout_s=15, what="a newer stereo pair")
+    pixels = page.evaluate("""() => [...document.querySelectorAll('.eyes canvas')].map(c =>
+        c.getContext('2d').getImageData(0, 0, c.width, c.height).data.some(v => v > 0))""")
+    assert pixels == [True, True]
+    assert float(text(page, "#video-age")) >= 0  # the age of the last pair, shown
+    assert page.locator("#estop").is_visible()
+    assert page.errors == []
+    page.screenshot(path=str(shots / "web_console_video.png"))
+
+
+def test_take_the_lock_drive_with_keys_and_stop(browser, console_url, robot, decision, shots):
+    page = open_console(browser, console_url)
+    take_lock(page)
+    holders = decision.GetControlState(decision_server_pb2.GetControlStateRequest(),
+                                       timeout=5).state.holders
+    assert [h.operator_id for h in holders] == ["browser"]
+    ready_arm(page, robot)
+    page.click("#sensor-start")
+    start_driving(page)
+    start = arm_state(robot).tool_pose.position_m
+
+    page.keyboard.down("r")  # +Z, base frame, held until the arm has gone 10 mm up
+    wait_for(lambda: tool_z(robot) > start.z + 0.010, timeout_s=20,
+             what=f"the arm to rise; page says {text(page, '#message')!r}, "
+                  f"outcome {text(page, '#outcome')!r}")
+    page.keyboard.up("r")
+    moved = arm_state(robot).tool_pose.position_m
+    assert abs(moved.x - start.x) < 0.002 and abs(moved.y - start.y) < 0.002
+    assert int(text(page, "#acked")) > 0
+    assert float(text(page, "#rtt")) > 0  # the command round trip, shown
+    page.keyboard.down("s")  # -X while the stop comes
+    wait_for(lambda: int(text(page, "#sent")) > 0, what="commands")
+    page.screenshot(path=str(shots / "web_console_driving.png"))
+
+    page.click("#estop")
+    wait_for(lambda: status_of(robot) == "ROBOT_STATUS_ESTOPPED", timeout_s=5,
+             what="ESTOPPED after the page's STOP")
+    page.keyboard.up("s")
+    wait_for(lambda: page.locator("#status").get_attribute("data-status") == "ESTOPPED",
+             timeout_s=10, what="the page to show ESTOPPED")
+    page.screenshot(path=str(shots / "web_console_estopped.png"))
+    ready_arm(page, robot)  # Reset through the page (with the lock)
+    page.click("#lock-release")
+    wait_for(lambda: not decision.GetControlState(
+        decision_server_pb2.GetControlStateRequest(), timeout=5).state.holders,
+        what="the lock released")
+    assert page.errors == []
+
+
+def test_closing_the_tab_mid_drive_holds_the_arm(browser, console_url, robot, decision):
+    page = open_console(browser, console_url)
+    take_lock(page)
+    ready_arm(page, robot)
+    start_driving(page)
+    holds: list[decision_server_pb2.WatchdogHoldEvent] = []
+    events = decision.StreamEvents(decision_server_pb2.StreamEventsRequest())
+    watching = threading.Event()
+
+    def follow():
+        try:
+            for event in events:
+                watching.set()
+                if event.HasField("watchdog_hold"):
+                    holds.append(event.watchdog_hold)
+        except grpc.RpcError:
+            pass  # cancelled at the end of the test
+
+    threading.Thread(target=follow, daemon=True).start()
+    start = tool_z(robot)
+    page.keyboard.down("f")  # -Z, held while the tab closes
+    wait_for(lambda: tool_z(robot) < start - 0.003, timeout_s=20, what="the arm moving down")
+    assert status_of(robot) in ("ROBOT_STATUS_MOVING", "ROBOT_STATUS_READY")
+    holds.clear()
+    page.close()  # mid-drive: the key is still down
+    try:
+        hold = wait_for(lambda: holds[0] if holds else None, timeout_s=5,
+                        what="a watchdog_hold event after the tab closed")
+    finally:
+        events.cancel()
+    # The stream ended with the tab, not the watchdog's timeout.
+    print("watchdog hold:", hold.reason)
+    assert "timeout" not in hold.reason, hold.reason
+    # Held: the arm comes to rest and stays there, without a latch.
+    wait_for(lambda: max(abs(v) for v in arm_state(robot).joint_velocities_rad_per_s) < 1e-3,
+             timeout_s=5, what="the arm at rest")
+    rest = arm_state(robot)
+    later = wait_for(lambda: (s := arm_state(robot)).sequence > rest.sequence + 20 and s,
+                     what="20 more state samples")
+    assert abs(later.tool_pose.position_m.z - rest.tool_pose.position_m.z) < 1e-4
+    assert status_of(robot) == "ROBOT_STATUS_READY"  # a hold, not an e-stop
