@@ -8,9 +8,9 @@ PROTOS := $(wildcard protos/telerobot/v1/*.proto)
 GEN_OUT ?= gen
 export MUJOCO_GL ?= egl
 
-.PHONY: install gen lint test serve teleop bench certs clean
+.PHONY: install gen web lint test serve teleop bench certs clean
 
-install: $(VENV)/.installed node_modules/.installed
+install: $(VENV)/.installed node_modules/.installed web/node_modules/.installed
 
 # The virtual environment, with the project installed editable (services, clients, gen).
 $(VENV)/.installed: pyproject.toml
@@ -25,6 +25,21 @@ node_modules/.installed: package.json package-lock.json
 	npm install --no-audit --no-fund --loglevel=error
 	touch $@
 
+# The web console's build tools (buf, protoc-gen-es, TypeScript, esbuild), as locked in web/.
+web/node_modules/.installed: web/package.json web/package-lock.json
+	cd web && npm install --no-audit --no-fund --loglevel=error
+	touch $@
+
+# Rebuild the web console's page: its types from protos/ (buf generate, protoc-gen-es), a type
+# check, and the bundle in services/web_console/static/app.js (committed, so `make serve`
+# needs no npm; tests/web_console fails when it is stale).
+web: web/node_modules/.installed
+	cd web && npm run build --silent
+
+# The web console's browser tests drive Debian's chromium (Playwright cannot download its own).
+/usr/bin/chromium:
+	apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium
+
 # Regenerate the Python code and .pyi stubs from protos/ into $(GEN_OUT) (default gen/).
 gen: $(VENV)/.installed
 	rm -rf $(GEN_OUT)/telerobot
@@ -37,7 +52,7 @@ lint: install
 	$(BUF) lint
 	$(PY) -m ruff check wire services clients tests bench
 
-test: install
+test: install /usr/bin/chromium
 	$(PY) -m pytest $(PYTEST_ARGS)
 
 # The slave station: every service in its own process, until Ctrl-C.
