@@ -18,7 +18,7 @@ import type { Message } from "@bufbuild/protobuf";
  * Describes the file telerobot/v1/decision_server.proto.
  */
 export const file_telerobot_v1_decision_server: GenFile = /*@__PURE__*/
-  fileDesc("CiJ0ZWxlcm9ib3QvdjEvZGVjaXNpb25fc2VydmVyLnByb3RvEgx0ZWxlcm9ib3QudjEirAEKElRlbGVvcGVyYXRlUmVxdWVzdBItCgRpbml0GAEgASgLMh0udGVsZXJvYm90LnYxLlRlbGVvcGVyYXRlSW5pdEgAEi4KB2NvbW1hbmQYAiABKAsyGy50ZWxlcm9ib3QudjEuTWFzdGVyQ29tbWFuZEgAEiwKCWhlYXJ0YmVhdBgDIAEoCzIXLnRlbGVyb2JvdC52MS5IZWFydGJlYXRIAEIJCgdtZXNzYWdlIrcBCg9UZWxlb3BlcmF0ZUluaXQSEwoLb3BlcmF0b3JfaWQYASABKAkSEAoIbGVhc2VfaWQYAiABKAkSLQoHbWFwcGluZxgDIAEoDjIcLnRlbGVyb2JvdC52MS5SZWZlcmVuY2VGcmFtZRIzChB3YXRjaGRvZ190aW1lb3V0GAQgASgLMhkuZ29vZ2xlLnByb3RvYnVmLkR1cmF0aW9uEhkKEXJlc3VtZV9zZXNzaW9uX2lkGAUgASgJIsgBCg1NYXN0ZXJDb21tYW5kEhAKCHNlcXVlbmNlGAEgASgDEi0KCXNlbmRfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASLwoQZGVsdGFfcG9zaXRpb25fbRgDIAEoCzIVLnRlbGVyb2JvdC52MS5WZWN0b3IzEi0KDmRlbHRhX3JvdGF0aW9uGAQgASgLMhUudGVsZXJvYm90LnYxLk1hdHJpeDMSFgoOY2x1dGNoX2VuZ2FnZWQYBSABKAgiOgoJSGVhcnRiZWF0Ei0KCXNlbmRfdGltZRgBIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXAiegoTVGVsZW9wZXJhdGVSZXNwb25zZRIvCgVyZWFkeRgBIAEoCzIeLnRlbGVyb2JvdC52MS5UZWxlb3BlcmF0ZVJlYWR5SAASJwoDYWNrGAIgASgLMhgudGVsZXJvYm90LnYxLkNvbW1hbmRBY2tIAEIJCgdtZXNzYWdlIpgCChBUZWxlb3BlcmF0ZVJlYWR5EhIKCnNlc3Npb25faWQYASABKAkSLQoHbWFwcGluZxgCIAEoDjIcLnRlbGVyb2JvdC52MS5SZWZlcmVuY2VGcmFtZRIzChB3YXRjaGRvZ190aW1lb3V0GAMgASgLMhkuZ29vZ2xlLnByb3RvYnVmLkR1cmF0aW9uEjIKCmFzc2lzdGFuY2UYBCABKAsyHi50ZWxlcm9ib3QudjEuQXNzaXN0YW5jZUNvbmZpZxIPCgdyZXN1bWVkGAUgASgIEhUKDWxhc3Rfc2VxdWVuY2UYBiABKAMSMAoNcmVzdW1lX3dpbmRvdxgHIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiLzAgoKQ29tbWFuZEFjaxIQCghzZXF1ZW5jZRgBIAEoAxI1ChFjb21tYW5kX3NlbmRfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASMAoMcmVjZWl2ZV90aW1lGAMgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIuCgphcHBseV90aW1lGAQgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBItCgdvdXRjb21lGAUgASgOMhwudGVsZXJvYm90LnYxLkNvbW1hbmRPdXRjb21lEg4KBmRldGFpbBgGIAEoCRIlCgl0b29sX3Bvc2UYByABKAsyEi50ZWxlcm9ib3QudjEuUG9zZRIpCgt0b29sX3dyZW5jaBgIIAEoCzIULnRlbGVyb2JvdC52MS5XcmVuY2gSKQoGc3RhdHVzGAkgASgOMhkudGVsZXJvYm90LnYxLlJvYm90U3RhdHVzIhYKFEdldEFzc2lzdGFuY2VSZXF1ZXN0IksKFUdldEFzc2lzdGFuY2VSZXNwb25zZRIyCgphc3Npc3RhbmNlGAEgASgLMh4udGVsZXJvYm90LnYxLkFzc2lzdGFuY2VDb25maWciSgoUU2V0QXNzaXN0YW5jZVJlcXVlc3QSMgoKYXNzaXN0YW5jZRgBIAEoCzIeLnRlbGVyb2JvdC52MS5Bc3Npc3RhbmNlQ29uZmlnIksKFVNldEFzc2lzdGFuY2VSZXNwb25zZRIyCgphc3Npc3RhbmNlGAEgASgLMh4udGVsZXJvYm90LnYxLkFzc2lzdGFuY2VDb25maWciJQoSU2V0SW5kZXhpbmdSZXF1ZXN0Eg8KB2VuZ2FnZWQYASABKAgiJgoTU2V0SW5kZXhpbmdSZXNwb25zZRIPCgdlbmdhZ2VkGAEgASgIItYBChVBY3F1aXJlQ29udHJvbFJlcXVlc3QSEwoLb3BlcmF0b3JfaWQYASABKAkSJwoEbW9kZRgCIAEoDjIZLnRlbGVyb2JvdC52MS5Db250cm9sTW9kZRINCgVncm91cBgDIAEoCRIMCgR3YWl0GAQgASgIEi8KDHdhaXRfdGltZW91dBgFIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbhIxCg5sZWFzZV9kdXJhdGlvbhgGIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiKbAQoWQWNxdWlyZUNvbnRyb2xSZXNwb25zZRIQCghsZWFzZV9pZBgBIAEoCRIvCgtleHBpcmVfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASKQoFc3RhdGUYAyABKAsyGi50ZWxlcm9ib3QudjEuQ29udHJvbFN0YXRlEhMKC29wZXJhdG9yX2lkGAQgASgJIicKE1JlbmV3Q29udHJvbFJlcXVlc3QSEAoIbGVhc2VfaWQYASABKAkiRwoUUmVuZXdDb250cm9sUmVzcG9uc2USLwoLZXhwaXJlX3RpbWUYASABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wIikKFVJlbGVhc2VDb250cm9sUmVxdWVzdBIQCghsZWFzZV9pZBgBIAEoCSJDChZSZWxlYXNlQ29udHJvbFJlc3BvbnNlEikKBXN0YXRlGAEgASgLMhoudGVsZXJvYm90LnYxLkNvbnRyb2xTdGF0ZSIYChZHZXRDb250cm9sU3RhdGVSZXF1ZXN0IkQKF0dldENvbnRyb2xTdGF0ZVJlc3BvbnNlEikKBXN0YXRlGAEgASgLMhoudGVsZXJvYm90LnYxLkNvbnRyb2xTdGF0ZSKTAQoMQ29udHJvbFN0YXRlEicKBG1vZGUYASABKA4yGS50ZWxlcm9ib3QudjEuQ29udHJvbE1vZGUSLAoHaG9sZGVycxgCIAMoCzIbLnRlbGVyb2JvdC52MS5Db250cm9sSG9sZGVyEiwKB3dhaXRlcnMYAyADKAsyGy50ZWxlcm9ib3QudjEuQ29udHJvbEhvbGRlciKNAQoNQ29udHJvbEhvbGRlchITCgtvcGVyYXRvcl9pZBgBIAEoCRInCgRtb2RlGAIgASgOMhkudGVsZXJvYm90LnYxLkNvbnRyb2xNb2RlEg0KBWdyb3VwGAMgASgJEi8KC2V4cGlyZV90aW1lGAQgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcCIlChVTdGFydFJlY29yZGluZ1JlcXVlc3QSDAoEbmFtZRgBIAEoCSJEChZTdGFydFJlY29yZGluZ1Jlc3BvbnNlEioKCXJlY29yZGluZxgBIAEoCzIXLnRlbGVyb2JvdC52MS5SZWNvcmRpbmciFgoUU3RvcFJlY29yZGluZ1JlcXVlc3QiQwoVU3RvcFJlY29yZGluZ1Jlc3BvbnNlEioKCXJlY29yZGluZxgBIAEoCzIXLnRlbGVyb2JvdC52MS5SZWNvcmRpbmciFwoVTGlzdFJlY29yZGluZ3NSZXF1ZXN0IkUKFkxpc3RSZWNvcmRpbmdzUmVzcG9uc2USKwoKcmVjb3JkaW5ncxgBIAMoCzIXLnRlbGVyb2JvdC52MS5SZWNvcmRpbmciJgoWRGVsZXRlUmVjb3JkaW5nUmVxdWVzdBIMCgRuYW1lGAEgASgJIhkKF0RlbGV0ZVJlY29yZGluZ1Jlc3BvbnNlIjEKElN0YXJ0UmVwbGF5UmVxdWVzdBIMCgRuYW1lGAEgASgJEg0KBXNwZWVkGAIgASgBIkEKE1N0YXJ0UmVwbGF5UmVzcG9uc2USKgoJcmVjb3JkaW5nGAEgASgLMhcudGVsZXJvYm90LnYxLlJlY29yZGluZyITChFTdG9wUmVwbGF5UmVxdWVzdCIvChJTdG9wUmVwbGF5UmVzcG9uc2USGQoRY29tbWFuZHNfcmVwbGF5ZWQYASABKAUijgEKCVJlY29yZGluZxIMCgRuYW1lGAEgASgJEi8KC2NyZWF0ZV90aW1lGAIgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIrCghkdXJhdGlvbhgDIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbhIVCg1jb21tYW5kX2NvdW50GAQgASgFIl8KE0JlZ2luQ29iZWdpblJlcXVlc3QSFAoMYWN0aW9uX2NvdW50GAEgASgFEjIKD2JhcnJpZXJfdGltZW91dBgCIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiJdChRCZWdpbkNvYmVnaW5SZXNwb25zZRISCgpjb2JlZ2luX2lkGAEgASgJEjEKDWRlYWRsaW5lX3RpbWUYAiABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wIoICChBSdW5BY3Rpb25SZXF1ZXN0EhIKCmNvYmVnaW5faWQYASABKAkSEQoJYWN0aW9uX2lkGAIgASgJEjEKCWJ1c3lfd29yaxgDIAEoCzIcLnRlbGVyb2JvdC52MS5CdXN5V29ya0FjdGlvbkgAEkEKC21vdmVfam9pbnRzGAQgASgLMioudGVsZXJvYm90LnYxLk1vdmVKb2ludHNJbmNyZW1lbnRhbFJlcXVlc3RIABJHCg5tb3ZlX2NhcnRlc2lhbhgFIAEoCzItLnRlbGVyb2JvdC52MS5Nb3ZlQ2FydGVzaWFuSW5jcmVtZW50YWxSZXF1ZXN0SABCCAoGYWN0aW9uIj0KDkJ1c3lXb3JrQWN0aW9uEisKCGR1cmF0aW9uGAEgASgLMhkuZ29vZ2xlLnByb3RvYnVmLkR1cmF0aW9uItcBChFSdW5BY3Rpb25SZXNwb25zZRIRCglhY3Rpb25faWQYASABKAkSIAoEbGFuZRgCIAEoDjISLnRlbGVyb2JvdC52MS5MYW5lEi8KC2Fycml2ZV90aW1lGAMgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIuCgpzdGFydF90aW1lGAQgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIsCghlbmRfdGltZRgFIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXAiNAoTU3RyZWFtRXZlbnRzUmVxdWVzdBIdChVpbmNsdWRlX2RhdGFfcmVjZWl2ZWQYASABKAgilQQKFFN0cmVhbUV2ZW50c1Jlc3BvbnNlEhAKCHNlcXVlbmNlGAEgASgDEi4KCmV2ZW50X3RpbWUYAiABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wEjgKBXJvYm90GAMgASgLMicudGVsZXJvYm90LnYxLlN0cmVhbVJvYm90RXZlbnRzUmVzcG9uc2VIABI8Cg9jb250cm9sX2NoYW5nZWQYBCABKAsyIS50ZWxlcm9ib3QudjEuQ29udHJvbENoYW5nZWRFdmVudEgAEjgKDXdhdGNoZG9nX2hvbGQYBSABKAsyHy50ZWxlcm9ib3QudjEuV2F0Y2hkb2dIb2xkRXZlbnRIABJCChJhc3Npc3RhbmNlX2NoYW5nZWQYBiABKAsyJC50ZWxlcm9ib3QudjEuQXNzaXN0YW5jZUNoYW5nZWRFdmVudEgAEjwKD3JlcGxheV9wcm9ncmVzcxgHIAEoCzIhLnRlbGVyb2JvdC52MS5SZXBsYXlQcm9ncmVzc0V2ZW50SAASQgoSZGVwZW5kZW5jeV9jaGFuZ2VkGAggASgLMiQudGVsZXJvYm90LnYxLkRlcGVuZGVuY3lDaGFuZ2VkRXZlbnRIABI6Cg50ZWxlb3Bfc2Vzc2lvbhgJIAEoCzIgLnRlbGVyb2JvdC52MS5UZWxlb3BTZXNzaW9uRXZlbnRIAEIHCgVldmVudCJQChNDb250cm9sQ2hhbmdlZEV2ZW50EikKBXN0YXRlGAEgASgLMhoudGVsZXJvYm90LnYxLkNvbnRyb2xTdGF0ZRIOCgZyZWFzb24YAiABKAkiYwoRV2F0Y2hkb2dIb2xkRXZlbnQSEgoKc2Vzc2lvbl9pZBgBIAEoCRIOCgZyZWFzb24YAiABKAkSKgoHc2lsZW5jZRgDIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiJhChZBc3Npc3RhbmNlQ2hhbmdlZEV2ZW50EjIKCmFzc2lzdGFuY2UYASABKAsyHi50ZWxlcm9ib3QudjEuQXNzaXN0YW5jZUNvbmZpZxITCgtvcGVyYXRvcl9pZBgCIAEoCSKPAQoTUmVwbGF5UHJvZ3Jlc3NFdmVudBIMCgRuYW1lGAEgASgJEhkKEWNvbW1hbmRzX3JlcGxheWVkGAIgASgFEhUKDWNvbW1hbmRfY291bnQYAyABKAUSKAoFc3RhdGUYBCABKA4yGS50ZWxlcm9ib3QudjEuUmVwbGF5U3RhdGUSDgoGZGV0YWlsGAUgASgJIuUBChJUZWxlb3BTZXNzaW9uRXZlbnQSEgoKc2Vzc2lvbl9pZBgBIAEoCRITCgtvcGVyYXRvcl9pZBgCIAEoCRIvCgVzdGF0ZRgDIAEoDjIgLnRlbGVyb2JvdC52MS5UZWxlb3BTZXNzaW9uU3RhdGUSDgoGcmVhc29uGAQgASgJEhoKEmNvbW1hbmRzX3Byb2Nlc3NlZBgFIAEoAxIYChBjb21tYW5kc19hcHBsaWVkGAYgASgDEhgKEHJlc2VuZHNfYW5zd2VyZWQYByABKAMSFQoNbGFzdF9zZXF1ZW5jZRgIIAEoAyJ9ChZEZXBlbmRlbmN5Q2hhbmdlZEV2ZW50EiwKCmRlcGVuZGVuY3kYASABKAsyGC50ZWxlcm9ib3QudjEuRGVwZW5kZW5jeRI1Cg5wcmV2aW91c19zdGF0ZRgCIAEoDjIdLnRlbGVyb2JvdC52MS5EZXBlbmRlbmN5U3RhdGUiGAoWR2V0RGVwZW5kZW5jaWVzUmVxdWVzdCJJChdHZXREZXBlbmRlbmNpZXNSZXNwb25zZRIuCgxkZXBlbmRlbmNpZXMYASADKAsyGC50ZWxlcm9ib3QudjEuRGVwZW5kZW5jeSKbAQoKRGVwZW5kZW5jeRIMCgRuYW1lGAEgASgJEiwKBXN0YXRlGAIgASgOMh0udGVsZXJvYm90LnYxLkRlcGVuZGVuY3lTdGF0ZRIOCgZyZWFzb24YAyABKAkSLwoLY2hhbmdlX3RpbWUYBCABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wEhAKCHJlc3RhcnRzGAUgASgFIo4CChBBc3Npc3RhbmNlQ29uZmlnEi0KB21hcHBpbmcYASABKA4yHC50ZWxlcm9ib3QudjEuUmVmZXJlbmNlRnJhbWUSPAoTZmxvYXRpbmdfdG9vbF9mcmFtZRgCIAEoCzIfLnRlbGVyb2JvdC52MS5GbG9hdGluZ1Rvb2xGcmFtZRIyCgpjb25zdHJhaW50GAMgASgLMh4udGVsZXJvYm90LnYxLk1vdGlvbkNvbnN0cmFpbnQSMQoNZm9yY2VfY29udHJvbBgEIAEoCzIaLnRlbGVyb2JvdC52MS5Gb3JjZUNvbnRyb2wSJgoHc2NhbGluZxgFIAEoCzIVLnRlbGVyb2JvdC52MS5TY2FsaW5nIkwKEUZsb2F0aW5nVG9vbEZyYW1lEg8KB2VuYWJsZWQYASABKAgSJgoHcG9pbnRfbRgCIAEoCzIVLnRlbGVyb2JvdC52MS5WZWN0b3IzIpABChBNb3Rpb25Db25zdHJhaW50EioKBHR5cGUYASABKA4yHC50ZWxlcm9ib3QudjEuQ29uc3RyYWludFR5cGUSIwoEYXhpcxgCIAEoCzIVLnRlbGVyb2JvdC52MS5WZWN0b3IzEisKBWZyYW1lGAMgASgOMhwudGVsZXJvYm90LnYxLlJlZmVyZW5jZUZyYW1lIsABCgxGb3JjZUNvbnRyb2wSDwoHZW5hYmxlZBgBIAEoCBIpCgRheGVzGAIgASgLMhsudGVsZXJvYm90LnYxLkF4aXNTZWxlY3Rpb24SLAoOZGVzaXJlZF93cmVuY2gYAyABKAsyFC50ZWxlcm9ib3QudjEuV3JlbmNoEiIKGnRyYW5zbGF0aW9uX2dhaW5fbV9wZXJfbl9zGAQgASgBEiIKGnJvdGF0aW9uX2dhaW5fcmFkX3Blcl9ubV9zGAUgASgBIlQKDUF4aXNTZWxlY3Rpb24SCQoBeBgBIAEoCBIJCgF5GAIgASgIEgkKAXoYAyABKAgSCgoCcngYBCABKAgSCgoCcnkYBSABKAgSCgoCcnoYBiABKAgiPAoHU2NhbGluZxIZChF0cmFuc2xhdGlvbl9zY2FsZRgBIAEoARIWCg5yb3RhdGlvbl9zY2FsZRgCIAEoASqgAQoSVGVsZW9wU2Vzc2lvblN0YXRlEiQKIFRFTEVPUF9TRVNTSU9OX1NUQVRFX1VOU1BFQ0lGSUVEEAASIQodVEVMRU9QX1NFU1NJT05fU1RBVEVfREVUQUNIRUQQARIgChxURUxFT1BfU0VTU0lPTl9TVEFURV9SRVNVTUVEEAISHwobVEVMRU9QX1NFU1NJT05fU1RBVEVfQ0xPU0VEEAMq5QEKDkNvbW1hbmRPdXRjb21lEh8KG0NPTU1BTkRfT1VUQ09NRV9VTlNQRUNJRklFRBAAEhsKF0NPTU1BTkRfT1VUQ09NRV9BUFBMSUVEEAESHAoYQ09NTUFORF9PVVRDT01FX01PRElGSUVEEAISGwoXQ09NTUFORF9PVVRDT01FX0lOREVYRUQQAxIcChhDT01NQU5EX09VVENPTUVfUkVKRUNURUQQBBIdChlDT01NQU5EX09VVENPTUVfSEVBUlRCRUFUEAUSHQoZQ09NTUFORF9PVVRDT01FX0RVUExJQ0FURRAGKmcKC0NvbnRyb2xNb2RlEhwKGENPTlRST0xfTU9ERV9VTlNQRUNJRklFRBAAEhoKFkNPTlRST0xfTU9ERV9FWENMVVNJVkUQARIeChpDT05UUk9MX01PREVfQ09MTEFCT1JBVElWRRACKmkKDkNvbnN0cmFpbnRUeXBlEh8KG0NPTlNUUkFJTlRfVFlQRV9VTlNQRUNJRklFRBAAEhoKFkNPTlNUUkFJTlRfVFlQRV9QTEFOQVIQARIaChZDT05TVFJBSU5UX1RZUEVfTElORUFSEAIqfgoLUmVwbGF5U3RhdGUSHAoYUkVQTEFZX1NUQVRFX1VOU1BFQ0lGSUVEEAASGAoUUkVQTEFZX1NUQVRFX1JVTk5JTkcQARIZChVSRVBMQVlfU1RBVEVfRklOSVNIRUQQAhIcChhSRVBMQVlfU1RBVEVfSU5URVJSVVBURUQQAyqUAQoPRGVwZW5kZW5jeVN0YXRlEiAKHERFUEVOREVOQ1lfU1RBVEVfVU5TUEVDSUZJRUQQABIcChhERVBFTkRFTkNZX1NUQVRFX1NFUlZJTkcQARIgChxERVBFTkRFTkNZX1NUQVRFX05PVF9TRVJWSU5HEAISHwobREVQRU5ERU5DWV9TVEFURV9SRVNUQVJUSU5HEAMyjA4KDkRlY2lzaW9uU2VydmVyEmAKC1RlbGVvcGVyYXRlEiAudGVsZXJvYm90LnYxLlRlbGVvcGVyYXRlUmVxdWVzdBohLnRlbGVyb2JvdC52MS5UZWxlb3BlcmF0ZVJlc3BvbnNlIgjI8xgC2PMYAigBMAESYgoNR2V0QXNzaXN0YW5jZRIiLnRlbGVyb2JvdC52MS5HZXRBc3Npc3RhbmNlUmVxdWVzdBojLnRlbGVyb2JvdC52MS5HZXRBc3Npc3RhbmNlUmVzcG9uc2UiCMjzGALY8xgBEmIKDVNldEFzc2lzdGFuY2USIi50ZWxlcm9ib3QudjEuU2V0QXNzaXN0YW5jZVJlcXVlc3QaIy50ZWxlcm9ib3QudjEuU2V0QXNzaXN0YW5jZVJlc3BvbnNlIgjI8xgD2PMYAhJcCgtTZXRJbmRleGluZxIgLnRlbGVyb2JvdC52MS5TZXRJbmRleGluZ1JlcXVlc3QaIS50ZWxlcm9ib3QudjEuU2V0SW5kZXhpbmdSZXNwb25zZSIIyPMYAtjzGAISZQoOQWNxdWlyZUNvbnRyb2wSIy50ZWxlcm9ib3QudjEuQWNxdWlyZUNvbnRyb2xSZXF1ZXN0GiQudGVsZXJvYm90LnYxLkFjcXVpcmVDb250cm9sUmVzcG9uc2UiCMjzGAPY8xgCEl8KDFJlbmV3Q29udHJvbBIhLnRlbGVyb2JvdC52MS5SZW5ld0NvbnRyb2xSZXF1ZXN0GiIudGVsZXJvYm90LnYxLlJlbmV3Q29udHJvbFJlc3BvbnNlIgjI8xgC2PMYAhJlCg5SZWxlYXNlQ29udHJvbBIjLnRlbGVyb2JvdC52MS5SZWxlYXNlQ29udHJvbFJlcXVlc3QaJC50ZWxlcm9ib3QudjEuUmVsZWFzZUNvbnRyb2xSZXNwb25zZSIIyPMYA9jzGAISaAoPR2V0Q29udHJvbFN0YXRlEiQudGVsZXJvYm90LnYxLkdldENvbnRyb2xTdGF0ZVJlcXVlc3QaJS50ZWxlcm9ib3QudjEuR2V0Q29udHJvbFN0YXRlUmVzcG9uc2UiCMjzGALY8xgBEmUKDlN0YXJ0UmVjb3JkaW5nEiMudGVsZXJvYm90LnYxLlN0YXJ0UmVjb3JkaW5nUmVxdWVzdBokLnRlbGVyb2JvdC52MS5TdGFydFJlY29yZGluZ1Jlc3BvbnNlIgjI8xgD2PMYAhJiCg1TdG9wUmVjb3JkaW5nEiIudGVsZXJvYm90LnYxLlN0b3BSZWNvcmRpbmdSZXF1ZXN0GiMudGVsZXJvYm90LnYxLlN0b3BSZWNvcmRpbmdSZXNwb25zZSIIyPMYA9jzGAISZQoOTGlzdFJlY29yZGluZ3MSIy50ZWxlcm9ib3QudjEuTGlzdFJlY29yZGluZ3NSZXF1ZXN0GiQudGVsZXJvYm90LnYxLkxpc3RSZWNvcmRpbmdzUmVzcG9uc2UiCMjzGATY8xgBEmgKD0RlbGV0ZVJlY29yZGluZxIkLnRlbGVyb2JvdC52MS5EZWxldGVSZWNvcmRpbmdSZXF1ZXN0GiUudGVsZXJvYm90LnYxLkRlbGV0ZVJlY29yZGluZ1Jlc3BvbnNlIgjI8xgE2PMYBBJcCgtTdGFydFJlcGxheRIgLnRlbGVyb2JvdC52MS5TdGFydFJlcGxheVJlcXVlc3QaIS50ZWxlcm9ib3QudjEuU3RhcnRSZXBsYXlSZXNwb25zZSIIyPMYA9jzGAISWQoKU3RvcFJlcGxheRIfLnRlbGVyb2JvdC52MS5TdG9wUmVwbGF5UmVxdWVzdBogLnRlbGVyb2JvdC52MS5TdG9wUmVwbGF5UmVzcG9uc2UiCMjzGALY8xgCEl8KDEJlZ2luQ29iZWdpbhIhLnRlbGVyb2JvdC52MS5CZWdpbkNvYmVnaW5SZXF1ZXN0GiIudGVsZXJvYm90LnYxLkJlZ2luQ29iZWdpblJlc3BvbnNlIgjI8xgD2PMYAhJWCglSdW5BY3Rpb24SHi50ZWxlcm9ib3QudjEuUnVuQWN0aW9uUmVxdWVzdBofLnRlbGVyb2JvdC52MS5SdW5BY3Rpb25SZXNwb25zZSIIyPMYA9jzGAISYQoMU3RyZWFtRXZlbnRzEiEudGVsZXJvYm90LnYxLlN0cmVhbUV2ZW50c1JlcXVlc3QaIi50ZWxlcm9ib3QudjEuU3RyZWFtRXZlbnRzUmVzcG9uc2UiCMjzGATY8xgBMAESaAoPR2V0RGVwZW5kZW5jaWVzEiQudGVsZXJvYm90LnYxLkdldERlcGVuZGVuY2llc1JlcXVlc3QaJS50ZWxlcm9ib3QudjEuR2V0RGVwZW5kZW5jaWVzUmVzcG9uc2UiCMjzGALY8xgBYgZwcm90bzM", [file_google_protobuf_duration, file_google_protobuf_timestamp, file_telerobot_v1_options, file_telerobot_v1_proxy_robot, file_telerobot_v1_types]);
+  fileDesc("CiJ0ZWxlcm9ib3QvdjEvZGVjaXNpb25fc2VydmVyLnByb3RvEgx0ZWxlcm9ib3QudjEirAEKElRlbGVvcGVyYXRlUmVxdWVzdBItCgRpbml0GAEgASgLMh0udGVsZXJvYm90LnYxLlRlbGVvcGVyYXRlSW5pdEgAEi4KB2NvbW1hbmQYAiABKAsyGy50ZWxlcm9ib3QudjEuTWFzdGVyQ29tbWFuZEgAEiwKCWhlYXJ0YmVhdBgDIAEoCzIXLnRlbGVyb2JvdC52MS5IZWFydGJlYXRIAEIJCgdtZXNzYWdlIpwBCg9UZWxlb3BlcmF0ZUluaXQSEwoLb3BlcmF0b3JfaWQYASABKAkSEAoIbGVhc2VfaWQYAiABKAkSLQoHbWFwcGluZxgDIAEoDjIcLnRlbGVyb2JvdC52MS5SZWZlcmVuY2VGcmFtZRIzChB3YXRjaGRvZ190aW1lb3V0GAQgASgLMhkuZ29vZ2xlLnByb3RvYnVmLkR1cmF0aW9uIsgBCg1NYXN0ZXJDb21tYW5kEhAKCHNlcXVlbmNlGAEgASgDEi0KCXNlbmRfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASLwoQZGVsdGFfcG9zaXRpb25fbRgDIAEoCzIVLnRlbGVyb2JvdC52MS5WZWN0b3IzEi0KDmRlbHRhX3JvdGF0aW9uGAQgASgLMhUudGVsZXJvYm90LnYxLk1hdHJpeDMSFgoOY2x1dGNoX2VuZ2FnZWQYBSABKAgiOgoJSGVhcnRiZWF0Ei0KCXNlbmRfdGltZRgBIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXAiegoTVGVsZW9wZXJhdGVSZXNwb25zZRIvCgVyZWFkeRgBIAEoCzIeLnRlbGVyb2JvdC52MS5UZWxlb3BlcmF0ZVJlYWR5SAASJwoDYWNrGAIgASgLMhgudGVsZXJvYm90LnYxLkNvbW1hbmRBY2tIAEIJCgdtZXNzYWdlIr4BChBUZWxlb3BlcmF0ZVJlYWR5EhIKCnNlc3Npb25faWQYASABKAkSLQoHbWFwcGluZxgCIAEoDjIcLnRlbGVyb2JvdC52MS5SZWZlcmVuY2VGcmFtZRIzChB3YXRjaGRvZ190aW1lb3V0GAMgASgLMhkuZ29vZ2xlLnByb3RvYnVmLkR1cmF0aW9uEjIKCmFzc2lzdGFuY2UYBCABKAsyHi50ZWxlcm9ib3QudjEuQXNzaXN0YW5jZUNvbmZpZyLzAgoKQ29tbWFuZEFjaxIQCghzZXF1ZW5jZRgBIAEoAxI1ChFjb21tYW5kX3NlbmRfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASMAoMcmVjZWl2ZV90aW1lGAMgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIuCgphcHBseV90aW1lGAQgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBItCgdvdXRjb21lGAUgASgOMhwudGVsZXJvYm90LnYxLkNvbW1hbmRPdXRjb21lEg4KBmRldGFpbBgGIAEoCRIlCgl0b29sX3Bvc2UYByABKAsyEi50ZWxlcm9ib3QudjEuUG9zZRIpCgt0b29sX3dyZW5jaBgIIAEoCzIULnRlbGVyb2JvdC52MS5XcmVuY2gSKQoGc3RhdHVzGAkgASgOMhkudGVsZXJvYm90LnYxLlJvYm90U3RhdHVzIhYKFEdldEFzc2lzdGFuY2VSZXF1ZXN0IksKFUdldEFzc2lzdGFuY2VSZXNwb25zZRIyCgphc3Npc3RhbmNlGAEgASgLMh4udGVsZXJvYm90LnYxLkFzc2lzdGFuY2VDb25maWciSgoUU2V0QXNzaXN0YW5jZVJlcXVlc3QSMgoKYXNzaXN0YW5jZRgBIAEoCzIeLnRlbGVyb2JvdC52MS5Bc3Npc3RhbmNlQ29uZmlnIksKFVNldEFzc2lzdGFuY2VSZXNwb25zZRIyCgphc3Npc3RhbmNlGAEgASgLMh4udGVsZXJvYm90LnYxLkFzc2lzdGFuY2VDb25maWciJQoSU2V0SW5kZXhpbmdSZXF1ZXN0Eg8KB2VuZ2FnZWQYASABKAgiJgoTU2V0SW5kZXhpbmdSZXNwb25zZRIPCgdlbmdhZ2VkGAEgASgIItYBChVBY3F1aXJlQ29udHJvbFJlcXVlc3QSEwoLb3BlcmF0b3JfaWQYASABKAkSJwoEbW9kZRgCIAEoDjIZLnRlbGVyb2JvdC52MS5Db250cm9sTW9kZRINCgVncm91cBgDIAEoCRIMCgR3YWl0GAQgASgIEi8KDHdhaXRfdGltZW91dBgFIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbhIxCg5sZWFzZV9kdXJhdGlvbhgGIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiKbAQoWQWNxdWlyZUNvbnRyb2xSZXNwb25zZRIQCghsZWFzZV9pZBgBIAEoCRIvCgtleHBpcmVfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASKQoFc3RhdGUYAyABKAsyGi50ZWxlcm9ib3QudjEuQ29udHJvbFN0YXRlEhMKC29wZXJhdG9yX2lkGAQgASgJIicKE1JlbmV3Q29udHJvbFJlcXVlc3QSEAoIbGVhc2VfaWQYASABKAkiRwoUUmVuZXdDb250cm9sUmVzcG9uc2USLwoLZXhwaXJlX3RpbWUYASABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wIikKFVJlbGVhc2VDb250cm9sUmVxdWVzdBIQCghsZWFzZV9pZBgBIAEoCSJDChZSZWxlYXNlQ29udHJvbFJlc3BvbnNlEikKBXN0YXRlGAEgASgLMhoudGVsZXJvYm90LnYxLkNvbnRyb2xTdGF0ZSIYChZHZXRDb250cm9sU3RhdGVSZXF1ZXN0IkQKF0dldENvbnRyb2xTdGF0ZVJlc3BvbnNlEikKBXN0YXRlGAEgASgLMhoudGVsZXJvYm90LnYxLkNvbnRyb2xTdGF0ZSKTAQoMQ29udHJvbFN0YXRlEicKBG1vZGUYASABKA4yGS50ZWxlcm9ib3QudjEuQ29udHJvbE1vZGUSLAoHaG9sZGVycxgCIAMoCzIbLnRlbGVyb2JvdC52MS5Db250cm9sSG9sZGVyEiwKB3dhaXRlcnMYAyADKAsyGy50ZWxlcm9ib3QudjEuQ29udHJvbEhvbGRlciKNAQoNQ29udHJvbEhvbGRlchITCgtvcGVyYXRvcl9pZBgBIAEoCRInCgRtb2RlGAIgASgOMhkudGVsZXJvYm90LnYxLkNvbnRyb2xNb2RlEg0KBWdyb3VwGAMgASgJEi8KC2V4cGlyZV90aW1lGAQgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcCIlChVTdGFydFJlY29yZGluZ1JlcXVlc3QSDAoEbmFtZRgBIAEoCSJEChZTdGFydFJlY29yZGluZ1Jlc3BvbnNlEioKCXJlY29yZGluZxgBIAEoCzIXLnRlbGVyb2JvdC52MS5SZWNvcmRpbmciFgoUU3RvcFJlY29yZGluZ1JlcXVlc3QiQwoVU3RvcFJlY29yZGluZ1Jlc3BvbnNlEioKCXJlY29yZGluZxgBIAEoCzIXLnRlbGVyb2JvdC52MS5SZWNvcmRpbmciFwoVTGlzdFJlY29yZGluZ3NSZXF1ZXN0IkUKFkxpc3RSZWNvcmRpbmdzUmVzcG9uc2USKwoKcmVjb3JkaW5ncxgBIAMoCzIXLnRlbGVyb2JvdC52MS5SZWNvcmRpbmciJgoWRGVsZXRlUmVjb3JkaW5nUmVxdWVzdBIMCgRuYW1lGAEgASgJIhkKF0RlbGV0ZVJlY29yZGluZ1Jlc3BvbnNlIjEKElN0YXJ0UmVwbGF5UmVxdWVzdBIMCgRuYW1lGAEgASgJEg0KBXNwZWVkGAIgASgBIkEKE1N0YXJ0UmVwbGF5UmVzcG9uc2USKgoJcmVjb3JkaW5nGAEgASgLMhcudGVsZXJvYm90LnYxLlJlY29yZGluZyITChFTdG9wUmVwbGF5UmVxdWVzdCIvChJTdG9wUmVwbGF5UmVzcG9uc2USGQoRY29tbWFuZHNfcmVwbGF5ZWQYASABKAUijgEKCVJlY29yZGluZxIMCgRuYW1lGAEgASgJEi8KC2NyZWF0ZV90aW1lGAIgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIrCghkdXJhdGlvbhgDIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbhIVCg1jb21tYW5kX2NvdW50GAQgASgFIl8KE0JlZ2luQ29iZWdpblJlcXVlc3QSFAoMYWN0aW9uX2NvdW50GAEgASgFEjIKD2JhcnJpZXJfdGltZW91dBgCIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiJdChRCZWdpbkNvYmVnaW5SZXNwb25zZRISCgpjb2JlZ2luX2lkGAEgASgJEjEKDWRlYWRsaW5lX3RpbWUYAiABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wIoICChBSdW5BY3Rpb25SZXF1ZXN0EhIKCmNvYmVnaW5faWQYASABKAkSEQoJYWN0aW9uX2lkGAIgASgJEjEKCWJ1c3lfd29yaxgDIAEoCzIcLnRlbGVyb2JvdC52MS5CdXN5V29ya0FjdGlvbkgAEkEKC21vdmVfam9pbnRzGAQgASgLMioudGVsZXJvYm90LnYxLk1vdmVKb2ludHNJbmNyZW1lbnRhbFJlcXVlc3RIABJHCg5tb3ZlX2NhcnRlc2lhbhgFIAEoCzItLnRlbGVyb2JvdC52MS5Nb3ZlQ2FydGVzaWFuSW5jcmVtZW50YWxSZXF1ZXN0SABCCAoGYWN0aW9uIj0KDkJ1c3lXb3JrQWN0aW9uEisKCGR1cmF0aW9uGAEgASgLMhkuZ29vZ2xlLnByb3RvYnVmLkR1cmF0aW9uItcBChFSdW5BY3Rpb25SZXNwb25zZRIRCglhY3Rpb25faWQYASABKAkSIAoEbGFuZRgCIAEoDjISLnRlbGVyb2JvdC52MS5MYW5lEi8KC2Fycml2ZV90aW1lGAMgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIuCgpzdGFydF90aW1lGAQgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBIsCghlbmRfdGltZRgFIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXAiNAoTU3RyZWFtRXZlbnRzUmVxdWVzdBIdChVpbmNsdWRlX2RhdGFfcmVjZWl2ZWQYASABKAgi2QMKFFN0cmVhbUV2ZW50c1Jlc3BvbnNlEhAKCHNlcXVlbmNlGAEgASgDEi4KCmV2ZW50X3RpbWUYAiABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wEjgKBXJvYm90GAMgASgLMicudGVsZXJvYm90LnYxLlN0cmVhbVJvYm90RXZlbnRzUmVzcG9uc2VIABI8Cg9jb250cm9sX2NoYW5nZWQYBCABKAsyIS50ZWxlcm9ib3QudjEuQ29udHJvbENoYW5nZWRFdmVudEgAEjgKDXdhdGNoZG9nX2hvbGQYBSABKAsyHy50ZWxlcm9ib3QudjEuV2F0Y2hkb2dIb2xkRXZlbnRIABJCChJhc3Npc3RhbmNlX2NoYW5nZWQYBiABKAsyJC50ZWxlcm9ib3QudjEuQXNzaXN0YW5jZUNoYW5nZWRFdmVudEgAEjwKD3JlcGxheV9wcm9ncmVzcxgHIAEoCzIhLnRlbGVyb2JvdC52MS5SZXBsYXlQcm9ncmVzc0V2ZW50SAASQgoSZGVwZW5kZW5jeV9jaGFuZ2VkGAggASgLMiQudGVsZXJvYm90LnYxLkRlcGVuZGVuY3lDaGFuZ2VkRXZlbnRIAEIHCgVldmVudCJQChNDb250cm9sQ2hhbmdlZEV2ZW50EikKBXN0YXRlGAEgASgLMhoudGVsZXJvYm90LnYxLkNvbnRyb2xTdGF0ZRIOCgZyZWFzb24YAiABKAkiYwoRV2F0Y2hkb2dIb2xkRXZlbnQSEgoKc2Vzc2lvbl9pZBgBIAEoCRIOCgZyZWFzb24YAiABKAkSKgoHc2lsZW5jZRgDIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiJhChZBc3Npc3RhbmNlQ2hhbmdlZEV2ZW50EjIKCmFzc2lzdGFuY2UYASABKAsyHi50ZWxlcm9ib3QudjEuQXNzaXN0YW5jZUNvbmZpZxITCgtvcGVyYXRvcl9pZBgCIAEoCSKPAQoTUmVwbGF5UHJvZ3Jlc3NFdmVudBIMCgRuYW1lGAEgASgJEhkKEWNvbW1hbmRzX3JlcGxheWVkGAIgASgFEhUKDWNvbW1hbmRfY291bnQYAyABKAUSKAoFc3RhdGUYBCABKA4yGS50ZWxlcm9ib3QudjEuUmVwbGF5U3RhdGUSDgoGZGV0YWlsGAUgASgJIn0KFkRlcGVuZGVuY3lDaGFuZ2VkRXZlbnQSLAoKZGVwZW5kZW5jeRgBIAEoCzIYLnRlbGVyb2JvdC52MS5EZXBlbmRlbmN5EjUKDnByZXZpb3VzX3N0YXRlGAIgASgOMh0udGVsZXJvYm90LnYxLkRlcGVuZGVuY3lTdGF0ZSIYChZHZXREZXBlbmRlbmNpZXNSZXF1ZXN0IkkKF0dldERlcGVuZGVuY2llc1Jlc3BvbnNlEi4KDGRlcGVuZGVuY2llcxgBIAMoCzIYLnRlbGVyb2JvdC52MS5EZXBlbmRlbmN5IpsBCgpEZXBlbmRlbmN5EgwKBG5hbWUYASABKAkSLAoFc3RhdGUYAiABKA4yHS50ZWxlcm9ib3QudjEuRGVwZW5kZW5jeVN0YXRlEg4KBnJlYXNvbhgDIAEoCRIvCgtjaGFuZ2VfdGltZRgEIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASEAoIcmVzdGFydHMYBSABKAUijgIKEEFzc2lzdGFuY2VDb25maWcSLQoHbWFwcGluZxgBIAEoDjIcLnRlbGVyb2JvdC52MS5SZWZlcmVuY2VGcmFtZRI8ChNmbG9hdGluZ190b29sX2ZyYW1lGAIgASgLMh8udGVsZXJvYm90LnYxLkZsb2F0aW5nVG9vbEZyYW1lEjIKCmNvbnN0cmFpbnQYAyABKAsyHi50ZWxlcm9ib3QudjEuTW90aW9uQ29uc3RyYWludBIxCg1mb3JjZV9jb250cm9sGAQgASgLMhoudGVsZXJvYm90LnYxLkZvcmNlQ29udHJvbBImCgdzY2FsaW5nGAUgASgLMhUudGVsZXJvYm90LnYxLlNjYWxpbmciTAoRRmxvYXRpbmdUb29sRnJhbWUSDwoHZW5hYmxlZBgBIAEoCBImCgdwb2ludF9tGAIgASgLMhUudGVsZXJvYm90LnYxLlZlY3RvcjMikAEKEE1vdGlvbkNvbnN0cmFpbnQSKgoEdHlwZRgBIAEoDjIcLnRlbGVyb2JvdC52MS5Db25zdHJhaW50VHlwZRIjCgRheGlzGAIgASgLMhUudGVsZXJvYm90LnYxLlZlY3RvcjMSKwoFZnJhbWUYAyABKA4yHC50ZWxlcm9ib3QudjEuUmVmZXJlbmNlRnJhbWUiwAEKDEZvcmNlQ29udHJvbBIPCgdlbmFibGVkGAEgASgIEikKBGF4ZXMYAiABKAsyGy50ZWxlcm9ib3QudjEuQXhpc1NlbGVjdGlvbhIsCg5kZXNpcmVkX3dyZW5jaBgDIAEoCzIULnRlbGVyb2JvdC52MS5XcmVuY2gSIgoadHJhbnNsYXRpb25fZ2Fpbl9tX3Blcl9uX3MYBCABKAESIgoacm90YXRpb25fZ2Fpbl9yYWRfcGVyX25tX3MYBSABKAEiVAoNQXhpc1NlbGVjdGlvbhIJCgF4GAEgASgIEgkKAXkYAiABKAgSCQoBehgDIAEoCBIKCgJyeBgEIAEoCBIKCgJyeRgFIAEoCBIKCgJyehgGIAEoCCI8CgdTY2FsaW5nEhkKEXRyYW5zbGF0aW9uX3NjYWxlGAEgASgBEhYKDnJvdGF0aW9uX3NjYWxlGAIgASgBKsYBCg5Db21tYW5kT3V0Y29tZRIfChtDT01NQU5EX09VVENPTUVfVU5TUEVDSUZJRUQQABIbChdDT01NQU5EX09VVENPTUVfQVBQTElFRBABEhwKGENPTU1BTkRfT1VUQ09NRV9NT0RJRklFRBACEhsKF0NPTU1BTkRfT1VUQ09NRV9JTkRFWEVEEAMSHAoYQ09NTUFORF9PVVRDT01FX1JFSkVDVEVEEAQSHQoZQ09NTUFORF9PVVRDT01FX0hFQVJUQkVBVBAFKmcKC0NvbnRyb2xNb2RlEhwKGENPTlRST0xfTU9ERV9VTlNQRUNJRklFRBAAEhoKFkNPTlRST0xfTU9ERV9FWENMVVNJVkUQARIeChpDT05UUk9MX01PREVfQ09MTEFCT1JBVElWRRACKmkKDkNvbnN0cmFpbnRUeXBlEh8KG0NPTlNUUkFJTlRfVFlQRV9VTlNQRUNJRklFRBAAEhoKFkNPTlNUUkFJTlRfVFlQRV9QTEFOQVIQARIaChZDT05TVFJBSU5UX1RZUEVfTElORUFSEAIqfgoLUmVwbGF5U3RhdGUSHAoYUkVQTEFZX1NUQVRFX1VOU1BFQ0lGSUVEEAASGAoUUkVQTEFZX1NUQVRFX1JVTk5JTkcQARIZChVSRVBMQVlfU1RBVEVfRklOSVNIRUQQAhIcChhSRVBMQVlfU1RBVEVfSU5URVJSVVBURUQQAyqUAQoPRGVwZW5kZW5jeVN0YXRlEiAKHERFUEVOREVOQ1lfU1RBVEVfVU5TUEVDSUZJRUQQABIcChhERVBFTkRFTkNZX1NUQVRFX1NFUlZJTkcQARIgChxERVBFTkRFTkNZX1NUQVRFX05PVF9TRVJWSU5HEAISHwobREVQRU5ERU5DWV9TVEFURV9SRVNUQVJUSU5HEAMyjA4KDkRlY2lzaW9uU2VydmVyEmAKC1RlbGVvcGVyYXRlEiAudGVsZXJvYm90LnYxLlRlbGVvcGVyYXRlUmVxdWVzdBohLnRlbGVyb2JvdC52MS5UZWxlb3BlcmF0ZVJlc3BvbnNlIgjI8xgC2PMYAigBMAESYgoNR2V0QXNzaXN0YW5jZRIiLnRlbGVyb2JvdC52MS5HZXRBc3Npc3RhbmNlUmVxdWVzdBojLnRlbGVyb2JvdC52MS5HZXRBc3Npc3RhbmNlUmVzcG9uc2UiCMjzGALY8xgBEmIKDVNldEFzc2lzdGFuY2USIi50ZWxlcm9ib3QudjEuU2V0QXNzaXN0YW5jZVJlcXVlc3QaIy50ZWxlcm9ib3QudjEuU2V0QXNzaXN0YW5jZVJlc3BvbnNlIgjI8xgD2PMYAhJcCgtTZXRJbmRleGluZxIgLnRlbGVyb2JvdC52MS5TZXRJbmRleGluZ1JlcXVlc3QaIS50ZWxlcm9ib3QudjEuU2V0SW5kZXhpbmdSZXNwb25zZSIIyPMYAtjzGAISZQoOQWNxdWlyZUNvbnRyb2wSIy50ZWxlcm9ib3QudjEuQWNxdWlyZUNvbnRyb2xSZXF1ZXN0GiQudGVsZXJvYm90LnYxLkFjcXVpcmVDb250cm9sUmVzcG9uc2UiCMjzGAPY8xgCEl8KDFJlbmV3Q29udHJvbBIhLnRlbGVyb2JvdC52MS5SZW5ld0NvbnRyb2xSZXF1ZXN0GiIudGVsZXJvYm90LnYxLlJlbmV3Q29udHJvbFJlc3BvbnNlIgjI8xgC2PMYAhJlCg5SZWxlYXNlQ29udHJvbBIjLnRlbGVyb2JvdC52MS5SZWxlYXNlQ29udHJvbFJlcXVlc3QaJC50ZWxlcm9ib3QudjEuUmVsZWFzZUNvbnRyb2xSZXNwb25zZSIIyPMYA9jzGAISaAoPR2V0Q29udHJvbFN0YXRlEiQudGVsZXJvYm90LnYxLkdldENvbnRyb2xTdGF0ZVJlcXVlc3QaJS50ZWxlcm9ib3QudjEuR2V0Q29udHJvbFN0YXRlUmVzcG9uc2UiCMjzGALY8xgBEmUKDlN0YXJ0UmVjb3JkaW5nEiMudGVsZXJvYm90LnYxLlN0YXJ0UmVjb3JkaW5nUmVxdWVzdBokLnRlbGVyb2JvdC52MS5TdGFydFJlY29yZGluZ1Jlc3BvbnNlIgjI8xgD2PMYAhJiCg1TdG9wUmVjb3JkaW5nEiIudGVsZXJvYm90LnYxLlN0b3BSZWNvcmRpbmdSZXF1ZXN0GiMudGVsZXJvYm90LnYxLlN0b3BSZWNvcmRpbmdSZXNwb25zZSIIyPMYA9jzGAISZQoOTGlzdFJlY29yZGluZ3MSIy50ZWxlcm9ib3QudjEuTGlzdFJlY29yZGluZ3NSZXF1ZXN0GiQudGVsZXJvYm90LnYxLkxpc3RSZWNvcmRpbmdzUmVzcG9uc2UiCMjzGATY8xgBEmgKD0RlbGV0ZVJlY29yZGluZxIkLnRlbGVyb2JvdC52MS5EZWxldGVSZWNvcmRpbmdSZXF1ZXN0GiUudGVsZXJvYm90LnYxLkRlbGV0ZVJlY29yZGluZ1Jlc3BvbnNlIgjI8xgE2PMYBBJcCgtTdGFydFJlcGxheRIgLnRlbGVyb2JvdC52MS5TdGFydFJlcGxheVJlcXVlc3QaIS50ZWxlcm9ib3QudjEuU3RhcnRSZXBsYXlSZXNwb25zZSIIyPMYA9jzGAISWQoKU3RvcFJlcGxheRIfLnRlbGVyb2JvdC52MS5TdG9wUmVwbGF5UmVxdWVzdBogLnRlbGVyb2JvdC52MS5TdG9wUmVwbGF5UmVzcG9uc2UiCMjzGALY8xgCEl8KDEJlZ2luQ29iZWdpbhIhLnRlbGVyb2JvdC52MS5CZWdpbkNvYmVnaW5SZXF1ZXN0GiIudGVsZXJvYm90LnYxLkJlZ2luQ29iZWdpblJlc3BvbnNlIgjI8xgD2PMYAhJWCglSdW5BY3Rpb24SHi50ZWxlcm9ib3QudjEuUnVuQWN0aW9uUmVxdWVzdBofLnRlbGVyb2JvdC52MS5SdW5BY3Rpb25SZXNwb25zZSIIyPMYA9jzGAISYQoMU3RyZWFtRXZlbnRzEiEudGVsZXJvYm90LnYxLlN0cmVhbUV2ZW50c1JlcXVlc3QaIi50ZWxlcm9ib3QudjEuU3RyZWFtRXZlbnRzUmVzcG9uc2UiCMjzGATY8xgBMAESaAoPR2V0RGVwZW5kZW5jaWVzEiQudGVsZXJvYm90LnYxLkdldERlcGVuZGVuY2llc1JlcXVlc3QaJS50ZWxlcm9ib3QudjEuR2V0RGVwZW5kZW5jaWVzUmVzcG9uc2UiCMjzGALY8xgBYgZwcm90bzM", [file_google_protobuf_duration, file_google_protobuf_timestamp, file_telerobot_v1_options, file_telerobot_v1_proxy_robot, file_telerobot_v1_types]);
 
 /**
  * TeleoperateRequest is one message from the master station.
@@ -99,15 +99,6 @@ export type TeleoperateInit = Message<"telerobot.v1.TeleoperateInit"> & {
    * @generated from field: google.protobuf.Duration watchdog_timeout = 4;
    */
   watchdogTimeout?: Duration | undefined;
-
-  /**
-   * Resume this session (TeleoperateReady.session_id of a stream that broke) instead of opening
-   * a new one. Needs the session's lease. The session keeps its mapping and watchdog; the
-   * fields above other than lease_id are ignored. Then resend every command not yet acked.
-   *
-   * @generated from field: string resume_session_id = 5;
-   */
-  resumeSessionId: string;
 };
 
 /**
@@ -124,9 +115,7 @@ export const TeleoperateInitSchema: GenMessage<TeleoperateInit> = /*@__PURE__*/
  */
 export type MasterCommand = Message<"telerobot.v1.MasterCommand"> & {
   /**
-   * Increases by one per command; acks echo it. Within a session, a command whose sequence is
-   * not above the highest one processed is a resend: it gets that command's ack again and is
-   * not applied. Zero opts out (never de-duplicated, so not safely resendable).
+   * Increases by one per command; acks echo it.
    *
    * @generated from field: int64 sequence = 1;
    */
@@ -260,29 +249,6 @@ export type TeleoperateReady = Message<"telerobot.v1.TeleoperateReady"> & {
    * @generated from field: telerobot.v1.AssistanceConfig assistance = 4;
    */
   assistance?: AssistanceConfig | undefined;
-
-  /**
-   * True when this stream resumed a session (TeleoperateInit.resume_session_id).
-   *
-   * @generated from field: bool resumed = 5;
-   */
-  resumed: boolean;
-
-  /**
-   * The highest command sequence the session has processed: commands above it were never
-   * received; ones at or below it were, and a resend of them is answered, not applied.
-   *
-   * @generated from field: int64 last_sequence = 6;
-   */
-  lastSequence: bigint;
-
-  /**
-   * How long the session waits to be resumed after its stream breaks (holding the arm); the
-   * lease must also still be held.
-   *
-   * @generated from field: google.protobuf.Duration resume_window = 7;
-   */
-  resumeWindow?: Duration | undefined;
 };
 
 /**
@@ -532,8 +498,7 @@ export type AcquireControlRequest = Message<"telerobot.v1.AcquireControlRequest"
   waitTimeout?: Duration | undefined;
 
   /**
-   * Lease length: the lock expires unless renewed within it. Zero means 10 s, so a lease
-   * outlives a cut of a few seconds and its Teleoperate session can be resumed.
+   * Lease length: the lock expires unless renewed within it. Zero means 5 s.
    *
    * @generated from field: google.protobuf.Duration lease_duration = 6;
    */
@@ -1345,14 +1310,6 @@ export type StreamEventsResponse = Message<"telerobot.v1.StreamEventsResponse"> 
      */
     value: DependencyChangedEvent;
     case: "dependencyChanged";
-  } | {
-    /**
-     * A Teleoperate session's stream broke, was resumed, or the session ended.
-     *
-     * @generated from field: telerobot.v1.TeleopSessionEvent teleop_session = 9;
-     */
-    value: TeleopSessionEvent;
-    case: "teleopSession";
   } | { case: undefined; value?: undefined };
 };
 
@@ -1504,76 +1461,6 @@ export const ReplayProgressEventSchema: GenMessage<ReplayProgressEvent> = /*@__P
   messageDesc(file_telerobot_v1_decision_server, 46);
 
 /**
- * TeleopSessionEvent says what became of a Teleoperate session, with its counts so far.
- *
- * @generated from message telerobot.v1.TeleopSessionEvent
- */
-export type TeleopSessionEvent = Message<"telerobot.v1.TeleopSessionEvent"> & {
-  /**
-   * The session.
-   *
-   * @generated from field: string session_id = 1;
-   */
-  sessionId: string;
-
-  /**
-   * Who drives it.
-   *
-   * @generated from field: string operator_id = 2;
-   */
-  operatorId: string;
-
-  /**
-   * What happened.
-   *
-   * @generated from field: telerobot.v1.TeleopSessionState state = 3;
-   */
-  state: TeleopSessionState;
-
-  /**
-   * Why, for people: the stream ended, broke, the resume window passed.
-   *
-   * @generated from field: string reason = 4;
-   */
-  reason: string;
-
-  /**
-   * Commands processed once each (any outcome), resends not counted.
-   *
-   * @generated from field: int64 commands_processed = 5;
-   */
-  commandsProcessed: bigint;
-
-  /**
-   * Of those, commands applied to the arm (APPLIED or MODIFIED).
-   *
-   * @generated from field: int64 commands_applied = 6;
-   */
-  commandsApplied: bigint;
-
-  /**
-   * Resent commands answered with their first ack and not applied again.
-   *
-   * @generated from field: int64 resends_answered = 7;
-   */
-  resendsAnswered: bigint;
-
-  /**
-   * The highest sequence processed.
-   *
-   * @generated from field: int64 last_sequence = 8;
-   */
-  lastSequence: bigint;
-};
-
-/**
- * Describes the message telerobot.v1.TeleopSessionEvent.
- * Use `create(TeleopSessionEventSchema)` to create a new message.
- */
-export const TeleopSessionEventSchema: GenMessage<TeleopSessionEvent> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 47);
-
-/**
  * DependencyChangedEvent says a dependency changed state.
  *
  * @generated from message telerobot.v1.DependencyChangedEvent
@@ -1599,7 +1486,7 @@ export type DependencyChangedEvent = Message<"telerobot.v1.DependencyChangedEven
  * Use `create(DependencyChangedEventSchema)` to create a new message.
  */
 export const DependencyChangedEventSchema: GenMessage<DependencyChangedEvent> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 48);
+  messageDesc(file_telerobot_v1_decision_server, 47);
 
 /**
  * GetDependenciesRequest asks how the dependencies are.
@@ -1614,7 +1501,7 @@ export type GetDependenciesRequest = Message<"telerobot.v1.GetDependenciesReques
  * Use `create(GetDependenciesRequestSchema)` to create a new message.
  */
 export const GetDependenciesRequestSchema: GenMessage<GetDependenciesRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 49);
+  messageDesc(file_telerobot_v1_decision_server, 48);
 
 /**
  * GetDependenciesResponse lists them.
@@ -1636,7 +1523,7 @@ export type GetDependenciesResponse = Message<"telerobot.v1.GetDependenciesRespo
  * Use `create(GetDependenciesResponseSchema)` to create a new message.
  */
 export const GetDependenciesResponseSchema: GenMessage<GetDependenciesResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 50);
+  messageDesc(file_telerobot_v1_decision_server, 49);
 
 /**
  * Dependency is one service the DecisionServer depends on, as it sees it.
@@ -1688,7 +1575,7 @@ export type Dependency = Message<"telerobot.v1.Dependency"> & {
  * Use `create(DependencySchema)` to create a new message.
  */
 export const DependencySchema: GenMessage<Dependency> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 51);
+  messageDesc(file_telerobot_v1_decision_server, 50);
 
 /**
  * AssistanceConfig is the set of assistance functions (section II.3 of the full paper).
@@ -1738,7 +1625,7 @@ export type AssistanceConfig = Message<"telerobot.v1.AssistanceConfig"> & {
  * Use `create(AssistanceConfigSchema)` to create a new message.
  */
 export const AssistanceConfigSchema: GenMessage<AssistanceConfig> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 52);
+  messageDesc(file_telerobot_v1_decision_server, 51);
 
 /**
  * FloatingToolFrame places the centre of rotation at a point of interest.
@@ -1766,7 +1653,7 @@ export type FloatingToolFrame = Message<"telerobot.v1.FloatingToolFrame"> & {
  * Use `create(FloatingToolFrameSchema)` to create a new message.
  */
 export const FloatingToolFrameSchema: GenMessage<FloatingToolFrame> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 53);
+  messageDesc(file_telerobot_v1_decision_server, 52);
 
 /**
  * MotionConstraint limits the tool's motion; the free axes stay with the operator.
@@ -1801,7 +1688,7 @@ export type MotionConstraint = Message<"telerobot.v1.MotionConstraint"> & {
  * Use `create(MotionConstraintSchema)` to create a new message.
  */
 export const MotionConstraintSchema: GenMessage<MotionConstraint> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 54);
+  messageDesc(file_telerobot_v1_decision_server, 53);
 
 /**
  * ForceControl is active compliance on selected axes: ΔT = A·(F_t − F_d), ΔM = B·(C_t − C_d),
@@ -1851,7 +1738,7 @@ export type ForceControl = Message<"telerobot.v1.ForceControl"> & {
  * Use `create(ForceControlSchema)` to create a new message.
  */
 export const ForceControlSchema: GenMessage<ForceControl> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 55);
+  messageDesc(file_telerobot_v1_decision_server, 54);
 
 /**
  * AxisSelection picks Cartesian axes of the tool frame.
@@ -1907,7 +1794,7 @@ export type AxisSelection = Message<"telerobot.v1.AxisSelection"> & {
  * Use `create(AxisSelectionSchema)` to create a new message.
  */
 export const AxisSelectionSchema: GenMessage<AxisSelection> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 56);
+  messageDesc(file_telerobot_v1_decision_server, 55);
 
 /**
  * Scaling is the server's space scaling.
@@ -1935,48 +1822,7 @@ export type Scaling = Message<"telerobot.v1.Scaling"> & {
  * Use `create(ScalingSchema)` to create a new message.
  */
 export const ScalingSchema: GenMessage<Scaling> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_decision_server, 57);
-
-/**
- * TeleopSessionState is where a Teleoperate session is.
- *
- * @generated from enum telerobot.v1.TeleopSessionState
- */
-export enum TeleopSessionState {
-  /**
-   * Not set.
-   *
-   * @generated from enum value: TELEOP_SESSION_STATE_UNSPECIFIED = 0;
-   */
-  UNSPECIFIED = 0,
-
-  /**
-   * Its stream broke; the arm is held and the session waits to be resumed.
-   *
-   * @generated from enum value: TELEOP_SESSION_STATE_DETACHED = 1;
-   */
-  DETACHED = 1,
-
-  /**
-   * A new stream resumed it.
-   *
-   * @generated from enum value: TELEOP_SESSION_STATE_RESUMED = 2;
-   */
-  RESUMED = 2,
-
-  /**
-   * It ended for good: the client closed it, the lease was lost, or the resume window passed.
-   *
-   * @generated from enum value: TELEOP_SESSION_STATE_CLOSED = 3;
-   */
-  CLOSED = 3,
-}
-
-/**
- * Describes the enum telerobot.v1.TeleopSessionState.
- */
-export const TeleopSessionStateSchema: GenEnum<TeleopSessionState> = /*@__PURE__*/
-  enumDesc(file_telerobot_v1_decision_server, 0);
+  messageDesc(file_telerobot_v1_decision_server, 56);
 
 /**
  * CommandOutcome is what happened to a master command.
@@ -2025,21 +1871,13 @@ export enum CommandOutcome {
    * @generated from enum value: COMMAND_OUTCOME_HEARTBEAT = 5;
    */
   HEARTBEAT = 5,
-
-  /**
-   * Not applied: a resend of a command this session processed so long ago that its first ack
-   * is no longer kept (a recent resend gets its first ack again).
-   *
-   * @generated from enum value: COMMAND_OUTCOME_DUPLICATE = 6;
-   */
-  DUPLICATE = 6,
 }
 
 /**
  * Describes the enum telerobot.v1.CommandOutcome.
  */
 export const CommandOutcomeSchema: GenEnum<CommandOutcome> = /*@__PURE__*/
-  enumDesc(file_telerobot_v1_decision_server, 1);
+  enumDesc(file_telerobot_v1_decision_server, 0);
 
 /**
  * ControlMode is how control is held.
@@ -2073,7 +1911,7 @@ export enum ControlMode {
  * Describes the enum telerobot.v1.ControlMode.
  */
 export const ControlModeSchema: GenEnum<ControlMode> = /*@__PURE__*/
-  enumDesc(file_telerobot_v1_decision_server, 2);
+  enumDesc(file_telerobot_v1_decision_server, 1);
 
 /**
  * ConstraintType is the kind of motion constraint.
@@ -2107,7 +1945,7 @@ export enum ConstraintType {
  * Describes the enum telerobot.v1.ConstraintType.
  */
 export const ConstraintTypeSchema: GenEnum<ConstraintType> = /*@__PURE__*/
-  enumDesc(file_telerobot_v1_decision_server, 3);
+  enumDesc(file_telerobot_v1_decision_server, 2);
 
 /**
  * ReplayState is where a replay is.
@@ -2148,7 +1986,7 @@ export enum ReplayState {
  * Describes the enum telerobot.v1.ReplayState.
  */
 export const ReplayStateSchema: GenEnum<ReplayState> = /*@__PURE__*/
-  enumDesc(file_telerobot_v1_decision_server, 4);
+  enumDesc(file_telerobot_v1_decision_server, 3);
 
 /**
  * DependencyState is how a dependency is, as the DecisionServer sees it.
@@ -2189,7 +2027,7 @@ export enum DependencyState {
  * Describes the enum telerobot.v1.DependencyState.
  */
 export const DependencyStateSchema: GenEnum<DependencyState> = /*@__PURE__*/
-  enumDesc(file_telerobot_v1_decision_server, 5);
+  enumDesc(file_telerobot_v1_decision_server, 4);
 
 /**
  * DecisionServer is the operator's one address (IDecisionServer). Like the papers' interface,
@@ -2213,17 +2051,10 @@ export const DecisionServer: GenService<{
    * and heartbeats follow, and each command gets an ack. The slave interpolates commands up to
    * the servo rate. A watchdog holds the arm when neither a command nor a heartbeat arrives
    * within the Init's timeout, and when the stream ends or is cancelled.
-   * A session whose stream breaks (a cut link, a lost connection: anything but the client's
-   * half-close) holds the arm and can be resumed for TeleoperateReady.resume_window by an Init
-   * with its resume_session_id and the same lease. Commands carry increasing sequence numbers;
-   * a command resent with a sequence the session has already processed is answered with its
-   * first ack and not applied again, so nothing is applied twice across a resume.
    * Final status: OK when the client half-closes; INVALID_ARGUMENT when the first message is not
    * an Init, or for a malformed message (fix the client); FAILED_PRECONDITION without the
    * control lock, or when the arm is not READY or is e-stopped (reconnect after fixing);
-   * NOT_FOUND when the session to resume is gone (open a new one); PERMISSION_DENIED when it is
-   * another lease's; ABORTED when the lease is lost mid-stream (acquire control again), or when
-   * another stream resumed this session.
+   * ABORTED when the lease is lost mid-stream (acquire control again).
    * Lane: high. Role: operator.
    *
    * @generated from rpc telerobot.v1.DecisionServer.Teleoperate
