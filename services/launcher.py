@@ -187,6 +187,9 @@ class _Station:
             # The address it bound (a port 0 becomes a real one): the services started after
             # it find it through its variable, and a restart binds the same one.
             self.env[env_name(name, "address")] = address
+            token_address = child.ready.get(token_port_name(name))
+            if token_address:  # the DecisionServer's token port, for the web console
+                self.env[env_name(name, "token_address")] = token_address
             self._set_state(name, RUNNING, self._trackers[name].restarts)
         return address
 
