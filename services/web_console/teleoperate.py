@@ -34,6 +34,9 @@ CLOSE_UNSUPPORTED_DATA = 1003
 CLOSE_POLICY = 1008
 CLOSE_TOO_BIG = 1009
 CLOSE_GRPC_BASE = 4000  # + the gRPC status code
+# A session the browser ended itself has this long to end at the DecisionServer, then it is
+# cancelled.
+CLEAN_END_TIMEOUT_S = 2.0
 _MAX_REASON_BYTES = 120  # a close frame's reason holds 123 bytes
 
 
@@ -70,10 +73,17 @@ async def serve(scope, receive, send, upstream: Upstream) -> None:
     peer = scope.get("client")
 
     async def browser_to_station() -> tuple[int, str] | None:
-        """Until the browser leaves (None) or breaks the rules (the close to send)."""
+        """Until the browser leaves (None) or breaks the rules (the close to send). A browser
+        that ends the session itself (close code 1000) half-closes the stream, so the
+        DecisionServer sees a clean end; any other departure cancels it (a broken link)."""
         while True:
             message = await receive()
             if message["type"] == "websocket.disconnect":
+                if message.get("code") == CLOSE_NORMAL:
+                    with contextlib.suppress(grpc.aio.AioRpcError, asyncio.InvalidStateError,
+                                             TimeoutError):  # then cancelled, as a broken link
+                        await call.done_writing()
+                        await asyncio.wait_for(asyncio.shield(outbound), CLEAN_END_TIMEOUT_S)
                 return None
             data = message.get("bytes")
             if data is None:

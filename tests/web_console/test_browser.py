@@ -4,6 +4,7 @@ the keyboard, the stop button, and a tab closed mid-drive."""
 from __future__ import annotations
 
 import threading
+import uuid
 
 import grpc
 import pytest
@@ -166,3 +167,44 @@ def test_closing_the_tab_mid_drive_holds_the_arm(browser, console_url, robot, de
                      what="20 more state samples")
     assert abs(later.tool_pose.position_m.z - rest.tool_pose.position_m.z) < 1e-4
     assert status_of(robot) == "ROBOT_STATUS_READY"  # a hold, not an e-stop
+
+
+def test_assistance_and_record_replay_from_the_page(browser, console_url, robot, decision):
+    page = open_console(browser, console_url)
+    take_lock(page)
+    ready_arm(page, robot)
+
+    def assistance():
+        return decision.GetAssistance(decision_server_pb2.GetAssistanceRequest(),
+                                      timeout=5).assistance
+
+    page.check("#assist-scaling")
+    wait_for(lambda: assistance().scaling.translation_scale == 0.5, timeout_s=10,
+             what=f"scaling set; page says {text(page, '#message')!r}")
+    page.uncheck("#assist-scaling")
+    wait_for(lambda: assistance().scaling.translation_scale in (0.0, 1.0), timeout_s=10,
+             what="scaling off")
+
+    name = f"browser-test-{uuid.uuid4().hex[:8]}"  # recordings outlive stations
+    page.fill("#rec-name", name)
+    page.click("#rec-start")
+    wait_for(lambda: text(page, "#message") == "record: done", timeout_s=10,
+             what=f"recording; page says {text(page, '#message')!r}")
+    start_driving(page)
+    start = tool_z(robot)
+    page.keyboard.down("r")
+    wait_for(lambda: tool_z(robot) > start + 0.005, timeout_s=20, what="the arm to rise")
+    page.keyboard.up("r")
+    page.click("#drive-toggle")  # end the session; then the recording
+    page.click("#rec-stop")
+    wait_for(lambda: page.locator(f"#rec-list option[value='{name}']").count() == 1,
+             timeout_s=10, what=f"the recording listed; page says {text(page, '#message')!r}")
+    page.select_option("#rec-list", name)
+    before = tool_z(robot)
+    page.click("#replay-start")
+    wait_for(lambda: "FINISHED" in text(page, "#replay-state"), timeout_s=30,
+             what=f"the replay to finish; page says {text(page, '#message')!r}, "
+                  f"{text(page, '#replay-state')!r}, events {text(page, '#events')[:600]!r}")
+    assert tool_z(robot) > before + 0.004  # the recorded rise, once more
+    page.click("#lock-release")
+    assert page.errors == []

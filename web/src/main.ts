@@ -507,7 +507,8 @@ setLease("");
 if (document.querySelector<HTMLMetaElement>('meta[name="telerobot-auth"]')?.content === "token") {
   $("auth").hidden = false;
   $<HTMLInputElement>("token").value = token;
-  $("token-set").onclick = () => {
+  $("auth").onsubmit = (e) => {
+    e.preventDefault();
     token = $<HTMLInputElement>("token").value.trim();
     sessionStorage.setItem("telerobot-token", token);
     say(token ? "token set" : "token cleared");
