@@ -43,7 +43,8 @@ from services.decision_server.arbitration import ControlMode
 from services.decision_server.backends import GrpcSlave
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer
-from services.decision_server.supervisor import DecisionCore, TeleopSession
+from services.decision_server.supervisor import DecisionCore
+from services.decision_server.teleop import TeleopSession
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.servicer import reading_to_proto
 from services.force_sensor.subscribers import StreamOptions

@@ -5,8 +5,9 @@ One module per service plus the shared base:
 * ``proxy_robot``    -- `ProxyRobotClient`, `AsyncProxyRobotClient`
 * ``force_sensor``   -- `ForceSensorClient`, `AsyncForceSensorClient`
 * ``stereo_camera``  -- `StereoCameraClient`, `AsyncStereoCameraClient`
-* ``decision_server``-- `DecisionClient`, `AsyncDecisionClient`, `TeleopSession`,
-  `AsyncTeleopSession` (the lease and the Teleoperate stream)
+* ``decision_server``-- `DecisionClient`, `AsyncDecisionClient` (the lease and the rest)
+* ``teleoperate``    -- `TeleopSession` (resumes across a broken link), `AsyncTeleopSession`,
+  `LinkInterruptedError`
 * ``base``           -- channels, metadata (lease, lane), timeouts, streams
 * ``errors``         -- `TelerobotRpcError` and one subclass per status code
 * ``values``         -- the dataclasses and enums the calls return; poses are `Pose`
@@ -16,12 +17,7 @@ The package needs only grpcio, protobuf, numpy, the generated ``telerobot.v1`` c
 """
 
 from clients.python.base import DEFAULT_TIMEOUT_S, LANE_METADATA_KEY, LEASE_METADATA_KEY
-from clients.python.decision_server import (
-    AsyncDecisionClient,
-    AsyncTeleopSession,
-    DecisionClient,
-    TeleopSession,
-)
+from clients.python.decision_server import AsyncDecisionClient, DecisionClient
 from clients.python.errors import (
     AbortedError,
     AlreadyExistsError,
@@ -42,6 +38,7 @@ from clients.python.errors import (
 from clients.python.force_sensor import AsyncForceSensorClient, ForceSensorClient
 from clients.python.proxy_robot import AsyncProxyRobotClient, ProxyRobotClient
 from clients.python.stereo_camera import AsyncStereoCameraClient, StereoCameraClient
+from clients.python.teleoperate import AsyncTeleopSession, LinkInterruptedError, TeleopSession
 from clients.python.values import (
     Ack,
     ActionRun,
@@ -77,7 +74,7 @@ __all__ = [
     "DEFAULT_TIMEOUT_S", "LANE_METADATA_KEY", "LEASE_METADATA_KEY",
     "AsyncDecisionClient", "AsyncForceSensorClient", "AsyncProxyRobotClient",
     "AsyncStereoCameraClient", "AsyncTeleopSession", "DecisionClient", "ForceSensorClient",
-    "ProxyRobotClient", "StereoCameraClient", "TeleopSession",
+    "LinkInterruptedError", "ProxyRobotClient", "StereoCameraClient", "TeleopSession",
     "AbortedError", "AlreadyExistsError", "DeadlineExceededError", "FailedPreconditionError",
     "InternalError", "InvalidArgumentError", "NotFoundError", "OutOfRangeError",
     "PermissionDeniedError", "ResourceExhaustedError", "RpcCancelledError", "TelerobotRpcError",

@@ -17,12 +17,14 @@ import dataclasses
 import sys
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from clients.ar import RobotModel
 from clients.python.decision_server import DecisionClient
+from clients.python.errors import TelerobotRpcError
 from clients.teleop.artifacts import plot, write_summary
 from clients.teleop.dependencies import DependencyMonitor, as_json, describe
 from clients.teleop.stack import station_at
@@ -46,7 +48,8 @@ class StatusLine:
         self._width = 0  # of the status line on screen
         self._lock = threading.Lock()
 
-    def __call__(self, *, mode, clutch, force, commands, acks, round_trips) -> None:
+    def __call__(self, *, mode, clutch, force, commands, acks, round_trips,
+                 link_down=False) -> None:
         now = time.monotonic()
         if now - self._last < 0.25:
             return
@@ -54,7 +57,8 @@ class StatusLine:
         recent = round_trips[-50:] or [0.0]
         line = (f"[{mode:10}] {'CLUTCH ' if clutch else 'engaged'}  cmd {commands / elapsed:5.1f}/s"
                 f"  acks {acks / elapsed:5.1f}/s  rtt p50 {np.median(recent):5.1f} ms"
-                f"  F {force:6.2f} N  lock held")
+                f"  F {force:6.2f} N  "
+                f"{'LINK LOST: reconnecting, the arm holds' if link_down else 'lock held'}")
         with self._lock:
             self._stream.write("\r" + line)
             self._stream.flush()
@@ -103,7 +107,46 @@ def table(results: list[Result]) -> str:
                      for row in rows)
 
 
+class LinkNotes:
+    """What the session says of its link, as lines over the status line: lost, the first
+    reconnect try, resumed, gave up (not every try: a 3 s cut makes several)."""
+
+    def __init__(self, note: Callable[[str], None]):
+        self._note = note
+
+    def __call__(self, state: str, detail: str) -> None:
+        if state == "lost":
+            self._note(f"link lost ({detail}): the arm holds; reconnecting")
+        elif state == "reconnecting" and detail.endswith(" 1"):
+            self._note("reconnecting to the DecisionServer...")
+        elif state == "resumed":
+            self._note(f"link back: session resumed {detail}")
+        elif state == "gave up":
+            self._note(f"link lost for good: {detail}")
+
+
+# Why a session can end early, and what the operator can do: by the error's reason or code.
+ADVICE = {
+    "LINK_LOST": "The arm holds. Check the network to the station, then run again.",
+    "NO_SESSION": "The DecisionServer no longer knows this session (it restarted, or the "
+                  "link was down past the resume window); the arm holds. Run again.",
+    "NO_CONTROL": "The control lease is gone (it lapsed or was taken); the arm holds. Run "
+                  "again to take control anew.",
+    "CONTROL_LOST": "The control lease is gone; the arm holds. Run again.",
+    "UNAVAILABLE": "The DecisionServer is unreachable; the arm holds (its watchdog). Check that "
+                   "the station runs (make serve) and the network to it.",
+}
+
+
+def explain(error: TelerobotRpcError) -> str:
+    advice = ADVICE.get(error.reason or "") or ADVICE.get(error.code.name, "The arm holds.")
+    return f"teleop: the session ended: {error.code.name}: {error.message}\n{advice}"
+
+
 def main(argv: list[str] | None = None) -> int:
+    """The operator station; exits 0 when every run succeeded, 1 when one failed, 3 when the
+    session ended early (a lost link, a lost lease, a dead DecisionServer), with a message and
+    no traceback, and 130 on Ctrl-C."""
     parser = argparse.ArgumentParser(prog="python -m clients.teleop", description=__doc__)
     parser.add_argument("--address", default=address_for("decision_server"))
     parser.add_argument("--modes", nargs="+", choices=MODES, default=list(MODES))
@@ -113,6 +156,17 @@ def main(argv: list[str] | None = None) -> int:
                         help="saved camera identification (made on the first run)")
     parser.add_argument("--no-video", action="store_true", help="skip the stereo video")
     args = parser.parse_args(argv)
+    try:
+        return run(args)
+    except TelerobotRpcError as error:
+        print("\n" + explain(error), file=sys.stderr)
+        return 3
+    except KeyboardInterrupt:
+        print("\nteleop: interrupted; the arm holds (the session's watchdog)", file=sys.stderr)
+        return 130
+
+
+def run(args: argparse.Namespace) -> int:
     out = args.out or Path("runs") / time.strftime("teleop-%Y%m%d-%H%M%S")
     out.mkdir(parents=True, exist_ok=True)
     args.calibration.parent.mkdir(parents=True, exist_ok=True)
@@ -144,15 +198,15 @@ def main(argv: list[str] | None = None) -> int:
                 for mode in args.modes:
                     retract(client, start)
                     status.restart()
-                    run = PegInHole(client, mode, model, status)
-                    results.append(run.run())
-                    traces.append(run.trace)
+                    task = PegInHole(client, mode, model, status, on_link=LinkNotes(status.note))
+                    results.append(task.run())
+                    traces.append(task.trace)
                     client.renew_control()
                 print()
                 retract(client, start)
+            finally:
                 if view is not None:
                     view.stop()
-            finally:
                 monitor.stop()
             dependencies = monitor.final()
     artifacts = plot(traces, out)

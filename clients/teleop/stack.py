@@ -9,9 +9,11 @@ from collections.abc import Iterator, Mapping
 import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
+from clients.python.errors import UnavailableError
 from services.runtime import children
 from services.runtime.children import ChildFailed
 from services.runtime.config import env_name
+from services.runtime.server import is_loopback
 from wire.tls import open_channel
 
 STARTUP_TIMEOUT_S = 90.0
@@ -55,11 +57,15 @@ def local_station(operator_address: str | None = None,
 @contextlib.contextmanager
 def station_at(address: str, log=print) -> Iterator[bool]:
     """Yield once a station answers at `address`; start a local one there (and stop it after)
-    if nothing does. Yields whether it started one. (To start one on a port 0, use
+    if nothing does and `address` is on loopback (another host's station is not ours to
+    start: UnavailableError). Yields whether it started one. (To start one on a port 0, use
     local_station, which yields the addresses bound.)"""
     if serving(address):
         yield False
         return
+    if not is_loopback(address):
+        raise UnavailableError(grpc.StatusCode.UNAVAILABLE,
+                               f"no slave station answers at {address}", reason="NO_STATION")
     log(f"nothing answers at {address}: starting a local slave station")
     with local_station(address) as addresses:
         if not serving(address, 5.0):

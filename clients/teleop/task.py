@@ -15,11 +15,16 @@ approach. Then:
 
 Success: the peg's tip reaches the hole's floor (its depth below the mouth within 5 mm of the
 hole's depth), inside the hole.
+
+Across a broken link (#14) the session resumes by itself (clients.python.teleoperate). While it
+is down the arm holds, and the operator, told "link lost", holds still: the script's time stops
+until the session is back, so no motion is lost and none is applied twice.
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,6 +33,7 @@ import pinocchio as pin
 from clients.ar import RobotModel
 from clients.master import IncrementFrame, MasterArm, SimulatedHand
 from clients.python.decision_server import DecisionClient
+from clients.python.teleoperate import LinkInterruptedError
 from clients.python.values import Ack
 from clients.teleop.artifacts import Trace
 from services.robot_model import workspace
@@ -66,6 +72,10 @@ class Result:
     acks: int
     round_trip_p50_ms: float
     round_trip_p99_ms: float
+    link_interruptions: int = 0  # times the link broke and the session resumed
+    resent: int = 0  # commands sent again after a resume (the server applied each once)
+    commands_acked: int = 0  # commands acked, once each
+    commands_applied: int = 0  # of those, acked APPLIED or MODIFIED
 
 
 class StrokingHand:
@@ -97,12 +107,15 @@ class StrokingHand:
 class PegInHole:
     """One run of the task, recording into `trace` and predicting the tool into `model`."""
 
-    def __init__(self, client: DecisionClient, mode: str, model: RobotModel, status=None):
+    def __init__(self, client: DecisionClient, mode: str, model: RobotModel, status=None,
+                 on_link: Callable[[str, str], None] | None = None):
         self.client = client
         self.mode = mode
         self.model = model
         self.trace = Trace(mode)
         self._status = status or (lambda **fields: None)
+        self._on_link = on_link
+        self._session = None
         self._start = time.monotonic()
         self._commands = 0
         self._acks: list[Ack] = []
@@ -145,27 +158,33 @@ class PegInHole:
         script = StrokingHand(rest, strokes)
         hand.path = script.pose
         arm = MasterArm(hand, translation_scale=SCALE, frame=IncrementFrame.BASE)
-        session = self.client.teleoperate("teleop-script", types_pb2.REFERENCE_FRAME_BASE,
-                                          watchdog_timeout_s=0.5, on_ack=self._on_ack)
+        session = self._session = self.client.teleoperate(
+            "teleop-script", types_pb2.REFERENCE_FRAME_BASE, watchdog_timeout_s=0.5,
+            on_ack=self._on_ack, on_link=self._on_link)
         period = 1.0 / COMMAND_RATE_HZ
         script_time, felt = 0.0, False
         next_tick = time.monotonic()
         try:
             while script_time < script.duration() + 0.5:
                 next_tick += period
+                if session.interrupted:  # the operator holds still until the link is back
+                    self._show(arm.indexing)
+                    time.sleep(period)
+                    next_tick = time.monotonic()
+                    continue
                 arm.clutch = script.clutch(script_time)
+                reference = arm.reference
                 increment = arm.update(script_time)
                 if self.mode == "feedback" and self._contact_force() > FEEL_N:
                     felt = True  # the operator feels the floor and stops pushing
                 if increment is None or felt:
                     session.heartbeat_nowait()
-                else:
-                    session.send_nowait(increment.delta_position, increment.delta_rotation)
-                    self.model.command(increment.delta_position, increment.delta_rotation)
+                elif self._send(increment.delta_position, increment.delta_rotation):
                     self._commands += 1
-                self._status(mode=self.mode, clutch=arm.indexing, force=self._contact_force(),
-                             commands=self._commands, acks=len(self._acks),
-                             round_trips=self.trace.round_trip_ms)
+                else:  # the link broke just now: this motion goes out with the next command
+                    arm.reference = reference
+                    continue
+                self._show(arm.indexing)
                 script_time += period
                 time.sleep(max(0.0, next_tick - time.monotonic()))
                 if felt:
@@ -179,24 +198,36 @@ class PegInHole:
             session.close()
         return self._result(start)
 
+    def _send(self, delta_position, delta_rotation=None) -> bool:
+        """Send one increment and predict it into the model; False when the link is down."""
+        try:
+            self._session.send_nowait(delta_position, delta_rotation)
+        except LinkInterruptedError:
+            return False
+        self.model.command(delta_position, delta_rotation)
+        return True
+
+    def _show(self, clutch: bool) -> None:
+        self._status(mode=self.mode, clutch=clutch, force=self._contact_force(),
+                     commands=self._commands, acks=len(self._acks),
+                     round_trips=self.trace.round_trip_ms,
+                     link_down=bool(self._session and self._session.interrupted))
+
     def _back_off(self, session, period: float) -> None:
         """Raise the peg a little at a time until the felt force is under half of FEEL_N."""
-        for _ in range(BACK_OFF_TICKS):
-            if self._contact_force() < FEEL_N / 2:
-                return
-            session.send_nowait([0.0, 0.0, BACK_OFF_STEP_M])
-            self.model.command([0.0, 0.0, BACK_OFF_STEP_M])
-            self._commands += 1
+        ticks = 0
+        while ticks < BACK_OFF_TICKS and self._contact_force() >= FEEL_N / 2:
+            if self._send([0.0, 0.0, BACK_OFF_STEP_M]):
+                self._commands += 1
+                ticks += 1
             time.sleep(period)
 
     def _hold(self, session, period: float, seconds: float) -> None:
         """Heartbeats only: the operator holds still while the arm settles."""
         deadline = time.monotonic() + seconds
         while time.monotonic() < deadline:
-            session.heartbeat_nowait()
-            self._status(mode=self.mode, clutch=False, force=self._contact_force(),
-                         commands=self._commands, acks=len(self._acks),
-                         round_trips=self.trace.round_trip_ms)
+            session.heartbeat_nowait()  # (sends nothing while the link is down)
+            self._show(False)
             time.sleep(period)
 
     def _comply(self, session, period: float) -> None:
@@ -227,4 +258,8 @@ class PegInHole:
             self.mode, bool(depth > HOLE_DEPTH_M - 0.005 and lateral < workspace.HOLE_HALF_WIDTH),
             self._elapsed(), float(depth), lateral, float(max(forces)),
             float(np.mean(final)), self._commands, len(self._acks),
-            float(np.percentile(trips, 50)), float(np.percentile(trips, 99)))
+            float(np.percentile(trips, 50)), float(np.percentile(trips, 99)),
+            self._session.resumes if self._session else 0,
+            self._session.resends if self._session else 0,
+            self._session.commands_acked if self._session else 0,
+            self._session.commands_applied if self._session else 0)

@@ -40,7 +40,7 @@ from services.runtime.errors import (
 from services.security.caller import Caller, current_caller
 from services.security.roles import Role
 
-DEFAULT_LEASE_S = 5.0
+DEFAULT_LEASE_S = 10.0  # outlives a short cut: see teleop.RESUME_WINDOW_S
 MIN_LEASE_S, MAX_LEASE_S = 0.1, 60.0
 MAX_WAIT_S = 3600.0
 REAPER_PERIOD_S = 0.05  # expired leases are noticed this fast even when nobody calls

@@ -4,6 +4,7 @@ IForceSensor). Reads requests, calls DecisionCore, converts answers and errors."
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Callable, Iterator
 
@@ -14,17 +15,21 @@ from services.common import convert
 from services.common.geometry import finite_vector
 from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
-from services.decision_server.arbitration import ControlMode, ControlView, Lease
+from services.decision_server.arbitration import DEFAULT_LEASE_S, ControlMode, ControlView, Lease
 from services.decision_server.backends import forwarding_servicer
 from services.decision_server.dependencies import Dependency, DependencyChanged, DependencyWatch
 from services.decision_server.supervisor import (
     AssistanceChanged,
-    CommandResult,
     ControlChanged,
     DecisionCore,
-    MasterIncrement,
     ReplayProgress,
     RobotEventForwarded,
+)
+from services.decision_server.teleop import (
+    CommandResult,
+    MasterIncrement,
+    TeleopSession,
+    TeleopSessionChanged,
     WatchdogHold,
 )
 from services.proxy_robot.servicer import frame_from_proto
@@ -53,7 +58,11 @@ PROXY_COMMANDS = {"Connect", "Initialize", "Disconnect", "SetToolFrame", "MoveJo
                   "MoveCartesianIncremental", "Hold", "Reset"}
 SENSOR_COMMANDS = {"StartReading", "StopReading", "Tare", "SetSensorConfig"}
 _OUTCOMES = {name: pb.CommandOutcome.Value(f"COMMAND_OUTCOME_{name}")
-             for name in ("APPLIED", "MODIFIED", "INDEXED", "REJECTED", "HEARTBEAT")}
+             for name in ("APPLIED", "MODIFIED", "INDEXED", "REJECTED", "HEARTBEAT",
+                          "DUPLICATE")}
+
+
+_END_OF_SESSION = object()  # from _serve_batch: the operator sent `end`
 
 
 def lease_id(context: grpc.ServicerContext) -> str | None:
@@ -181,6 +190,14 @@ def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
         message.replay_progress.CopyFrom(pb.ReplayProgressEvent(
             name=payload.name, commands_replayed=payload.replayed, command_count=payload.total,
             state=pb.ReplayState.Value(f"REPLAY_STATE_{payload.state}"), detail=payload.detail))
+    elif isinstance(payload, TeleopSessionChanged):
+        counts = payload.counts
+        message.teleop_session.CopyFrom(pb.TeleopSessionEvent(
+            session_id=payload.session_id, operator_id=payload.operator_id,
+            state=pb.TeleopSessionState.Value(f"TELEOP_SESSION_STATE_{payload.state}"),
+            reason=payload.reason, commands_processed=counts.processed,
+            commands_applied=counts.applied, resends_answered=counts.resends,
+            last_sequence=counts.last_sequence))
     elif isinstance(payload, DependencyChanged):
         message.dependency_changed.CopyFrom(pb.DependencyChangedEvent(
             dependency=dependency_to_proto(payload.dependency),
@@ -242,7 +259,52 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if first is None or first.WhichOneof("message") != "init":
             raise InvalidArgument("the first Teleoperate message must be an init",
                                   reason="NO_INIT")
-        init = first.init
+        session, stream = self._session_for(first.init)
+        # Only the operator's `end` ends the session; a stream that ends without one (a cut, a
+        # lost connection, a half-close alone: gRPC may report a dead connection as a clean
+        # end) leaves it to be resumed, the arm held (services.decision_server.teleop).
+        reason, resumable = "the stream broke", True
+        ended = threading.Event()
+        try:
+            yield pb.TeleoperateResponse(ready=pb.TeleoperateReady(
+                session_id=session.session_id,
+                mapping=types_pb2.ReferenceFrame.Value(
+                    f"REFERENCE_FRAME_{session.mapping or self._core.assistance.mapping}"),
+                watchdog_timeout=convert.duration(session.watchdog_s),
+                assistance=assistance_to_proto(self._core.assistance),
+                resumed=stream > 1, last_sequence=session.last_sequence,
+                resume_window=convert.duration(session.resume_window_s)))
+            # Three threads (services/common/inbox.py): the inbox reads, the producer moves the
+            # arm, this one writes the acks; the arm never waits for an ack to be written.
+            inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
+
+            def serve(emit) -> None:
+                while batch := inbox.take():
+                    for ack in self._serve_batch(session, stream, batch):
+                        if ack is _END_OF_SESSION:
+                            ended.set()
+                            return
+                        emit(ack)
+
+            try:
+                yield from Producer(serve, name=f"teleop-{session.session_id}")
+            finally:
+                inbox.close()  # (a move in flight lands before the session holds the arm)
+            reason = "the operator ended the session" if ended.is_set() else "the stream ended"
+            resumable = not ended.is_set()
+        except TelerobotError as error:
+            reason, resumable = error.message, error.reason == "STREAM_BROKEN"
+            if error.reason == "NO_CONTROL":
+                raise Aborted(f"control was lost mid-stream: {error.message}",
+                              reason="CONTROL_LOST") from None
+            raise
+        finally:
+            session.end(stream, reason, resumable)
+
+    def _session_for(self, init: pb.TeleoperateInit) -> tuple[TeleopSession, int]:
+        """The session an Init opens or resumes, and the stream's number in it."""
+        if init.resume_session_id:
+            return self._core.resume_session(init.resume_session_id, init.lease_id)
         mapping = None
         if init.mapping:
             mapping = frame_from_proto(init.mapping)
@@ -250,53 +312,28 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 raise InvalidArgument("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
         session = self._core.open_session(init.operator_id, init.lease_id, mapping,
                                           convert.seconds(init.watchdog_timeout))
-        reason = "the stream was cancelled"
-        try:
-            yield pb.TeleoperateResponse(ready=pb.TeleoperateReady(
-                session_id=session.session_id,
-                mapping=types_pb2.ReferenceFrame.Value(
-                    f"REFERENCE_FRAME_{mapping or self._core.assistance.mapping}"),
-                watchdog_timeout=convert.duration(session.watchdog_s),
-                assistance=assistance_to_proto(self._core.assistance)))
-            # Three threads (services/common/inbox.py): the inbox reads, the producer moves the
-            # arm, this one writes the acks; the arm never waits for an ack to be written.
-            inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
-
-            def serve(emit) -> None:
-                while batch := inbox.take():
-                    for ack in self._serve_batch(session, batch):
-                        emit(ack)
-
-            try:
-                yield from Producer(serve, name=f"teleop-{session.session_id}")
-            finally:
-                inbox.close()  # (a move in flight lands before session.close holds the arm)
-            reason = "the stream ended"
-        except TelerobotError as error:
-            if error.reason == "NO_CONTROL":
-                raise Aborted(f"control was lost mid-stream: {error.message}",
-                              reason="CONTROL_LOST") from None
-            raise
-        finally:
-            session.close(reason)
+        return session, session.stream
 
     def _received(self, request: pb.TeleoperateRequest
                   ) -> tuple[pb.TeleoperateRequest, MasterIncrement | None]:
         """A Teleoperate message as it arrives (on the inbox's thread): a command is checked,
         converted and stamped with its receive time then."""
         kind = request.WhichOneof("message")
-        if kind == "heartbeat":
+        if kind in ("heartbeat", "end"):
             return request, None
         if kind != "command":
-            raise InvalidArgument("only commands and heartbeats may follow the init",
+            raise InvalidArgument("only commands, heartbeats and an end may follow the init",
                                   reason="BAD_MESSAGE")
         command = request.command
+        if command.sequence < 0:
+            raise InvalidArgument("sequence must be ≥ 0", reason="BAD_SEQUENCE")
         return request, MasterIncrement(
             convert.vector3_from_proto(command.delta_position_m, "delta_position_m"),
             convert.rotation_from_proto(command.delta_rotation, "delta_rotation"),
-            command.clutch_engaged, self._core.clock.time_ns())
+            command.clutch_engaged, self._core.clock.time_ns(), command.sequence)
 
-    def _serve_batch(self, session, batch) -> Iterator[pb.TeleoperateResponse]:
+    def _serve_batch(self, session: TeleopSession, stream: int, batch
+                     ) -> Iterator[pb.TeleoperateResponse]:
         """Acks, in order, for messages that arrived together: the commands between heartbeats
         go to the session together (it may merge them into one move)."""
         commands: list[pb.MasterCommand] = []
@@ -306,11 +343,15 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 commands.append(request.command)
                 increments.append(increment)
                 continue
-            for command, result in zip(commands, session.commands(increments), strict=True):
+            for command, result in zip(commands, session.commands(increments, stream),
+                                       strict=True):
                 yield self._ack(command.sequence, command.send_time, result)
             commands, increments = [], []
+            if request is not None and request.WhichOneof("message") == "end":
+                yield _END_OF_SESSION  # what came after it is ignored
+                return
             if request is not None:
-                yield self._ack(0, request.heartbeat.send_time, session.heartbeat())
+                yield self._ack(0, request.heartbeat.send_time, session.heartbeat(stream))
 
     def _control_state(self) -> pb.ControlState:
         return control_state(self._core.locks.view(), self._core.clock)
@@ -335,7 +376,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         wait_s = convert.seconds(request.wait_timeout) or context.time_remaining()
         lease = self._core.locks.acquire(
             request.operator_id, mode, request.group, request.wait, wait_s,
-            convert.seconds(request.lease_duration) or 5.0)
+            convert.seconds(request.lease_duration) or DEFAULT_LEASE_S)
         return pb.AcquireControlResponse(lease_id=lease.lease_id, operator_id=lease.operator_id,
                                          expire_time=_holder(lease, self._core.clock).expire_time,
                                          state=self._control_state())

@@ -23,16 +23,14 @@ import dataclasses
 import itertools
 import logging
 import threading
-import uuid
 from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
 
 from services.common.fanout import Fanout
-from services.common.geometry import moved_by, rotation_angle
 from services.decision_server.arbitration import ControlView, Lease, LockManager
-from services.decision_server.assistance import Assistance, apply_assistance
+from services.decision_server.assistance import Assistance
 from services.decision_server.cobegin import Barriers, SimulatedProcessor
 from services.decision_server.force_control import ForceLoop
 from services.decision_server.recordings import RecordingInfo, RecordingStore
@@ -43,10 +41,13 @@ from services.decision_server.slave import (
     SlaveState,
     SlaveWrench,
 )
+from services.decision_server.teleop import TeleopSession
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import (
     FailedPrecondition,
     InvalidArgument,
+    NotFound,
+    PermissionDenied,
     TelerobotError,
     Unavailable,
 )
@@ -74,13 +75,6 @@ MIN_REPLAY_SPEED, MAX_REPLAY_SPEED = 0.1, 10.0
 class ControlChanged:
     view: ControlView
     reason: str
-
-
-@dataclass(frozen=True)
-class WatchdogHold:
-    session_id: str
-    reason: str
-    silence_s: float
 
 
 @dataclass(frozen=True)
@@ -118,228 +112,6 @@ class _Replay:
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)
     reason: str = ""
     replayed: int = 0
-
-
-# -- teleoperation --------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class CommandResult:
-    outcome: str  # APPLIED, MODIFIED, INDEXED, REJECTED, HEARTBEAT
-    detail: str
-    receive_time_ns: int
-    apply_time_ns: int
-
-
-@dataclass(frozen=True)
-class MasterIncrement:
-    """One master command: ΔX (m) and ΔM in the session's mapping frame, the clutch, and when
-    the server received it."""
-
-    delta_position: np.ndarray
-    delta_rotation: np.ndarray
-    clutch_engaged: bool
-    receive_time_ns: int
-
-
-# A merged move stays well inside ProxyRobot's caps per move (50 mm, 15 deg), so merging never
-# turns acceptable commands into one refused move; and at most 50 commands (50 ms at 1 kHz).
-MAX_MERGED_COMMANDS = 50
-MAX_MERGED_TRANSLATION_M = 0.02
-MAX_MERGED_ROTATION_RAD = np.radians(5.0)
-
-
-def merge_groups(increments: list[MasterIncrement]) -> list[list[MasterIncrement]]:
-    """Consecutive commands that may share one move: all motion (clutch released) or all
-    clutch, at most MAX_MERGED_COMMANDS, their summed sizes within the merge bounds."""
-    groups: list[list[MasterIncrement]] = []
-    translation = rotation = 0.0
-    for increment in increments:
-        size = float(np.linalg.norm(increment.delta_position))
-        angle = rotation_angle(increment.delta_rotation)
-        group = groups[-1] if groups else None
-        if (group is not None and group[0].clutch_engaged == increment.clutch_engaged
-                and len(group) < MAX_MERGED_COMMANDS
-                and translation + size <= MAX_MERGED_TRANSLATION_M
-                and rotation + angle <= MAX_MERGED_ROTATION_RAD):
-            group.append(increment)
-            translation, rotation = translation + size, rotation + angle
-        else:
-            groups.append([increment])
-            translation, rotation = size, angle
-    return groups
-
-
-def compose(first: pin.SE3, then: pin.SE3, mapping: str) -> pin.SE3:
-    """One increment with the effect of `first` followed by `then` (see
-    services.common.geometry.moved_by)."""
-    if mapping == "TOOL":
-        return first * then
-    return pin.SE3(then.rotation @ first.rotation, first.translation + then.translation)
-
-
-class TeleopSession:
-    """One operator's Teleoperate stream: increments in, the watchdog behind them. One thread
-    calls `commands`/`heartbeat`; the watchdog thread and `close` share `_lock`; `close` waits
-    for a move in flight (`_moving`), so its hold is the last word."""
-
-    def __init__(self, core: DecisionCore, operator_id: str, lease: Lease, mapping: str | None,
-                 watchdog_s: float):
-        self.core = core
-        self.session_id = uuid.uuid4().hex[:12]
-        self.operator_id = operator_id
-        self.lease = lease
-        self.mapping = mapping
-        self.watchdog_s = watchdog_s
-        self._clock = core.clock
-        self._lock = threading.Lock()
-        self._moving = threading.Lock()  # held across a move; see close()
-        self._last_activity = self._clock.monotonic()
-        self._target: pin.SE3 | None = None  # tool pose at the last accepted target
-        self._held = False
-        self._sensor_was_lost = False
-        self._closed = threading.Event()
-        self._activity = threading.Event()
-        self._watchdog = threading.Thread(target=self._watch, name=f"watchdog-{self.session_id}",
-                                          daemon=True)
-
-    def start(self) -> TeleopSession:
-        self._watchdog.start()
-        return self
-
-    def heartbeat(self) -> CommandResult:
-        now = self._clock.time_ns()
-        self._touch()
-        self.core.locks.require(self.lease.lease_id)  # renews it; FailedPrecondition if lost
-        return CommandResult("HEARTBEAT", "", now, now)
-
-    def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
-                clutch_engaged: bool) -> CommandResult:
-        """One master command, received now."""
-        return self.commands([MasterIncrement(delta_position, delta_rotation, clutch_engaged,
-                                              self._clock.time_ns())])[0]
-
-    def commands(self, increments: list[MasterIncrement]) -> list[CommandResult]:
-        """Master commands that arrived together (a backlog behind a slow arm), in order: a
-        result each. Consecutive motion commands go to the arm as one move, their increments
-        composed (see `merge_groups`), so a backlog costs one arm round trip instead of one
-        per command, and the newest command reaches the arm soonest."""
-        if not increments:
-            return []
-        self._touch()
-        self.core.locks.require(self.lease.lease_id)  # FailedPrecondition ends the stream
-        assistance, indexing, latched = self.core.snapshot()
-        sensor_lost = self._sensor_check()
-        results: list[CommandResult] = []
-        for group in merge_groups(increments):
-            first = group[0]
-            if first.clutch_engaged or indexing:
-                self._target = None  # the reference follows the hand; re-read the pose after
-                results += [CommandResult("INDEXED", "indexing is engaged", i.receive_time_ns,
-                                          i.receive_time_ns) for i in group]
-            elif latched or sensor_lost:
-                why = f"the arm is {latched}: Reset it first" if latched else sensor_lost
-                results += [CommandResult("REJECTED", why, i.receive_time_ns,
-                                          i.receive_time_ns) for i in group]
-            else:
-                results += self._move(assistance, group)
-        return results
-
-    def _sensor_check(self) -> str | None:
-        """Why the sensor is lost (see DecisionCore.sensor_lost); the first time, the arm is
-        told to hold, so a move in flight stops too. Once it is back, the next move starts from
-        the arm's measured pose."""
-        lost = self.core.sensor_lost()
-        if lost and not self._sensor_was_lost:
-            log.warning("session %s: %s", self.session_id, lost)
-            with self._moving:
-                try:
-                    self.core.slave.hold(lost)
-                except TelerobotError as error:  # the arm's own watchdogs hold it anyway
-                    log.warning("could not hold the arm: %s", error.message)
-            self._target = None
-        self._sensor_was_lost = bool(lost)
-        return lost
-
-    def _move(self, assistance: Assistance, group: list[MasterIncrement]) -> list[CommandResult]:
-        """One move for a group of motion commands: each gets the assistance at the pose the
-        ones before it lead to; the composed increment goes to the arm."""
-        mapping = self.mapping or assistance.mapping
-        assistance = dataclasses.replace(assistance, mapping=mapping)
-        tool = self._target or self.core.slave.state().tool_pose
-        total = pin.SE3.Identity()
-        modified_by_assistance = []
-        for increment in group:
-            dx, dm, modified = apply_assistance(assistance, increment.delta_position,
-                                                increment.delta_rotation, tool)
-            step = pin.SE3(dm, dx)
-            tool = moved_by(tool, step, mapping)
-            total = compose(total, step, mapping)
-            modified_by_assistance.append(modified)
-        with self._moving:  # close() holds the arm only after a move in flight landed
-            try:
-                if self._closed.is_set():
-                    raise FailedPrecondition("the session has ended", reason="SESSION_ENDED")
-                result = self.core.slave.move_cartesian(total.translation, total.rotation,
-                                                        mapping)
-            except Unavailable:
-                raise  # the arm is unreachable: the stream ends, it is not one refused command
-            except TelerobotError as error:
-                now = self._clock.time_ns()
-                return [CommandResult("REJECTED", error.message, i.receive_time_ns, now)
-                        for i in group]
-        applied = self._clock.time_ns()
-        self._target = result.target_tool_pose
-        self.core.recordings.add(mapping, total.translation, total.rotation,
-                                 result.target_tool_pose.translation)
-        reduced = result.applied_fraction < 1.0
-        detail = f"reduced to {result.applied_fraction:.2f} near a singularity" if reduced else ""
-        return [CommandResult("MODIFIED" if modified or reduced else "APPLIED", detail,
-                              i.receive_time_ns, applied)
-                for i, modified in zip(group, modified_by_assistance, strict=True)]
-
-    def close(self, reason: str) -> None:
-        """The stream ended: hold the arm, unless the watchdog already did."""
-        with self._lock:
-            if self._closed.is_set():
-                return
-            self._closed.set()
-            hold = not self._held
-            self._held = True
-        self._activity.set()
-        with self._moving:  # a move in flight lands first; none starts after
-            if hold:
-                self._hold(reason)
-        self.core.forget_session(self.session_id)
-
-    def _touch(self) -> None:
-        with self._lock:
-            self._last_activity = self._clock.monotonic()
-            self._held = False
-        self._activity.set()
-
-    def _watch(self) -> None:
-        while not self._closed.is_set():
-            # Clear before reading the state, so a command or a close that lands in between
-            # still wakes the wait below instead of being missed.
-            self._activity.clear()
-            with self._lock:
-                deadline = self._last_activity + self.watchdog_s
-                due = deadline <= self._clock.monotonic()
-                fire = due and not self._held and not self._closed.is_set()
-                if fire:
-                    self._held = True
-            if fire:
-                self._hold("watchdog timeout: no command or heartbeat")
-            self._clock.wait_until(self._activity, None if due else deadline)
-
-    def _hold(self, reason: str) -> None:
-        silence = self._clock.monotonic() - self._last_activity
-        self._target = None
-        try:
-            self.core.slave.hold(reason)
-        except TelerobotError as error:
-            log.warning("session %s: hold failed: %s", self.session_id, error.message)
-        self.core.emit(WatchdogHold(self.session_id, reason, silence))
 
 
 # -- the core -------------------------------------------------------------------------------
@@ -497,6 +269,24 @@ class DecisionCore:
             self._sessions[session.session_id] = session
         return session.start()
 
+    def resume_session(self, session_id: str, lease_id: str) -> tuple[TeleopSession, int]:
+        """A broken session (see services.decision_server.teleop), taken over by a new stream
+        of the same lease: the session and the new stream's number."""
+        with self._lock:
+            session = self._sessions.get(session_id)
+        if session is None:
+            raise NotFound(f"no session {session_id} to resume: it ended, or its resume window "
+                           "passed; open a new one", reason="NO_SESSION")
+        if lease_id != session.lease.lease_id:
+            raise PermissionDenied(f"session {session_id} belongs to another lease",
+                                   reason="NOT_YOUR_SESSION")
+        self.locks.require(lease_id)  # the lease still held, by this caller; renewed
+        with self._lock:  # (start_replay looks for attached sessions under it too)
+            if self._replay is not None:  # started while the session was detached
+                raise FailedPrecondition("a replay is running: stop it first",
+                                         reason="REPLAYING")
+            return session, session.resume()
+
     def forget_session(self, session_id: str) -> None:
         with self._lock:
             self._sessions.pop(session_id, None)
@@ -571,6 +361,12 @@ class DecisionCore:
         switched it on: released or lapsed (a crashed operator), it stops and the arm holds
         where it is. The next holder switches it on again if they want it."""
         self.emit(ControlChanged(view, reason))
+        held = {lease.lease_id for lease in view.holders}
+        with self._lock:
+            orphans = [s for s in self._sessions.values()
+                       if s.detached and s.lease.lease_id not in held]
+        for session in orphans:  # nobody can resume them now
+            session.close(f"the lease ended ({reason})")
         with self._lock:
             owner = self._force_lease
             if owner is None or any(h.lease_id == owner.lease_id for h in view.holders):
@@ -621,7 +417,7 @@ class DecisionCore:
         with self._lock:
             if self._replay is not None:
                 raise FailedPrecondition("a replay is already running", reason="REPLAYING")
-            if self._sessions:
+            if any(not session.detached for session in self._sessions.values()):
                 raise FailedPrecondition("an operator is teleoperating: end the session first",
                                          reason="TELEOPERATING")
             if self.latched:

@@ -6,7 +6,8 @@
 --delay, --jitter, --bandwidth, --stall-prob and --stall-for set both directions; their
 --up-… and --down-… forms override one (up: client to target). Once listening it prints
 `TELEROBOT_READY impairment <host:port>` (the address it bound, for --listen …:0), then a
-line per connection and cut.
+line per connection and cut. SIGUSR1 cuts the link now, for --cut-for in --cut-mode (a cut
+by hand, or at the moment a test chooses).
 """
 
 from __future__ import annotations
@@ -106,15 +107,20 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:
         print(f"impairment: {error}", file=sys.stderr)
         return 2
-    stop = threading.Event()
+    stop, cut_now = threading.Event(), threading.Event()
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda *_: stop.set())
+    signal.signal(signal.SIGUSR1, lambda *_: cut_now.set())
     with ImpairmentProxy(args.listen, args.target, up, down,
                          report=lambda line: print(line, flush=True)) as proxy:
         print(ready_line("impairment", proxy.address), flush=True)
         if args.cut_at is not None and not stop.wait(args.cut_at):
             proxy.cut(args.cut_for, args.cut_mode)
-        stop.wait()
+        # The handlers only set events: the cut is made here, in the main thread's own time.
+        while not stop.is_set():
+            if cut_now.wait(0.05):
+                cut_now.clear()
+                proxy.cut(args.cut_for, args.cut_mode)
         print(f"stopping: {proxy.stats}", flush=True)
     return 0
 

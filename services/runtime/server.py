@@ -30,6 +30,7 @@ from services.runtime.auth import CallSecurity
 from services.runtime.lanes import Lane, LaneConfig, LaneExecutor
 from services.runtime.rpc import LaneInterceptor
 from services.runtime.tls import server_credentials
+from wire.tls import KEEPALIVE_INTERVAL_MS, KEEPALIVE_TIMEOUT_MS
 
 if TYPE_CHECKING:
     from services.security.audit import AuditLog
@@ -57,15 +58,15 @@ class ServerSecurity:
 
 
 # The server pings each client as the clients ping it (wire.tls.KEEPALIVE_OPTIONS), so a dead,
-# hung or cut client is noticed in about 2 s (measured 2.0 s for a SIGSTOPped client) and
-# its streams end (a Teleoperate session then closes and holds the arm), and it takes the
-# clients' pings at that rate instead of answering them with GOAWAY "too_many_pings".
+# hung or cut client is noticed within a second and its streams end (a Teleoperate session
+# then holds the arm and waits to be resumed), and it takes the clients' pings at that rate
+# instead of answering them with GOAWAY "too_many_pings".
 SERVER_KEEPALIVE_OPTIONS = (
-    ("grpc.keepalive_time_ms", 1000),
-    ("grpc.keepalive_timeout_ms", 1000),
-    ("grpc.http2.ping_timeout_ms", 1000),  # see wire.tls.KEEPALIVE_OPTIONS
+    ("grpc.keepalive_time_ms", KEEPALIVE_INTERVAL_MS),
+    ("grpc.keepalive_timeout_ms", KEEPALIVE_TIMEOUT_MS),
+    ("grpc.http2.ping_timeout_ms", KEEPALIVE_TIMEOUT_MS),  # see wire.tls.KEEPALIVE_OPTIONS
     ("grpc.keepalive_permit_without_calls", 1),
-    ("grpc.http2.min_recv_ping_interval_without_data_ms", 500),
+    ("grpc.http2.min_recv_ping_interval_without_data_ms", KEEPALIVE_INTERVAL_MS // 2),
     ("grpc.http2.max_ping_strikes", 0),
 )
 

@@ -13,7 +13,7 @@ from services.stereo_camera.capture import CaptureHub
 from services.stereo_camera.pattern import PatternSource
 from services.stereo_camera.servicer import StereoCameraServicer
 from telerobot.v1 import stereo_camera_pb2_grpc
-from tests.decision_server.conftest import station  # noqa: F401  (fixture)
+from tests.decision_server.conftest import fake_station, station  # noqa: F401  (fixtures)
 
 CAMERA_WIDTH_PX, CAMERA_HEIGHT_PX = 96, 72
 

@@ -17,6 +17,8 @@ import pytest
 from services.common import convert
 from services.decision_server import arbitration, force_control, recordings, supervisor
 from services.decision_server.__main__ import LANES
+from services.decision_server.arbitration import ControlMode, Lease
+from services.decision_server.assistance import Assistance, ForceControl
 from services.decision_server.backends import GrpcSlave
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
@@ -51,6 +53,37 @@ def _in_process_only(request, monkeypatch) -> None:
     core."""
     if not request.node.get_closest_marker("e2e"):
         refuse_processes(monkeypatch, (supervisor, force_control, arbitration, recordings))
+
+
+# The core alone, over a fake slave on a fake clock, with alice holding the lock.
+Z_AXIS = np.array([False, False, True, False, False, False])
+
+
+@dataclass
+class Rig:
+    clock: FakeClock
+    slave: FakeSlave
+    core: DecisionCore
+    lease: Lease
+
+    def force_control(self, desired_z_n: float = -5.0, gain: float = 2e-3) -> Assistance:
+        control = ForceControl(Z_AXIS, np.array([0.0, 0.0, desired_z_n]), np.zeros(3), gain,
+                               0.0)
+        return self.core.set_assistance(self.lease.lease_id, Assistance(force_control=control))
+
+    def moves(self) -> int:
+        return sum(c.kind == "cartesian" for c in self.slave.commands)
+
+
+@pytest.fixture
+def rig(tmp_path):
+    clock = FakeClock()
+    slave = FakeSlave(clock)
+    core = DecisionCore(slave, RecordingStore(tmp_path, clock), clock)
+    lease = core.locks.acquire("alice", ControlMode.EXCLUSIVE)
+    yield Rig(clock, slave, core, lease)
+    slave.end_wrench_streams()
+    core.close()
 
 
 @dataclass
@@ -186,6 +219,7 @@ class Operator:
         return next(self._replies).ack
 
     def close(self):
+        self._requests.put(pb.TeleoperateRequest(end=pb.TeleoperateEnd()))
         self._requests.put(None)
         for _ in self._replies:
             pass

@@ -5,54 +5,24 @@ Each test of a defect names it; each failed on the core before it owned the arm.
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
 
-from services.decision_server.arbitration import ControlMode, Lease
-from services.decision_server.assistance import Assistance, ForceControl
-from services.decision_server.recordings import RecordingStore
+from services.decision_server.arbitration import ControlMode
+from services.decision_server.assistance import Assistance
 from services.decision_server.supervisor import (
     AssistanceChanged,
     ControlChanged,
     DecisionCore,
-    WatchdogHold,
 )
+from services.decision_server.teleop import WatchdogHold
 from services.runtime.errors import FailedPrecondition, OutOfRange
 from tests.conftest import wait_for
-from tests.fakes.clock import FakeClock
+from tests.decision_server.conftest import Rig
 from tests.fakes.slave import FakeSlave
 
 SERVO_PERIOD_S = 0.001
-Z_AXIS = np.array([False, False, True, False, False, False])
-
-
-@dataclass
-class Rig:
-    clock: FakeClock
-    slave: FakeSlave
-    core: DecisionCore
-    lease: Lease
-
-    def force_control(self, desired_z_n: float = -5.0, gain: float = 2e-3) -> Assistance:
-        control = ForceControl(Z_AXIS, np.array([0.0, 0.0, desired_z_n]), np.zeros(3), gain,
-                               0.0)
-        return self.core.set_assistance(self.lease.lease_id, Assistance(force_control=control))
-
-    def moves(self) -> int:
-        return sum(c.kind == "cartesian" for c in self.slave.commands)
-
-
-@pytest.fixture
-def rig(tmp_path):
-    clock = FakeClock()
-    slave = FakeSlave(clock)
-    core = DecisionCore(slave, RecordingStore(tmp_path, clock), clock)
-    lease = core.locks.acquire("alice", ControlMode.EXCLUSIVE)
-    yield Rig(clock, slave, core, lease)
-    slave.end_wrench_streams()
-    core.close()
 
 
 def moves_in(rig: Rig, steps: int, loops: int) -> int:
@@ -286,7 +256,7 @@ def test_the_watchdog_holds_the_arm_exactly_at_its_timeout(rig):
 # -- a backlog of commands: one move -------------------------------------------------------------
 
 def _increments(rig: Rig, steps, clutch=()):
-    from services.decision_server.supervisor import MasterIncrement
+    from services.decision_server.teleop import MasterIncrement
 
     return [MasterIncrement(np.asarray(dx, float), rotation, i in clutch, rig.clock.time_ns())
             for i, (dx, rotation) in enumerate(steps)]

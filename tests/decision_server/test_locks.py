@@ -9,7 +9,12 @@ import threading
 
 import pytest
 
-from services.decision_server.arbitration import ControlMode, ControlView, LockManager
+from services.decision_server.arbitration import (
+    DEFAULT_LEASE_S,
+    ControlMode,
+    ControlView,
+    LockManager,
+)
 from services.runtime.errors import (
     Aborted,
     DeadlineExceeded,
@@ -170,7 +175,7 @@ def test_a_silent_holders_lease_expires_and_the_next_waiter_gets_control(locks, 
     clock.advance(0.2 + TICK_S)
     lease = waiter.result()
     assert lease.operator_id == "next"
-    assert lease.expires_at == clock.monotonic() + 5.0  # granted now, for the default lease
+    assert lease.expires_at == clock.monotonic() + DEFAULT_LEASE_S  # granted now
     assert [h.operator_id for h in told(changes, "sleepy's lease expired").holders] == ["next"]
 
 

@@ -171,3 +171,53 @@ def test_busy_work_is_bounded(fake_station):
                 duration=convert.duration(seconds))), timeout=5)
         assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
         assert "busy_work.duration" in error.value.details()
+
+
+def _command(sequence: int) -> pb.TeleoperateRequest:
+    return pb.TeleoperateRequest(command=pb.MasterCommand(
+        sequence=sequence, delta_position_m=types_pb2.Vector3(z=0.0005)))
+
+
+def test_a_stream_without_end_is_resumed_with_its_sequence_and_first_acks(fake_station):
+    """Half-closed without an `end` (as a cut link may look to the server), the session waits;
+    an Init with its id resumes it, and resent commands get their first acks, unapplied."""
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    init = pb.TeleoperateInit(operator_id="tester", lease_id=lease,
+                              watchdog_timeout=convert.duration(1.0))
+    first = list(station.decisions.Teleoperate(iter([
+        pb.TeleoperateRequest(init=init), _command(1), _command(2)]), timeout=30))
+    session_id = first[0].ready.session_id
+    assert station.core._sessions[session_id].detached
+    resume = pb.TeleoperateInit(lease_id=lease, resume_session_id=session_id)
+    second = list(station.decisions.Teleoperate(iter([
+        pb.TeleoperateRequest(init=resume), _command(2), _command(3),
+        pb.TeleoperateRequest(end=pb.TeleoperateEnd())]), timeout=30))
+    ready = second[0].ready
+    assert ready.resumed and ready.session_id == session_id and ready.last_sequence == 2
+    assert ready.resume_window.ToSeconds() == 10
+    resent, original = second[1].ack, first[2].ack  # the first ack again: same times, outcome
+    assert (resent.receive_time, resent.apply_time, resent.outcome) == (
+        original.receive_time, original.apply_time, original.outcome)
+    assert [r.ack.sequence for r in second[1:]] == [2, 3]
+    moves = [c.detail[1] for c in slave.commands if c.kind == "cartesian"]
+    np.testing.assert_allclose(np.sum(moves, axis=0), [0.0, 0.0, 0.0015], atol=1e-9)
+    assert session_id not in station.core._sessions  # `end`: gone for good
+
+
+@pytest.mark.parametrize("which, code", [
+    ("nosuchsession", grpc.StatusCode.NOT_FOUND),
+    ("another lease", grpc.StatusCode.PERMISSION_DENIED)])
+def test_a_resume_of_a_session_not_ours_is_refused(fake_station, which, code):
+    station, _ = fake_station
+    lease, _ = station.acquire()
+    opened = list(station.decisions.Teleoperate(iter([pb.TeleoperateRequest(
+        init=pb.TeleoperateInit(operator_id="tester", lease_id=lease))]), timeout=30))
+    session_id = opened[0].ready.session_id
+    resume = pb.TeleoperateInit(
+        lease_id=lease if which == "nosuchsession" else "not-" + lease,
+        resume_session_id="nosuchsession" if which == "nosuchsession" else session_id)
+    with pytest.raises(grpc.RpcError) as error:
+        next(station.decisions.Teleoperate(iter([pb.TeleoperateRequest(init=resume)]),
+                                           timeout=5))
+    assert error.value.code() is code

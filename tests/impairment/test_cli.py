@@ -17,7 +17,7 @@ from services.impairment.__main__ import (
 )
 from services.impairment.link import LinkProfile
 from services.runtime.server import create_server
-from tests.conftest import start_process
+from tests.conftest import start_process, wait_for
 
 
 @pytest.mark.parametrize("text, seconds", [("50ms", 0.05), ("3s", 3.0), ("0.5s", 0.5),
@@ -72,3 +72,20 @@ def test_by_hand_it_says_where_it_listens_what_it_does_and_cuts_on_time():
     finally:
         proxy.stop()
         server.stop(0)
+
+
+def test_sigusr1_cuts_the_link_when_asked():
+    proxy = start_process(["-m", "services.impairment", "--listen", "127.0.0.1:0",
+                           "--target", "127.0.0.1:1", "--cut-for", "150ms"])
+    try:
+        proxy.wait_ready("impairment", timeout_s=30)
+        def said(text: str) -> int:
+            return sum(text in line for line in proxy.lines)
+
+        for cuts in (1, 2):  # and again: each signal is one cut
+            proxy.send_signal(signal.SIGUSR1)
+            wait_for(lambda n=cuts: said("link cut for 0.15 s (stall)") == n, 10, f"cut {cuts}")
+            wait_for(lambda n=cuts: said("link back") == n, 10, f"the link back after cut {cuts}")
+        assert proxy.stop(signal.SIGTERM) == 0
+    finally:
+        proxy.stop()

@@ -1,6 +1,6 @@
 """Keepalives: a peer that stops answering (a hung process, a cut link) is noticed in seconds
 on both sides, not after TCP's minutes; its streams end with UNAVAILABLE (a Teleoperate session
-then closes and holds the arm). A ping a second with a second to answer: about 2 s."""
+then holds the arm). Four pings a second, 750 ms to answer: within a second (#14)."""
 
 from __future__ import annotations
 
@@ -18,8 +18,9 @@ from services.runtime.server import create_server
 from tests.conftest import REPO, wait_for
 from wire.tls import open_channel
 
-# Well past the ~2 s the keepalives take, far under the minutes TCP alone would.
-NOTICED_WITHIN_S = 5.0
+# The keepalives' own bound is 1 s (a ping every 250 ms, 750 ms to answer). This test checks the
+# mechanism, with slack for a loaded machine: far under the minutes TCP alone would take.
+NOTICED_WITHIN_S = 3.0
 
 # Each child runs until the test kills it (signal.pause: no timer to outlast).
 _SERVE = """

@@ -14,6 +14,14 @@ from typing import ClassVar as _ClassVar, Optional as _Optional, Union as _Union
 
 DESCRIPTOR: _descriptor.FileDescriptor
 
+class TeleopSessionState(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    TELEOP_SESSION_STATE_UNSPECIFIED: _ClassVar[TeleopSessionState]
+    TELEOP_SESSION_STATE_OPENED: _ClassVar[TeleopSessionState]
+    TELEOP_SESSION_STATE_DETACHED: _ClassVar[TeleopSessionState]
+    TELEOP_SESSION_STATE_RESUMED: _ClassVar[TeleopSessionState]
+    TELEOP_SESSION_STATE_CLOSED: _ClassVar[TeleopSessionState]
+
 class CommandOutcome(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     COMMAND_OUTCOME_UNSPECIFIED: _ClassVar[CommandOutcome]
@@ -22,6 +30,7 @@ class CommandOutcome(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     COMMAND_OUTCOME_INDEXED: _ClassVar[CommandOutcome]
     COMMAND_OUTCOME_REJECTED: _ClassVar[CommandOutcome]
     COMMAND_OUTCOME_HEARTBEAT: _ClassVar[CommandOutcome]
+    COMMAND_OUTCOME_DUPLICATE: _ClassVar[CommandOutcome]
 
 class ControlMode(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -48,12 +57,18 @@ class DependencyState(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     DEPENDENCY_STATE_SERVING: _ClassVar[DependencyState]
     DEPENDENCY_STATE_NOT_SERVING: _ClassVar[DependencyState]
     DEPENDENCY_STATE_RESTARTING: _ClassVar[DependencyState]
+TELEOP_SESSION_STATE_UNSPECIFIED: TeleopSessionState
+TELEOP_SESSION_STATE_OPENED: TeleopSessionState
+TELEOP_SESSION_STATE_DETACHED: TeleopSessionState
+TELEOP_SESSION_STATE_RESUMED: TeleopSessionState
+TELEOP_SESSION_STATE_CLOSED: TeleopSessionState
 COMMAND_OUTCOME_UNSPECIFIED: CommandOutcome
 COMMAND_OUTCOME_APPLIED: CommandOutcome
 COMMAND_OUTCOME_MODIFIED: CommandOutcome
 COMMAND_OUTCOME_INDEXED: CommandOutcome
 COMMAND_OUTCOME_REJECTED: CommandOutcome
 COMMAND_OUTCOME_HEARTBEAT: CommandOutcome
+COMMAND_OUTCOME_DUPLICATE: CommandOutcome
 CONTROL_MODE_UNSPECIFIED: ControlMode
 CONTROL_MODE_EXCLUSIVE: ControlMode
 CONTROL_MODE_COLLABORATIVE: ControlMode
@@ -70,26 +85,34 @@ DEPENDENCY_STATE_NOT_SERVING: DependencyState
 DEPENDENCY_STATE_RESTARTING: DependencyState
 
 class TeleoperateRequest(_message.Message):
-    __slots__ = ("init", "command", "heartbeat")
+    __slots__ = ("init", "command", "heartbeat", "end")
     INIT_FIELD_NUMBER: _ClassVar[int]
     COMMAND_FIELD_NUMBER: _ClassVar[int]
     HEARTBEAT_FIELD_NUMBER: _ClassVar[int]
+    END_FIELD_NUMBER: _ClassVar[int]
     init: TeleoperateInit
     command: MasterCommand
     heartbeat: Heartbeat
-    def __init__(self, init: _Optional[_Union[TeleoperateInit, _Mapping]] = ..., command: _Optional[_Union[MasterCommand, _Mapping]] = ..., heartbeat: _Optional[_Union[Heartbeat, _Mapping]] = ...) -> None: ...
+    end: TeleoperateEnd
+    def __init__(self, init: _Optional[_Union[TeleoperateInit, _Mapping]] = ..., command: _Optional[_Union[MasterCommand, _Mapping]] = ..., heartbeat: _Optional[_Union[Heartbeat, _Mapping]] = ..., end: _Optional[_Union[TeleoperateEnd, _Mapping]] = ...) -> None: ...
+
+class TeleoperateEnd(_message.Message):
+    __slots__ = ()
+    def __init__(self) -> None: ...
 
 class TeleoperateInit(_message.Message):
-    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout")
+    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout", "resume_session_id")
     OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
     LEASE_ID_FIELD_NUMBER: _ClassVar[int]
     MAPPING_FIELD_NUMBER: _ClassVar[int]
     WATCHDOG_TIMEOUT_FIELD_NUMBER: _ClassVar[int]
+    RESUME_SESSION_ID_FIELD_NUMBER: _ClassVar[int]
     operator_id: str
     lease_id: str
     mapping: _types_pb2.ReferenceFrame
     watchdog_timeout: _duration_pb2.Duration
-    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
+    resume_session_id: str
+    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., resume_session_id: _Optional[str] = ...) -> None: ...
 
 class MasterCommand(_message.Message):
     __slots__ = ("sequence", "send_time", "delta_position_m", "delta_rotation", "clutch_engaged")
@@ -120,16 +143,22 @@ class TeleoperateResponse(_message.Message):
     def __init__(self, ready: _Optional[_Union[TeleoperateReady, _Mapping]] = ..., ack: _Optional[_Union[CommandAck, _Mapping]] = ...) -> None: ...
 
 class TeleoperateReady(_message.Message):
-    __slots__ = ("session_id", "mapping", "watchdog_timeout", "assistance")
+    __slots__ = ("session_id", "mapping", "watchdog_timeout", "assistance", "resumed", "last_sequence", "resume_window")
     SESSION_ID_FIELD_NUMBER: _ClassVar[int]
     MAPPING_FIELD_NUMBER: _ClassVar[int]
     WATCHDOG_TIMEOUT_FIELD_NUMBER: _ClassVar[int]
     ASSISTANCE_FIELD_NUMBER: _ClassVar[int]
+    RESUMED_FIELD_NUMBER: _ClassVar[int]
+    LAST_SEQUENCE_FIELD_NUMBER: _ClassVar[int]
+    RESUME_WINDOW_FIELD_NUMBER: _ClassVar[int]
     session_id: str
     mapping: _types_pb2.ReferenceFrame
     watchdog_timeout: _duration_pb2.Duration
     assistance: AssistanceConfig
-    def __init__(self, session_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., assistance: _Optional[_Union[AssistanceConfig, _Mapping]] = ...) -> None: ...
+    resumed: bool
+    last_sequence: int
+    resume_window: _duration_pb2.Duration
+    def __init__(self, session_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., assistance: _Optional[_Union[AssistanceConfig, _Mapping]] = ..., resumed: _Optional[bool] = ..., last_sequence: _Optional[int] = ..., resume_window: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
 
 class CommandAck(_message.Message):
     __slots__ = ("sequence", "command_send_time", "receive_time", "apply_time", "outcome", "detail", "tool_pose", "tool_wrench", "status")
@@ -406,7 +435,7 @@ class StreamEventsRequest(_message.Message):
     def __init__(self, include_data_received: _Optional[bool] = ...) -> None: ...
 
 class StreamEventsResponse(_message.Message):
-    __slots__ = ("sequence", "event_time", "robot", "control_changed", "watchdog_hold", "assistance_changed", "replay_progress", "dependency_changed")
+    __slots__ = ("sequence", "event_time", "robot", "control_changed", "watchdog_hold", "assistance_changed", "replay_progress", "dependency_changed", "teleop_session")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     EVENT_TIME_FIELD_NUMBER: _ClassVar[int]
     ROBOT_FIELD_NUMBER: _ClassVar[int]
@@ -415,6 +444,7 @@ class StreamEventsResponse(_message.Message):
     ASSISTANCE_CHANGED_FIELD_NUMBER: _ClassVar[int]
     REPLAY_PROGRESS_FIELD_NUMBER: _ClassVar[int]
     DEPENDENCY_CHANGED_FIELD_NUMBER: _ClassVar[int]
+    TELEOP_SESSION_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     event_time: _timestamp_pb2.Timestamp
     robot: _proxy_robot_pb2.StreamRobotEventsResponse
@@ -423,7 +453,8 @@ class StreamEventsResponse(_message.Message):
     assistance_changed: AssistanceChangedEvent
     replay_progress: ReplayProgressEvent
     dependency_changed: DependencyChangedEvent
-    def __init__(self, sequence: _Optional[int] = ..., event_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., robot: _Optional[_Union[_proxy_robot_pb2.StreamRobotEventsResponse, _Mapping]] = ..., control_changed: _Optional[_Union[ControlChangedEvent, _Mapping]] = ..., watchdog_hold: _Optional[_Union[WatchdogHoldEvent, _Mapping]] = ..., assistance_changed: _Optional[_Union[AssistanceChangedEvent, _Mapping]] = ..., replay_progress: _Optional[_Union[ReplayProgressEvent, _Mapping]] = ..., dependency_changed: _Optional[_Union[DependencyChangedEvent, _Mapping]] = ...) -> None: ...
+    teleop_session: TeleopSessionEvent
+    def __init__(self, sequence: _Optional[int] = ..., event_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., robot: _Optional[_Union[_proxy_robot_pb2.StreamRobotEventsResponse, _Mapping]] = ..., control_changed: _Optional[_Union[ControlChangedEvent, _Mapping]] = ..., watchdog_hold: _Optional[_Union[WatchdogHoldEvent, _Mapping]] = ..., assistance_changed: _Optional[_Union[AssistanceChangedEvent, _Mapping]] = ..., replay_progress: _Optional[_Union[ReplayProgressEvent, _Mapping]] = ..., dependency_changed: _Optional[_Union[DependencyChangedEvent, _Mapping]] = ..., teleop_session: _Optional[_Union[TeleopSessionEvent, _Mapping]] = ...) -> None: ...
 
 class ControlChangedEvent(_message.Message):
     __slots__ = ("state", "reason")
@@ -464,6 +495,26 @@ class ReplayProgressEvent(_message.Message):
     state: ReplayState
     detail: str
     def __init__(self, name: _Optional[str] = ..., commands_replayed: _Optional[int] = ..., command_count: _Optional[int] = ..., state: _Optional[_Union[ReplayState, str]] = ..., detail: _Optional[str] = ...) -> None: ...
+
+class TeleopSessionEvent(_message.Message):
+    __slots__ = ("session_id", "operator_id", "state", "reason", "commands_processed", "commands_applied", "resends_answered", "last_sequence")
+    SESSION_ID_FIELD_NUMBER: _ClassVar[int]
+    OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
+    STATE_FIELD_NUMBER: _ClassVar[int]
+    REASON_FIELD_NUMBER: _ClassVar[int]
+    COMMANDS_PROCESSED_FIELD_NUMBER: _ClassVar[int]
+    COMMANDS_APPLIED_FIELD_NUMBER: _ClassVar[int]
+    RESENDS_ANSWERED_FIELD_NUMBER: _ClassVar[int]
+    LAST_SEQUENCE_FIELD_NUMBER: _ClassVar[int]
+    session_id: str
+    operator_id: str
+    state: TeleopSessionState
+    reason: str
+    commands_processed: int
+    commands_applied: int
+    resends_answered: int
+    last_sequence: int
+    def __init__(self, session_id: _Optional[str] = ..., operator_id: _Optional[str] = ..., state: _Optional[_Union[TeleopSessionState, str]] = ..., reason: _Optional[str] = ..., commands_processed: _Optional[int] = ..., commands_applied: _Optional[int] = ..., resends_answered: _Optional[int] = ..., last_sequence: _Optional[int] = ...) -> None: ...
 
 class DependencyChangedEvent(_message.Message):
     __slots__ = ("dependency", "previous_state")

@@ -158,10 +158,17 @@ class DecisionServerServicer:
         and heartbeats follow, and each command gets an ack. The slave interpolates commands up to
         the servo rate. A watchdog holds the arm when neither a command nor a heartbeat arrives
         within the Init's timeout, and when the stream ends or is cancelled.
-        Final status: OK when the client half-closes; INVALID_ARGUMENT when the first message is not
+        A session whose stream ends without an `end` message (a cut link, a lost connection) holds
+        the arm and can be resumed for TeleoperateReady.resume_window by an Init with its
+        resume_session_id and the same lease. Commands carry increasing sequence numbers;
+        a command resent with a sequence the session has already processed is answered with its
+        first ack and not applied again, so nothing is applied twice across a resume.
+        Final status: OK after the client's `end` or half-close; INVALID_ARGUMENT when the first message is not
         an Init, or for a malformed message (fix the client); FAILED_PRECONDITION without the
         control lock, or when the arm is not READY or is e-stopped (reconnect after fixing);
-        ABORTED when the lease is lost mid-stream (acquire control again).
+        NOT_FOUND when the session to resume is gone (open a new one); PERMISSION_DENIED when it is
+        another lease's; ABORTED when the lease is lost mid-stream (acquire control again), or when
+        another stream resumed this session.
         Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)

@@ -1,0 +1,442 @@
+"""Teleoperation sessions: one operator's stream of master increments, the watchdog behind
+them, and what lets a session outlive its stream (#14). No transport code.
+
+A session is served by one stream at a time. When that stream breaks (a cut link: anything but
+the operator's own close), the arm holds and the session waits, *detached*, for up to
+RESUME_WINDOW_S for a stream with the same lease to resume it. Every command carries a sequence
+number that increases within the session; a command whose sequence was already processed is a
+resend (the master did not get its ack before the cut) and is answered with its first result
+instead of being applied again. So across a cut nothing is applied twice, and nothing the
+master still waits for is lost: it resends what was not acked.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import threading
+import uuid
+from collections import OrderedDict
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pinocchio as pin
+
+from services.common.geometry import moved_by, rotation_angle
+from services.decision_server.arbitration import Lease
+from services.decision_server.assistance import Assistance, apply_assistance
+from services.runtime.errors import Aborted, FailedPrecondition, TelerobotError, Unavailable
+
+if TYPE_CHECKING:
+    from services.decision_server.supervisor import DecisionCore
+
+log = logging.getLogger(__name__)
+
+# A broken session waits this long to be resumed (and its lease must still be held): a cut of
+# a few seconds, the ~1 s the keepalives take to notice it and a reconnect fit well inside.
+RESUME_WINDOW_S = 10.0
+# Results kept for answering resends. A resend is a command whose ack was lost in a cut: at
+# most what was in flight when the link went, about a round trip's worth (400 at 1 kHz over
+# 400 ms), so 4,096 is ample; an older resend is answered DUPLICATE without its first result.
+RESULTS_KEPT = 4096
+
+
+# -- events -----------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class WatchdogHold:
+    session_id: str
+    reason: str
+    silence_s: float
+
+
+@dataclass(frozen=True)
+class SessionCounts:
+    processed: int = 0  # commands given an outcome, once each
+    applied: int = 0  # of those, APPLIED or MODIFIED
+    resends: int = 0  # resends answered with their first result
+    last_sequence: int = 0
+
+
+@dataclass(frozen=True)
+class TeleopSessionChanged:
+    session_id: str
+    operator_id: str
+    state: str  # OPENED, DETACHED, RESUMED, CLOSED
+    reason: str
+    counts: SessionCounts
+
+
+# -- commands ---------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class CommandResult:
+    outcome: str  # APPLIED, MODIFIED, INDEXED, REJECTED, HEARTBEAT, DUPLICATE
+    detail: str
+    receive_time_ns: int
+    apply_time_ns: int
+
+
+@dataclass(frozen=True)
+class MasterIncrement:
+    """One master command: ΔX (m) and ΔM in the session's mapping frame, the clutch, when the
+    server received it, and its sequence number (0: none, never taken for a resend)."""
+
+    delta_position: np.ndarray
+    delta_rotation: np.ndarray
+    clutch_engaged: bool
+    receive_time_ns: int
+    sequence: int = 0
+
+
+# A merged move stays well inside ProxyRobot's caps per move (50 mm, 15 deg), so merging never
+# turns acceptable commands into one refused move; and at most 50 commands (50 ms at 1 kHz).
+MAX_MERGED_COMMANDS = 50
+MAX_MERGED_TRANSLATION_M = 0.02
+MAX_MERGED_ROTATION_RAD = np.radians(5.0)
+
+
+def merge_groups(increments: list[MasterIncrement]) -> list[list[MasterIncrement]]:
+    """Consecutive commands that may share one move: all motion (clutch released) or all
+    clutch, at most MAX_MERGED_COMMANDS, their summed sizes within the merge bounds."""
+    groups: list[list[MasterIncrement]] = []
+    translation = rotation = 0.0
+    for increment in increments:
+        size = float(np.linalg.norm(increment.delta_position))
+        angle = rotation_angle(increment.delta_rotation)
+        group = groups[-1] if groups else None
+        if (group is not None and group[0].clutch_engaged == increment.clutch_engaged
+                and len(group) < MAX_MERGED_COMMANDS
+                and translation + size <= MAX_MERGED_TRANSLATION_M
+                and rotation + angle <= MAX_MERGED_ROTATION_RAD):
+            group.append(increment)
+            translation, rotation = translation + size, rotation + angle
+        else:
+            groups.append([increment])
+            translation, rotation = size, angle
+    return groups
+
+
+def compose(first: pin.SE3, then: pin.SE3, mapping: str) -> pin.SE3:
+    """One increment with the effect of `first` followed by `then` (see
+    services.common.geometry.moved_by)."""
+    if mapping == "TOOL":
+        return first * then
+    return pin.SE3(then.rotation @ first.rotation, first.translation + then.translation)
+
+
+class _Resends:
+    """The session's memory of what it processed: the highest sequence, the results of the
+    newest RESULTS_KEPT commands, and the counts."""
+
+    def __init__(self):
+        self.last_sequence = 0
+        self._results: OrderedDict[int, CommandResult] = OrderedDict()
+        self.processed = self.applied = self.answered = 0
+
+    def split(self, increments: list[MasterIncrement]) -> list[bool]:
+        """For each increment, in order: whether it is a resend (its sequence was processed,
+        in an earlier batch or earlier in this one)."""
+        high, flags = self.last_sequence, []
+        for increment in increments:
+            resend = 0 < increment.sequence <= high
+            flags.append(resend)
+            high = max(high, increment.sequence)
+        return flags
+
+    def record(self, increments: list[MasterIncrement], results: list[CommandResult]) -> None:
+        for increment, result in zip(increments, results, strict=True):
+            self.processed += 1
+            self.applied += result.outcome in ("APPLIED", "MODIFIED")
+            if increment.sequence > 0:
+                self.last_sequence = max(self.last_sequence, increment.sequence)
+                self._results[increment.sequence] = result
+        while len(self._results) > RESULTS_KEPT:
+            self._results.popitem(last=False)
+
+    def answer(self, increment: MasterIncrement) -> CommandResult:
+        self.answered += 1
+        first = self._results.get(increment.sequence)
+        if first is not None:
+            return first
+        return CommandResult("DUPLICATE", f"command {increment.sequence} was processed before; "
+                             "its result is no longer kept", increment.receive_time_ns,
+                             increment.receive_time_ns)
+
+    def counts(self) -> SessionCounts:
+        return SessionCounts(self.processed, self.applied, self.answered, self.last_sequence)
+
+
+class TeleopSession:
+    """One operator's Teleoperate session: increments in, the watchdog behind them.
+
+    Threads: one stream at a time calls `commands`/`heartbeat` (`_serving` keeps a superseded
+    stream's last batch and a resuming one apart); the watchdog thread, `end`, `resume` and
+    `close` share `_lock`; `close` waits for a move in flight (`_moving`), so its hold is the
+    last word. `stream` numbers the streams: each resume supersedes the one before."""
+
+    def __init__(self, core: DecisionCore, operator_id: str, lease: Lease, mapping: str | None,
+                 watchdog_s: float, resume_window_s: float = RESUME_WINDOW_S):
+        self.core = core
+        self.session_id = uuid.uuid4().hex[:12]
+        self.operator_id = operator_id
+        self.lease = lease
+        self.mapping = mapping
+        self.watchdog_s = watchdog_s
+        self.resume_window_s = resume_window_s
+        self._clock = core.clock
+        self._lock = threading.Lock()
+        self._moving = threading.Lock()  # held across a move; see close()
+        self._serving = threading.Lock()  # held across a batch; see `stream`
+        self._resends = _Resends()
+        self.stream = 1
+        self._detached_at: float | None = None
+        self._last_activity = self._clock.monotonic()
+        self._target: pin.SE3 | None = None  # tool pose at the last accepted target
+        self._held = False
+        self._sensor_was_lost = False
+        self._closed = threading.Event()
+        self._activity = threading.Event()
+        self._watchdog = threading.Thread(target=self._watch, name=f"watchdog-{self.session_id}",
+                                          daemon=True)
+
+    def start(self) -> TeleopSession:
+        self._watchdog.start()
+        self.core.emit(self._changed("OPENED", f"watchdog {self.watchdog_s * 1e3:.0f} ms"))
+        return self
+
+    @property
+    def last_sequence(self) -> int:
+        return self._resends.last_sequence
+
+    @property
+    def detached(self) -> bool:
+        return self._detached_at is not None
+
+    @property
+    def closed(self) -> bool:
+        return self._closed.is_set()
+
+    def counts(self) -> SessionCounts:
+        with self._serving:
+            return self._resends.counts()
+
+    def heartbeat(self, stream: int = 1) -> CommandResult:
+        with self._serving:
+            self._require_stream(stream)
+            now = self._clock.time_ns()
+            self._touch()
+            self.core.locks.require(self.lease.lease_id)  # renews it; FailedPrecondition if lost
+            return CommandResult("HEARTBEAT", "", now, now)
+
+    def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
+                clutch_engaged: bool) -> CommandResult:
+        """One master command, received now."""
+        return self.commands([MasterIncrement(delta_position, delta_rotation, clutch_engaged,
+                                              self._clock.time_ns())])[0]
+
+    def commands(self, increments: list[MasterIncrement], stream: int = 1
+                 ) -> list[CommandResult]:
+        """Master commands that arrived together on `stream` (a backlog behind a slow arm), in
+        order: a result each. Resends are answered with their first result; the others are
+        processed, consecutive motion commands going to the arm as one move, their increments
+        composed (see `merge_groups`), so a backlog costs one arm round trip instead of one
+        per command, and the newest command reaches the arm soonest."""
+        if not increments:
+            return []
+        with self._serving:
+            self._require_stream(stream)
+            resend = self._resends.split(increments)
+            fresh = [i for i, again in zip(increments, resend, strict=True) if not again]
+            fresh_results: list[CommandResult] = []
+            # Recorded group by group: if the stream breaks mid-batch, what moved the arm is
+            # remembered (a resend of it is answered) and the rest counts as never received.
+            for group, results in self._process(fresh, stream):
+                self._resends.record(group, results)
+                fresh_results += results
+            processed = iter(fresh_results)
+            return [self._resends.answer(i) if again else next(processed)
+                    for i, again in zip(increments, resend, strict=True)]
+
+    def _require_stream(self, stream: int) -> None:
+        if stream != self.stream:
+            raise Aborted("another stream resumed this session", reason="SUPERSEDED")
+
+    def _process(self, increments: list[MasterIncrement], stream: int
+                 ) -> Iterator[tuple[list[MasterIncrement], list[CommandResult]]]:
+        """Each group of `increments` (see merge_groups) with its results, as it is done."""
+        if not increments:
+            return
+        self._touch()
+        self.core.locks.require(self.lease.lease_id)  # FailedPrecondition ends the stream
+        assistance, indexing, latched = self.core.snapshot()
+        sensor_lost = self._sensor_check()
+        for group in merge_groups(increments):
+            first = group[0]
+            if first.clutch_engaged or indexing:
+                self._target = None  # the reference follows the hand; re-read the pose after
+                yield group, [CommandResult("INDEXED", "indexing is engaged", i.receive_time_ns,
+                                            i.receive_time_ns) for i in group]
+            elif latched or sensor_lost:
+                why = f"the arm is {latched}: Reset it first" if latched else sensor_lost
+                yield group, [CommandResult("REJECTED", why, i.receive_time_ns,
+                                            i.receive_time_ns) for i in group]
+            else:
+                yield group, self._move(assistance, group, stream)
+
+    def _sensor_check(self) -> str | None:
+        """Why the sensor is lost (see DecisionCore.sensor_lost); the first time, the arm is
+        told to hold, so a move in flight stops too. Once it is back, the next move starts from
+        the arm's measured pose."""
+        lost = self.core.sensor_lost()
+        if lost and not self._sensor_was_lost:
+            log.warning("session %s: %s", self.session_id, lost)
+            with self._moving:
+                try:
+                    self.core.slave.hold(lost)
+                except TelerobotError as error:  # the arm's own watchdogs hold it anyway
+                    log.warning("could not hold the arm: %s", error.message)
+            self._target = None
+        self._sensor_was_lost = bool(lost)
+        return lost
+
+    def _move(self, assistance: Assistance, group: list[MasterIncrement], stream: int
+              ) -> list[CommandResult]:
+        """One move for a group of motion commands: each gets the assistance at the pose the
+        ones before it lead to; the composed increment goes to the arm."""
+        mapping = self.mapping or assistance.mapping
+        assistance = dataclasses.replace(assistance, mapping=mapping)
+        tool = self._target or self.core.slave.state().tool_pose
+        total = pin.SE3.Identity()
+        modified_by_assistance = []
+        for increment in group:
+            dx, dm, modified = apply_assistance(assistance, increment.delta_position,
+                                                increment.delta_rotation, tool)
+            step = pin.SE3(dm, dx)
+            tool = moved_by(tool, step, mapping)
+            total = compose(total, step, mapping)
+            modified_by_assistance.append(modified)
+        with self._moving:  # close() and end() hold the arm only after a move in flight landed
+            if self._detached_at is not None or stream != self.stream:
+                # The stream broke while this batch ran: the arm holds, and the rest of the
+                # batch counts as never received (the master resends it after resuming).
+                raise Aborted("the session's stream broke", reason="STREAM_BROKEN")
+            try:
+                if self._closed.is_set():
+                    raise FailedPrecondition("the session has ended", reason="SESSION_ENDED")
+                result = self.core.slave.move_cartesian(total.translation, total.rotation,
+                                                        mapping)
+            except Unavailable:
+                raise  # the arm is unreachable: the stream ends, it is not one refused command
+            except TelerobotError as error:
+                now = self._clock.time_ns()
+                return [CommandResult("REJECTED", error.message, i.receive_time_ns, now)
+                        for i in group]
+        applied = self._clock.time_ns()
+        self._target = result.target_tool_pose
+        self.core.recordings.add(mapping, total.translation, total.rotation,
+                                 result.target_tool_pose.translation)
+        reduced = result.applied_fraction < 1.0
+        detail = f"reduced to {result.applied_fraction:.2f} near a singularity" if reduced else ""
+        return [CommandResult("MODIFIED" if modified or reduced else "APPLIED", detail,
+                              i.receive_time_ns, applied)
+                for i, modified in zip(group, modified_by_assistance, strict=True)]
+
+    # -- the stream's end, resume, close ------------------------------------------------------
+
+    def end(self, stream: int, reason: str, resumable: bool) -> None:
+        """`stream` ended: the session closes, or (`resumable`: it broke) holds the arm and
+        waits to be resumed. Nothing happens if a newer stream serves the session now."""
+        if not resumable:
+            with self._lock:
+                superseded = stream != self.stream
+            if not superseded:
+                self.close(reason)
+            return
+        with self._lock:
+            if stream != self.stream or self._closed.is_set():
+                return
+            self._detached_at = self._clock.monotonic()
+            hold = not self._held
+            self._held = True
+        self._activity.set()  # the watchdog now waits for the resume window instead
+        if hold:
+            with self._moving:
+                self._hold(reason)
+        self.core.emit(self._changed("DETACHED", f"{reason}; resumable for "
+                                                 f"{self.resume_window_s:.0f} s"))
+
+    def resume(self) -> int:
+        """A new stream takes the session over (a broken one, or one whose break the server
+        has not noticed yet, which is then superseded). Returns the new stream's number."""
+        with self._lock:
+            if self._closed.is_set():
+                raise FailedPrecondition("the session has ended", reason="SESSION_ENDED")
+            self.stream += 1
+            self._detached_at = None
+            stream = self.stream
+        self._touch()
+        self.core.emit(self._changed("RESUMED", "a new stream resumed the session"))
+        return stream
+
+    def close(self, reason: str) -> None:
+        """The session ends for good: hold the arm, unless the watchdog already did."""
+        with self._lock:
+            if self._closed.is_set():
+                return
+            self._closed.set()
+            hold = not self._held
+            self._held = True
+        self._activity.set()
+        with self._moving:  # a move in flight lands first; none starts after
+            if hold:
+                self._hold(reason)
+        self.core.forget_session(self.session_id)
+        self.core.emit(self._changed("CLOSED", reason))
+
+    def _changed(self, state: str, reason: str) -> TeleopSessionChanged:
+        return TeleopSessionChanged(self.session_id, self.operator_id, state, reason,
+                                    self._resends.counts())
+
+    def _touch(self) -> None:
+        with self._lock:
+            self._last_activity = self._clock.monotonic()
+            self._held = False
+        self._activity.set()
+
+    def _watch(self) -> None:
+        """Holds the arm when the operator goes quiet; closes the session when it stays
+        detached past its resume window."""
+        while not self._closed.is_set():
+            # Clear before reading the state, so a command or a close that lands in between
+            # still wakes the wait below instead of being missed.
+            self._activity.clear()
+            with self._lock:
+                if self._detached_at is not None:
+                    deadline = self._detached_at + self.resume_window_s
+                    expire = deadline <= self._clock.monotonic()
+                    fire = due = False
+                else:
+                    deadline = self._last_activity + self.watchdog_s
+                    due = deadline <= self._clock.monotonic()
+                    fire = due and not self._held and not self._closed.is_set()
+                    expire = False
+                if fire:
+                    self._held = True
+            if expire:
+                self.close(f"not resumed within {self.resume_window_s:.0f} s")
+                return
+            if fire:
+                self._hold("watchdog timeout: no command or heartbeat")
+            self._clock.wait_until(self._activity, None if due else deadline)
+
+    def _hold(self, reason: str) -> None:
+        silence = self._clock.monotonic() - self._last_activity
+        self._target = None
+        try:
+            self.core.slave.hold(reason)
+        except TelerobotError as error:
+            log.warning("session %s: hold failed: %s", self.session_id, error.message)
+        self.core.emit(WatchdogHold(self.session_id, reason, silence))
