@@ -76,7 +76,8 @@ def _channels(args) -> tuple[Upstream, str]:
     return Upstream(
         grpc.aio.secure_channel(args.token_address, credentials, options=options),
         grpc.aio.secure_channel(args.token_address, credentials,
-                                options=[*options, *LOW_LATENCY_OPTIONS])), "token"
+                                options=[*options, *LOW_LATENCY_OPTIONS]),
+        needs_token=True), "token"
 
 
 async def _serve(args) -> int:

@@ -54,9 +54,10 @@ class Upstream:
     wire.stereo: a window of about one message, so a slow browser gets fresh pairs)."""
 
     def __init__(self, channel: grpc.aio.Channel, stereo_channel: grpc.aio.Channel,
-                 refusal: str = ""):
+                 refusal: str = "", needs_token: bool = False):
         self.channel = channel
         self.stereo_channel = stereo_channel
+        self.needs_token = needs_token  # the DecisionServer's token port: every call needs one
         # Non-empty: every call is refused with UNAUTHENTICATED and this message (a TLS station
         # whose DecisionServer has no token port: a browser has no certificate to present).
         self.refusal = refusal

@@ -64,10 +64,16 @@ async def serve(scope, receive, send, upstream: Upstream) -> None:
               if p.startswith(TOKEN_SUBPROTOCOL_PREFIX)]
     metadata = [("authorization", f"Bearer {tokens[0]}")] if tokens else []
     await send({"type": "websocket.accept", "subprotocol": SUBPROTOCOL})
-    if upstream.refusal:
+    refusal = upstream.refusal
+    if upstream.needs_token and not tokens:
+        # Said here rather than by the DecisionServer: its refusal of a call with no
+        # credentials comes before it reads a message, and grpc.aio reports a write racing
+        # that refusal as INTERNAL ("Internal error from Core"), not UNAUTHENTICATED.
+        refusal = "no bearer token: offer the subprotocol bearer.<token> (the page's token field)"
+    if refusal:
         await send({"type": "websocket.close",
                     "code": close_code(grpc.StatusCode.UNAUTHENTICATED),
-                    "reason": _reason(upstream.refusal)})
+                    "reason": _reason(refusal)})
         return
     call = upstream.channel.stream_stream(METHOD)(metadata=metadata)
     peer = scope.get("client")
@@ -94,7 +100,8 @@ async def serve(scope, receive, send, upstream: Upstream) -> None:
             try:
                 await call.write(data)
             except (grpc.aio.AioRpcError, asyncio.InvalidStateError):
-                return None  # the stream ended; station_to_browser reports how
+                # The stream ended under the write: close as station_to_browser reports it.
+                return await asyncio.shield(outbound)
 
     async def station_to_browser() -> tuple[int, str]:
         try:
