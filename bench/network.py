@@ -373,15 +373,19 @@ def campus_comparison(result: dict) -> str:
     if not feedback or not compliance or None in (feedback.get("peak_force_n"),
                                                   compliance.get("peak_force_n")):
         return f"No complete pair of runs at the campus routes' {campus:g} ms in this run."
+    both = feedback["success"] and compliance["success"]
     ratio = (feedback["peak_force_n"] / compliance["peak_force_n"]
-             if compliance["peak_force_n"] else None)
+             if both and compliance["peak_force_n"] > 0 else None)
     trips = " and ".join(f"{mode} {_num(row.get('round_trip_p50_ms'))} ms"
                          for mode, row in at.items())
+    failed = [mode for mode, row in (("feedback", feedback), ("compliance", compliance))
+              if not row["success"]]
     return (f"At the campus routes' {campus:g} ms: with force feedback the peak is "
             f"{_num(feedback['peak_force_n'])} N, with compliance at the server "
             f"{_num(compliance['peak_force_n'])} N"
             + (f" ({ratio:.0f}× less)" if ratio and ratio >= 1 else "")
-            + f"; success {'yes' if feedback['success'] else 'no'} / "
-              f"{'yes' if compliance['success'] else 'no'}. The measured round trip (p50: "
-              f"{trips}) adds the station's own time to the link's, as the papers' 183 ms "
-              "includes their arm's.")
+            # A run that never reached the floor felt little: its peak compares nothing.
+            + (f"; the {' and '.join(failed)} run failed, so the peaks are no comparison"
+               if failed else "")
+            + f". The measured round trip (p50: {trips}) adds the station's own time to the "
+              "link's, as the papers' 183 ms includes their arm's, operated at 10 Hz.")

@@ -331,7 +331,7 @@ def network_block(document: dict, source: str = "bench/results/latest.json",
         *figures, note = cells
         lines.append("| " + " | ".join([*figures, note.replace("|", "\\|")[:300]]) + " |")
     lines += ["", f"![Peak force against the link's round trip, per mode]({figure})", "",
-              f"The papers: {row.get('papers', network.PAPERS)}",
+              f"The papers: {row.get('papers', network.PAPERS)}", "",
               network.campus_comparison(row)]
     return "\n".join(lines)
 

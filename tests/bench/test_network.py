@@ -169,3 +169,11 @@ def test_a_network_run_alone_merges_its_row_and_a_run_without_it_keeps_it(tmp_pa
     _bench(tmp_path, ("closed_loop",), {"closed_loop": {"p50_ms": 4.0}}).write()
     document = json.loads(latest.read_text())
     assert document["closed_loop"]["p50_ms"] == 4.0 and document["network"]["runs"] == 5
+
+
+def test_the_campus_comparison_claims_no_ratio_when_a_run_failed():
+    rows = [_row("feedback", 183.0, peak=480.0), _row("compliance", 183.0, success=False,
+                                                       peak=1.0)]
+    text = network.campus_comparison({**RESULT, "rows": rows})
+    assert "×" not in text and "the compliance run failed" in text
+    assert "No complete pair" in network.campus_comparison({**RESULT, "rows": rows[:1]})
