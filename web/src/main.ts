@@ -89,6 +89,7 @@ const statusName = (s: RobotStatus) => RobotStatus[s] ?? String(s);
 
 function showState(state: RobotState) {
   lastState = state;
+  $("status-reason").textContent = "";
   const status = $("status");
   status.textContent = statusName(state.status);
   status.dataset.status = statusName(state.status);
