@@ -6,12 +6,13 @@ from __future__ import annotations
 import json
 import signal
 import subprocess
+import urllib.request
 
 import grpc
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import STATION
+from services.launcher import HTTP_CHILDREN, STATION
 from services.runtime.children import refused_address
 from tests.conftest import (
     BUF,
@@ -52,6 +53,10 @@ def test_every_process_is_serving_where_the_launcher_says(station):
     assert sorted(addresses) == sorted(STATION)
     for name in STATION:
         assert not addresses[name].endswith(":0"), addresses
+        if name in HTTP_CHILDREN:  # the web console: HTTP, its health at /healthz
+            with urllib.request.urlopen(f"http://{addresses[name]}/healthz", timeout=5) as r:
+                assert r.status == 200, name
+            continue
         assert _serving(addresses[name]) == health_pb2.HealthCheckResponse.SERVING, name
     banner = "\n".join(launcher.lines)
     assert f"The operator's address is {addresses['decision_server']}" in banner
