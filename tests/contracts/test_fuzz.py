@@ -70,6 +70,7 @@ from grpc_reflection.v1alpha.proto_reflection_descriptor_database import (
     ProtoReflectionDescriptorDatabase,
 )
 
+from services.launcher import HTTP_CHILDREN
 from services.runtime.children import Child
 from telerobot.v1 import (
     decision_server_pb2,
@@ -418,7 +419,8 @@ class Fuzzer:
         self.lease = ""
         self.channels = {name: grpc.insecure_channel(address, options=[
             ("grpc.max_receive_message_length", 64 << 20)])
-            for name, address in station.addresses.items()}
+            for name, address in station.addresses.items()
+            if name not in HTTP_CHILDREN}  # the web console speaks HTTP (tests/web_console)
         inner = self.channels["proxy_robot"]
         operator = self.channels["decision_server"]
         self.inner_robot = proxy_robot_pb2_grpc.ProxyRobotStub(inner)
