@@ -289,9 +289,11 @@ def plot(result: dict, path: Path) -> Path:
     for mode in MODES:
         line = sorted((r for r in rows if r["mode"] == mode and not r.get("cut_s")
                        and r.get("peak_force_n") is not None), key=lambda r: r["round_trip_ms"])
-        if line:
-            axis.plot([r["round_trip_ms"] for r in line], [r["peak_force_n"] for r in line],
+        done = [r for r in line if r["success"]]  # a failed run's peak compares nothing
+        if done:
+            axis.plot([r["round_trip_ms"] for r in done], [r["peak_force_n"] for r in done],
                       "-o", color=colors.get(mode), label=mode)
+        if line:
             failed = [r for r in line if not r["success"]]
             if failed:
                 axis.plot([r["round_trip_ms"] for r in failed],
@@ -306,8 +308,9 @@ def plot(result: dict, path: Path) -> Path:
                             + ("" if all(r["success"] for r in cuts) else " (failed)"))
     campus = result.get("campus_rtt_ms", CAMPUS_RTT_MS)
     axis.axvline(campus, color="grey", linestyle="--", linewidth=1)
-    axis.text(campus, 0.98, f" papers' campus routes, {campus:g} ms", rotation=90, va="top",
-              ha="right", fontsize=8, color="grey", transform=axis.get_xaxis_transform())
+    axis.text(campus, 0.02, f"papers' campus routes, {campus:g} ms ", rotation=90,
+              va="bottom", ha="right", fontsize=8, color="grey",
+              transform=axis.get_xaxis_transform())
     axis.set_yscale("log")  # feedback's hundreds of newtons and compliance's few on one axis
     axis.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
     axis.set_xlabel("link round trip set (ms), jitter ±10 % of each way")
