@@ -8,7 +8,7 @@ import { createConnectTransport } from "@connectrpc/connect-web";
 
 import {
   type AssistanceConfig, AssistanceConfigSchema, CommandOutcome, ConstraintType, ControlMode,
-  type ControlState, DecisionServer, ReplayState, TeleoperateRequestSchema,
+  type ControlState, DecisionServer, ReplayState, TeleopSessionState, TeleoperateRequestSchema,
   TeleoperateResponseSchema,
 } from "./gen/telerobot/v1/decision_server_pb";
 import { ForceSensor } from "./gen/telerobot/v1/force_sensor_pb";
@@ -365,6 +365,9 @@ follow("events", async (signal) => {
     if (ev.case === "watchdogHold") $("drive-state").dataset.watchdog = ev.value.reason;
     let detail = "";
     if (ev.case === "watchdogHold" || ev.case === "controlChanged") detail = ev.value.reason;
+    if (ev.case === "teleopSession") {
+      detail = `${TeleopSessionState[ev.value.state]} ${ev.value.operatorId} ${ev.value.reason}`;
+    }
     if (ev.case === "robot") {
       const r = ev.value.event;
       if (r.case === "moved") continue;  // one per move: too many to list
@@ -400,6 +403,12 @@ function stopDriving(why: string) {
   if (socket) {
     const s = socket;
     socket = undefined;
+    // The session ends for good (no resume window: the arm is held now, and a replay or
+    // another session may start at once); then a clean close.
+    if (s.readyState === WebSocket.OPEN) {
+      s.send(toBinary(TeleoperateRequestSchema, create(TeleoperateRequestSchema, {
+        message: { case: "end", value: {} } })));
+    }
     s.close(1000, why.slice(0, 100));
     driveState("off", "");
   }
