@@ -3,15 +3,19 @@ the keyboard, the stop button, and a tab closed mid-drive."""
 
 from __future__ import annotations
 
+import contextlib
+import os
+import signal
 import threading
 import uuid
+from pathlib import Path
 
 import grpc
 import pytest
 
 from telerobot.v1 import decision_server_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
-from tests.web_console.conftest import arm_state
+from tests.web_console.conftest import CHROMIUM, CHROMIUM_ARGS, arm_state
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow]
 
@@ -208,3 +212,103 @@ def test_assistance_and_record_replay_from_the_page(browser, console_url, robot,
     assert tool_z(robot) > before + 0.004  # the recorded rise, once more
     page.click("#lock-release")
     assert page.errors == []
+
+
+class HoldWatch:
+    """The DecisionServer's watchdog_hold events, from now on."""
+
+    def __init__(self, decision):
+        self.holds: list[decision_server_pb2.WatchdogHoldEvent] = []
+        self._events = decision.StreamEvents(decision_server_pb2.StreamEventsRequest())
+        threading.Thread(target=self._follow, daemon=True).start()
+
+    def _follow(self):
+        try:
+            for event in self._events:
+                if event.HasField("watchdog_hold"):
+                    self.holds.append(event.watchdog_hold)
+        except grpc.RpcError:
+            pass  # cancelled by close()
+
+    def close(self):
+        self._events.cancel()
+
+
+def drive_down(page, robot):
+    """Hold F (-Z) until the arm is seen moving down; the key stays down."""
+    start = tool_z(robot)
+    page.keyboard.down("f")
+    wait_for(lambda: tool_z(robot) < start - 0.003, timeout_s=20, what="the arm moving down")
+
+
+def assert_held(robot):
+    wait_for(lambda: max(abs(v) for v in arm_state(robot).joint_velocities_rad_per_s) < 1e-3,
+             timeout_s=5, what="the arm at rest")
+    rest = arm_state(robot)
+    later = wait_for(lambda: (s := arm_state(robot)).sequence > rest.sequence + 20 and s,
+                     what="20 more state samples")
+    assert abs(later.tool_pose.position_m.z - rest.tool_pose.position_m.z) < 1e-4
+    assert status_of(robot) == "ROBOT_STATUS_READY"  # a hold, not an e-stop
+
+
+def browser_pids(profile: Path) -> list[int]:
+    """The Chromium processes this test started: the ones running on its own profile."""
+    pids = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                cmdline = (entry / "cmdline").read_bytes().split(b"\0")
+            except OSError:
+                continue
+            if cmdline and b"chromium" in cmdline[0] and \
+                    f"--user-data-dir={profile}".encode() in cmdline:
+                pids.append(int(entry.name))
+    return pids
+
+
+def test_a_frozen_tab_trips_the_watchdog(browser, console_url, robot, decision):
+    page = open_console(browser, console_url)
+    take_lock(page)
+    ready_arm(page, robot)
+    start_driving(page)
+    drive_down(page, robot)
+    watch = HoldWatch(decision)
+    try:
+        # The page's one thread busy for 2 s: no command, no heartbeat, the socket still open.
+        page.evaluate("() => { const t = Date.now(); while (Date.now() - t < 2000) {} }")
+        hold = wait_for(lambda: watch.holds[0] if watch.holds else None, timeout_s=5,
+                        what="a watchdog_hold while the tab was frozen")
+    finally:
+        watch.close()
+    assert "timeout" in hold.reason, hold.reason
+    page.keyboard.up("f")
+    page.click("#drive-toggle")
+    page.click("#lock-release")
+
+
+def test_a_lost_link_mid_drive_holds_the_arm(playwright_driver, tmp_path, console_url, robot,
+                                             decision):
+    profile = tmp_path / "lost-link-profile"
+    context = playwright_driver.chromium.launch_persistent_context(
+        str(profile), executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True)
+    try:
+        page = open_console(context, console_url)
+        take_lock(page)
+        ready_arm(page, robot)
+        start_driving(page)
+        drive_down(page, robot)
+        watch = HoldWatch(decision)
+        try:
+            # The browser dies mid-drive: no end message, no close frame, the TCP link drops.
+            for pid in browser_pids(profile):
+                os.kill(pid, signal.SIGKILL)
+            hold = wait_for(lambda: watch.holds[0] if watch.holds else None, timeout_s=5,
+                            what="a watchdog_hold after the browser died")
+        finally:
+            watch.close()
+        assert "timeout" not in hold.reason and "ended the session" not in hold.reason, \
+            hold.reason
+        assert_held(robot)
+    finally:
+        with contextlib.suppress(Exception):
+            context.close()
