@@ -250,7 +250,7 @@ async function acquire(wait: boolean) {
   try {
     const r = await station.acquireControl({
       operatorId: $<HTMLInputElement>("operator").value, mode: ControlMode.EXCLUSIVE, wait,
-    }, { signal: queueAbort.signal });
+    }, { signal: queueAbort.signal, timeoutMs: wait ? 600_000 : undefined });  // a queue may be long
     setLease(r.leaseId);
     showControl(r.state);
     say(`lock granted to ${r.operatorId}`);
