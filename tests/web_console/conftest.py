@@ -23,9 +23,11 @@ SHOTS_ENV = "TELEROBOT_WEB_CONSOLE_SHOTS"
 
 
 @pytest.fixture(scope="session")
-def console_station():
-    """The station, started by the launcher like `make serve`; `.ready` has every address."""
-    launcher = start_station(station_env())
+def console_station(tmp_path_factory):
+    """The station, started by the launcher like `make serve`; `.ready` has every address.
+    Its recordings go to a directory of its own."""
+    recordings = tmp_path_factory.mktemp("recordings")
+    launcher = start_station(station_env(TELEROBOT_RECORDINGS_DIR=str(recordings)))
     yield launcher
     launcher.stop(signal.SIGINT)
 
