@@ -253,7 +253,8 @@ class TeleopSessions:
                                       reason="NO_INIT")
             received = [self.servicer._received(request) for request in requests]
             return [ack.SerializeToString()
-                    for ack in self.servicer._serve_batch(entry[0], received)]
+                    for ack in self.servicer._serve_batch(entry[0], entry[0].stream,
+                                                          received)]
 
         try:
             return [(identity, [framing.REPLY_OK, ack]) for ack in acks()]

@@ -34,9 +34,10 @@ KEEPALIVE_OPTIONS: tuple[tuple[str, int], ...] = (
     ("grpc.keepalive_permit_without_calls", 1),
     ("grpc.http2.max_pings_without_data", 0),
     # A lost connection is retried after 0.1 s, then at most a second apart (grpc-core's
-    # default grows to 120 s), so a session resumes within a second of a cut's end.
+    # default grows to 120 s), so a session resumes within a second of a cut's end. Not
+    # grpc.min_reconnect_backoff_ms: grpc-core also takes it as the connect deadline (default
+    # 20 s), and a TLS handshake across a slow link or a loaded machine takes more than 0.1 s.
     ("grpc.initial_reconnect_backoff_ms", 100),
-    ("grpc.min_reconnect_backoff_ms", 100),
     ("grpc.max_reconnect_backoff_ms", 1000),
 )
 TLS_DIR_ENV = "TELEROBOT_TLS_DIR"

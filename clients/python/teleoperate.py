@@ -238,6 +238,7 @@ class TeleopSession(_SessionState):
                     return
         finally:
             self._requests.put(_END)  # frees gRPC's thread that waits for our next message
+            self._interrupted = False  # over, not reconnecting: a send raises why
             self._finished.set()
             self._ready_event.set()
             with self._lock:

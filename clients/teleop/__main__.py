@@ -140,7 +140,7 @@ ADVICE = {
 
 def explain(error: TelerobotRpcError) -> str:
     advice = ADVICE.get(error.reason or "") or ADVICE.get(error.code.name, "The arm holds.")
-    return f"teleop: the session ended: {error.code.name}: {error.message}\n{advice}"
+    return f"teleop: the session ended: {error}\n{advice}"
 
 
 def main(argv: list[str] | None = None) -> int:

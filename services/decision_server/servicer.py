@@ -12,6 +12,7 @@ import grpc
 import numpy as np
 
 from services.common import convert
+from services.common.fanout import Subscription
 from services.common.geometry import finite_vector
 from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
@@ -206,6 +207,16 @@ def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
 
 
 # -- DecisionServer ---------------------------------------------------------------------------
+
+class _WithoutStateSamples(Subscription):
+    """Every event but ProxyRobot's forwarded state samples (data_received)."""
+
+    def offer(self, item) -> None:
+        payload = item.payload
+        if not (isinstance(payload, RobotEventForwarded)
+                and payload.message.WhichOneof("event") == "data_received"):
+            super().offer(item)
+
 
 class _LastConverted:
     """`convert(sample)`, computed once for the last sample seen (by identity). The (sample,
@@ -455,16 +466,15 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             dependencies=[dependency_to_proto(d) for d in self._dependencies.poll()])
 
     def StreamEvents(self, request, context):
-        with self._core.events.subscribe(256) as events:
+        # Unwanted state samples are left out as they are published, not as they are read:
+        # queued, their flood would crowd out (and a slow reader would drop) the rare events.
+        subscription = (Subscription(self._core.events, 256) if request.include_data_received
+                        else _WithoutStateSamples(self._core.events, 256))
+        with self._core.events.attach(subscription) as events:
             while context.is_active():
                 event = events.get(STREAM_POLL_S)
-                if event is None:
-                    continue
-                message = event_to_proto(event, self._core.clock)
-                if (message.WhichOneof("event") == "robot" and not request.include_data_received
-                        and message.robot.WhichOneof("event") == "data_received"):
-                    continue
-                yield message
+                if event is not None:
+                    yield event_to_proto(event, self._core.clock)
 
 
 # -- the inherited services, forwarded --------------------------------------------------------

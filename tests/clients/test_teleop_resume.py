@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from clients.python import DecisionClient, LinkInterruptedError, NotFoundError
+from clients.python import DecisionClient, LinkInterruptedError, NotFoundError, UnavailableError
 from services.decision_server.teleop import TeleopSessionChanged
 from services.impairment import ImpairmentProxy
 from tests.conftest import wait_for
@@ -111,3 +111,18 @@ def test_ack_order_survives_a_resume(linked):
     assert [first.sequence, *(a.sequence for a in acks)] == [1, 2, 3, 4]
     assert np.isclose(applied_z(slave), 4 * STEP_M)
     session.close()
+
+
+def test_a_link_that_stays_down_ends_the_session_after_the_resume_window(linked):
+    _, _, proxy, client = linked
+    links: list[str] = []
+    session = client.teleoperate(on_link=lambda state, detail: links.append(state))
+    session.send(UP)
+    proxy.stop()  # nothing answers there any more
+    wait_for(lambda: session.closed, 30, "the session to give up")
+    assert session.error is not None and session.error.reason == "LINK_LOST"
+    assert links[0] == "lost" and links[-1] == "gave up"
+    assert not session.interrupted  # over, not reconnecting
+    with pytest.raises(UnavailableError) as refused:
+        session.send_nowait(UP)
+    assert refused.value.reason == "LINK_LOST"
