@@ -85,6 +85,7 @@ def open_channel(target: str, options: Sequence[tuple[str, object]] = (),
     directory, plaintext otherwise; with KEEPALIVE_OPTIONS (before `options`, which may
     override them). `aio` makes a grpc.aio channel."""
     security = security or ChannelSecurity.from_env()
+    target = dialable(target)
     options = [*KEEPALIVE_OPTIONS, *options]
     grpc_module = grpc.aio if aio else grpc
     if security.token and not security.secure:
@@ -93,6 +94,15 @@ def open_channel(target: str, options: Sequence[tuple[str, object]] = (),
     if not security.secure:
         return grpc_module.insecure_channel(target, options=list(options))
     return grpc_module.secure_channel(target, security.credentials(), options=list(options))
+
+
+def dialable(target: str) -> str:
+    """`target`, with a wildcard host (a server's "listen on every address": 0.0.0.0, [::])
+    turned into loopback. Connecting to 0.0.0.0 happens to reach this host, but no certificate
+    names it, so over TLS the station's own checks of a service bound so would fail."""
+    host, sep, port = target.rpartition(":")
+    wildcard = {"0.0.0.0": "127.0.0.1", "[::]": "[::1]"}
+    return f"{wildcard[host]}:{port}" if sep and host in wildcard else target
 
 
 def _read(path: Path) -> bytes:

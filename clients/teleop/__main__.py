@@ -30,9 +30,11 @@ from clients.teleop.dependencies import DependencyMonitor, as_json, describe
 from clients.teleop.stack import station_at
 from clients.teleop.task import PegInHole, Result
 from clients.teleop.video import StereoView
+from services.discovery import DiscoveryError, discovered_address
 from services.runtime.config import address_for
 
 MODES = ("feedback", "compliance")
+DISCOVERY_TIMEOUT_S = 5.0
 RETRACT_STEP_M = 0.04
 
 
@@ -149,6 +151,10 @@ def main(argv: list[str] | None = None) -> int:
     no traceback, and 130 on Ctrl-C."""
     parser = argparse.ArgumentParser(prog="python -m clients.teleop", description=__doc__)
     parser.add_argument("--address", default=address_for("decision_server"))
+    parser.add_argument("--discover", nargs="?", const="", default=None, metavar="NAME",
+                        help="find the slave station on the local network (zeroconf, "
+                             "_telerobot._tcp) instead of --address; NAME picks one of several "
+                             "(python -m services.discovery list shows them)")
     parser.add_argument("--modes", nargs="+", choices=MODES, default=list(MODES))
     parser.add_argument("--out", type=Path, default=None,
                         help="artifacts folder (default runs/teleop-<time>)")
@@ -157,7 +163,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--no-video", action="store_true", help="skip the stereo video")
     args = parser.parse_args(argv)
     try:
+        if args.discover is not None:
+            args.address = discovered_address(args.discover or None, DISCOVERY_TIMEOUT_S)
+            print(f"teleop: found the slave station at {args.address}")
         return run(args)
+    except DiscoveryError as error:
+        print(f"teleop: {error}", file=sys.stderr)
+        return 3
     except TelerobotRpcError as error:
         print("\n" + explain(error), file=sys.stderr)
         return 3

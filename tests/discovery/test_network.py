@@ -135,3 +135,26 @@ def test_the_launcher_advertises_the_station_and_withdraws_it_on_ctrl_c(hosts, r
     watch.wait_line("- ns-station", timeout_s=5.0)
     assert launcher.wait(LINE_TIMEOUT_S) == 0, launcher.describe()
     assert any("withdrew the station's advertisement" in line for line in launcher.lines)
+
+
+def test_make_teleop_discovers_the_station_by_name(hosts, run):
+    """`python -m clients.teleop --discover NAME` on the master host connects to the address
+    the slave host advertised. (Only an advertisement answers there: the operator station
+    then says that no station answers at that address and exits 3, which is what shows the
+    address it took.)"""
+    slave, master = hosts
+    advertise(run, slave, "--address", f"{SLAVE_ADDRESS}:50051", "--name", "lab-slave")
+    code, lines = finished(run(master, "--discover", "lab-slave", "--no-video",
+                               module="clients.teleop"))
+    output = "\n".join(lines)
+    assert code == 3, output
+    assert f"found the slave station at {SLAVE_ADDRESS}:50051" in output
+    assert f"no slave station answers at {SLAVE_ADDRESS}:50051" in output
+    assert "Traceback" not in output
+
+
+def test_make_teleop_says_when_no_station_is_found(hosts, run):
+    _, master = hosts
+    code, lines = finished(run(master, "--discover", module="clients.teleop"))
+    assert code == 3 and "Traceback" not in "\n".join(lines)
+    assert any("no" in line.lower() and "station" in line.lower() for line in lines), lines

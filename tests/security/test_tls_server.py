@@ -160,3 +160,19 @@ def test_the_early_stop_fires_only_for_callers_the_port_can_identify(pki, tmp_pa
 def test_a_client_never_sends_a_token_in_plaintext():
     with pytest.raises(ValueError, match="only over TLS"):
         open_channel("127.0.0.1:1", security=ChannelSecurity(token="trb_secret"))
+
+
+def test_a_server_on_every_address_is_reached_over_tls_at_its_wildcard_address(pki):
+    """A station bound to 0.0.0.0 checks its services at the address they bound; no
+    certificate names 0.0.0.0, so the client dials loopback instead (wire.tls.dialable)."""
+    server, port = create_server("0.0.0.0:0", [],
+                                 security=ServerSecurity(pki, "proxy_robot", inner_port=True))
+    server.start()
+    server.set_serving()
+    try:
+        with open_channel(f"0.0.0.0:{port}", security=ChannelSecurity(pki, "launcher")) as channel:
+            reply = health_pb2_grpc.HealthStub(channel).Check(health_pb2.HealthCheckRequest(),
+                                                              timeout=10)
+        assert reply.status == health_pb2.HealthCheckResponse.SERVING
+    finally:
+        server.stop(0)
