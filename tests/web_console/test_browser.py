@@ -167,14 +167,7 @@ def test_closing_the_tab_mid_drive_holds_the_arm(browser, console_url, robot, de
     # The stream ended with the tab, not the watchdog's timeout.
     print("watchdog hold:", hold.reason)
     assert "timeout" not in hold.reason, hold.reason
-    # Held: the arm comes to rest and stays there, without a latch.
-    wait_for(lambda: max(abs(v) for v in arm_state(robot).joint_velocities_rad_per_s) < 1e-3,
-             timeout_s=DEADLINE_S, what="the arm at rest")
-    rest = arm_state(robot)
-    later = wait_for(lambda: (s := arm_state(robot)).sequence > rest.sequence + 20 and s,
-                     timeout_s=DEADLINE_S, what="20 more state samples")
-    assert abs(later.tool_pose.position_m.z - rest.tool_pose.position_m.z) < 1e-4
-    assert status_of(robot) == "ROBOT_STATUS_READY"  # a hold, not an e-stop
+    assert_held(robot)  # at rest and staying there, without a latch
 
 
 def test_assistance_and_record_replay_from_the_page(browser, console_url, robot, decision):
