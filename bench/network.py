@@ -200,7 +200,7 @@ def task(params: dict, ready: Callable[[], None]) -> dict:
     from clients.ar import RobotModel
     from clients.python.decision_server import DecisionClient
     from clients.teleop.__main__ import retract
-    from clients.teleop.task import PegInHole
+    from clients.teleop.task import PegInHole, ready_the_arm
 
     # Released here, not on leaving: a failed release must not lose the run's figures.
     with DecisionClient(params["address"], default_timeout=CALL_TIMEOUT_S,
@@ -209,14 +209,7 @@ def task(params: dict, ready: Callable[[], None]) -> dict:
         client.acquire_control(OPERATOR, wait=True, wait_timeout_s=LEASE_S + 5,
                                lease_duration_s=LEASE_S, timeout=LEASE_S + 15)
         try:
-            # make teleop's set-up (clients/teleop/__main__.py main()), which has no function
-            # of its own to import.
-            client.robot.connect()
-            if client.robot.get_status().status.name in ("ESTOPPED", "FAULT"):
-                client.robot.reset()
-            if client.robot.get_status().status.name == "CONNECTED":
-                client.robot.initialize()
-            client.sensor.start_reading()
+            ready_the_arm(client)  # make teleop's set-up
             retract(client, np.asarray(params["home"]))  # out of the hole the run before left
             client.sensor.tare(0.2)
             model = RobotModel(client.robot.get_state().tool_pose)

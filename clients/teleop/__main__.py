@@ -28,7 +28,7 @@ from clients.python.errors import TelerobotRpcError
 from clients.teleop.artifacts import plot, write_summary
 from clients.teleop.dependencies import DependencyMonitor, as_json, describe
 from clients.teleop.stack import station_at
-from clients.teleop.task import PegInHole, Result
+from clients.teleop.task import PegInHole, Result, ready_the_arm
 from clients.teleop.video import StereoView
 from services.discovery import DiscoveryError, discovered_address
 from services.runtime.config import address_for
@@ -187,12 +187,7 @@ def run(args: argparse.Namespace) -> int:
         client = DecisionClient(args.address, default_timeout=10.0)
         with client:
             client.acquire_control("teleop", lease_duration_s=30.0)
-            client.robot.connect()
-            if client.robot.get_status().status.name == "ESTOPPED":
-                client.robot.reset()
-            if client.robot.get_status().status.name == "CONNECTED":
-                client.robot.initialize()
-            client.sensor.start_reading()
+            ready_the_arm(client)
             client.sensor.tare(0.2)
             start = client.robot.get_state().tool_pose.translation.copy()
             model = RobotModel(client.robot.get_state().tool_pose)

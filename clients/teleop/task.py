@@ -78,6 +78,17 @@ class Result:
     commands_applied: int = 0  # of those, acked APPLIED or MODIFIED
 
 
+def ready_the_arm(client: DecisionClient) -> None:
+    """Connected, un-latched, initialized, the sensor reading: what a run needs (the lease
+    held). Idempotent, so a second run or another program can call it again."""
+    client.robot.connect()
+    if client.robot.get_status().status.name in ("ESTOPPED", "FAULT"):
+        client.robot.reset()
+    if client.robot.get_status().status.name == "CONNECTED":
+        client.robot.initialize()
+    client.sensor.start_reading()
+
+
 class StrokingHand:
     """Down strokes of the master's handle with the clutch engaged on the way back up."""
 
