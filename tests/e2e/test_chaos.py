@@ -205,9 +205,10 @@ def test_every_fault_holds_the_arm_and_the_station_recovers(station, fault):
         if victim in ON_THE_MOTION_PATH:
             assert hold is not None and hold <= HOLD_WITHIN_S, (fault, victim, hold)
     # Every failure the operator met said what it was (and the session came back each time).
+    # NOT_FOUND: the session tried to resume on a restarted DecisionServer, which forgot it.
     assert {code for code, _ in operator.errors} <= {
-        "UNAVAILABLE", "FAILED_PRECONDITION", "DEADLINE_EXCEEDED", "ABORTED", "CANCELLED"}, \
-        operator.errors
+        "UNAVAILABLE", "FAILED_PRECONDITION", "DEADLINE_EXCEEDED", "ABORTED", "CANCELLED",
+        "NOT_FOUND"}, operator.errors
 
 
 def test_recordings_made_across_the_faults_are_whole(station):
