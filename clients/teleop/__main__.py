@@ -1,13 +1,18 @@
 """python -m clients.teleop (`make teleop`): a whole operator session on the slave station.
 
 It connects to the DecisionServer at TELEROBOT_DECISION_SERVER_ADDRESS (default
-127.0.0.1:50051), starting a local station first if nothing answers there; takes control;
+127.0.0.1:50051, or found with --discover), starting a local station first if nothing answers
+there on loopback; takes control;
 runs the scripted peg-in-hole task with force feedback to the operator, then with active
 compliance on the server; shows a live status line, and a line of its own whenever one of the
 station's services (ProxyRobot, ForceSensor, StereoCamera, the band) changes state; and leaves
 in runs/teleop-<time>/ the stereo video with the AR overlay (stereo.mp4), plots (force.png,
 tool_path.png, latency.png) and summary.json (with the dependencies' final states), then
 prints a summary table.
+
+Across a broken link the session resumes by itself (clients.python.teleoperate): the station
+says "link lost", holds still while the arm holds, and goes on once the session is back. When
+it cannot go on, it says why and exits 3 (see `main`).
 """
 
 from __future__ import annotations
