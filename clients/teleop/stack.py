@@ -46,7 +46,8 @@ def local_station(operator_address: str | None = None,
                               max_lines=40, stop_grace_s=STOP_TIMEOUT_S)
     try:
         try:
-            # The launcher starts decision_server last, once every other service serves.
+            # The launcher starts decision_server once the inner services serve (and the web
+            # console after it, which an operator station does not need).
             launcher.wait_ready("decision_server", timeout_s=STARTUP_TIMEOUT_S)
         except ChildFailed as failed:
             raise RuntimeError(f"the local station did not come up: {failed}") from None
