@@ -23,6 +23,12 @@ from wire.tls import TLS_DIR_ENV
 PLAINTEXT_ENV = "TELEROBOT_ALLOW_PLAINTEXT_NETWORK"
 
 DEFAULT_GRACE_S = 2.0
+# Each service serves Prometheus metrics (plain HTTP, read-only) here unless its
+# TELEROBOT_<NAME>_METRICS_ADDRESS or --metrics-address says otherwise ("off": none).
+DEFAULT_METRICS_ADDRESS = f"{DEFAULT_HOST}:0"
+METRICS_OFF = "off"
+# Set to 1: a service may serve its metrics beyond loopback (plain HTTP, no authentication).
+METRICS_NETWORK_ENV = "TELEROBOT_ALLOW_METRICS_NETWORK"
 
 
 def base_parser(service: str, description: str) -> argparse.ArgumentParser:
@@ -57,6 +63,19 @@ def base_parser(service: str, description: str) -> argparse.ArgumentParser:
         default=os.environ.get(PLAINTEXT_ENV, "") == "1",
         help="DANGEROUS: listen without TLS on a non-loopback address, so that anyone who "
              f"reaches the port can command the arm (env {PLAINTEXT_ENV}=1)",
+    )
+    parser.add_argument(
+        "--metrics-address",
+        default=os.environ.get(env_name(service, "metrics_address"), DEFAULT_METRICS_ADDRESS),
+        help="host:port to serve Prometheus metrics on, at /metrics (env "
+             f"{env_name(service, 'metrics_address')}; default {DEFAULT_METRICS_ADDRESS}, a "
+             f"free port on loopback; {METRICS_OFF!r}: none)",
+    )
+    parser.add_argument(
+        "--allow-metrics-network", action="store_true",
+        default=os.environ.get(METRICS_NETWORK_ENV, "") == "1",
+        help="serve the metrics beyond loopback (plain HTTP: anyone who reaches the port reads "
+             f"them; they command nothing) (env {METRICS_NETWORK_ENV}=1)",
     )
     parser.add_argument(
         "--client-lane-limit", type=Lane.parse,

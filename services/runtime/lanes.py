@@ -130,12 +130,16 @@ class _Worker:
 class LaneExecutor:
     """Runs callables on priority lanes. `submit` returns a concurrent.futures.Future."""
 
-    def __init__(self, lanes: dict[Lane, LaneConfig] | None = None, name: str = "lanes"):
+    def __init__(self, lanes: dict[Lane, LaneConfig] | None = None, name: str = "lanes",
+                 on_wait: Callable[[Lane, float], None] | None = None):
         self._config = dict(DEFAULT_LANES if lanes is None else lanes)
         missing = set(Lane) - set(self._config)
         if missing:
             raise ValueError(f"no config for lanes {sorted(m.name for m in missing)}")
         self._name = name
+        # Called with each task's lane and how long it waited (s) before it started; 0 for a
+        # run_here at once. Outside the lock; it must not raise (services.runtime.metrics).
+        self.on_wait = on_wait
         self._lock = threading.Lock()
         self._queues: dict[Lane, deque[_Task]] = {lane: deque() for lane in Lane}
         self._idle: dict[Lane, list[_Worker]] = {lane: [] for lane in Lane}
@@ -192,6 +196,7 @@ class LaneExecutor:
                 counters.inline += 1
         if not inline:
             return self.submit(lane, fn)
+        self._waited(lane, 0.0)
         future: Future = Future()
         future.set_running_or_notify_cancel()
         outer, _current.lane = getattr(_current, "lane", None), lane
@@ -230,6 +235,15 @@ class LaneExecutor:
             for thread in threads:
                 remaining = None if deadline is None else max(0.0, deadline - time.monotonic())
                 thread.join(remaining)
+
+    def _waited(self, lane: Lane, wait_s: float) -> None:
+        """Report a task's wait to on_wait, if set (without the lock); never raises."""
+        if self.on_wait is None:
+            return
+        try:
+            self.on_wait(lane, wait_s)
+        except Exception:  # noqa: BLE001 - a report never fails the task
+            log.exception("reporting a lane wait failed")
 
     # -- internals (called with the lock held) ----------------------------------------------
 
@@ -310,6 +324,7 @@ class LaneExecutor:
         if worker.lane != task.lane:
             counters.borrowed += 1
         self._lock.release()
+        self._waited(task.lane, (time.monotonic_ns() - task.enqueued_ns) / 1e9)
         _current.lane = task.lane
         try:
             result = task.fn()

@@ -21,14 +21,16 @@ from typing import Protocol
 
 from grpc_health.v1 import health_pb2
 
-from services.runtime.config import base_parser, configure_logging
+from services.runtime.config import METRICS_OFF, base_parser, configure_logging
 from services.runtime.errors import TelerobotError
+from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import (
     PlaintextRefused,
     ServerSecurity,
     ServiceBinding,
     check_plaintext,
     create_server,
+    is_loopback,
 )
 from services.security.audit import audit_log_for
 from services.security.tokens import TokenStore, tokens_file
@@ -59,6 +61,11 @@ def token_port_name(service: str) -> str:
     return f"{service}_tokens"
 
 
+def metrics_port_name(service: str) -> str:
+    """The name on the ready line of a service's Prometheus /metrics port."""
+    return f"{service}_metrics"
+
+
 def parse_ready_line(line: str) -> tuple[str, str] | None:
     """(name, host:port) from a ready line; None for any other line."""
     fields = line.split()
@@ -85,7 +92,9 @@ class Service(Protocol):
     # the one port that takes operators' commands (the others are the station's inner ports),
     # and `attach_health(set_status)`, called once the server exists (before start()), gives
     # the service `set_status(service_name, serving)` to report health entries of its own
-    # (the DecisionServer's `telerobot.v1.DecisionServer/<dependency>`), from any thread.
+    # (the DecisionServer's `telerobot.v1.DecisionServer/<dependency>`), from any thread;
+    # `attach_metrics(metrics)`, called once with the process's ServiceMetrics when metrics
+    # are on (before start()), lets a service count events of its own (event(), dropped()).
 
 
 def run_service(
@@ -111,9 +120,11 @@ def run_service(
 
     try:  # before the service takes its hardware
         check_plaintext(args.address, bool(args.tls_dir), args.allow_plaintext_network)
+        check_metrics_address(args.metrics_address, args.allow_metrics_network)
     except PlaintextRefused as error:
         log.error("not starting: %s", error)
         return 2
+    metrics = ServiceMetrics(name) if args.metrics_address != METRICS_OFF else None
     service = build(args)
     security = server_security(args, name, inner_port=not getattr(service, "operator_door",
                                                                      False))
@@ -123,11 +134,26 @@ def run_service(
             lanes=getattr(service, "lanes", None),  # a service may size its own lanes
             on_emergency_call=getattr(service, "on_emergency_call", None),  # stop on arrival
             security=security, allow_plaintext_network=args.allow_plaintext_network,
+            metrics=metrics,
         )
     except (PlaintextRefused, OSError, ValueError) as error:  # a port, or TLS files, refused
         log.error("not starting: %s", error)
         service.close()
         return 2
+    metrics_address = None
+    if metrics is not None:
+        try:
+            metrics_host = args.metrics_address.rsplit(":", 1)[0]
+            metrics_address = f"{metrics_host}:{metrics.serve(args.metrics_address)}"
+        except (OSError, ValueError) as error:
+            log.error("not starting: cannot serve metrics on %s: %s", args.metrics_address,
+                      error)
+            server.stop(0)
+            service.close()
+            return 2
+    attach_metrics = getattr(service, "attach_metrics", None)
+    if attach_metrics is not None and metrics is not None:
+        attach_metrics(metrics)
     attach_health = getattr(service, "attach_health", None)
     if attach_health is not None:
         attach_health(lambda service_name, serving: server.health.set(
@@ -156,16 +182,34 @@ def run_service(
                  security.tokens.path, token_address)
         # Before the service's own line: whoever waits for that one knows this one too.
         print(ready_line(token_port_name(name), token_address), flush=True)
+    if metrics_address:
+        log.info("Prometheus metrics on http://%s/metrics", metrics_address)
+        print(ready_line(metrics_port_name(name), metrics_address), flush=True)
     print(ready_line(name, f"{host}:{port}"), flush=True)
 
     stop.wait()
     log.info("stopping: draining calls for up to %.1f s", args.grace_s)
     server.stop(args.grace_s)
     service.close()
+    if metrics is not None:
+        metrics.close()
     if security and security.audit:
         security.audit.close()
     log.info("stopped")
     return 0
+
+
+def check_metrics_address(address: str, allow_network: bool) -> None:
+    """PlaintextRefused for metrics beyond loopback unless allowed (then a warning): they are
+    plain HTTP, read by anyone who reaches the port."""
+    if address == METRICS_OFF or is_loopback(address):
+        return
+    if not allow_network:
+        raise PlaintextRefused(
+            f"refusing to serve metrics on {address}: they are plain HTTP without "
+            "authentication. Serve them on 127.0.0.1 (and let Prometheus reach them through "
+            "a tunnel or a local agent), or pass --allow-metrics-network")
+    log.warning("metrics on %s: plain HTTP, readable by anyone who reaches the port", address)
 
 
 def server_security(args: argparse.Namespace, name: str, inner_port: bool

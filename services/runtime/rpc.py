@@ -19,7 +19,10 @@
   decoded, runs as its caller (services.security.caller), and command-class calls are audited
   (services/runtime/auth.py). The early stop needs no check on a port that requires client
   certificates: the handshake already proved the caller is the station's. On a token port it
-  fires only for a call that carries a valid token.
+  fires only for a call that carries a valid token;
+- with `metrics` (services.runtime.metrics), every call is counted by method and status code
+  as it ends, and a unary call's time in the server goes into a latency histogram. A metric
+  that fails never fails the call.
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ from __future__ import annotations
 import contextlib
 import logging
 import threading
+import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import CancelledError
 
@@ -45,6 +49,7 @@ from services.runtime.lanes import (  # noqa: F401 - LANE_TO_PROTO re-exported
     LaneFull,
     declared_lane,
 )
+from services.runtime.metrics import ServiceMetrics
 from services.runtime.validation import check_request
 from services.security.caller import Caller, acting_as
 from wire.metadata import LANE_METADATA_KEY
@@ -76,8 +81,9 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
     def __init__(self, executor: LaneExecutor, client_lane_limit: Lane = Lane.HIGH,
                  max_streams: int = 64, on_emergency_call: Callable[[], None] | None = None,
-                 security: CallSecurity | None = None):
+                 security: CallSecurity | None = None, metrics: ServiceMetrics | None = None):
         self._executor = executor
+        self._metrics = metrics
         self._on_emergency_call = on_emergency_call
         self._security = security
         self._client_lane_limit = client_lane_limit
@@ -98,7 +104,10 @@ class LaneInterceptor(grpc.ServerInterceptor):
         if (self._on_emergency_call is not None and declared_lane(method) == Lane.EMERGENCY
                 and self._may_stop_early(metadata)):
             self._emergency_arrived(method)
-        return self._wrap(handler, method, _requested_lane(metadata))
+        wrapped = self._wrap(handler, method, _requested_lane(metadata))
+        if self._metrics is None:
+            return wrapped
+        return _measured(wrapped, method, self._metrics)
 
     def _may_stop_early(self, metadata) -> bool:
         security = self._security
@@ -262,6 +271,72 @@ def _audited_call(security: CallSecurity, method: str, caller: Caller | None, co
         raise
     code = context.code()
     security.record(method, caller, context, code.name if code else "OK")
+
+
+def _measured(handler: grpc.RpcMethodHandler, method: str, metrics: ServiceMetrics
+              ) -> grpc.RpcMethodHandler:
+    """`handler` with each call counted by its status code as it ends, and a unary call's
+    time in the server observed."""
+
+    def outcome(context, default: str) -> str:
+        try:
+            code = context.code()
+            return default if code is None else code.name
+        except Exception:  # noqa: BLE001 - a metric never fails a call
+            return default
+
+    def settle(context, started: float, unary: bool, code: str | None = None,
+               default: str = "OK") -> None:
+        metrics.rpc_done(method, code or outcome(context, default),
+                         time.perf_counter() - started if unary else None)
+
+    if handler.unary_unary:
+        behavior = handler.unary_unary
+
+        def unary_unary(raw, context):
+            started = time.perf_counter()
+            try:
+                response = behavior(raw, context)
+            except BaseException:
+                settle(context, started, True, default="UNKNOWN")
+                raise
+            settle(context, started, True)
+            return response
+
+        return handler._replace(unary_unary=unary_unary)
+
+    if handler.stream_unary:
+        behavior = handler.stream_unary
+
+        def stream_unary(raw_iterator, context):
+            started = time.perf_counter()
+            try:
+                response = behavior(raw_iterator, context)
+            except BaseException:
+                settle(context, started, False, default="UNKNOWN")
+                raise
+            settle(context, started, False)
+            return response
+
+        return handler._replace(stream_unary=stream_unary)
+
+    streaming = handler.unary_stream or handler.stream_stream
+
+    def streamed(request, context):
+        started = time.perf_counter()
+        try:
+            yield from streaming(request, context)
+        except GeneratorExit:  # the client left
+            settle(context, started, False, code="CANCELLED")
+            raise
+        except BaseException:
+            settle(context, started, False, default="UNKNOWN")
+            raise
+        settle(context, started, False)
+
+    if handler.unary_stream:
+        return handler._replace(unary_stream=streamed)
+    return handler._replace(stream_stream=streamed)
 
 
 def _passing_bytes(serialize: Callable | None) -> Callable | None:

@@ -28,6 +28,7 @@ from grpc_reflection.v1alpha import reflection
 
 from services.runtime.auth import CallSecurity
 from services.runtime.lanes import Lane, LaneConfig, LaneExecutor
+from services.runtime.metrics import ServiceMetrics
 from services.runtime.rpc import LaneInterceptor
 from services.runtime.tls import server_credentials
 from wire.tls import KEEPALIVE_INTERVAL_MS, KEEPALIVE_TIMEOUT_MS
@@ -95,13 +96,14 @@ class TelerobotServer:
 
     def __init__(self, servers: list[grpc.Server], health_servicer: health.HealthServicer,
                  executor: LaneExecutor, interceptor: LaneInterceptor, service_names: list[str],
-                 token_port: int | None = None):
+                 token_port: int | None = None, metrics: ServiceMetrics | None = None):
         self.grpc_servers = servers  # the main port's, then the token port's if any
         self.health = health_servicer
         self.executor = executor
         self.interceptor = interceptor
         self.service_names = service_names
         self.token_port = token_port
+        self.metrics = metrics
 
     def start(self) -> None:
         """Accept calls. Health stays NOT_SERVING until set_serving()."""
@@ -132,16 +134,21 @@ def create_server(
     on_emergency_call: Callable[[], None] | None = None,
     security: ServerSecurity | None = None,
     allow_plaintext_network: bool = False,
+    metrics: ServiceMetrics | None = None,
 ) -> tuple[TelerobotServer, int]:
     """Build a server bound to `address` (port 0 picks one); returns it and the bound port.
 
     Every service is reported NOT_SERVING until `set_serving()`, and is listed by reflection.
     `on_emergency_call` runs as an emergency-lane call arrives (see services.runtime.rpc).
     Without `security`, a non-loopback `address` raises PlaintextRefused unless
-    `allow_plaintext_network`.
+    `allow_plaintext_network`. With `metrics`, calls and lanes are measured there (serving
+    them over HTTP is the caller's: `metrics.serve(address)`).
     """
     check_plaintext(address, security is not None, allow_plaintext_network)
-    executor = LaneExecutor(lanes, name="rpc")
+    executor = LaneExecutor(
+        lanes, name="rpc",
+        on_wait=(lambda lane, wait_s: metrics.lane_waited(lane.name.lower(), wait_s))
+        if metrics is not None else None)
     lane_configs = lanes or {}
     capacity = sum(c.max_threads + c.queue_capacity for c in lane_configs.values()) or 512
     names = [item.full_name for item in bindings]
@@ -151,7 +158,7 @@ def create_server(
 
     def build(call_security: CallSecurity | None, pool_size: int):
         interceptor = LaneInterceptor(executor, client_lane_limit, max_streams,
-                                      on_emergency_call, call_security)
+                                      on_emergency_call, call_security, metrics)
         server = grpc.server(
             futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc"),
             interceptors=[interceptor],
@@ -172,22 +179,27 @@ def create_server(
                      if security else None)
     server, interceptor = build(main_security, pool_size)
     servers = [server]
+    interceptors = [interceptor]
     try:
         credentials = (server_credentials(security.tls_dir, security.name)
                        if security else None)
         port = _bind(server, address, credentials)
         token_port = None
         if security is not None and security.token_address:
-            token_server, _ = build(
+            token_server, token_interceptor = build(
                 CallSecurity(security.inner_port, security.tokens, security.audit), pool_size)
             servers.append(token_server)
+            interceptors.append(token_interceptor)
             token_port = _bind(token_server, security.token_address, server_credentials(
                 security.tls_dir, security.name, require_client_certificate=False))
     except BaseException:
         executor.shutdown(wait=False)
         raise
+    if metrics is not None:
+        metrics.watch_lanes(executor.counters,
+                            lambda: sum(each.open_streams for each in interceptors))
     return TelerobotServer(servers, health_servicer, executor, interceptor, names,
-                           token_port), port
+                           token_port, metrics), port
 
 
 def check_plaintext(address: str, tls: bool, allow_plaintext_network: bool) -> None:
