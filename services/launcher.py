@@ -49,7 +49,13 @@ from services.discovery.advertise import ADVERTISE_ENV, advertised
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
 from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
-from services.runtime.process import parse_ready_line, ready_line, token_port_name, watch_parent
+from services.runtime.process import (
+    metrics_port_name,
+    parse_ready_line,
+    ready_line,
+    token_port_name,
+    watch_parent,
+)
 from services.runtime.restart import RestartPolicy, RestartTracker
 from services.runtime.supervisor_state import (
     GAVE_UP,
@@ -140,7 +146,7 @@ def main(argv: list[str] | None = None) -> int:
                 if address is None:  # stopped during start-up
                     return 0
                 for other, other_address in station.children[name].ready.items():
-                    if other != name:  # a token port, if it has one
+                    if other != name:  # its token and metrics ports, if it has them
                         print(ready_line(other, other_address), flush=True)
                 print(ready_line(name, address), flush=True)
             _print_banner(list(station.children.values()), args.tls_dir)
@@ -190,6 +196,9 @@ class _Station:
             token_address = child.ready.get(token_port_name(name))
             if token_address:  # the DecisionServer's token port, for the web console
                 self.env[env_name(name, "token_address")] = token_address
+            metrics_address = child.ready.get(metrics_port_name(name))
+            if metrics_address:  # a restart serves its metrics where Prometheus scrapes
+                self.env[env_name(name, "metrics_address")] = metrics_address
             self._set_state(name, RUNNING, self._trackers[name].restarts)
         return address
 
@@ -304,11 +313,16 @@ def _http_serving(address: str, _security: ChannelSecurity) -> bool:
 def _print_banner(station: list[Child], tls_dir: str) -> None:
     operator = next(c.address for c in station if c.name == "decision_server")
     extra_ports = [(name, address) for c in station for name, address in c.ready.items()
-                   if name != c.name]  # a token port
+                   if name == token_port_name(c.name)]
+    metrics = [(c.name, c.ready[metrics_port_name(c.name)]) for c in station
+               if metrics_port_name(c.name) in c.ready]
     width = max(len(name) for name in [*(c.name for c in station), *dict(extra_ports)])
     lines = ["", f"{UP_LINE}{' with mutual TLS' if tls_dir else ''}. Ctrl-C stops it.", ""]
     lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.pid})" for c in station]
     lines += [f"  {name:<{width}}  {address}  (bearer tokens)" for name, address in extra_ports]
+    if metrics:
+        lines += ["", "Prometheus metrics (set TELEROBOT_<NAME>_METRICS_ADDRESS to fix a port):"]
+        lines += [f"  {name:<{width}}  http://{address}/metrics" for name, address in metrics]
     console = next((c.address for c in station if c.name == "web_console"), None)
     if console:
         lines += ["", f"The web console: http://{console}/ (in any browser on this host)"]
