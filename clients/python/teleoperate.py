@@ -205,6 +205,8 @@ class TeleopSession(_SessionState):
         self._heartbeat_waiters: deque[_Waiter] = deque()  # this stream's, oldest first
         self._unacked: dict[int, pb.TeleoperateRequest] = {}  # sent, not acked; in order
         self._interrupted = False
+        # Called with every command and heartbeat queued (not resends), on the sender's thread.
+        self.on_request: Callable[[pb.TeleoperateRequest], Any] | None = None
         self.commands_acked = 0  # commands acked once each (a repeated ack is not counted)
         self.commands_applied = 0  # of those, acked APPLIED or MODIFIED
         self.resends = 0  # commands sent again after a resume
@@ -408,7 +410,12 @@ class TeleopSession(_SessionState):
             elif waiter is not None:
                 self._heartbeat_waiters.append(waiter)
             self._requests.put(request)  # under the lock: queue order == sequence order
-            return request
+        if self.on_request is not None:  # (a recorder: make teleop --mcap)
+            try:
+                self.on_request(request)
+            except Exception:  # noqa: BLE001 - a failed hook must not fail the send
+                log.exception("the on_request callback failed; the session goes on")
+        return request
 
     def _wait(self, waiter: _Waiter, what: str, timeout: float | None) -> Ack:
         timeout = self.default_timeout if timeout is None else timeout

@@ -18,6 +18,7 @@ it cannot go on, it says why and exits 3 (see `main`).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import sys
 import threading
@@ -32,6 +33,7 @@ from clients.python.decision_server import DecisionClient
 from clients.python.errors import TelerobotRpcError
 from clients.teleop.artifacts import plot, write_summary
 from clients.teleop.dependencies import DependencyMonitor, as_json, describe
+from clients.teleop.mcap_log import SessionRecorder
 from clients.teleop.stack import station_at
 from clients.teleop.task import PegInHole, Result, ready_the_arm
 from clients.teleop.video import StereoView
@@ -166,6 +168,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--calibration", type=Path, default=Path("var/cameras.json"),
                         help="saved camera identification (made on the first run)")
     parser.add_argument("--no-video", action="store_true", help="skip the stereo video")
+    parser.add_argument("--mcap", action="store_true",
+                        help="also record the session as <out>/session.mcap (commands, acks, "
+                             "tool pose and wrench, stereo pairs, the DecisionServer's events; "
+                             "python -m clients.teleop.mcap_inspect FILE summarizes it)")
     args = parser.parse_args(argv)
     try:
         if args.discover is not None:
@@ -188,7 +194,8 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     args.calibration.parent.mkdir(parents=True, exist_ok=True)
 
-    with station_at(args.address) as started:
+    recorder = SessionRecorder(out / "session.mcap") if args.mcap else None
+    with station_at(args.address) as started, recorder or contextlib.nullcontext():
         client = DecisionClient(args.address, default_timeout=10.0)
         with client:
             client.acquire_control("teleop", lease_duration_s=30.0)
@@ -198,11 +205,13 @@ def run(args: argparse.Namespace) -> int:
             model = RobotModel(client.robot.get_state().tool_pose)
             view = None
             if not args.no_video:
-                view = StereoView(client.camera, model, out, args.calibration)
+                view = StereoView(client.camera, model, out, args.calibration,
+                                  on_frame=recorder and recorder.stereo)
                 view.start()
             status, results, traces = StatusLine(), [], []
             # The station's services as the session goes: what is down now, then every change.
-            monitor = DependencyMonitor(client, status.note).start()
+            monitor = DependencyMonitor(client, status.note,
+                                        on_event=recorder and recorder.event).start()
             for dependency in monitor.initial():
                 if not dependency.serving:
                     status.note(describe(dependency))
@@ -210,8 +219,12 @@ def run(args: argparse.Namespace) -> int:
                 for mode in args.modes:
                     retract(client, start)
                     status.restart()
-                    task = PegInHole(client, mode, model, status, on_link=LinkNotes(status.note))
+                    task = PegInHole(client, mode, model, status, on_link=LinkNotes(status.note),
+                                     recorder=recorder)
+                    began = time.time_ns()
                     results.append(task.run())
+                    if recorder is not None:
+                        recorder.run(mode, began, time.time_ns())
                     traces.append(task.trace)
                     client.renew_control()
                 print()
@@ -233,6 +246,8 @@ def run(args: argparse.Namespace) -> int:
         # Each of the station's services at the end, and every change during the session.
         "dependencies": dependencies,
         "dependency_changes": [as_json(d) for d in monitor.changes],
+        "mcap": str(recorder.path) if recorder else None,
+        "mcap_counts": dict(recorder.counts) if recorder else None,
     }
     write_summary(summary, out)
     print(table(results))

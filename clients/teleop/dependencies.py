@@ -8,6 +8,7 @@ import contextlib
 import logging
 import threading
 from collections.abc import Callable
+from typing import Any
 
 from clients.python.decision_server import DecisionClient
 from clients.python.errors import TelerobotRpcError
@@ -35,9 +36,11 @@ class DependencyMonitor:
     """Reads the DecisionServer's events on a thread of its own and calls `show` with a line for
     each dependency that changes state, from start() until stop(). A context manager."""
 
-    def __init__(self, client: DecisionClient, show: Callable[[str], None] = print):
+    def __init__(self, client: DecisionClient, show: Callable[[str], None] = print,
+                 on_event: Callable[[Any], Any] | None = None):
         self._client = client
         self._show = show
+        self._on_event = on_event  # every event, of any kind (make teleop --mcap records them)
         self._events = None
         self._thread: threading.Thread | None = None
         self.changes: list[Dependency] = []  # every change seen, in order
@@ -52,6 +55,8 @@ class DependencyMonitor:
     def _read(self) -> None:
         try:
             for event in self._events:
+                if self._on_event is not None:
+                    self._on_event(event)
                 if event.WhichOneof("event") != "dependency_changed":
                     continue
                 change = event.dependency_changed

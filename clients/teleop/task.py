@@ -119,8 +119,9 @@ class PegInHole:
     """One run of the task, recording into `trace` and predicting the tool into `model`."""
 
     def __init__(self, client: DecisionClient, mode: str, model: RobotModel, status=None,
-                 on_link: Callable[[str, str], None] | None = None):
+                 on_link: Callable[[str, str], None] | None = None, recorder=None):
         self.client = client
+        self._recorder = recorder  # a clients.teleop.mcap_log.SessionRecorder, or None
         self.mode = mode
         self.model = model
         self.trace = Trace(mode)
@@ -136,6 +137,8 @@ class PegInHole:
 
     def _on_ack(self, ack: Ack) -> None:
         self._acks.append(ack)
+        if self._recorder is not None:
+            self._recorder.ack(ack)
         now = self._elapsed()
         if ack.sequence:
             self.trace.command_time_s.append(now)
@@ -172,6 +175,8 @@ class PegInHole:
         session = self._session = self.client.teleoperate(
             "teleop-script", types_pb2.REFERENCE_FRAME_BASE, watchdog_timeout_s=0.5,
             on_ack=self._on_ack, on_link=self._on_link)
+        if self._recorder is not None:  # every command and heartbeat, as sent
+            session.on_request = self._recorder.request
         period = 1.0 / COMMAND_RATE_HZ
         script_time, felt = 0.0, False
         next_tick = time.monotonic()

@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import logging
 import threading
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -20,6 +22,7 @@ from clients.ar import (
 from clients.ar.adapters import projections_from_header
 from clients.python.errors import UnavailableError
 from clients.python.stereo_camera import StereoCameraClient
+from clients.python.values import StereoFrame
 from clients.teleop.artifacts import VideoRecorder
 from services.robot_model import workspace
 
@@ -42,8 +45,9 @@ class StereoView:
     """Streams pairs, draws the ball where the RobotModel predicts the tool, records video."""
 
     def __init__(self, camera: StereoCameraClient, model: RobotModel, out: Path,
-                 calibration_path: Path):
+                 calibration_path: Path, on_frame: Callable[[StereoFrame], Any] | None = None):
         self._camera = camera
+        self._on_frame = on_frame  # every pair as it came (make teleop --mcap records them)
         self._model = model
         self._out = out
         self._calibration_path = calibration_path
@@ -88,6 +92,8 @@ class StereoView:
                     if self._stop.is_set():
                         stream.cancel()
                         return
+                    if self._on_frame is not None:
+                        self._on_frame(frame)
                     if overlay is None:
                         overlay = self._overlay(frame.header)
                         composer = SideBySideComposer(WIDTH_PX, HEIGHT_PX)
