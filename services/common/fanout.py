@@ -1,16 +1,21 @@
 """One publisher, many subscribers, each with its own bounded queue that drops its oldest.
 
 A slow subscriber never slows the publisher or any other subscriber: its queue overflows, the
-oldest items go, and `dropped` says how many. Nothing here knows about gRPC.
+oldest items go, and `dropped` says how many (and the fanout's `on_dropped`, if set, hears of
+each: the service's metrics). Nothing here knows about gRPC.
 """
 
 from __future__ import annotations
 
+import logging
 import threading
 from collections import deque
+from collections.abc import Callable
 from typing import Generic, TypeVar
 
 T = TypeVar("T")
+
+log = logging.getLogger(__name__)
 
 
 class Subscription(Generic[T]):
@@ -27,10 +32,13 @@ class Subscription(Generic[T]):
 
     def offer(self, item: T) -> None:
         with self._ready:
-            if len(self._items) == self._items.maxlen:
+            full = len(self._items) == self._items.maxlen
+            if full:
                 self.dropped += 1  # deque drops the oldest on append
             self._items.append(item)
             self._ready.notify()
+        if full:
+            self._fanout.note_dropped()
 
     def get(self, timeout_s: float | None = None) -> T | None:
         """The oldest queued item, waiting up to timeout_s; None on timeout or once closed."""
@@ -58,6 +66,18 @@ class Fanout(Generic[T]):
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._subscriptions: tuple[Subscription[T], ...] = ()
+        # Called (on the publisher's thread) each time a subscriber's queue drops an item.
+        self.on_dropped: Callable[[], None] | None = None
+
+    def note_dropped(self) -> None:
+        """A subscriber dropped an item: tell on_dropped, if set. Never raises."""
+        on_dropped = self.on_dropped
+        if on_dropped is None:
+            return
+        try:
+            on_dropped()
+        except Exception:  # noqa: BLE001 - a report never fails the publisher
+            log.exception("reporting a dropped item failed")
 
     def subscribe(self, capacity: int = 64) -> Subscription[T]:
         return self.attach(Subscription(self, capacity))

@@ -15,13 +15,15 @@ from pathlib import Path
 
 import grpc
 
+from services.common.fanout import Subscription
 from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
 from services.decision_server.dependencies import SERVING, DependencyWatch
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
-from services.decision_server.supervisor import DecisionCore
+from services.decision_server.supervisor import ControlChanged, DecisionCore
 from services.runtime.config import address_for
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
+from services.runtime.metrics import ServiceMetrics
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
 from services.runtime.tls import station_channel_security
@@ -73,6 +75,11 @@ class DecisionService:
             lambda change: set_status(DEPENDENCY_HEALTH_PREFIX + change.dependency.name,
                                       change.dependency.state == SERVING), current=True)
 
+    def attach_metrics(self, metrics: ServiceMetrics) -> None:
+        """Count the events streams' drops and every lease change on the process's /metrics."""
+        self.core.events.on_dropped = lambda: metrics.dropped("decision_events")
+        self.core.events.attach(_LeaseChanges(self.core.events, metrics))
+
     def start(self) -> None:
         # The backends are reached per call; their absence is UNAVAILABLE, not a crash. Their
         # first health answers come within milliseconds: wait for them, so the first states
@@ -92,6 +99,19 @@ class DecisionService:
             self.core.slave.close()
         if self._stereo_channel is not None:
             self._stereo_channel.close()
+
+
+class _LeaseChanges(Subscription):
+    """Counts the lease changes among the DecisionServer's events as they are published; keeps
+    nothing."""
+
+    def __init__(self, fanout, metrics: ServiceMetrics):
+        super().__init__(fanout, 1)
+        self._metrics = metrics
+
+    def offer(self, item) -> None:
+        if isinstance(item.payload, ControlChanged):
+            self._metrics.event("lease_change")
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -58,7 +58,8 @@ def build(args: argparse.Namespace) -> CoreService:
     because = os.environ.get(RESTARTED_BECAUSE_ENV)
     return CoreService([binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(core))],
                        core.close,
-                       on_start=(lambda: _resume_reading(core, because)) if because else None)
+                       on_start=(lambda: _resume_reading(core, because)) if because else None,
+                       fanouts={"wrench": core.readings})
 
 
 def _resume_reading(core: ForceSensorCore, previous_end: str) -> None:

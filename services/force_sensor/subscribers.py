@@ -154,11 +154,14 @@ class WrenchSubscription:
     def deliver(self, batch: WrenchBatch) -> None:
         """Queue a batch, dropping (and counting) the oldest when full, and wake the stream."""
         with self._lock:
-            if len(self._items) == self._items.maxlen:
+            full = len(self._items) == self._items.maxlen
+            if full:
                 self.dropped += 1  # deque drops the oldest on append
             self._items.append(batch)
         if self._waiting:
             self._wake()
+        if full:
+            self._fanout.note_dropped()
 
     def offer(self, item: WrenchReading) -> None:
         """take(item), and deliver what it completes in a batch of this subscriber's own."""

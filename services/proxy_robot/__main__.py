@@ -31,7 +31,8 @@ def build(args: argparse.Namespace) -> CoreService:
     because = os.environ.get(RESTARTED_BECAUSE_ENV)
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],
                        core.close, on_emergency_call=core.hold_now,
-                       on_start=(lambda: core.reattach(because)) if because else None)
+                       on_start=(lambda: core.reattach(because)) if because else None,
+                       fanouts={"robot_states": core.states, "robot_events": core.events})
 
 
 if __name__ == "__main__":

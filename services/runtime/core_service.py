@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from services.common.fanout import Fanout
+from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import ServiceBinding
 
 
@@ -19,6 +21,12 @@ class CoreService:
     # Usually nothing: the domain opens its hardware when a client asks, as the papers'
     # components do. A restarted ProxyRobot reattaches to the arm it left.
     on_start: Callable[[], None] | None = None
+    # Streams fanned out to subscribers, by the name their drops are counted under.
+    fanouts: dict[str, Fanout] = field(default_factory=dict)
+
+    def attach_metrics(self, metrics: ServiceMetrics) -> None:
+        for name, fanout in self.fanouts.items():
+            fanout.on_dropped = lambda name=name: metrics.dropped(name)
 
     def bindings(self) -> Sequence[ServiceBinding]:
         return self.served

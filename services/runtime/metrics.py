@@ -24,10 +24,14 @@ What is measured, and where:
 - `telerobot_open_streams`: streams open on the server (its ports together).
 - `telerobot_stream_dropped_total{stream}`: messages a slow subscriber of a fanned-out stream
   lost (services.common.fanout), by stream name.
-- `telerobot_events_total{event}`: named events a service counts itself (a world tick that
-  overran, a lease granted or released, an emergency stop).
-- `telerobot_emergency_stop_latency_seconds`: from an EmergencyStop's arrival at the server to
-  the stop being latched (the service reports it).
+- `telerobot_events_total{event}`: named events a service counts itself (the DecisionServer's
+  `lease_change`: a lease granted, released, lapsed or taken over).
+- `telerobot_emergency_stop_latency_seconds`: the time an arriving EmergencyStop takes to latch
+  its stop: the service's stop hook, run on gRPC's polling thread as the call arrives (ProxyRobot
+  and the band: a word in shared memory; the DecisionServer: its stop sent to the band).
+- values a service reads out at scrape time (`watch`): the world's 1 kHz loop
+  (`telerobot_world_steps_total`, `..._overruns_total`, `..._dropped_steps_total`,
+  `telerobot_world_worst_lateness_seconds`, `..._worst_step_seconds`).
 - process_*: the process's CPU, memory and open files (prometheus_client's ProcessCollector).
 """
 
@@ -128,6 +132,12 @@ class ServiceMetrics:
         except Exception:  # noqa: BLE001
             self._failed()
 
+    def watch(self, name: str, help_text: str, read: Callable[[], float],
+              counter: bool = False) -> None:
+        """Expose `read()` as the gauge (or, with `counter`, the counter) `name`, read at
+        scrape time."""
+        self._lanes.values.append((name, help_text, read, counter))
+
     def watch_lanes(self, counters: Callable[[], dict[Any, Any]],
                     open_streams: Callable[[], int] | None = None) -> None:
         """Read the lanes' counters (LaneExecutor.counters) and the open streams at scrape
@@ -164,6 +174,7 @@ class _LaneCollector:
     def __init__(self):
         self.counters: Callable[[], dict[Any, Any]] | None = None
         self.open_streams: Callable[[], int] | None = None
+        self.values: list[tuple[str, str, Callable[[], float], bool]] = []
 
     def describe(self) -> Iterable:
         return []  # read at collect time only: nothing to register up front
@@ -194,6 +205,12 @@ class _LaneCollector:
                                         value=self.open_streams())
             except Exception:  # noqa: BLE001
                 log.exception("reading the open streams failed")
+        for name, help_text, read, counter in list(self.values):
+            try:
+                family = CounterMetricFamily if counter else GaugeMetricFamily
+                yield family(name, help_text, value=read())
+            except Exception:  # noqa: BLE001 - one value missing, never a failed scrape
+                log.exception("reading %s failed", name)
 
 
 _LANE_GAUGES = {

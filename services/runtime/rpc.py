@@ -103,7 +103,10 @@ class LaneInterceptor(grpc.ServerInterceptor):
         metadata = handler_call_details.invocation_metadata
         if (self._on_emergency_call is not None and declared_lane(method) == Lane.EMERGENCY
                 and self._may_stop_early(metadata)):
+            started = time.perf_counter()
             self._emergency_arrived(method)
+            if self._metrics is not None:
+                self._metrics.emergency_stop_latched(time.perf_counter() - started)
         wrapped = self._wrap(handler, method, _requested_lane(metadata))
         if self._metrics is None:
             return wrapped

@@ -27,7 +27,7 @@ import mujoco
 
 from services.runtime.errors import InvalidArgument
 from services.runtime.server import ServiceBinding
-from services.world.realtime import RealtimeLoop
+from services.world.realtime import LoopStats, RealtimeLoop
 from services.world.shm_link import Command, WorldPublisher
 from services.world.sim import ArmSim
 
@@ -72,6 +72,22 @@ class WorldService:
 
     def bindings(self) -> Sequence[ServiceBinding]:
         return []
+
+    def attach_metrics(self, metrics) -> None:
+        """The 1 kHz loop's counters on the process's /metrics, read at scrape time."""
+
+        def stat(name: str, scale: float = 1.0) -> Callable[[], float]:
+            return lambda: getattr(self.loop.stats() if self.loop else LoopStats(), name) * scale
+
+        metrics.watch("telerobot_world_steps", "Physics steps run", stat("steps"), counter=True)
+        metrics.watch("telerobot_world_overruns", "Steps that started a period or more late",
+                      stat("overruns"), counter=True)
+        metrics.watch("telerobot_world_dropped_steps", "Steps skipped: the loop fell too far "
+                      "behind", stat("dropped_steps"), counter=True)
+        metrics.watch("telerobot_world_worst_lateness_seconds", "Largest lateness of a step "
+                      "(start minus due time)", stat("worst_lateness_ns", 1e-9))
+        metrics.watch("telerobot_world_worst_step_seconds", "Longest time one step took",
+                      stat("worst_step_ns", 1e-9))
 
     def start(self) -> None:
         # MuJoCo's default warning handler appends to MUJOCO_LOG.TXT in the working directory;

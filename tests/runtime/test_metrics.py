@@ -14,6 +14,9 @@ import grpc
 import pytest
 from prometheus_client.parser import text_string_to_metric_families
 
+from services.common.fanout import Fanout
+from services.decision_server.__main__ import _LeaseChanges
+from services.decision_server.supervisor import ControlChanged, DecisionEvent
 from services.runtime.errors import OutOfRange
 from services.runtime.lanes import Lane, LaneConfig
 from services.runtime.metrics import LATENCY_BUCKETS_S, ServiceMetrics
@@ -69,14 +72,14 @@ class Decisions(decision_server_pb2_grpc.DecisionServerServicer):
 
 
 class Station:
-    def __init__(self):
+    def __init__(self, on_emergency_call=None):
         self.decisions = Decisions()
         self.metrics = ServiceMetrics("test")
         self.server, port = create_server(
             "127.0.0.1:0",
             [binding(proxy_robot_pb2_grpc, "ProxyRobot", Robot()),
              binding(decision_server_pb2_grpc, "DecisionServer", self.decisions)],
-            lanes=LANES, metrics=self.metrics)
+            lanes=LANES, metrics=self.metrics, on_emergency_call=on_emergency_call)
         self.server.start()
         self.metrics_port = self.metrics.serve("127.0.0.1:0")
         self.channel = grpc.insecure_channel(f"127.0.0.1:{port}")
@@ -244,3 +247,51 @@ def test_the_metrics_ready_line():
     name, address = parse_ready_line(f"TELEROBOT_READY {metrics_port_name('world')} "
                                      "127.0.0.1:9100")
     assert (name, address) == ("world_metrics", "127.0.0.1:9100")
+
+
+def test_emergency_stop_latency_is_observed_per_stop():
+    stops = []
+    station = Station(on_emergency_call=lambda: stops.append("latched"))
+    try:
+        for _ in range(2):
+            with pytest.raises(grpc.RpcError):  # the fixture's handler fails; the stop latched
+                station.robot.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(), timeout=5)
+        station.robot.GetStatus(proxy_robot_pb2.GetStatusRequest(), timeout=5)  # no stop
+        samples = station.scrape()
+    finally:
+        station.close()
+    assert stops == ["latched", "latched"]
+    latency = "telerobot_emergency_stop_latency_seconds"
+    assert value(samples, f"{latency}_count") == 2
+    assert value(samples, f"{latency}_bucket", le="0.0001", default=None) is not None
+    assert calls(samples, STOP, "UNKNOWN") == 2
+
+
+def test_stream_drops_watched_values_and_lease_changes(station):
+    fanout: Fanout[int] = Fanout()
+    fanout.on_dropped = lambda: station.metrics.dropped("robot_states")
+    slow = fanout.subscribe(capacity=1)
+    for item in range(4):
+        fanout.publish(item)
+    assert slow.dropped == 3
+
+    steps = [0]
+    station.metrics.watch("telerobot_world_steps", "Physics steps run", lambda: steps[0],
+                          counter=True)
+    station.metrics.watch("telerobot_world_worst_lateness_seconds", "Largest lateness",
+                          lambda: 0.0015)
+    station.metrics.watch("telerobot_broken", "A reading that fails", lambda: 1 / 0)
+    steps[0] = 1000
+
+    events: Fanout[DecisionEvent] = Fanout()
+    events.attach(_LeaseChanges(events, station.metrics))
+    events.publish(DecisionEvent(1, 0, ControlChanged(None, "granted")))
+    events.publish(DecisionEvent(2, 0, "something else"))
+    events.publish(DecisionEvent(3, 0, ControlChanged(None, "released")))
+
+    samples = station.scrape()  # the failing reading is left out, the rest is served
+    assert value(samples, "telerobot_stream_dropped_total", stream="robot_states") == 3
+    assert value(samples, "telerobot_world_steps_total") == 1000
+    assert value(samples, "telerobot_world_worst_lateness_seconds") == 0.0015
+    assert ("telerobot_broken", frozenset()) not in samples
+    assert value(samples, "telerobot_events_total", event="lease_change") == 2
