@@ -248,11 +248,12 @@ def run(args: argparse.Namespace) -> int:
         "dependency_changes": [as_json(d) for d in monitor.changes],
         "mcap": str(recorder.path) if recorder else None,
         "mcap_counts": dict(recorder.counts) if recorder else None,
+        "mcap_error": recorder.error if recorder else None,
     }
     write_summary(summary, out)
     print(table(results))
     print(f"\nartifacts in {out}/: stereo.mp4, force.png, tool_path.png, latency.png, "
-          "summary.json")
+          f"summary.json{', session.mcap' if recorder else ''}")
     return 0 if all(result.success for result in results) else 1
 
 

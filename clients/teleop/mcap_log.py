@@ -65,6 +65,7 @@ class SessionRecorder:
         self._runs: list[dict] = []
         self.counts: Counter[str] = Counter()
         self.closed = False
+        self.error: str | None = None  # why the recording stopped early, if it did
 
     # -- the hooks ------------------------------------------------------------------------------
     def request(self, request: pb.TeleoperateRequest) -> None:
@@ -108,15 +109,22 @@ class SessionRecorder:
     def write(self, topic: str, message, log_time_ns: int, publish_time_ns: int | None = None
               ) -> None:
         """`message` on `topic` at `log_time_ns` (raised to the channel's last, so log times
-        never go back on a channel, even when the wall clock does)."""
+        never go back on a channel, even when the wall clock does). Never raises: a failure
+        (a full disk) stops the recording, says why once and leaves it in `error`; the
+        session goes on."""
         with self._lock:
-            if self.closed:
+            if self.closed or self.error is not None:
                 return
             log_time = max(int(log_time_ns), self._last.get(topic, 0))
+            try:
+                self._writer.write_message(topic, message, log_time=log_time,
+                                           publish_time=int(publish_time_ns or log_time),
+                                           sequence=self.counts[topic])
+            except Exception as error:  # noqa: BLE001 - the hooks run on the session's threads
+                self.error = f"{topic}: {error}"
+                log.warning("the MCAP recording stopped (%s)", self.error)
+                return
             self._last[topic] = log_time
-            self._writer.write_message(topic, message, log_time=log_time,
-                                       publish_time=int(publish_time_ns or log_time),
-                                       sequence=self.counts[topic])
             self.counts[topic] += 1
 
     def close(self) -> None:
@@ -124,10 +132,13 @@ class SessionRecorder:
             if self.closed:
                 return
             self.closed = True
-            self._writer.add_metadata("teleop", {
-                "counts": json.dumps(dict(self.counts)), "runs": json.dumps(self._runs)})
-            self._writer.finish()
-            self._file.close()
+            try:
+                self._writer.add_metadata("teleop", {
+                    "counts": json.dumps(dict(self.counts)), "runs": json.dumps(self._runs),
+                    "error": self.error or ""})
+                self._writer.finish()
+            finally:
+                self._file.close()
 
     def __enter__(self) -> SessionRecorder:
         return self

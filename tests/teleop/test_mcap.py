@@ -148,6 +148,18 @@ def test_a_scripted_session_reads_back_channel_for_channel(tmp_path):
     assert json.loads(summary.metadata["teleop"]["counts"]) == dict(recorder.counts)
 
 
+def test_a_failed_write_stops_the_recording_not_the_session(tmp_path):
+    path = tmp_path / "session.mcap"
+    with SessionRecorder(path) as recorder:
+        recorder.write(channels.COMMAND, pb.MasterCommand(sequence=1), T0)
+        recorder.write(channels.COMMAND, pb.Heartbeat(), T0 + MS)  # the wrong type: refused
+        recorder.write(channels.COMMAND, pb.MasterCommand(sequence=2), T0 + 2 * MS)
+    assert "/teleop/command" in recorder.error and recorder.counts[channels.COMMAND] == 1
+    read = read_back(path)  # what came before the failure is in the file, which is whole
+    assert [proto.sequence for *_, proto in read[channels.COMMAND]] == [1]
+    assert mcap_inspect.summarize(path).metadata["teleop"]["error"] == recorder.error
+
+
 def test_inspect_prints_every_channel_and_says_when_it_cannot_read(tmp_path, capsys):
     path = tmp_path / "session.mcap"
     with SessionRecorder(path) as recorder:
