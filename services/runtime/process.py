@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Protocol
 
 from grpc_health.v1 import health_pb2
+from prometheus_client import disable_created_metrics
 
 from services.runtime.config import METRICS_OFF, base_parser, configure_logging
 from services.runtime.errors import TelerobotError
@@ -124,7 +125,10 @@ def run_service(
     except PlaintextRefused as error:
         log.error("not starting: %s", error)
         return 2
-    metrics = ServiceMetrics(name) if args.metrics_address != METRICS_OFF else None
+    metrics = None
+    if args.metrics_address != METRICS_OFF:
+        disable_created_metrics()  # no *_created series beside every counter (the process's)
+        metrics = ServiceMetrics(name)
     service = build(args)
     security = server_security(args, name, inner_port=not getattr(service, "operator_door",
                                                                      False))
