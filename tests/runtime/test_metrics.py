@@ -6,9 +6,13 @@ the server, so no test waits for a count to appear."""
 
 from __future__ import annotations
 
+import json
+import re
 import threading
 import urllib.request
 from concurrent import futures
+from pathlib import Path
+from types import SimpleNamespace
 
 import grpc
 import pytest
@@ -22,6 +26,7 @@ from services.runtime.lanes import Lane, LaneConfig
 from services.runtime.metrics import LATENCY_BUCKETS_S, ServiceMetrics
 from services.runtime.process import metrics_port_name, parse_ready_line
 from services.runtime.server import binding, create_server
+from services.world.service import WorldService
 from telerobot.v1 import (
     decision_server_pb2,
     decision_server_pb2_grpc,
@@ -295,3 +300,17 @@ def test_stream_drops_watched_values_and_lease_changes(station):
     assert value(samples, "telerobot_world_worst_lateness_seconds") == 0.0015
     assert ("telerobot_broken", frozenset()) not in samples
     assert value(samples, "telerobot_events_total", event="lease_change") == 2
+
+
+def test_the_grafana_dashboard_asks_only_for_metrics_a_service_serves(station):
+    dashboard = json.loads((Path(__file__).parents[2] / "docs/grafana_dashboard.json")
+                           .read_text())
+    WorldService.attach_metrics(SimpleNamespace(loop=None), station.metrics)
+    url = f"http://127.0.0.1:{station.metrics_port}/metrics"
+    with urllib.request.urlopen(url, timeout=5) as reply:
+        families = {family.name for family in text_string_to_metric_families(reply.read()
+                                                                               .decode())}
+    exprs = [target["expr"] for panel in dashboard["panels"] for target in panel["targets"]]
+    asked = {re.sub(r"_(bucket|count|sum|total)$", "", name)
+             for expr in exprs for name in re.findall(r"\b(?:telerobot|process)_\w+", expr)}
+    assert asked and asked <= families, sorted(asked - families)
