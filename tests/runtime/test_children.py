@@ -58,7 +58,9 @@ def test_a_service_on_port_0_reports_its_port_serves_there_and_stops_cleanly():
         address = band.wait_ready(timeout_s=60)
         host, port = address.rsplit(":", 1)
         assert host == "127.0.0.1" and int(port) > 0
-        assert band.address == address and band.ready == {"emergency_stop": address}
+        assert band.address == address
+        assert set(band.ready) == {"emergency_stop", "emergency_stop_metrics"}  # and /metrics
+        assert band.ready["emergency_stop_metrics"].startswith("127.0.0.1:")
         assert _serving(address)
     finally:
         code = band.stop(grace_s=10)
