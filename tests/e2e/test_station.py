@@ -14,6 +14,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.launcher import HTTP_CHILDREN, STATION
 from services.runtime.children import refused_address
+from services.runtime.process import metrics_port_name
 from tests.conftest import (
     BUF,
     REPO,
@@ -50,7 +51,9 @@ def station():
 
 def test_every_process_is_serving_where_the_launcher_says(station):
     launcher, addresses = station
-    assert sorted(addresses) == sorted(STATION)
+    # Every service, and each one's Prometheus port beside it.
+    assert sorted(addresses) == sorted([*STATION, *(metrics_port_name(name) for name in STATION
+                                                    if name not in HTTP_CHILDREN)])
     for name in STATION:
         assert not addresses[name].endswith(":0"), addresses
         if name in HTTP_CHILDREN:  # the web console: HTTP, its health at /healthz
