@@ -293,35 +293,23 @@ def _measured(handler: grpc.RpcMethodHandler, method: str, metrics: ServiceMetri
         metrics.rpc_done(method, code or outcome(context, default),
                          time.perf_counter() - started if unary else None)
 
+    def answered_once(behavior, unary: bool):
+        """A call answered with one response: a unary call (timed) or a client stream."""
+        def call(request, context):
+            started = time.perf_counter()
+            try:
+                response = behavior(request, context)
+            except BaseException:
+                settle(context, started, unary, default="UNKNOWN")
+                raise
+            settle(context, started, unary)
+            return response
+        return call
+
     if handler.unary_unary:
-        behavior = handler.unary_unary
-
-        def unary_unary(raw, context):
-            started = time.perf_counter()
-            try:
-                response = behavior(raw, context)
-            except BaseException:
-                settle(context, started, True, default="UNKNOWN")
-                raise
-            settle(context, started, True)
-            return response
-
-        return handler._replace(unary_unary=unary_unary)
-
+        return handler._replace(unary_unary=answered_once(handler.unary_unary, True))
     if handler.stream_unary:
-        behavior = handler.stream_unary
-
-        def stream_unary(raw_iterator, context):
-            started = time.perf_counter()
-            try:
-                response = behavior(raw_iterator, context)
-            except BaseException:
-                settle(context, started, False, default="UNKNOWN")
-                raise
-            settle(context, started, False)
-            return response
-
-        return handler._replace(stream_unary=stream_unary)
+        return handler._replace(stream_unary=answered_once(handler.stream_unary, False))
 
     streaming = handler.unary_stream or handler.stream_stream
 
