@@ -47,6 +47,7 @@ class DecisionService:
     dependencies: DependencyWatch | None = None
     _slave: GrpcSlave | None = None
     _stereo_channel: grpc.Channel | None = None
+    _servicer: DecisionServerServicer | None = None
 
     def bindings(self) -> Sequence[ServiceBinding]:
         # The inner links present the DecisionServer's own certificate when TLS is on.
@@ -63,8 +64,8 @@ class DecisionService:
         self.dependencies = DependencyWatch(slave.health, self.core.clock)
         self.dependencies.subscribe(self.core.emit)
         stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
-        return [binding(decision_server_pb2_grpc, "DecisionServer",
-                        DecisionServerServicer(self.core, self.dependencies)),
+        self._servicer = DecisionServerServicer(self.core, self.dependencies)
+        return [binding(decision_server_pb2_grpc, "DecisionServer", self._servicer),
                 *(binding(module, name, servicer)
                   for module, name, servicer in make_facades(self.core, slave.robot,
                                                              slave.sensor, stereo))]
@@ -76,8 +77,11 @@ class DecisionService:
                                       change.dependency.state == SERVING), current=True)
 
     def attach_metrics(self, metrics: ServiceMetrics) -> None:
-        """Count the events streams' drops and every lease change on the process's /metrics."""
+        """Count the events streams' drops and lag, every lease change, and the commands' ages
+        on the process's /metrics."""
         self.core.events.on_dropped = lambda: metrics.dropped("decision_events")
+        self.core.events.on_lag = lambda lag_s: metrics.stream_lagged("decision_events", lag_s)
+        self._servicer.on_command_age = metrics.command_aged
         self.core.events.attach(_LeaseChanges(self.core.events, metrics))
 
     def start(self) -> None:

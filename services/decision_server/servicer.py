@@ -248,6 +248,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         self._pose_of = _LastConverted(lambda state: convert.pose_to_proto(state.tool_pose))
         self._wrench_of = _LastConverted(
             lambda wrench: convert.wrench_to_proto(wrench.force_n, wrench.torque_nm))
+        # Told each command's age (receive minus send time, in seconds): the process's metrics.
+        self.on_command_age: Callable[[float], None] | None = None
 
     def _ack(self, sequence: int, send_time, result: CommandResult) -> pb.TeleoperateResponse:
         ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
@@ -338,10 +340,14 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         command = request.command
         if command.sequence < 0:
             raise InvalidArgument("sequence must be ≥ 0", reason="BAD_SEQUENCE")
+        received_ns = self._core.clock.time_ns()
+        on_command_age = self.on_command_age
+        if on_command_age is not None and command.HasField("send_time"):
+            on_command_age((received_ns - convert.time_ns(command.send_time)) / 1e9)
         return request, MasterIncrement(
             convert.vector3_from_proto(command.delta_position_m, "delta_position_m"),
             convert.rotation_from_proto(command.delta_rotation, "delta_rotation"),
-            command.clutch_engaged, self._core.clock.time_ns(), command.sequence)
+            command.clutch_engaged, received_ns, command.sequence)
 
     def _serve_batch(self, session: TeleopSession, stream: int, batch
                      ) -> Iterator[pb.TeleoperateResponse]:

@@ -122,7 +122,8 @@ class WrenchSubscription:
         self._count = 0
         self._last_forwarded: WrenchReading | None = None
         self._batch: list[WrenchReading] = []
-        self._items: deque[WrenchBatch] = deque(maxlen=options.queue_capacity)
+        # (queued at, batch): the fanout's on_lag hears how long each batch waited.
+        self._items: deque[tuple[float, WrenchBatch]] = deque(maxlen=options.queue_capacity)
         self._lock = threading.Lock()  # the queue and `dropped` change together
         # The stream waits for batches on an eventfd, which the sampling thread writes with the
         # GIL released (see `_wake`). Closed with the object, once nothing can write to it.
@@ -157,7 +158,7 @@ class WrenchSubscription:
             full = len(self._items) == self._items.maxlen
             if full:
                 self.dropped += 1  # deque drops the oldest on append
-            self._items.append(batch)
+            self._items.append((self._fanout.clock(), batch))
         if self._waiting:
             self._wake()
         if full:
@@ -193,7 +194,11 @@ class WrenchSubscription:
 
     def _pop(self) -> WrenchBatch | None:
         with self._lock:
-            return self._items.popleft() if self._items else None
+            if not self._items:
+                return None
+            queued_at, batch = self._items.popleft()
+        self._fanout.note_lag(queued_at)
+        return batch
 
     def close(self) -> None:
         self._fanout._remove(self)

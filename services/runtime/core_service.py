@@ -27,6 +27,7 @@ class CoreService:
     def attach_metrics(self, metrics: ServiceMetrics) -> None:
         for name, fanout in self.fanouts.items():
             fanout.on_dropped = lambda name=name: metrics.dropped(name)
+            fanout.on_lag = lambda lag_s, name=name: metrics.stream_lagged(name, lag_s)
 
     def bindings(self) -> Sequence[ServiceBinding]:
         return self.served

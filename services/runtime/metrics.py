@@ -24,6 +24,13 @@ What is measured, and where:
 - `telerobot_open_streams`: streams open on the server (its ports together).
 - `telerobot_stream_dropped_total{stream}`: messages a slow subscriber of a fanned-out stream
   lost (services.common.fanout), by stream name.
+- `telerobot_stream_lag_seconds{stream}`: how long each message of a fanned-out stream waited
+  in its subscriber's queue, from its publication to the moment the subscriber's stream took it
+  to send (0 ms when the stream keeps up; it grows as a slow client's queue fills).
+- `telerobot_command_age_seconds`: the DecisionServer's Teleoperate commands, their receive time
+  minus the send time the operator stamped: the link's one-way delay and the wait before the
+  server read the command. Across two hosts it includes their clocks' offset, so it is only
+  as good as their time sync (a negative age, from a clock ahead of ours, counts as 0).
 - `telerobot_events_total{event}`: named events a service counts itself (the DecisionServer's
   `lease_change`: a lease granted, released, lapsed or taken over).
 - `telerobot_emergency_stop_latency_seconds`: the time an arriving EmergencyStop takes to latch
@@ -50,8 +57,10 @@ log = logging.getLogger(__name__)
 
 # Seconds: 0.1 ms to 100 ms, then +Inf.
 LATENCY_BUCKETS_S = (0.0001, 0.0002, 0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1)
-# Lane waits: the same, and one more decade (a saturated lane waits long).
+# Lane waits and stream lags: the same, and one more decade (a saturated lane waits long).
 WAIT_BUCKETS_S = (0.0, *LATENCY_BUCKETS_S, 0.2, 0.5, 1.0)
+# Command ages: a link can add hundreds of milliseconds, and a resumed session's resends seconds.
+AGE_BUCKETS_S = (*LATENCY_BUCKETS_S, 0.2, 0.5, 1.0, 2.0, 5.0)
 
 METRICS_PATH = "/metrics"
 
@@ -76,6 +85,15 @@ class ServiceMetrics:
         self._dropped = Counter(
             "telerobot_stream_dropped", "Messages a slow subscriber of a fanned-out stream "
             "lost", ["stream"], registry=self.registry)
+        self._lag = Histogram(
+            "telerobot_stream_lag_seconds", "Time a fanned-out stream's message waited in its "
+            "subscriber's queue before the stream took it", ["stream"], buckets=WAIT_BUCKETS_S,
+            registry=self.registry)
+        self._lag_of: dict[str, Any] = {}  # stream -> its child: observed at up to kHz rates
+        self._command_age = Histogram(
+            "telerobot_command_age_seconds", "A Teleoperate command's receive time minus its "
+            "send time (includes the hosts' clock offset)", buckets=AGE_BUCKETS_S,
+            registry=self.registry)
         self._events = Counter(
             "telerobot_events", "Events a service counts (world overruns, lease changes, "
             "emergency stops)", ["event"], registry=self.registry)
@@ -115,6 +133,23 @@ class ServiceMetrics:
         try:
             if count > 0:
                 self._dropped.labels(stream).inc(count)
+        except Exception:  # noqa: BLE001
+            self._failed()
+
+    def stream_lagged(self, stream: str, lag_s: float) -> None:
+        """A message of `stream` waited `lag_s` in its subscriber's queue."""
+        try:
+            child = self._lag_of.get(stream)
+            if child is None:
+                child = self._lag_of.setdefault(stream, self._lag.labels(stream))
+            child.observe(lag_s)
+        except Exception:  # noqa: BLE001
+            self._failed()
+
+    def command_aged(self, age_s: float) -> None:
+        """A command arrived `age_s` after its send time (negative ages count as 0)."""
+        try:
+            self._command_age.observe(max(0.0, age_s))
         except Exception:  # noqa: BLE001
             self._failed()
 

@@ -95,6 +95,7 @@ class Station:
     sensor: force_sensor_pb2_grpc.ForceSensorStub
     address: str
     server: object  # the TelerobotServer, for its lane counters
+    servicer: DecisionServerServicer  # for its hooks (the metrics')
 
     def acquire(self, operator: str = "alice", **fields) -> tuple[str, list]:
         """A lease for `operator`; returns (lease id, metadata carrying it)."""
@@ -145,9 +146,10 @@ def serve_decisions(core: DecisionCore, robot_stub, sensor_stub) -> tuple[Statio
     nowhere = grpc.insecure_channel(refused_address())  # no camera here
     facades = make_facades(core, robot_stub, sensor_stub,
                            stereo_camera_pb2_grpc.StereoCameraStub(nowhere))
+    servicer = DecisionServerServicer(core)
     server, port = create_server(
         "127.0.0.1:0",
-        [binding(decision_server_pb2_grpc, "DecisionServer", DecisionServerServicer(core)),
+        [binding(decision_server_pb2_grpc, "DecisionServer", servicer),
          *(binding(module, name, servicer) for module, name, servicer in facades)],
         lanes=LANES)
     server.start()
@@ -155,7 +157,7 @@ def serve_decisions(core: DecisionCore, robot_stub, sensor_stub) -> tuple[Statio
     station = Station(core, channel, decision_server_pb2_grpc.DecisionServerStub(channel),
                       proxy_robot_pb2_grpc.ProxyRobotStub(channel),
                       force_sensor_pb2_grpc.ForceSensorStub(channel), f"127.0.0.1:{port}",
-                      server)
+                      server, servicer)
 
     def stop():
         channel.close()
@@ -207,10 +209,11 @@ class Operator:
         self._replies = station.decisions.Teleoperate(iter(self._requests.get, None), timeout=60)
         self.ready = next(self._replies).ready
 
-    def move(self, dx=(0, 0, 0), rotation=None, clutch=False) -> pb.CommandAck:
+    def move(self, dx=(0, 0, 0), rotation=None, clutch=False, send_time_ns: int | None = None
+             ) -> pb.CommandAck:
         self._sequence += 1
         command = pb.MasterCommand(sequence=self._sequence,
-                                   send_time=convert.timestamp(time.time_ns()),
+                                   send_time=convert.timestamp(send_time_ns or time.time_ns()),
                                    delta_position_m=convert.vector3_to_proto(dx),
                                    clutch_engaged=clutch)
         if rotation is not None:

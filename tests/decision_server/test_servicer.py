@@ -34,6 +34,19 @@ def test_acks_carry_the_outcome_pose_status_and_a_fresh_wrench(fake_station):
     operator.close()
 
 
+def test_each_command_is_aged_on_arrival_from_the_send_time_it_carries(fake_station):
+    station, _ = fake_station
+    ages: list[float] = []
+    station.servicer.on_command_age = ages.append
+    lease, _ = station.acquire()
+    operator = Operator(station, lease)
+    now_ns = station.core.clock.time_ns()
+    operator.move(send_time_ns=now_ns - 200_000_000)  # 200 ms on the way, by the server's clock
+    operator.move(send_time_ns=now_ns - 1_000_000)
+    operator.close()
+    assert ages == pytest.approx([0.200, 0.001])
+
+
 def test_a_burst_of_commands_gets_one_ack_each_in_order_and_moves_by_their_sum(fake_station):
     """However the server batches a backlog, every command gets its ack, in order, heartbeats
     in their place; the arm moves by all the increments."""

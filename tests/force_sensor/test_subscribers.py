@@ -75,6 +75,20 @@ def test_one_full_subscriber_does_not_touch_another():
     assert slow.dropped == 3
 
 
+def test_each_batch_reports_how_long_it_waited_for_its_stream():
+    now = [100.0]
+    fanout: Fanout = Fanout(clock=lambda: now[0])
+    lags: list[float] = []
+    fanout.on_lag = lags.append
+    sub = fanout.attach(WrenchSubscription(fanout, StreamOptions()))
+    fanout.publish(reading(1))
+    now[0] += 0.003
+    fanout.publish(reading(2))
+    now[0] += 0.001
+    assert drain(sub) == [[1], [2]]
+    assert lags == pytest.approx([0.004, 0.001])
+
+
 @pytest.mark.parametrize("fields", [
     dict(decimation=-1, threshold_force_n=0, threshold_torque_nm=0, batch_size=0,
          queue_capacity=0),

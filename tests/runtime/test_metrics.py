@@ -302,6 +302,27 @@ def test_stream_drops_watched_values_and_lease_changes(station):
     assert value(samples, "telerobot_events_total", event="lease_change") == 2
 
 
+def test_stream_lags_and_command_ages_are_histograms(station):
+    fanout: Fanout[int] = Fanout()
+    fanout.on_lag = lambda lag_s: station.metrics.stream_lagged("robot_states", lag_s)
+    subscription = fanout.subscribe()
+    for item in range(3):
+        fanout.publish(item)
+    assert [subscription.get(0) for _ in range(3)] == [0, 1, 2]
+    station.metrics.command_aged(0.150)  # a command across a 300 ms round trip
+    station.metrics.command_aged(-0.002)  # the operator's clock is ahead: counted as 0
+
+    samples = station.scrape()
+    lag = "telerobot_stream_lag_seconds"
+    assert value(samples, f"{lag}_count", stream="robot_states") == 3
+    assert value(samples, f"{lag}_bucket", stream="robot_states", le="1.0") == 3
+    age = "telerobot_command_age_seconds"
+    assert value(samples, f"{age}_count") == 2
+    assert value(samples, f"{age}_bucket", le="0.0001") == 1
+    assert value(samples, f"{age}_bucket", le="0.2") == 2
+    assert value(samples, f"{age}_sum") == pytest.approx(0.150)
+
+
 def test_the_grafana_dashboard_asks_only_for_metrics_a_service_serves(station):
     dashboard = json.loads((Path(__file__).parents[2] / "docs/grafana_dashboard.json")
                            .read_text())

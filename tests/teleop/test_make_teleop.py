@@ -9,12 +9,15 @@ import json
 import os
 import subprocess
 import sys
+import urllib.request
 
 import cv2
 import pytest
+from prometheus_client.parser import text_string_to_metric_families
 
 from clients.teleop.stack import local_station
 from services.launcher import HTTP_CHILDREN, STATION
+from services.runtime.process import metrics_port_name
 from services.security import pki
 from tests.conftest import REPO
 from tests.world.conftest import unique_shm_name
@@ -41,7 +44,9 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls)
              "--calibration", str(tmp_path / "cameras.json")],
             cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True,
             timeout=400)
-    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+        assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+        if not tls:
+            _check_the_station_metrics_moved(addresses)
     summary = json.loads((out / "summary.json").read_text())
     assert summary["station"] == f"found at {operator}"
     runs = {run["mode"]: run for run in summary["runs"]}
@@ -69,3 +74,38 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls)
         driven = {(r["identity"], r["method"].rsplit("/", 1)[1], r["outcome"]) for r in records}
         assert {("operator", "AcquireControl", "OK"), ("operator", "Teleoperate", "OK")} \
             <= driven, driven
+
+
+def _scrape(address: str) -> dict[tuple[str, frozenset], float]:
+    """Every sample of a service's /metrics, parsed by prometheus_client's own parser."""
+    with urllib.request.urlopen(f"http://{address}/metrics", timeout=10) as reply:
+        text = reply.read().decode()
+    return {(sample.name, frozenset(sample.labels.items())): sample.value
+            for family in text_string_to_metric_families(text) for sample in family.samples}
+
+
+def _total(samples, name: str, **labels) -> float:
+    wanted = set(labels.items())
+    return sum(value for (sample, sample_labels), value in samples.items()
+               if sample == name and wanted <= sample_labels)
+
+
+def _check_the_station_metrics_moved(addresses: dict[str, str]) -> None:
+    """After a session, each service's /metrics parses and its counters moved with the
+    session's traffic: calls, the commands' ages, the streams' lags, the world's steps."""
+    grpc_services = set(STATION) - HTTP_CHILDREN
+    scraped = {name: _scrape(addresses[metrics_port_name(name)]) for name in grpc_services}
+    for name, samples in scraped.items():
+        if name != "world":  # the world serves shared memory, no gRPC calls
+            assert _total(samples, "telerobot_rpc_handled_total") > 0, name
+    decisions = scraped["decision_server"]
+    assert _total(decisions, "telerobot_rpc_handled_total", code="OK",
+                  method="/telerobot.v1.DecisionServer/AcquireControl") >= 1
+    # Every command of both runs was aged on arrival (the task sends hundreds).
+    assert _total(decisions, "telerobot_command_age_seconds_count") > 100
+    assert _total(decisions, "telerobot_events_total", event="lease_change") >= 1
+    # The DecisionServer read the wrench and the arm's states through fanned-out streams.
+    assert _total(scraped["force_sensor"], "telerobot_stream_lag_seconds_count",
+                  stream="wrench") > 100
+    assert _total(scraped["proxy_robot"], "telerobot_stream_lag_seconds_count") > 0
+    assert _total(scraped["world"], "telerobot_world_steps_total") > 1000
