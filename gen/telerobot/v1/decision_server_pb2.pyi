@@ -57,6 +57,12 @@ class DependencyState(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     DEPENDENCY_STATE_SERVING: _ClassVar[DependencyState]
     DEPENDENCY_STATE_NOT_SERVING: _ClassVar[DependencyState]
     DEPENDENCY_STATE_RESTARTING: _ClassVar[DependencyState]
+
+class Passivity(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    PASSIVITY_UNSPECIFIED: _ClassVar[Passivity]
+    PASSIVITY_OFF: _ClassVar[Passivity]
+    PASSIVITY_TDPA: _ClassVar[Passivity]
 TELEOP_SESSION_STATE_UNSPECIFIED: TeleopSessionState
 TELEOP_SESSION_STATE_OPENED: TeleopSessionState
 TELEOP_SESSION_STATE_DETACHED: TeleopSessionState
@@ -83,6 +89,9 @@ DEPENDENCY_STATE_UNSPECIFIED: DependencyState
 DEPENDENCY_STATE_SERVING: DependencyState
 DEPENDENCY_STATE_NOT_SERVING: DependencyState
 DEPENDENCY_STATE_RESTARTING: DependencyState
+PASSIVITY_UNSPECIFIED: Passivity
+PASSIVITY_OFF: Passivity
+PASSIVITY_TDPA: Passivity
 
 class TeleoperateRequest(_message.Message):
     __slots__ = ("init", "command", "heartbeat", "end")
@@ -101,38 +110,56 @@ class TeleoperateEnd(_message.Message):
     def __init__(self) -> None: ...
 
 class TeleoperateInit(_message.Message):
-    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout", "resume_session_id")
+    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout", "resume_session_id", "passivity")
     OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
     LEASE_ID_FIELD_NUMBER: _ClassVar[int]
     MAPPING_FIELD_NUMBER: _ClassVar[int]
     WATCHDOG_TIMEOUT_FIELD_NUMBER: _ClassVar[int]
     RESUME_SESSION_ID_FIELD_NUMBER: _ClassVar[int]
+    PASSIVITY_FIELD_NUMBER: _ClassVar[int]
     operator_id: str
     lease_id: str
     mapping: _types_pb2.ReferenceFrame
     watchdog_timeout: _duration_pb2.Duration
     resume_session_id: str
-    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., resume_session_id: _Optional[str] = ...) -> None: ...
+    passivity: Passivity
+    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., resume_session_id: _Optional[str] = ..., passivity: _Optional[_Union[Passivity, str]] = ...) -> None: ...
 
 class MasterCommand(_message.Message):
-    __slots__ = ("sequence", "send_time", "delta_position_m", "delta_rotation", "clutch_engaged")
+    __slots__ = ("sequence", "send_time", "delta_position_m", "delta_rotation", "clutch_engaged", "master_energy")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     SEND_TIME_FIELD_NUMBER: _ClassVar[int]
     DELTA_POSITION_M_FIELD_NUMBER: _ClassVar[int]
     DELTA_ROTATION_FIELD_NUMBER: _ClassVar[int]
     CLUTCH_ENGAGED_FIELD_NUMBER: _ClassVar[int]
+    MASTER_ENERGY_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     send_time: _timestamp_pb2.Timestamp
     delta_position_m: _types_pb2.Vector3
     delta_rotation: _types_pb2.Matrix3
     clutch_engaged: bool
-    def __init__(self, sequence: _Optional[int] = ..., send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., delta_position_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ..., delta_rotation: _Optional[_Union[_types_pb2.Matrix3, _Mapping]] = ..., clutch_engaged: _Optional[bool] = ...) -> None: ...
+    master_energy: PortEnergy
+    def __init__(self, sequence: _Optional[int] = ..., send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., delta_position_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ..., delta_rotation: _Optional[_Union[_types_pb2.Matrix3, _Mapping]] = ..., clutch_engaged: _Optional[bool] = ..., master_energy: _Optional[_Union[PortEnergy, _Mapping]] = ...) -> None: ...
 
 class Heartbeat(_message.Message):
-    __slots__ = ("send_time",)
+    __slots__ = ("send_time", "master_energy")
     SEND_TIME_FIELD_NUMBER: _ClassVar[int]
+    MASTER_ENERGY_FIELD_NUMBER: _ClassVar[int]
     send_time: _timestamp_pb2.Timestamp
-    def __init__(self, send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ...) -> None: ...
+    master_energy: PortEnergy
+    def __init__(self, send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., master_energy: _Optional[_Union[PortEnergy, _Mapping]] = ...) -> None: ...
+
+class PortEnergy(_message.Message):
+    __slots__ = ("energy_in_j", "energy_out_j", "dissipated_j", "sample_time")
+    ENERGY_IN_J_FIELD_NUMBER: _ClassVar[int]
+    ENERGY_OUT_J_FIELD_NUMBER: _ClassVar[int]
+    DISSIPATED_J_FIELD_NUMBER: _ClassVar[int]
+    SAMPLE_TIME_FIELD_NUMBER: _ClassVar[int]
+    energy_in_j: float
+    energy_out_j: float
+    dissipated_j: float
+    sample_time: _timestamp_pb2.Timestamp
+    def __init__(self, energy_in_j: _Optional[float] = ..., energy_out_j: _Optional[float] = ..., dissipated_j: _Optional[float] = ..., sample_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ...) -> None: ...
 
 class TeleoperateResponse(_message.Message):
     __slots__ = ("ready", "ack")
@@ -143,7 +170,7 @@ class TeleoperateResponse(_message.Message):
     def __init__(self, ready: _Optional[_Union[TeleoperateReady, _Mapping]] = ..., ack: _Optional[_Union[CommandAck, _Mapping]] = ...) -> None: ...
 
 class TeleoperateReady(_message.Message):
-    __slots__ = ("session_id", "mapping", "watchdog_timeout", "assistance", "resumed", "last_sequence", "resume_window")
+    __slots__ = ("session_id", "mapping", "watchdog_timeout", "assistance", "resumed", "last_sequence", "resume_window", "passivity")
     SESSION_ID_FIELD_NUMBER: _ClassVar[int]
     MAPPING_FIELD_NUMBER: _ClassVar[int]
     WATCHDOG_TIMEOUT_FIELD_NUMBER: _ClassVar[int]
@@ -151,6 +178,7 @@ class TeleoperateReady(_message.Message):
     RESUMED_FIELD_NUMBER: _ClassVar[int]
     LAST_SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     RESUME_WINDOW_FIELD_NUMBER: _ClassVar[int]
+    PASSIVITY_FIELD_NUMBER: _ClassVar[int]
     session_id: str
     mapping: _types_pb2.ReferenceFrame
     watchdog_timeout: _duration_pb2.Duration
@@ -158,10 +186,11 @@ class TeleoperateReady(_message.Message):
     resumed: bool
     last_sequence: int
     resume_window: _duration_pb2.Duration
-    def __init__(self, session_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., assistance: _Optional[_Union[AssistanceConfig, _Mapping]] = ..., resumed: _Optional[bool] = ..., last_sequence: _Optional[int] = ..., resume_window: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
+    passivity: Passivity
+    def __init__(self, session_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., assistance: _Optional[_Union[AssistanceConfig, _Mapping]] = ..., resumed: _Optional[bool] = ..., last_sequence: _Optional[int] = ..., resume_window: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., passivity: _Optional[_Union[Passivity, str]] = ...) -> None: ...
 
 class CommandAck(_message.Message):
-    __slots__ = ("sequence", "command_send_time", "receive_time", "apply_time", "outcome", "detail", "tool_pose", "tool_wrench", "status")
+    __slots__ = ("sequence", "command_send_time", "receive_time", "apply_time", "outcome", "detail", "tool_pose", "tool_wrench", "status", "slave_energy", "passivity_drift_m")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     COMMAND_SEND_TIME_FIELD_NUMBER: _ClassVar[int]
     RECEIVE_TIME_FIELD_NUMBER: _ClassVar[int]
@@ -171,6 +200,8 @@ class CommandAck(_message.Message):
     TOOL_POSE_FIELD_NUMBER: _ClassVar[int]
     TOOL_WRENCH_FIELD_NUMBER: _ClassVar[int]
     STATUS_FIELD_NUMBER: _ClassVar[int]
+    SLAVE_ENERGY_FIELD_NUMBER: _ClassVar[int]
+    PASSIVITY_DRIFT_M_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     command_send_time: _timestamp_pb2.Timestamp
     receive_time: _timestamp_pb2.Timestamp
@@ -180,7 +211,9 @@ class CommandAck(_message.Message):
     tool_pose: _types_pb2.Pose
     tool_wrench: _types_pb2.Wrench
     status: _types_pb2.RobotStatus
-    def __init__(self, sequence: _Optional[int] = ..., command_send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., receive_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., apply_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., outcome: _Optional[_Union[CommandOutcome, str]] = ..., detail: _Optional[str] = ..., tool_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ..., tool_wrench: _Optional[_Union[_types_pb2.Wrench, _Mapping]] = ..., status: _Optional[_Union[_types_pb2.RobotStatus, str]] = ...) -> None: ...
+    slave_energy: PortEnergy
+    passivity_drift_m: _types_pb2.Vector3
+    def __init__(self, sequence: _Optional[int] = ..., command_send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., receive_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., apply_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., outcome: _Optional[_Union[CommandOutcome, str]] = ..., detail: _Optional[str] = ..., tool_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ..., tool_wrench: _Optional[_Union[_types_pb2.Wrench, _Mapping]] = ..., status: _Optional[_Union[_types_pb2.RobotStatus, str]] = ..., slave_energy: _Optional[_Union[PortEnergy, _Mapping]] = ..., passivity_drift_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ...) -> None: ...
 
 class GetAssistanceRequest(_message.Message):
     __slots__ = ()
