@@ -4,6 +4,7 @@ IForceSensor). Reads requests, calls DecisionCore, converts answers and errors."
 
 from __future__ import annotations
 
+import math
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -251,11 +252,20 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         # Told each command's age (receive minus send time, in seconds): the process's metrics.
         self.on_command_age: Callable[[float], None] | None = None
 
-    def _ack(self, sequence: int, send_time, result: CommandResult) -> pb.TeleoperateResponse:
+    def _ack(self, sequence: int, send_time, result: CommandResult,
+             session: TeleopSession | None = None) -> pb.TeleoperateResponse:
         ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
                             receive_time=convert.timestamp(result.receive_time_ns),
                             apply_time=convert.timestamp(result.apply_time_ns),
                             outcome=_OUTCOMES[result.outcome], detail=result.detail)
+        passivity = session.passivity if session is not None else None
+        if passivity is not None:  # the slave port's energy, for the master's controller
+            ack.slave_energy.CopyFrom(pb.PortEnergy(
+                energy_in_j=passivity.ledger.energy_in_j,
+                energy_out_j=passivity.ledger.energy_out_j,
+                dissipated_j=passivity.dissipated_j,
+                sample_time=convert.timestamp(self._core.clock.time_ns())))
+            ack.passivity_drift_m.CopyFrom(convert.vector3_to_proto(passivity.drift_m))
         try:
             state = self._core.robot_state()
             ack.tool_pose.CopyFrom(self._pose_of(state))
@@ -286,7 +296,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 watchdog_timeout=convert.duration(session.watchdog_s),
                 assistance=assistance_to_proto(self._core.assistance),
                 resumed=stream > 1, last_sequence=session.last_sequence,
-                resume_window=convert.duration(session.resume_window_s)))
+                resume_window=convert.duration(session.resume_window_s),
+                passivity=pb.PASSIVITY_TDPA if session.passivity else pb.PASSIVITY_OFF))
             # Three threads (services/common/inbox.py): the inbox reads, the producer moves the
             # arm, this one writes the acks; the arm never waits for an ack to be written.
             inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
@@ -324,7 +335,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             if mapping == "WRIST":
                 raise InvalidArgument("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
         session = self._core.open_session(init.operator_id, init.lease_id, mapping,
-                                          convert.seconds(init.watchdog_timeout))
+                                          convert.seconds(init.watchdog_timeout),
+                                          passivity=init.passivity == pb.PASSIVITY_TDPA)
         return session, session.stream
 
     def _received(self, request: pb.TeleoperateRequest
@@ -332,6 +344,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         """A Teleoperate message as it arrives (on the inbox's thread): a command is checked,
         converted and stamped with its receive time then."""
         kind = request.WhichOneof("message")
+        if kind == "heartbeat":
+            _master_energy_in(request.heartbeat)  # checked as it arrives, like a command
         if kind in ("heartbeat", "end"):
             return request, None
         if kind != "command":
@@ -347,7 +361,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         return request, MasterIncrement(
             convert.vector3_from_proto(command.delta_position_m, "delta_position_m"),
             convert.rotation_from_proto(command.delta_rotation, "delta_rotation"),
-            command.clutch_engaged, received_ns, command.sequence)
+            command.clutch_engaged, received_ns, command.sequence,
+            _master_energy_in(command))
 
     def _serve_batch(self, session: TeleopSession, stream: int, batch
                      ) -> Iterator[pb.TeleoperateResponse]:
@@ -362,13 +377,15 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 continue
             for command, result in zip(commands, session.commands(increments, stream),
                                        strict=True):
-                yield self._ack(command.sequence, command.send_time, result)
+                yield self._ack(command.sequence, command.send_time, result, session)
             commands, increments = [], []
             if request is not None and request.WhichOneof("message") == "end":
                 yield _END_OF_SESSION  # what came after it is ignored
                 return
             if request is not None:
-                yield self._ack(0, request.heartbeat.send_time, session.heartbeat(stream))
+                heartbeat = request.heartbeat
+                yield self._ack(0, heartbeat.send_time,
+                                session.heartbeat(stream, _master_energy_in(heartbeat)), session)
 
     def _control_state(self) -> pb.ControlState:
         return control_state(self._core.locks.view(), self._core.clock)
@@ -501,6 +518,18 @@ def _move_from_proto(core: DecisionCore, lease: str | None, kind: str, action):
 
 def _status(name: str) -> int:
     return types_pb2.RobotStatus.Value(f"ROBOT_STATUS_{name}")
+
+
+def _master_energy_in(message: pb.MasterCommand | pb.Heartbeat) -> float | None:
+    """The master port's E_in a command or heartbeat carries (J), or None without one."""
+    if not message.HasField("master_energy"):
+        return None
+    energy = message.master_energy
+    values = (energy.energy_in_j, energy.energy_out_j, energy.dissipated_j)
+    if not all(math.isfinite(v) and v >= 0.0 for v in values):
+        raise InvalidArgument("master_energy must hold finite energies ≥ 0 J",
+                              reason="BAD_ENERGY")
+    return energy.energy_in_j
 
 
 def make_facades(core: DecisionCore, robot_stub, sensor_stub, stereo_stub) -> list[tuple]:

@@ -29,6 +29,7 @@ import numpy as np
 import pinocchio as pin
 
 from services.common.fanout import Fanout
+from services.common.passivity import SlavePassivity
 from services.decision_server.arbitration import ControlView, Lease, LockManager
 from services.decision_server.assistance import Assistance
 from services.decision_server.cobegin import Barriers, SimulatedProcessor
@@ -247,7 +248,9 @@ class DecisionCore:
     # -- teleoperation ----------------------------------------------------------------------
 
     def open_session(self, operator_id: str, lease_id: str, mapping: str | None,
-                     watchdog_s: float) -> TeleopSession:
+                     watchdog_s: float, passivity: bool = False) -> TeleopSession:
+        """A new Teleoperate session; with `passivity`, TDPA's slave port keeps the channel
+        passive (services.common.passivity)."""
         lease = self.locks.require(lease_id)
         watchdog_s = watchdog_s or DEFAULT_WATCHDOG_S
         if not MIN_WATCHDOG_S <= watchdog_s <= MAX_WATCHDOG_S:
@@ -261,7 +264,8 @@ class DecisionCore:
                                      reason=status)
         # An authenticated holder drives as itself, whatever the session's init says.
         session = TeleopSession(self, lease.identity or operator_id or lease.operator_id, lease,
-                                mapping, watchdog_s)
+                                mapping, watchdog_s,
+                                passivity=SlavePassivity() if passivity else None)
         with self._lock:
             if self._replay is not None:
                 raise FailedPrecondition("a replay is running: stop it first",

@@ -25,6 +25,7 @@ import numpy as np
 import pinocchio as pin
 
 from services.common.geometry import moved_by, rotation_angle
+from services.common.passivity import SlavePassivity
 from services.decision_server.arbitration import Lease
 from services.decision_server.assistance import Assistance, apply_assistance
 from services.runtime.errors import Aborted, FailedPrecondition, TelerobotError, Unavailable
@@ -89,6 +90,7 @@ class MasterIncrement:
     clutch_engaged: bool
     receive_time_ns: int
     sequence: int = 0
+    master_energy_in_j: float | None = None  # the master port's E_in it carried (TDPA)
 
 
 # A merged move stays well inside ProxyRobot's caps per move (50 mm, 15 deg), so merging never
@@ -178,8 +180,11 @@ class TeleopSession:
     last word. `stream` numbers the streams: each resume supersedes the one before."""
 
     def __init__(self, core: DecisionCore, operator_id: str, lease: Lease, mapping: str | None,
-                 watchdog_s: float, resume_window_s: float = RESUME_WINDOW_S):
+                 watchdog_s: float, resume_window_s: float = RESUME_WINDOW_S,
+                 passivity: SlavePassivity | None = None):
         self.core = core
+        # TDPA's slave port (services.common.passivity), or None: increments applied as sent.
+        self.passivity = passivity
         self.session_id = uuid.uuid4().hex[:12]
         self.operator_id = operator_id
         self.lease = lease
@@ -223,9 +228,11 @@ class TeleopSession:
         with self._serving:
             return self._resends.counts()
 
-    def heartbeat(self, stream: int = 1) -> CommandResult:
+    def heartbeat(self, stream: int = 1, master_energy_in_j: float | None = None
+                  ) -> CommandResult:
         with self._serving:
             self._require_stream(stream)
+            self._heard(master_energy_in_j)
             now = self._clock.time_ns()
             self._touch()
             self.core.locks.require(self.lease.lease_id)  # renews it; FailedPrecondition if lost
@@ -248,6 +255,8 @@ class TeleopSession:
             return []
         with self._serving:
             self._require_stream(stream)
+            for increment in increments:
+                self._heard(increment.master_energy_in_j)
             resend = self._resends.split(increments)
             fresh = [i for i, again in zip(increments, resend, strict=True) if not again]
             fresh_results: list[CommandResult] = []
@@ -259,6 +268,10 @@ class TeleopSession:
             processed = iter(fresh_results)
             return [self._resends.answer(i) if again else next(processed)
                     for i, again in zip(increments, resend, strict=True)]
+
+    def _heard(self, master_energy_in_j: float | None) -> None:
+        if self.passivity is not None and master_energy_in_j is not None:
+            self.passivity.heard(master_energy_in_j)
 
     def _require_stream(self, stream: int) -> None:
         if stream != self.stream:
@@ -311,9 +324,15 @@ class TeleopSession:
         tool = self._target or self.core.slave.state().tool_pose
         total = pin.SE3.Identity()
         modified_by_assistance = []
+        force_tool = self._environment_force() if self.passivity is not None else None
         for increment in group:
             dx, dm, modified = apply_assistance(assistance, increment.delta_position,
                                                 increment.delta_rotation, tool)
+            if self.passivity is not None:
+                # The environment's force in the mapping frame, where the increments are.
+                force = force_tool if mapping == "TOOL" else tool.rotation @ force_tool
+                limited = self.passivity.step(dx, force)
+                dx, modified = limited.step_m, modified or limited.dissipated_j > 0.0
             step = pin.SE3(dm, dx)
             tool = moved_by(tool, step, mapping)
             total = compose(total, step, mapping)
@@ -343,6 +362,12 @@ class TeleopSession:
         return [CommandResult("MODIFIED" if modified or reduced else "APPLIED", detail,
                               i.receive_time_ns, applied)
                 for i, modified in zip(group, modified_by_assistance, strict=True)]
+
+    def _environment_force(self) -> np.ndarray:
+        """The environment's force on the tool now (tool axes, N); zero when the sensor has
+        nothing (not reading: then no contact can be felt by the operator either)."""
+        wrench = self.core.wrench()
+        return np.zeros(3) if wrench is None else np.asarray(wrench.force_n, dtype=float)
 
     # -- the stream's end, resume, close ------------------------------------------------------
 
