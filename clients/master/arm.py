@@ -37,6 +37,7 @@ from clients.master.impedance import (
 )
 from clients.master.model import MasterModel
 from clients.master.sources import JointReading, JointSource, SimulatedHand
+from services.common.passivity import MasterPassivity
 
 
 class JointStateEstimator:
@@ -79,7 +80,7 @@ class MasterArm:
                  frame: IncrementFrame = IncrementFrame.PAPER, alpha: Gain | str = 0.0,
                  beta: Gain = 0.0, force_feedback: bool = True,
                  force_scale: float | None = None, torque_scale: float | None = None,
-                 smoothing: float = 0.0):
+                 smoothing: float = 0.0, passivity: MasterPassivity | None = None):
         self.model = model or getattr(source, "model", None) or MasterModel()
         self.source = source if source is not None else SimulatedHand(self.model)
         self.frame = frame
@@ -93,6 +94,10 @@ class MasterArm:
         self.reference: pin.SE3 | None = None  # (X, M)
         self.hand: pin.SE3 | None = None  # (X⁺, M⁺) at the last reading
         self.last_reading: JointReading | None = None
+        self.passivity = passivity
+        # The hand's motion that reached the channel since the force was last displayed
+        # (master metres, base axes): what the passivity observer weighs the force against.
+        self._unweighed_step = np.zeros(3)
 
     # -- settings ---------------------------------------------------------------------------
     def set_scale(self, translation_scale: float, rotation_scale: float | None = None) -> None:
@@ -131,6 +136,9 @@ class MasterArm:
         reference, self.reference = self.reference, self.hand
         if reference is None or self.indexing:
             return None  # the reference follows the hand; nothing is sent
+        # (Only motion that is sent moves energy through the channel; indexing moves none.)
+        self._unweighed_step = self._unweighed_step + (self.hand.translation
+                                                       - reference.translation)
         raw_position, raw_rotation = hand_increment(reference, self.hand, self.frame)
         position, rotation = scale(raw_position, raw_rotation, self.translation_scale,
                                    self.rotation_scale)
@@ -151,18 +159,26 @@ class MasterArm:
 
     # -- force feedback and impedance -------------------------------------------------------
     def feedback_wrench(self, force_tool: np.ndarray, torque_tool: np.ndarray,
-                        slave_tool_rotation: np.ndarray | None = None) -> np.ndarray:
+                        slave_tool_rotation: np.ndarray | None = None,
+                        hand_step_m: np.ndarray | None = None) -> np.ndarray:
         """The wrench for the hand (base axes, about the grip) from the slave's measured one;
         see ``slave_wrench_to_master``. Needs a reading first (for TOOL, the hand's
-        rotation)."""
+        rotation). With `passivity`, its controller bounds the force by the energy available,
+        weighed against the hand's motion since the last call (or `hand_step_m`, master metres
+        in base axes, for motion sent without `update`): call it once per control step."""
         if self.hand is None:
             raise RuntimeError("no reading yet: call update() first")
         force_scale = self.translation_scale if self.force_scale is None else self.force_scale
         torque_scale = self.rotation_scale if self.torque_scale is None else self.torque_scale
-        return slave_wrench_to_master(force_tool, torque_tool, frame=self.frame,
-                                      slave_tool_rotation=slave_tool_rotation,
-                                      hand_rotation=self.hand.rotation, force_scale=force_scale,
-                                      torque_scale=torque_scale)
+        wrench = slave_wrench_to_master(force_tool, torque_tool, frame=self.frame,
+                                        slave_tool_rotation=slave_tool_rotation,
+                                        hand_rotation=self.hand.rotation,
+                                        force_scale=force_scale, torque_scale=torque_scale)
+        step = self._unweighed_step if hand_step_m is None else np.asarray(hand_step_m, float)
+        self._unweighed_step = np.zeros(3)
+        if self.passivity is not None:
+            wrench[:3] = self.passivity.display(wrench[:3], step)
+        return wrench
 
     def motor_torques(self, force_tool: np.ndarray | None = None,
                       torque_tool: np.ndarray | None = None,

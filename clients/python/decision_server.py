@@ -24,7 +24,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import grpc
 
@@ -61,6 +61,9 @@ from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
 from wire import convert
 from wire.tls import ChannelSecurity
+
+if TYPE_CHECKING:  # the master's side of TDPA; the client only reads its ledger
+    from services.common.passivity import MasterPassivity
 
 log = logging.getLogger(__name__)
 
@@ -301,19 +304,23 @@ class DecisionClient(_DecisionMethods, SyncClient):
     def teleoperate(self, operator_id: str | None = None, mapping: int | None = None, *,
                     watchdog_timeout_s: float | None = None, timeout: float | None = None,
                     on_ack: Callable[[Ack], Any] | None = None, resume: bool = True,
-                    on_link: Callable[[str, str], Any] | None = None) -> TeleopSession:
+                    on_link: Callable[[str, str], Any] | None = None,
+                    passivity: MasterPassivity | None = None) -> TeleopSession:
         """Open a Teleoperate session with the held lease (operator: the lease's, unless given;
         mapping: BASE or TOOL, None keeps the assistance configuration's; watchdog: None is the
         server's 100 ms). Waits up to `timeout` for the Ready; FAILED_PRECONDITION without the
         lock or when the arm is not READY. A broken link is resumed (see teleoperate.py) unless
-        `resume` is False; `on_link(state, detail)` hears of it."""
+        `resume` is False; `on_link(state, detail)` hears of it. With `passivity` (TDPA's master
+        port, the one the master arm displays its force through) the session asks the server
+        for TDPA and carries the two ports' energies."""
         self._check_open()
         init = teleoperate_init(operator_id or (self._held.operator_id if self._held else ""),
-                     self._held_lease_id() or "", mapping, watchdog_timeout_s)
+                     self._held_lease_id() or "", mapping, watchdog_timeout_s,
+                     passivity=passivity is not None)
         return TeleopSession(self._stub, init, self._metadata(None),
                              ready_timeout=self._timeout(timeout),
                              default_timeout=self.default_timeout, on_ack=on_ack,
-                             resume=resume, on_link=on_link)
+                             resume=resume, on_link=on_link, passivity=passivity)
 
     def close(self) -> None:
         if self._closed:

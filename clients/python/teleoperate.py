@@ -42,7 +42,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import grpc
 import numpy as np
@@ -58,6 +58,9 @@ from clients.python.errors import (
 from clients.python.values import Ack, ReferenceFrame, enum_value, seconds
 from telerobot.v1 import decision_server_pb2 as pb
 from wire import convert
+
+if TYPE_CHECKING:  # the master's side of TDPA; the client only reads its ledger
+    from services.common.passivity import MasterPassivity
 
 log = logging.getLogger(__name__)
 
@@ -99,9 +102,11 @@ def _command(sequence: int, delta_position, delta_rotation, clutch: bool) -> pb.
 
 
 def teleoperate_init(operator_id: str, lease_id: str, mapping: int | None,
-                     watchdog_timeout_s: float | None) -> pb.TeleoperateInit:
+                     watchdog_timeout_s: float | None, passivity: bool = False
+                     ) -> pb.TeleoperateInit:
     init = pb.TeleoperateInit(operator_id=operator_id, lease_id=lease_id,
-                              mapping=int(mapping or 0))
+                              mapping=int(mapping or 0),
+                              passivity=pb.PASSIVITY_TDPA if passivity else pb.PASSIVITY_OFF)
     if watchdog_timeout_s:
         init.watchdog_timeout.CopyFrom(convert.duration(watchdog_timeout_s))
     return init
@@ -127,6 +132,9 @@ class _SessionState:
         self._error: TelerobotRpcError | None = None
         self._closing = False
         self._cancelled = False
+        # TDPA's master port (services.common.passivity.MasterPassivity), or None. Its ledger
+        # goes out with every command and heartbeat; the slave's, from the acks, comes in.
+        self.passivity = None
 
     @property
     def session_id(self) -> str:
@@ -158,6 +166,8 @@ class _SessionState:
         return self._sequence
 
     def _deliver(self, ack: Ack) -> None:
+        if self.passivity is not None and ack.message.HasField("slave_energy"):
+            self.passivity.heard(ack.message.slave_energy.energy_in_j)
         self._latest_ack = ack
         if self._on_ack is not None:
             try:
@@ -196,8 +206,10 @@ class TeleopSession(_SessionState):
 
     def __init__(self, stub, init: pb.TeleoperateInit, metadata, *, ready_timeout: float | None,
                  default_timeout: float | None, on_ack: Callable[[Ack], Any] | None = None,
-                 resume: bool = True, on_link: Callable[[str, str], Any] | None = None):
+                 resume: bool = True, on_link: Callable[[str, str], Any] | None = None,
+                 passivity: MasterPassivity | None = None):
         self._setup(default_timeout, on_ack)
+        self.passivity = passivity
         self._stub, self._init, self._metadata = stub, init, metadata
         self._resume, self._on_link = resume, on_link
         self._lock = threading.Lock()
@@ -402,6 +414,8 @@ class TeleopSession(_SessionState):
                     return None  # the arm holds anyway; nothing to feed
                 raise LinkInterruptedError()
             request = build()
+            if self.passivity is not None:
+                self._with_energy(request)
             self._sent += 1
             if request.WhichOneof("message") == "command":
                 self._unacked[request.command.sequence] = request
@@ -416,6 +430,15 @@ class TeleopSession(_SessionState):
             except Exception:  # noqa: BLE001 - a failed hook must not fail the send
                 log.exception("the on_request callback failed; the session goes on")
         return request
+
+    def _with_energy(self, request: pb.TeleoperateRequest) -> None:
+        """The master port's energy, as it is now, on a command or heartbeat."""
+        ledger, passivity = self.passivity.ledger, self.passivity
+        energy = pb.PortEnergy(energy_in_j=ledger.energy_in_j, energy_out_j=ledger.energy_out_j,
+                               dissipated_j=passivity.dissipated_j,
+                               sample_time=convert.timestamp(time.time_ns()))
+        message = getattr(request, request.WhichOneof("message"))
+        message.master_energy.CopyFrom(energy)
 
     def _wait(self, waiter: _Waiter, what: str, timeout: float | None) -> Ack:
         timeout = self.default_timeout if timeout is None else timeout

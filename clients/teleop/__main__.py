@@ -107,13 +107,25 @@ def retract(client: DecisionClient, start: np.ndarray) -> None:
 
 
 def table(results: list[Result]) -> str:
-    rows = [("mode", "success", "time s", "depth mm", "peak N", "final N", "rtt p50", "rtt p99")]
+    rows = [("mode", "success", "time s", "depth mm", "peak N", "final N", "rtt p50", "rtt p99",
+             "drift mm", "passivity")]
     rows += [(r.mode, "yes" if r.success else "NO", f"{r.duration_s:.1f}", f"{r.depth_m * 1e3:.1f}",
               f"{r.peak_force_n:.1f}", f"{r.final_force_n:.1f}", f"{r.round_trip_p50_ms:.2f}",
-              f"{r.round_trip_p99_ms:.2f}") for r in results]
+              f"{r.round_trip_p99_ms:.2f}",
+              f"{r.drift_m * 1e3:.1f}" if r.mode == "feedback" else "-",
+              _passivity_text(r)) for r in results]
     widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
     return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True))
                      for row in rows)
+
+
+def _passivity_text(result: Result) -> str:
+    if result.mode != "feedback":
+        return "-"
+    if not result.energy:
+        return "off"
+    return (f"TDPA: {result.energy['slave_dissipated_j'] * 1e3:.0f} mJ kept from the "
+            f"environment, {result.energy['master_dissipated_j'] * 1e3:.0f} mJ from the hand")
 
 
 class LinkNotes:
@@ -168,6 +180,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--calibration", type=Path, default=Path("var/cameras.json"),
                         help="saved camera identification (made on the first run)")
     parser.add_argument("--no-video", action="store_true", help="skip the stereo video")
+    parser.add_argument("--no-passivity", action="store_true",
+                        help="feedback mode without TDPA (on by default: it keeps the channel "
+                             "passive under delay; off, for comparison)")
     parser.add_argument("--mcap", action="store_true",
                         help="also record the session as <out>/session.mcap (commands, acks, "
                              "tool pose and wrench, stereo pairs, the DecisionServer's events; "
@@ -220,7 +235,7 @@ def run(args: argparse.Namespace) -> int:
                     retract(client, start)
                     status.restart()
                     task = PegInHole(client, mode, model, status, on_link=LinkNotes(status.note),
-                                     recorder=recorder)
+                                     recorder=recorder, passivity=not args.no_passivity)
                     began = time.time_ns()
                     results.append(task.run())
                     if recorder is not None:

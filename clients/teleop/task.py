@@ -6,9 +6,13 @@ bring the hand back up between strokes, as a person would with a small master an
 approach. Then:
 
 - `feedback`: force feedback to the operator only. The operator keeps pushing the peg into the
-  hole until the force it feels (the acks' wrench) passes FEEL_N, then backs off until it
-  falls under half that: with a stiff position-controlled slave the force peaks before the
-  operator can react, which is what the comparison shows.
+  hole until the force it feels (the acks' wrench, as the master arm displays it) passes
+  FEEL_N, then backs off until it falls under half that: with a stiff position-controlled slave
+  the force peaks before the operator can react, which is what the comparison shows. Under
+  delay the slave pushes on for a whole round trip first; with `passivity` (TDPA, #15, on by
+  default in this mode) the master arm and the DecisionServer keep the channel passive
+  (services.common.passivity), and the run reports the energies, the transparency, the drift
+  and any oscillation at contact.
 - `compliance`: active compliance on the server. Once the peg is in the hole's mouth the
   operator holds still and the DecisionServer's force control pushes along the peg to
   DESIRED_FORCE_N and holds it.
@@ -36,6 +40,7 @@ from clients.python.decision_server import DecisionClient
 from clients.python.teleoperate import LinkInterruptedError
 from clients.python.values import Ack
 from clients.teleop.artifacts import Trace
+from services.common.passivity import MasterPassivity
 from services.robot_model import workspace
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
@@ -57,6 +62,11 @@ BACK_OFF_TICKS = 100
 HAND_INSERT_M = 0.03  # the compliance operator's own share of the 40 mm insertion
 HOLE_DEPTH_M = workspace.FIXTURE_HEIGHT
 MOUTH_Z = workspace.TABLE_TOP_Z + workspace.FIXTURE_HEIGHT
+# Oscillation at contact: swings of the contact force (between successive turning points) of
+# more than SWING_N in the run's last FINAL_WINDOW_S; SUSTAINED_SWINGS or more is sustained.
+SWING_N = 2.0
+SUSTAINED_SWINGS = 4
+CONTACT_N = 1.0  # transparency is judged where either force is over this
 
 
 @dataclass
@@ -76,6 +86,19 @@ class Result:
     resent: int = 0  # commands sent again after a resume (the server applied each once)
     commands_acked: int = 0  # commands acked, once each
     commands_applied: int = 0  # of those, acked APPLIED or MODIFIED
+    passivity: bool = False  # TDPA on (feedback mode only)
+    # Master–slave position drift at the end (m): where the master sent the tool (its start
+    # plus every increment sent) against where it is. (In compliance mode the server's force
+    # loop moves the tool too, so there it is not a drift.)
+    drift_m: float = 0.0
+    # Transparency: RMS of the displayed force minus the environment's at the same instant
+    # (N, slave units, along the base's z), where either is over CONTACT_N.
+    transparency_rms_n: float = 0.0
+    oscillation_swings: int = 0  # force swings over SWING_N in the last FINAL_WINDOW_S
+    final_force_p2p_n: float = 0.0  # the contact force's peak to peak over that window
+    # TDPA's energies at the end (J): each port's in and out, and what each controller
+    # dissipated (the slave's from its last ack).
+    energy: dict | None = None
 
 
 def ready_the_arm(client: DecisionClient) -> None:
@@ -119,8 +142,14 @@ class PegInHole:
     """One run of the task, recording into `trace` and predicting the tool into `model`."""
 
     def __init__(self, client: DecisionClient, mode: str, model: RobotModel, status=None,
-                 on_link: Callable[[str, str], None] | None = None, recorder=None):
+                 on_link: Callable[[str, str], None] | None = None, recorder=None,
+                 passivity: bool = True):
         self.client = client
+        # TDPA's master port, in feedback mode (compliance closes its loop on the server).
+        self._passivity = MasterPassivity() if passivity and mode == "feedback" else None
+        self._arm: MasterArm | None = None
+        self._sent_m = np.zeros(3)  # every increment sent, summed (base axes)
+        self._displayed: list[tuple[int, float]] = []  # (time ns, force shown, slave N, up)
         self._recorder = recorder  # a clients.teleop.mcap_log.SessionRecorder, or None
         self.mode = mode
         self.model = model
@@ -158,6 +187,19 @@ class PegInHole:
         last = self._acks[-1] if self._acks else None
         return float(-last.force[2]) if last is not None and last.force is not None else 0.0
 
+    def _felt(self, hand_step_m: np.ndarray | None = None) -> float:
+        """The upward force the master arm displays now (slave newtons) for the last ack's
+        wrench, through TDPA's controller when it is on; call once per control step
+        (`hand_step_m`: master metres moved without `arm.update`, as in the back-off)."""
+        last = self._acks[-1] if self._acks else None
+        if last is None or last.force is None or last.tool_pose is None:
+            return 0.0
+        wrench = self._arm.feedback_wrench(last.force, last.torque, last.tool_pose.rotation,
+                                           hand_step_m)
+        up = float(wrench[2]) / SCALE  # the master shows s·F: back to the slave's newtons
+        self._displayed.append((time.time_ns(), up))
+        return up
+
     def run(self) -> Result:
         robot = self.client.robot
         start = robot.get_state().tool_pose
@@ -171,10 +213,11 @@ class PegInHole:
         rest = hand.model.hand_pose(hand.q)
         script = StrokingHand(rest, strokes)
         hand.path = script.pose
-        arm = MasterArm(hand, translation_scale=SCALE, frame=IncrementFrame.BASE)
+        arm = self._arm = MasterArm(hand, translation_scale=SCALE, frame=IncrementFrame.BASE,
+                                    passivity=self._passivity)
         session = self._session = self.client.teleoperate(
             "teleop-script", types_pb2.REFERENCE_FRAME_BASE, watchdog_timeout_s=0.5,
-            on_ack=self._on_ack, on_link=self._on_link)
+            on_ack=self._on_ack, on_link=self._on_link, passivity=self._passivity)
         if self._recorder is not None:  # every command and heartbeat, as sent
             session.on_request = self._recorder.request
         period = 1.0 / COMMAND_RATE_HZ
@@ -191,7 +234,7 @@ class PegInHole:
                 arm.clutch = script.clutch(script_time)
                 reference = arm.reference
                 increment = arm.update(script_time)
-                if self.mode == "feedback" and self._contact_force() > FEEL_N:
+                if self.mode == "feedback" and self._felt() > FEEL_N:
                     felt = True  # the operator feels the floor and stops pushing
                 if increment is None or felt:
                     session.heartbeat_nowait()
@@ -221,6 +264,7 @@ class PegInHole:
         except LinkInterruptedError:
             return False
         self.model.command(delta_position, delta_rotation)
+        self._sent_m = self._sent_m + np.asarray(delta_position, dtype=float)
         return True
 
     def _show(self, clutch: bool) -> None:
@@ -231,11 +275,16 @@ class PegInHole:
 
     def _back_off(self, session, period: float) -> None:
         """Raise the peg a little at a time until the felt force is under half of FEEL_N."""
+        # The hand feels between its small moves, at rest: while it moves back along the force
+        # TDPA's master controller may take out what the slave has not yet paid for, and a
+        # hand that stopped at that would leave the slave pressing.
         ticks = 0
-        while ticks < BACK_OFF_TICKS and self._contact_force() >= FEEL_N / 2:
+        while ticks < BACK_OFF_TICKS and self._felt() >= FEEL_N / 2:
             if self._send([0.0, 0.0, BACK_OFF_STEP_M]):
                 self._commands += 1
                 ticks += 1
+                # The hand's share of the step, weighed as it moves (master metres).
+                self._felt(np.array([0.0, 0.0, BACK_OFF_STEP_M / SCALE]))
             time.sleep(period)
 
     def _hold(self, session, period: float, seconds: float) -> None:
@@ -270,6 +319,7 @@ class PegInHole:
         times = self.trace.force_time_s or [0.0]
         final = [f for f, t in zip(forces, times, strict=False) if t >= times[-1] - FINAL_WINDOW_S]
         trips = self.trace.round_trip_ms or [0.0]
+        swings, p2p = contact_oscillation(forces, times, FINAL_WINDOW_S)
         return Result(
             self.mode, bool(depth > HOLE_DEPTH_M - 0.005 and lateral < workspace.HOLE_HALF_WIDTH),
             self._elapsed(), float(depth), lateral, float(max(forces)),
@@ -278,4 +328,62 @@ class PegInHole:
             self._session.resumes if self._session else 0,
             self._session.resends if self._session else 0,
             self._session.commands_acked if self._session else 0,
-            self._session.commands_applied if self._session else 0)
+            self._session.commands_applied if self._session else 0,
+            passivity=self._passivity is not None,
+            drift_m=float(np.linalg.norm(start.translation + self._sent_m - end)),
+            transparency_rms_n=self._transparency_rms(), oscillation_swings=swings,
+            final_force_p2p_n=p2p, energy=self._energies())
+
+    def _transparency_rms(self) -> float:
+        """RMS of displayed minus environment force (upward, slave N) at the same instants,
+        where either is over CONTACT_N: the environment's from the acks at their apply time
+        (the station's clock: one host, or hosts in sync), interpolated."""
+        samples = [(a.apply_time_ns, float((a.tool_pose.rotation @ a.force)[2]))
+                   for a in self._acks
+                   if a.force is not None and a.tool_pose is not None and a.apply_time_ns]
+        if len(samples) < 2 or not self._displayed:
+            return 0.0
+        samples.sort()
+        env_times, env = np.array(samples, dtype=float).T
+        shown_times, shown = np.array(self._displayed, dtype=float).T
+        inside = (shown_times >= env_times[0]) & (shown_times <= env_times[-1])
+        environment = np.interp(shown_times[inside], env_times, env)
+        shown = shown[inside]
+        contact = (np.abs(environment) > CONTACT_N) | (np.abs(shown) > CONTACT_N)
+        if not contact.any():
+            return 0.0
+        return float(np.sqrt(np.mean((shown[contact] - environment[contact]) ** 2)))
+
+    def _energies(self) -> dict | None:
+        if self._passivity is None:
+            return None
+        last = next((a.message.slave_energy for a in reversed(self._acks)
+                     if a.message.HasField("slave_energy")), None)
+        ledger = self._passivity.ledger
+        return {"master_in_j": ledger.energy_in_j, "master_out_j": ledger.energy_out_j,
+                "master_dissipated_j": self._passivity.dissipated_j,
+                "slave_in_j": last.energy_in_j if last else 0.0,
+                "slave_out_j": last.energy_out_j if last else 0.0,
+                "slave_dissipated_j": last.dissipated_j if last else 0.0}
+
+
+def contact_oscillation(forces: list[float], times: list[float], window_s: float
+                        ) -> tuple[int, float]:
+    """(swings, peak to peak N) of the contact force over the last `window_s`: a swing is a
+    move of more than SWING_N between successive turning points (a hysteresis of SWING_N, so
+    sensor noise and a slow settle count none)."""
+    if not forces:
+        return 0, 0.0
+    end = times[-1]
+    window = [f for f, t in zip(forces, times, strict=True) if t >= end - window_s]
+    swings, extreme, direction = 0, window[0], 0
+    for force in window[1:]:
+        if direction == 0:  # the first move away from the window's start sets a direction
+            if abs(force - extreme) > SWING_N:
+                direction, extreme = (1 if force > extreme else -1), force
+        elif (force - extreme) * direction > 0:
+            extreme = force  # still going the same way: a new turning point candidate
+        elif abs(force - extreme) > SWING_N:
+            swings += 1  # turned back by more than SWING_N
+            direction, extreme = -direction, force
+    return swings, float(max(window) - min(window))

@@ -336,3 +336,41 @@ def test_the_arm_estimates_velocity_and_acceleration_from_readings(model):
     np.testing.assert_allclose(terms.total, model.inverse_dynamics(arm.q, arm.qd, arm.qdd),
                                atol=1e-9)
     assert np.abs(arm.qd).max() > 0.01
+
+
+def test_tdpa_on_the_displayed_force_gives_the_hand_only_the_energy_the_slave_took_in(model):
+    """#15: the master port's controller. Pushing down against the slave's force puts energy
+    in and is shown in full; backing off along it is shown only as far as the slave's port has
+    taken energy in (from its acks)."""
+    from services.common.passivity import MasterPassivity
+
+    start = model.hand_pose(model.home_q)
+    passivity = MasterPassivity()
+    down = MasterArm(SimulatedHand(model, line_path(start, [0, 0, -0.02], duration_s=1.0)),
+                     model, translation_scale=0.5, frame=IncrementFrame.BASE,
+                     passivity=passivity)
+    up_force_tool = np.array([0.0, 0.0, 20.0])  # the slave's tool axes = its base here
+    down.update(0.0)
+    for t in np.linspace(0.1, 1.0, 10):
+        down.update(t)
+        shown = down.feedback_wrench(up_force_tool, np.zeros(3), np.eye(3))
+        np.testing.assert_allclose(shown[:3], 0.5 * up_force_tool)  # s·F, untouched
+    # 20 mm of hand against 10 N shown: 0.2 J in (= 20 N over the slave's 10 mm).
+    assert passivity.ledger.energy_in_j == pytest.approx(0.2, rel=1e-3)
+
+    up = MasterArm(SimulatedHand(model, line_path(start, [0, 0, 0.02], duration_s=1.0)),
+                   model, translation_scale=0.5, frame=IncrementFrame.BASE, passivity=passivity)
+    up.update(0.0)
+    up.update(0.5)
+    assert np.allclose(up.feedback_wrench(up_force_tool, np.zeros(3), np.eye(3))[:3], 0.0,
+                       atol=1e-4)  # (the IK strays by microns across the step)
+    passivity.heard(0.05)  # the slave's port took in 50 mJ as it backed off
+    up.update(1.0)
+    shown = up.feedback_wrench(up_force_tool, np.zeros(3), np.eye(3))
+    assert shown[2] * 0.01 == pytest.approx(0.05)  # exactly the energy there was, over 10 mm
+    without = MasterArm(SimulatedHand(model, line_path(start, [0, 0, 0.02], duration_s=1.0)),
+                        model, translation_scale=0.5, frame=IncrementFrame.BASE)
+    without.update(0.0)
+    without.update(0.5)
+    np.testing.assert_allclose(without.feedback_wrench(up_force_tool, np.zeros(3),
+                                                       np.eye(3))[:3], 0.5 * up_force_tool)
