@@ -1,10 +1,13 @@
-"""network: the papers' experiment across a delayed link (issue #14).
+"""network: the papers' experiment across a delayed link (issues #14 and #15).
 
 The peg-in-hole task of `make teleop` (clients/teleop/task.py, imported, not copied) in both
 modes, feedback and compliance, with services/impairment's link between the operator's client
-and the DecisionServer only (the operator's path: the station's own calls stay on loopback):
+and the DecisionServer only (the operator's path: the station's own calls stay on loopback).
+Feedback runs twice at each round trip: with TDPA (#15, make teleop's default) and without it
+(`--no-passivity`), next to each other, so both see the same machine; `passivity_verdict`
+judges the TDPA runs against #15's goals:
 
-- round trips of 0, 50, 100, 200 and 400 ms (ROUND_TRIPS_MS), half each way, jitter ±10 % of
+- round trips of 0, 100, 200 and 400 ms (ROUND_TRIPS_MS), half each way, jitter ±10 % of
   the one-way delay, and the papers' campus routes' 183 ms (CAMPUS_RTT_MS);
 - on the campus link again, with a cut of CUT_S in the middle of the task (CUT_AT_S after it
   starts). Until the client resumes sessions by itself, such a row may end with an error: it is
@@ -35,7 +38,7 @@ from services.impairment import ImpairmentProxy, LinkProfile
 
 NAME = "network"
 MODES = ("feedback", "compliance")
-ROUND_TRIPS_MS = (0.0, 50.0, 100.0, 200.0, 400.0)
+ROUND_TRIPS_MS = (0.0, 100.0, 200.0, 400.0)
 QUICK_ROUND_TRIPS_MS = (0.0,)  # and the campus routes, as always
 CAMPUS_RTT_MS = 183.0  # MTDF paper, section V: "overall round-trip delay is 183 ms"
 JITTER_FRACTION = 0.10  # of the one-way delay
@@ -49,6 +52,10 @@ LEASE_S = 30.0  # as make teleop's: outlives the cut
 CALL_TIMEOUT_S = 10.0
 ROW_TIMEOUT_S = 240.0  # a whole run at 400 ms, with its set-up, takes about a minute
 PLOT_FILE = "network_peak_force.png"
+# #15's goals for the feedback runs with TDPA, at every round trip.
+PEAK_VS_LOOPBACK = 1.5  # peak force within this many times the TDPA run's on loopback
+MAX_DRIFT_M = 0.005  # master–slave position drift at the end
+# (and no sustained oscillation: clients.teleop.task.SUSTAINED_SWINGS swings or more)
 PAPERS = ("MTDF paper, section V: three campus routes streaming video, force and commands at "
           "once; commands at 50 Hz, force at 120 Hz, stereo at 17 fps; force and stereo "
           "delays 8 and 83 ms; overall round trip 183 ms (5.5 Hz) with the slave arm operated "
@@ -63,10 +70,12 @@ class RowSpec:
     mode: str
     round_trip_ms: float
     cut_s: float = 0.0
+    passivity: bool = True  # TDPA in feedback mode (compliance has no force feedback)
 
     @property
     def name(self) -> str:
-        return f"{self.mode}_{self.round_trip_ms:g}ms" + ("_cut" if self.cut_s else "")
+        off = "_nopassivity" if self.mode == "feedback" and not self.passivity else ""
+        return f"{self.mode}{off}_{self.round_trip_ms:g}ms" + ("_cut" if self.cut_s else "")
 
     @property
     def seed(self) -> int:
@@ -75,12 +84,22 @@ class RowSpec:
 
 
 def row_specs(quick: bool) -> list[RowSpec]:
-    """The runs in order: each round trip in both modes (next to each other, so both see the
-    same machine), the campus routes' among them, then the cuts on the campus link."""
+    """The runs in order: each round trip in both modes, feedback with and without TDPA (next
+    to each other, so all see the same machine), the campus routes' among them, then the cuts
+    on the campus link."""
     trips = sorted({*(QUICK_ROUND_TRIPS_MS if quick else ROUND_TRIPS_MS), CAMPUS_RTT_MS})
-    specs = [RowSpec(mode, trip) for trip in trips for mode in MODES]
+    specs = [spec for trip in trips
+             for spec in (RowSpec("feedback", trip), RowSpec("feedback", trip, passivity=False),
+                          RowSpec("compliance", trip))]
     specs += [RowSpec(mode, CAMPUS_RTT_MS, CUT_S) for mode in MODES]
     return specs
+
+
+def label(row: dict) -> str:
+    """A row's mode for people: feedback with TDPA or without it, or compliance."""
+    if row["mode"] != "feedback":
+        return row["mode"]
+    return "feedback, TDPA" if row.get("passivity", True) else "feedback, no passivity"
 
 
 def link_profiles(round_trip_ms: float, seed: int) -> tuple[LinkProfile, LinkProfile]:
@@ -141,7 +160,8 @@ def _run_row(bench, address: str, spec: RowSpec, home: list[float]) -> dict:
     proxy = ImpairmentProxy("127.0.0.1:0", address, up=up, down=down, report=events.append)
     with proxy:
         child = bench.procs.start_worker(NAME, {"address": proxy.address, "mode": spec.mode,
-                                                "home": home}, name=f"network_{spec.mode}")
+                                                "home": home, "passivity": spec.passivity},
+                                         name=f"network_{spec.mode}")
         cut_at = None
         try:
             if spec.cut_s:
@@ -156,7 +176,8 @@ def _run_row(bench, address: str, spec: RowSpec, home: list[float]) -> dict:
                 bench.procs.stop(child)
             outcome = {"success": False, "error": _reason(error)}
         stats = dataclasses.asdict(proxy.stats)
-    row = {"name": spec.name, "mode": spec.mode, "round_trip_ms": spec.round_trip_ms,
+    row = {"name": spec.name, "mode": spec.mode, "passivity": spec.passivity,
+           "round_trip_ms": spec.round_trip_ms,
            "one_way_delay_ms": up.delay_s * 1e3, "jitter_ms": up.jitter_s * 1e3,
            "seed": spec.seed, "cut_s": spec.cut_s,
            "cut": {"at_s": CUT_AT_S, "mode": CUT_MODE, "happened": cut_at is not None}
@@ -171,7 +192,8 @@ def _run_row(bench, address: str, spec: RowSpec, home: list[float]) -> dict:
 def _blank() -> dict:
     return {"success": False, "error": None, "duration_s": None, "depth_m": None,
             "peak_force_n": None, "final_force_n": None, "round_trip_p50_ms": None,
-            "round_trip_p99_ms": None, "commands": None, "acks": None}
+            "round_trip_p99_ms": None, "commands": None, "acks": None, "drift_m": None,
+            "transparency_rms_n": None, "oscillation_swings": None, "energy": None}
 
 
 def row_text(row: dict) -> str:
@@ -213,7 +235,8 @@ def task(params: dict, ready: Callable[[], None]) -> dict:
             retract(client, np.asarray(params["home"]))  # out of the hole the run before left
             client.sensor.tare(0.2)
             model = RobotModel(client.robot.get_state().tool_pose)
-            peg = PegInHole(client, params["mode"], model)
+            peg = PegInHole(client, params["mode"], model,
+                            passivity=params.get("passivity", True))
             started = time.monotonic()
             ready()  # the orchestrator times a cut from here
             try:
@@ -268,54 +291,102 @@ def merge(latest: Path, row: dict) -> bool:
 # -- the figure --------------------------------------------------------------------------------
 
 def plot(result: dict, path: Path) -> Path:
-    """Peak force against the link's round trip, a line per mode (runs without a cut), the
-    cut runs as crosses, the papers' campus routes marked."""
+    """Two panels against the link's round trip: the peak force, a line per mode (feedback with
+    TDPA and without, compliance; the cut runs as crosses, the papers' campus routes marked);
+    and, for feedback with and without TDPA side by side, the drift at the end and the
+    transparency error."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.ticker import FuncFormatter
 
-    figure, axis = plt.subplots(figsize=(8, 5))
-    colors = {"feedback": "tab:red", "compliance": "tab:blue"}
+    figure, (axis, quality) = plt.subplots(1, 2, figsize=(13, 5))
+    colors = {"feedback, TDPA": "tab:green", "feedback, no passivity": "tab:red",
+              "compliance": "tab:blue"}
     rows = result.get("rows", [])
-    for mode in MODES:
-        line = sorted((r for r in rows if r["mode"] == mode and not r.get("cut_s")
+    for name, color in colors.items():
+        line = sorted((r for r in rows if label(r) == name and not r.get("cut_s")
                        and r.get("peak_force_n") is not None), key=lambda r: r["round_trip_ms"])
         done = [r for r in line if r["success"]]  # a failed run's peak compares nothing
         if done:
             axis.plot([r["round_trip_ms"] for r in done], [r["peak_force_n"] for r in done],
-                      "-o", color=colors.get(mode), label=mode)
-        if line:
-            failed = [r for r in line if not r["success"]]
-            if failed:
-                axis.plot([r["round_trip_ms"] for r in failed],
-                          [r["peak_force_n"] for r in failed], "o", mfc="white",
-                          color=colors.get(mode), label=f"{mode}: task failed")
-        cuts = [r for r in rows if r["mode"] == mode and r.get("cut_s")
+                      "-o", color=color, label=name)
+        failed = [r for r in line if not r["success"]]
+        if failed:
+            axis.plot([r["round_trip_ms"] for r in failed],
+                      [r["peak_force_n"] for r in failed], "o", mfc="white",
+                      color=color, label=f"{name}: task failed")
+        cuts = [r for r in rows if label(r) == name and r.get("cut_s")
                 and r.get("peak_force_n") is not None]
         if cuts:
             axis.plot([r["round_trip_ms"] for r in cuts], [r["peak_force_n"] for r in cuts],
-                      "x", ms=10, mew=2, color=colors.get(mode),
-                      label=f"{mode}, {cuts[0]['cut_s']:g} s cut"
+                      "x", ms=10, mew=2, color=color,
+                      label=f"{name}, {cuts[0]['cut_s']:g} s cut"
                             + ("" if all(r["success"] for r in cuts) else " (failed)"))
+        if name.startswith("feedback"):
+            kept = [r for r in line if r.get("drift_m") is not None]
+            trips = [r["round_trip_ms"] for r in kept]
+            quality.plot(trips, [r["drift_m"] * 1e3 for r in kept], "-o", color=color,
+                         label=f"{name}: drift at the end (mm)")
+            quality.plot(trips, [r.get("transparency_rms_n") or 0.0 for r in kept], "--s",
+                         color=color, label=f"{name}: transparency error, RMS (N)")
     campus = result.get("campus_rtt_ms", CAMPUS_RTT_MS)
-    axis.axvline(campus, color="grey", linestyle="--", linewidth=1)
+    for panel in (axis, quality):
+        panel.axvline(campus, color="grey", linestyle="--", linewidth=1)
+        panel.set_xlabel("link round trip set (ms), jitter ±10 % of each way")
+        panel.grid(True, which="both", alpha=0.3)
     axis.text(campus, 0.02, f"papers' campus routes, {campus:g} ms ", rotation=90,
               va="bottom", ha="right", fontsize=8, color="grey",
               transform=axis.get_xaxis_transform())
     axis.set_yscale("log")  # feedback's hundreds of newtons and compliance's few on one axis
     axis.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
-    axis.set_xlabel("link round trip set (ms), jitter ±10 % of each way")
     axis.set_ylabel("peak contact force (N, log scale)")
-    axis.set_title("peg-in-hole across a delayed link: peak force per mode")
-    axis.grid(True, which="both", alpha=0.3)
+    axis.set_title("peg-in-hole across a delayed link: peak force")
     axis.legend(fontsize=8)
+    quality.axhline(MAX_DRIFT_M * 1e3, color="grey", linewidth=1)
+    quality.set_yscale("symlog", linthresh=1.0)
+    quality.set_ylabel("mm (drift) and N (transparency), symmetric log scale")
+    quality.set_title("feedback with and without TDPA: drift and transparency")
+    quality.legend(fontsize=7)
     figure.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     figure.savefig(path, dpi=100)
     plt.close(figure)
     return path
+
+
+def passivity_verdict(result: dict) -> list[str]:
+    """#15's goals, judged on the feedback runs with TDPA (no cut), a line per round trip,
+    then how the same runs without passivity compare."""
+    from clients.teleop.task import SUSTAINED_SWINGS
+
+    rows = [r for r in result.get("rows", []) if r["mode"] == "feedback" and not r.get("cut_s")]
+    on = {r["round_trip_ms"]: r for r in rows if r.get("passivity", True)}
+    off = {r["round_trip_ms"]: r for r in rows if not r.get("passivity", True)}
+    loopback = on.get(0.0)
+    if not loopback or loopback.get("peak_force_n") is None:
+        return ["No feedback run with TDPA on loopback in this run: nothing to judge against."]
+    bound = PEAK_VS_LOOPBACK * loopback["peak_force_n"]
+    lines = []
+    for trip, row in sorted(on.items()):
+        misses = []
+        if not row["success"]:
+            misses.append("the task failed")
+        if row.get("peak_force_n") is None or row["peak_force_n"] > bound:
+            misses.append(f"peak {_num(row.get('peak_force_n'))} N > {bound:.1f} N")
+        if (row.get("oscillation_swings") or 0) >= SUSTAINED_SWINGS:
+            misses.append(f"{row['oscillation_swings']} swings at contact")
+        if row.get("drift_m") is None or row["drift_m"] >= MAX_DRIFT_M:
+            misses.append(f"drift {_num((row.get('drift_m') or 0) * 1e3)} mm")
+        twin = off.get(trip)
+        versus = (f"; without passivity {_num(twin.get('peak_force_n'))} N peak, drift "
+                  f"{_num((twin.get('drift_m') or 0) * 1e3)} mm" if twin else "")
+        lines.append(f"{trip:g} ms: {'PASS' if not misses else 'FAIL (' + '; '.join(misses) + ')'}"
+                     f" — TDPA {_num(row.get('peak_force_n'))} N peak (bound {bound:.1f}), "
+                     f"drift {_num((row.get('drift_m') or 0) * 1e3)} mm, "
+                     f"{row.get('oscillation_swings')} swings{versus}")
+    return lines
 
 
 # -- text ---------------------------------------------------------------------------------------
@@ -341,14 +412,23 @@ def table_rows(result: dict) -> list[tuple[str, ...]]:
         note = row.get("error") or ""
         if proxy.get("connections", 0) > 1:  # the client reconnected through the link
             note = f"{proxy['connections']} connections; {note}".rstrip("; ")
-        out.append((row["mode"], trip, cut, measured, "yes" if row["success"] else "NO",
+        feedback = row["mode"] == "feedback"
+        drift = _num(row["drift_m"] * 1e3) if feedback and row.get("drift_m") is not None \
+            else "–"
+        energy = row.get("energy") or {}
+        kept = (f"{_num(energy.get('slave_dissipated_j', 0) * 1e3, 0)} / "
+                f"{_num(energy.get('master_dissipated_j', 0) * 1e3, 0)}" if energy else "–")
+        out.append((label(row), trip, cut, measured, "yes" if row["success"] else "NO",
                     _num(row.get("duration_s")), _num(row.get("peak_force_n")),
-                    _num(row.get("final_force_n")), note))
+                    _num(row.get("final_force_n")), drift,
+                    _num(row.get("transparency_rms_n")) if feedback else "–",
+                    str(row.get("oscillation_swings", "–")) if feedback else "–", kept, note))
     return out
 
 
 HEADER = ("mode", "round trip set", "cut", "measured p50 / p99 ms", "success", "time s",
-          "peak N", "final N", "note")
+          "peak N", "final N", "drift mm", "transparency RMS N", "swings",
+          "dissipated mJ (slave / master)", "note")
 
 
 def terminal_lines(result: dict) -> list[str]:
@@ -364,7 +444,8 @@ def campus_comparison(result: dict) -> str:
     """What this run shows on the papers' campus round trip, next to what they report."""
     campus = result.get("campus_rtt_ms", CAMPUS_RTT_MS)
     at = {row["mode"]: row for row in result.get("rows", [])
-          if row["round_trip_ms"] == campus and not row.get("cut_s")}
+          if row["round_trip_ms"] == campus and not row.get("cut_s")
+          and row.get("passivity", True)}
     feedback, compliance = at.get("feedback"), at.get("compliance")
     if not feedback or not compliance or None in (feedback.get("peak_force_n"),
                                                   compliance.get("peak_force_n")):

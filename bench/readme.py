@@ -332,7 +332,12 @@ def network_block(document: dict, source: str = "bench/results/latest.json",
         lines.append("| " + " | ".join([*figures, note.replace("|", "\\|")[:300]]) + " |")
     lines += ["", f"![Peak force against the link's round trip, per mode]({figure})", "",
               f"The papers: {row.get('papers', network.PAPERS)}", "",
-              network.campus_comparison(row)]
+              network.campus_comparison(row), "",
+              f"Passivity (#15), the feedback runs with TDPA against its goals: the peak within "
+              f"{network.PEAK_VS_LOOPBACK:g}× the TDPA run's on loopback, no sustained "
+              f"oscillation at contact, the task done, the drift at the end under "
+              f"{network.MAX_DRIFT_M * 1e3:g} mm:", "",
+              *[f"- {line}" for line in network.passivity_verdict(row)]]
     return "\n".join(lines)
 
 

@@ -14,9 +14,14 @@ from bench import network, readme
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
-def _row(mode, trip, success=True, peak=100.0, cut_s=0.0, error=None, connections=1):
-    spec = network.RowSpec(mode, trip, cut_s)
-    return {"name": spec.name, "mode": mode, "round_trip_ms": trip, "seed": spec.seed,
+def _row(mode, trip, success=True, peak=100.0, cut_s=0.0, error=None, connections=1,
+         passivity=True, drift=0.001, swings=0):
+    spec = network.RowSpec(mode, trip, cut_s, passivity)
+    return {"name": spec.name, "mode": mode, "passivity": passivity, "round_trip_ms": trip,
+            "seed": spec.seed, "drift_m": drift, "transparency_rms_n": 20.0,
+            "oscillation_swings": swings,
+            "energy": {"slave_dissipated_j": 0.5, "master_dissipated_j": 0.25}
+            if mode == "feedback" and passivity else None,
             "cut_s": cut_s, "cut": {"at_s": network.CUT_AT_S, "mode": network.CUT_MODE,
                                     "happened": True} if cut_s else None,
             "success": success, "error": error, "duration_s": 12.5, "depth_m": 0.039,
@@ -56,7 +61,13 @@ def test_a_full_run_has_every_round_trip_in_both_modes_the_campus_link_and_cuts(
     specs = network.row_specs(quick=False)
     plain = {(s.mode, s.round_trip_ms) for s in specs if not s.cut_s}
     assert plain == {(mode, trip) for mode in network.MODES
-                     for trip in (0, 50, 100, 183, 200, 400)}
+                     for trip in (0, 100, 183, 200, 400)}
+    # Feedback twice at every round trip: with TDPA and without it, next to each other.
+    without = [s for s in specs if not s.passivity]
+    assert {(s.mode, s.round_trip_ms) for s in without} == {
+        ("feedback", trip) for trip in (0, 100, 183, 200, 400)}
+    assert all(specs[specs.index(s) - 1] == network.RowSpec("feedback", s.round_trip_ms)
+               for s in without)
     cuts = [s for s in specs if s.cut_s]
     assert {s.mode for s in cuts} == set(network.MODES)
     assert all(s.cut_s == 3.0 and s.round_trip_ms == network.CAMPUS_RTT_MS for s in cuts)
@@ -69,6 +80,8 @@ def test_each_row_has_its_own_seed_the_same_in_every_run():
     assert len({s.seed for s in specs}) == len(specs)
     assert network.RowSpec("feedback", 100.0).seed == zlib.crc32(b"feedback_100ms")
     assert network.RowSpec("compliance", 183.0, 3.0).name == "compliance_183ms_cut"
+    assert network.RowSpec("feedback", 400.0, passivity=False).name == \
+        "feedback_nopassivity_400ms"
 
 
 def test_a_run_ended_by_an_error_reports_its_trace_up_to_it_and_the_error():
@@ -112,8 +125,9 @@ def test_readme_block_shows_every_run_the_figure_and_the_campus_comparison():
     table = [line for line in block.splitlines() if line.startswith("| ")]
     assert table[0].startswith("| mode | round trip set | cut |")
     assert len(table) == 1 + len(RESULT["rows"])
-    assert "| feedback | 183 ms (campus) | – | 190.0 / 203.0 | yes | 12.5 | 480.0 | 4.9 |" \
-        in block
+    assert ("| feedback, TDPA | 183 ms (campus) | – | 190.0 / 203.0 | yes | 12.5 | 480.0 | 4.9 "
+            "| 1.0 | 20.0 | 0 | 500 / 250 |") in block
+    assert "- 183 ms: FAIL (peak 480.0 N > 300.0 N)" in block  # #15's verdict
     assert "3 s at 5 s (stall)" in table[-1] and "| NO |" in table[-1]
     assert "ping timeout" in table[-1]
     assert "![Peak force against the link's round trip, per mode](docs/net.png)" in block
@@ -177,3 +191,20 @@ def test_the_campus_comparison_claims_no_ratio_when_a_run_failed():
     text = network.campus_comparison({**RESULT, "rows": rows})
     assert "×" not in text and "the compliance run failed" in text
     assert "No complete pair" in network.campus_comparison({**RESULT, "rows": rows[:1]})
+
+
+def test_the_passivity_verdict_judges_the_tdpa_runs_against_their_loopback_peak():
+    result = {"rows": [
+        _row("feedback", 0.0, peak=120.0), _row("feedback", 0.0, peak=250.0, passivity=False),
+        _row("feedback", 100.0, peak=170.0), _row("feedback", 100.0, peak=480.0, passivity=False),
+        _row("feedback", 400.0, peak=190.0, drift=0.007, swings=5),
+        _row("feedback", 400.0, peak=580.0, passivity=False),
+        _row("compliance", 400.0, peak=12.0)]}
+    lines = network.passivity_verdict(result)
+    assert len(lines) == 3
+    assert lines[0].startswith("0 ms: PASS") and lines[1].startswith("100 ms: PASS")
+    assert "without passivity 480.0 N peak" in lines[1]
+    assert lines[2].startswith("400 ms: FAIL")
+    for miss in ("peak 190.0 N > 180.0 N", "5 swings", "drift 7.0 mm"):
+        assert miss in lines[2]
+    assert network.passivity_verdict({"rows": [result["rows"][1]]})[0].startswith("No feedback")
