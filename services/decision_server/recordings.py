@@ -1,9 +1,12 @@
 """Recorded command sequences on disk: the DecisionServer's repeatability. No gRPC here.
 
-A recording is a JSON-lines file: a header line, then one line per applied increment with its
-time offset from the first: a Cartesian one with its frame, ΔX and ΔM, or a joint one
-(frame "JOINTS") with its Δθ; each with the tool target it led to (so a replay can be checked
-against the original path).
+A recording is a JSON-lines file (<name>.jsonl): a header line, then one line per applied
+increment with its time offset from the first: a Cartesian one with its frame, ΔX and ΔM, or a
+joint one (frame "JOINTS") with its Δθ; each with the tool target it led to (so a replay can be
+checked against the original path). Or, when asked for, an MCAP file (<name>.mcap, see
+recording_mcap) holding the same increments and, beside them, the acks, robot state, wrench and
+events of the recording's time. A replay reads either. A file that cannot be read (truncated,
+corrupt) is FailedPrecondition (CORRUPT_RECORDING): the request was fine, the stored file is not.
 """
 
 from __future__ import annotations
@@ -11,15 +14,19 @@ from __future__ import annotations
 import json
 import re
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from services.decision_server import recording_mcap
+from services.decision_server.recording_mcap import McapRecorder, Sources
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import AlreadyExists, FailedPrecondition, InvalidArgument, NotFound
 
 NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]{1,64}")
+SUFFIXES = {"JSONL": ".jsonl", "MCAP": ".mcap"}
 
 
 @dataclass(frozen=True)
@@ -56,6 +63,50 @@ class RecordingInfo:
     create_time_ns: int
     duration_s: float
     command_count: int
+    format: str = "JSONL"  # or MCAP
+    error: str = ""  # why the file cannot be read, when it cannot
+
+
+# -- the JSONL format, whole files (the store and the converter) ------------------------------
+
+def write_jsonl(path: Path, name: str, create_time_ns: int, commands) -> None:
+    """All or nothing on disk: written beside, then renamed."""
+    header = json.dumps({"name": name, "create_time_ns": create_time_ns})
+    temporary = path.with_name(path.name + ".partial")
+    temporary.write_text("\n".join([header, *(c.to_json() for c in commands)]) + "\n")
+    temporary.replace(path)
+
+
+def read_jsonl(path: Path) -> tuple[str, int, list[RecordedCommand]]:
+    """(name in the header, create time, increments); FailedPrecondition (CORRUPT_RECORDING)
+    for a file that is not one."""
+    try:
+        header, *lines = path.read_text().splitlines()
+        meta = json.loads(header)
+        commands = [RecordedCommand.from_json(line) for line in lines if line]
+        return str(meta.get("name", path.stem)), int(meta["create_time_ns"]), commands
+    except (ValueError, KeyError, TypeError, AttributeError) as error:
+        raise FailedPrecondition(f"the recording file {path.name} cannot be read: "
+                                 f"{type(error).__name__}: {error}",
+                                 reason="CORRUPT_RECORDING") from error
+
+
+def read_mcap(path: Path) -> tuple[str, int, list[RecordedCommand]]:
+    contents = recording_mcap.read_commands(path, RecordedCommand)
+    return contents.name, contents.create_time_ns, contents.commands
+
+
+@dataclass
+class _Active:
+    name: str
+    format: str
+    create_time_ns: int
+    started: float  # monotonic
+    commands: list[RecordedCommand]  # JSONL: kept until stop; MCAP: written as they come
+    recorder: McapRecorder | None = None
+    count: int = 0
+    first_offset: float | None = None
+    last_offset: float = 0.0
 
 
 class RecordingStore:
@@ -66,25 +117,51 @@ class RecordingStore:
         self._clock = clock
         self.directory.mkdir(parents=True, exist_ok=True)
         self._lock = threading.Lock()
-        self._active: tuple[str, int, float, list[RecordedCommand]] | None = None
+        self._active: _Active | None = None
+        self._failure: tuple[str, str] | None = None  # (name, why) of a recording that died
+        # The servicer sets this: a DecisionEvent as the protobuf event the MCAP recordings
+        # hold (None to leave one out). Without it, MCAP recordings hold no events.
+        self.event_to_message: Callable[[object], object] | None = None
 
-    def _path(self, name: str) -> Path:
+    def _path(self, name: str, format: str = "JSONL") -> Path:
         if not NAME_PATTERN.fullmatch(name or ""):
             raise InvalidArgument("a recording name is 1 to 64 of A-Z a-z 0-9 _ -",
                                   reason="BAD_NAME")
-        return self.directory / f"{name}.jsonl"
+        return self.directory / f"{name}{SUFFIXES[format]}"
 
-    def start(self, name: str) -> RecordingInfo:
-        path = self._path(name)
+    def _existing(self, name: str) -> tuple[Path, str]:
+        for format in SUFFIXES:
+            path = self._path(name, format)
+            if path.exists():
+                return path, format
+        raise NotFound(f"no recording named '{name}'", reason="NO_RECORDING")
+
+    def start(self, name: str, format: str = "JSONL", sources: Sources | None = None
+              ) -> RecordingInfo:
+        """Start recording; MCAP recordings also sample `sources` (the arm's state, wrench)."""
+        if format not in SUFFIXES:
+            raise InvalidArgument(f"unknown recording format {format!r}", reason="BAD_FORMAT")
+        path = self._path(name, format)
         with self._lock:
             if self._active is not None:
-                raise FailedPrecondition(f"already recording '{self._active[0]}': stop it first",
-                                         reason="RECORDING")
-            if path.exists():
+                raise FailedPrecondition(f"already recording '{self._active.name}': stop it "
+                                         "first", reason="RECORDING")
+            if any(self._path(name, other).exists() for other in SUFFIXES):
                 raise AlreadyExists(f"a recording named '{name}' exists: delete it or pick "
                                     "another name", reason="NAME_TAKEN")
-            self._active = (name, self._clock.time_ns(), self._clock.monotonic(), [])
-        return RecordingInfo(name, self._active[1], 0.0, 0)
+            self._failure = None
+            active = _Active(name, format, self._clock.time_ns(), self._clock.monotonic(), [])
+            if format == "MCAP":
+                try:
+                    active.recorder = McapRecorder(
+                        path.with_name(path.name + ".partial"), name, active.create_time_ns,
+                        self._clock, sources or Sources(), self.event_to_message,
+                        lambda why, active=active: self._died(active, why))
+                except OSError as error:
+                    raise FailedPrecondition(f"cannot write the recording: {error}",
+                                             reason="RECORDING_FAILED") from error
+            self._active = active
+        return RecordingInfo(name, active.create_time_ns, 0.0, 0, format)
 
     @property
     def recording(self) -> bool:
@@ -99,47 +176,98 @@ class RecordingStore:
 
     def _add(self, frame, delta_position, delta_rotation, target_position, delta_joints):
         with self._lock:
-            if self._active is None:
+            active = self._active
+            if active is None:
                 return
-            _, _, started, commands = self._active
-            commands.append(RecordedCommand(
-                self._clock.monotonic() - started, frame, np.asarray(delta_position, float),
-                np.asarray(delta_rotation, float), np.asarray(target_position, float),
-                None if delta_joints is None else np.asarray(delta_joints, float)))
+            command = RecordedCommand(
+                self._clock.monotonic() - active.started, frame,
+                np.array(delta_position, float), np.array(delta_rotation, float),
+                np.array(target_position, float),
+                None if delta_joints is None else np.array(delta_joints, float))
+            active.count += 1
+            if active.first_offset is None:
+                active.first_offset = command.offset_s
+            active.last_offset = command.offset_s
+            if active.recorder is not None:
+                active.recorder.increment(command)  # queued: written off this thread
+            else:
+                active.commands.append(command)
+
+    def note_ack(self, ack) -> None:
+        """An ack the server sent (a CommandAck): kept by an MCAP recording."""
+        active = self._active
+        if active is not None and active.recorder is not None:
+            active.recorder.ack(ack)
+
+    def note_event(self, event) -> None:
+        """One of the server's events (a DecisionEvent): kept by an MCAP recording."""
+        active = self._active
+        if active is not None and active.recorder is not None:
+            active.recorder.event(event)
+
+    def _died(self, active: _Active, why: str) -> None:
+        """An MCAP recording's writer failed: the recording is over (StopRecording says why)."""
+        with self._lock:
+            if self._active is active:
+                self._active = None
+                self._failure = (active.name, why)
 
     def stop(self) -> RecordingInfo:
         with self._lock:
-            if self._active is None:
+            active = self._active
+            if active is None:
+                failure, self._failure = self._failure, None
+                if failure is not None:
+                    raise FailedPrecondition(f"the recording '{failure[0]}' stopped by itself: "
+                                             f"{failure[1]}; nothing was saved",
+                                             reason="RECORDING_FAILED")
                 raise FailedPrecondition("not recording", reason="NOT_RECORDING")
-            name, created, _, commands = self._active
             self._active = None
-        info = self._info(name, created, commands)
-        header = json.dumps({"name": name, "create_time_ns": created})
-        path = self._path(name)
-        temporary = path.with_suffix(".partial")
-        temporary.write_text("\n".join([header, *(c.to_json() for c in commands)]) + "\n")
-        temporary.replace(path)  # all or nothing on disk
-        return info
+        path = self._path(active.name, active.format)
+        if active.recorder is None:
+            write_jsonl(path, active.name, active.create_time_ns, active.commands)
+            commands = active.commands
+        else:
+            commands = active.recorder.finish()  # raises when the writing failed
+            active.recorder.path.replace(path)
+        return self._info(active.name, active.create_time_ns, commands, active.format)
 
     def load(self, name: str) -> tuple[RecordingInfo, list[RecordedCommand]]:
-        path = self._path(name)
-        if not path.exists():
-            raise NotFound(f"no recording named '{name}'", reason="NO_RECORDING")
-        header, *lines = path.read_text().splitlines()
-        created = json.loads(header)["create_time_ns"]
-        commands = [RecordedCommand.from_json(line) for line in lines if line]
-        return self._info(name, created, commands), commands
+        path, format = self._existing(name)
+        _, created, commands = read_jsonl(path) if format == "JSONL" else read_mcap(path)
+        return self._info(name, created, commands, format), commands
+
+    def info(self, name: str) -> RecordingInfo:
+        """What ListRecordings says of one (an MCAP file's summary only: cheap)."""
+        path, format = self._existing(name)
+        try:
+            if format == "JSONL":
+                return self.load(name)[0]
+            meta = recording_mcap.read_summary(path)
+            return RecordingInfo(name, int(meta["create_time_ns"]), float(meta["duration_s"]),
+                                 int(meta["command_count"]), format)
+        except FailedPrecondition as error:
+            return RecordingInfo(name, 0, 0.0, 0, format, error.message)
+        except (KeyError, ValueError) as error:
+            return RecordingInfo(name, 0, 0.0, 0, format, f"bad metadata: {error}")
 
     def list(self) -> list[RecordingInfo]:
-        return [self.load(path.stem)[0] for path in sorted(self.directory.glob("*.jsonl"))]
+        names = sorted({path.stem for suffix in SUFFIXES.values()
+                        for path in self.directory.glob(f"*{suffix}")})
+        infos = []
+        for name in names:
+            try:
+                infos.append(self.info(name))
+            except (NotFound, InvalidArgument):
+                continue  # deleted meanwhile, or a stray file whose name is not one of ours
+        return infos
 
     def delete(self, name: str) -> None:
-        path = self._path(name)
-        if not path.exists():
-            raise NotFound(f"no recording named '{name}'", reason="NO_RECORDING")
+        path, _ = self._existing(name)
         path.unlink()
 
     @staticmethod
-    def _info(name: str, created: int, commands: list[RecordedCommand]) -> RecordingInfo:
+    def _info(name: str, created: int, commands: list[RecordedCommand],
+              format: str = "JSONL") -> RecordingInfo:
         duration = commands[-1].offset_s - commands[0].offset_s if commands else 0.0
-        return RecordingInfo(name, created, duration, len(commands))
+        return RecordingInfo(name, created, duration, len(commands), format)

@@ -158,7 +158,24 @@ def assistance_to_proto(value: assist.Assistance) -> pb.AssistanceConfig:
 def recording_to_proto(info) -> pb.Recording:
     duration = convert.duration(info.duration_s)
     return pb.Recording(name=info.name, create_time=convert.timestamp(info.create_time_ns),
-                        duration=duration, command_count=info.command_count)
+                        duration=duration, command_count=info.command_count,
+                        format=pb.RecordingFormat.Value(f"RECORDING_FORMAT_{info.format}"),
+                        error=info.error)
+
+
+def recording_format(value: int) -> str:
+    """JSONL or MCAP, from a request (UNSPECIFIED: JSONL)."""
+    if value == pb.RECORDING_FORMAT_UNSPECIFIED:
+        return "JSONL"
+    if value not in pb.RecordingFormat.values():
+        raise InvalidArgument(f"unknown recording format {value}", reason="BAD_FORMAT")
+    return pb.RecordingFormat.Name(value).removeprefix("RECORDING_FORMAT_")
+
+
+def _is_state_sample(event) -> bool:
+    payload = event.payload
+    return (isinstance(payload, RobotEventForwarded)
+            and payload.message.WhichOneof("event") == "data_received")
 
 
 def _dependency_state(state: str) -> int:
@@ -244,6 +261,10 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             dependencies = DependencyWatch(core.slave.health, core.clock)
             dependencies.subscribe(core.emit)
         self._dependencies = dependencies
+        # MCAP recordings hold the events as StreamEventsResponse, without the state samples
+        # ProxyRobot forwards (the recording samples the state itself).
+        core.recordings.event_to_message = lambda event: (
+            None if _is_state_sample(event) else event_to_proto(event, core.clock))
         # The state and the wrench change at 100 Hz, acks go out at up to 1 kHz: each sample
         # is converted once, for every ack that carries it.
         self._pose_of = _LastConverted(lambda state: convert.pose_to_proto(state.tool_pose))
@@ -275,6 +296,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         wrench = self._core.wrench()
         if wrench is not None:
             ack.tool_wrench.CopyFrom(self._wrench_of(wrench))
+        self._core.recordings.note_ack(ack)  # an MCAP recording keeps it (queued only)
         return pb.TeleoperateResponse(ack=ack)
 
     def Teleoperate(self, request_iterator, context):
@@ -428,7 +450,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         return pb.GetControlStateResponse(state=self._control_state())
 
     def StartRecording(self, request, context):
-        info = self._core.start_recording(lease_id(context), request.name)
+        info = self._core.start_recording(lease_id(context), request.name,
+                                          recording_format(request.format))
         return pb.StartRecordingResponse(recording=recording_to_proto(info))
 
     def StopRecording(self, request, context):

@@ -34,6 +34,7 @@ from services.decision_server.arbitration import ControlView, Lease, LockManager
 from services.decision_server.assistance import Assistance
 from services.decision_server.cobegin import Barriers, SimulatedProcessor
 from services.decision_server.force_control import ForceLoop
+from services.decision_server.recording_mcap import Sources
 from services.decision_server.recordings import RecordingInfo, RecordingStore
 from services.decision_server.slave import (
     LATCHED_STATUSES,
@@ -143,11 +144,17 @@ class DecisionCore:
         slave.on_robot_event = lambda message: self.emit(RobotEventForwarded(message))
 
     def emit(self, payload) -> None:
-        self.events.publish(DecisionEvent(next(self._event_sequence), self.clock.time_ns(),
-                                          payload))
+        event = DecisionEvent(next(self._event_sequence), self.clock.time_ns(), payload)
+        self.events.publish(event)
+        self.recordings.note_event(event)  # an MCAP recording keeps it (queued, not written)
 
     def close(self) -> None:
         self._stop_replay("the server is stopping")
+        if self.recordings.recording:  # saved, not lost with the process
+            try:
+                self.recordings.stop()
+            except TelerobotError as error:
+                log.warning("the recording was not saved: %s", error.message)
         old = self._replace_force_loop(None)
         if old is not None:
             old.stop()
@@ -407,9 +414,11 @@ class DecisionCore:
 
     # -- record and replay ------------------------------------------------------------------
 
-    def start_recording(self, lease_id: str, name: str) -> RecordingInfo:
+    def start_recording(self, lease_id: str, name: str, format: str = "JSONL"
+                        ) -> RecordingInfo:
+        """An MCAP recording also samples the arm's latest state and wrench (20 Hz)."""
         self.locks.require(lease_id)
-        return self.recordings.start(name)
+        return self.recordings.start(name, format, Sources(self.robot_state, self.wrench))
 
     def start_replay(self, lease_id: str, name: str, speed: float) -> RecordingInfo:
         self.locks.require(lease_id)

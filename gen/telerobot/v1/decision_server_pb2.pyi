@@ -14,6 +14,12 @@ from typing import ClassVar as _ClassVar, Optional as _Optional, Union as _Union
 
 DESCRIPTOR: _descriptor.FileDescriptor
 
+class RecordingFormat(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    RECORDING_FORMAT_UNSPECIFIED: _ClassVar[RecordingFormat]
+    RECORDING_FORMAT_JSONL: _ClassVar[RecordingFormat]
+    RECORDING_FORMAT_MCAP: _ClassVar[RecordingFormat]
+
 class TeleopSessionState(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     TELEOP_SESSION_STATE_UNSPECIFIED: _ClassVar[TeleopSessionState]
@@ -63,6 +69,9 @@ class Passivity(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     PASSIVITY_UNSPECIFIED: _ClassVar[Passivity]
     PASSIVITY_OFF: _ClassVar[Passivity]
     PASSIVITY_TDPA: _ClassVar[Passivity]
+RECORDING_FORMAT_UNSPECIFIED: RecordingFormat
+RECORDING_FORMAT_JSONL: RecordingFormat
+RECORDING_FORMAT_MCAP: RecordingFormat
 TELEOP_SESSION_STATE_UNSPECIFIED: TeleopSessionState
 TELEOP_SESSION_STATE_OPENED: TeleopSessionState
 TELEOP_SESSION_STATE_DETACHED: TeleopSessionState
@@ -334,10 +343,12 @@ class ControlHolder(_message.Message):
     def __init__(self, operator_id: _Optional[str] = ..., mode: _Optional[_Union[ControlMode, str]] = ..., group: _Optional[str] = ..., expire_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ...) -> None: ...
 
 class StartRecordingRequest(_message.Message):
-    __slots__ = ("name",)
+    __slots__ = ("name", "format")
     NAME_FIELD_NUMBER: _ClassVar[int]
+    FORMAT_FIELD_NUMBER: _ClassVar[int]
     name: str
-    def __init__(self, name: _Optional[str] = ...) -> None: ...
+    format: RecordingFormat
+    def __init__(self, name: _Optional[str] = ..., format: _Optional[_Union[RecordingFormat, str]] = ...) -> None: ...
 
 class StartRecordingResponse(_message.Message):
     __slots__ = ("recording",)
@@ -400,16 +411,36 @@ class StopReplayResponse(_message.Message):
     def __init__(self, commands_replayed: _Optional[int] = ...) -> None: ...
 
 class Recording(_message.Message):
-    __slots__ = ("name", "create_time", "duration", "command_count")
+    __slots__ = ("name", "create_time", "duration", "command_count", "format", "error")
     NAME_FIELD_NUMBER: _ClassVar[int]
     CREATE_TIME_FIELD_NUMBER: _ClassVar[int]
     DURATION_FIELD_NUMBER: _ClassVar[int]
     COMMAND_COUNT_FIELD_NUMBER: _ClassVar[int]
+    FORMAT_FIELD_NUMBER: _ClassVar[int]
+    ERROR_FIELD_NUMBER: _ClassVar[int]
     name: str
     create_time: _timestamp_pb2.Timestamp
     duration: _duration_pb2.Duration
     command_count: int
-    def __init__(self, name: _Optional[str] = ..., create_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., duration: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., command_count: _Optional[int] = ...) -> None: ...
+    format: RecordingFormat
+    error: str
+    def __init__(self, name: _Optional[str] = ..., create_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., duration: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., command_count: _Optional[int] = ..., format: _Optional[_Union[RecordingFormat, str]] = ..., error: _Optional[str] = ...) -> None: ...
+
+class RecordedIncrement(_message.Message):
+    __slots__ = ("offset", "frame", "delta_position_m", "delta_rotation", "delta_joints_rad", "target_position_m")
+    OFFSET_FIELD_NUMBER: _ClassVar[int]
+    FRAME_FIELD_NUMBER: _ClassVar[int]
+    DELTA_POSITION_M_FIELD_NUMBER: _ClassVar[int]
+    DELTA_ROTATION_FIELD_NUMBER: _ClassVar[int]
+    DELTA_JOINTS_RAD_FIELD_NUMBER: _ClassVar[int]
+    TARGET_POSITION_M_FIELD_NUMBER: _ClassVar[int]
+    offset: _duration_pb2.Duration
+    frame: _types_pb2.ReferenceFrame
+    delta_position_m: _types_pb2.Vector3
+    delta_rotation: _types_pb2.Matrix3
+    delta_joints_rad: _containers.RepeatedScalarFieldContainer[float]
+    target_position_m: _types_pb2.Vector3
+    def __init__(self, offset: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., frame: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., delta_position_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ..., delta_rotation: _Optional[_Union[_types_pb2.Matrix3, _Mapping]] = ..., delta_joints_rad: _Optional[_Iterable[float]] = ..., target_position_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ...) -> None: ...
 
 class BeginCobeginRequest(_message.Message):
     __slots__ = ("action_count", "barrier_timeout")

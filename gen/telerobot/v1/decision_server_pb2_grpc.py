@@ -243,9 +243,12 @@ class DecisionServerServicer:
         raise NotImplementedError('Method not implemented!')
 
     def StartRecording(self, request, context):
-        """StartRecording records every applied movement command, with its timing, under a name.
-        Errors: INVALID_ARGUMENT for a name that is not [A-Za-z0-9_-]{1,64}; ALREADY_EXISTS for a
-        name in use; FAILED_PRECONDITION while recording or without the control lock.
+        """StartRecording records every applied movement command, with its timing, under a name,
+        as JSON lines or (format MCAP) as one MCAP file that also holds the acks, robot state,
+        wrench and events of the recording's time (see RecordingFormat).
+        Errors: INVALID_ARGUMENT for a name that is not [A-Za-z0-9_-]{1,64} or an unknown format;
+        ALREADY_EXISTS for a name in use (in either format); FAILED_PRECONDITION while recording
+        or without the control lock.
         Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
@@ -254,7 +257,9 @@ class DecisionServerServicer:
 
     def StopRecording(self, request, context):
         """StopRecording ends the recording and saves it to disk.
-        Errors: FAILED_PRECONDITION when not recording.
+        Errors: FAILED_PRECONDITION when not recording, or (reason RECORDING_FAILED) when an MCAP
+        recording had stopped by itself because its file could not be written (a full disk): the
+        message says why, nothing was saved, and the next StartRecording starts afresh.
         Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
@@ -279,11 +284,12 @@ class DecisionServerServicer:
         raise NotImplementedError('Method not implemented!')
 
     def StartReplay(self, request, context):
-        """StartReplay replays a recording with its timing. Progress comes as events. An emergency
-        stop or the lock holder's StopReplay interrupts it.
+        """StartReplay replays a recording (either format) with its timing. Progress comes as
+        events. An emergency stop or the lock holder's StopReplay interrupts it.
         Errors: NOT_FOUND for an unknown name; FAILED_PRECONDITION without the control lock, while
-        teleoperating or replaying, or when the arm is not READY; INVALID_ARGUMENT for a speed
-        outside 0.1..10.
+        teleoperating or replaying, when the arm is not READY, or (reason CORRUPT_RECORDING) for a
+        file that cannot be read (truncated, corrupt): the request is fine, the stored file is
+        not; INVALID_ARGUMENT for a speed outside 0.1..10.
         Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
