@@ -15,7 +15,9 @@ from __future__ import annotations
 import json
 import logging
 import queue
+import struct
 import threading
+import zlib
 from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -43,6 +45,7 @@ EVENTS = "/decision_server/events"
 CHANNELS = (INCREMENT, ACK, STATE, WRENCH, EVENTS)
 PROFILE = "telerobot"
 METADATA = "recording"
+MAGIC = b"\x89MCAP0\r\n"  # an MCAP file's first and last bytes
 
 SAMPLE_PERIOD_S = 0.05  # robot state and wrench at 20 Hz: the arm's path, not its servo
 QUEUE_LIMIT = 20_000  # items waiting for the writer; past that it has fallen behind: stop
@@ -296,6 +299,12 @@ def read_summary(path: Path) -> dict[str, str]:
     FailedPrecondition (CORRUPT_RECORDING) when the file is truncated or not MCAP."""
     try:
         with open(path, "rb") as stream:
+            if stream.read(len(MAGIC)) != MAGIC:
+                raise ValueError("not an MCAP file")
+            stream.seek(-len(MAGIC), 2)
+            if stream.read(len(MAGIC)) != MAGIC:  # a finished file ends with it too
+                raise EndOfFile()
+            stream.seek(0)
             reader = make_reader(stream)
             if reader.get_summary() is None:
                 raise ValueError("no summary: the file was not finished (truncated?)")
@@ -313,6 +322,7 @@ def read_commands(path: Path, recorded_command_type) -> McapContents:
     or holds a malformed increment."""
     try:
         metadata = read_summary(path)
+        _check_crcs(path.read_bytes())
         with open(path, "rb") as stream:
             reader = make_reader(stream, validate_crcs=True,
                                  decoder_factories=[DecoderFactory()])
@@ -325,6 +335,24 @@ def read_commands(path: Path, recorded_command_type) -> McapContents:
         raise
     except Exception as error:  # noqa: BLE001 - whatever the parser says of a bad file
         raise _corrupt(path, error) from error
+
+
+def _check_crcs(data: bytes) -> None:
+    """The CRCs of the data and summary sections (the file's, beside each chunk's): a flipped
+    byte anywhere, even in an index the reader would skip, makes the file corrupt."""
+    footer = data[-len(MAGIC) - 29:-len(MAGIC)]
+    opcode, _, summary_start, _, summary_crc = struct.unpack("<BQQQI", footer)
+    if opcode != 0x02:
+        raise ValueError("no footer record")
+    if not summary_start:
+        return
+    opcode, _, data_crc = struct.unpack("<BQI", data[summary_start - 13:summary_start])
+    if opcode != 0x0F:
+        raise ValueError("no data end record before the summary")
+    if data_crc and zlib.crc32(data[:summary_start - 13]) != data_crc:
+        raise ValueError("the data section's CRC does not match (corrupt)")
+    if summary_crc and zlib.crc32(data[summary_start:-len(MAGIC) - 4]) != summary_crc:
+        raise ValueError("the summary section's CRC does not match (corrupt)")
 
 
 def _corrupt(path: Path, error: Exception) -> FailedPrecondition:
