@@ -4,6 +4,8 @@ replay with the real DecisionServer in front of the real world."""
 
 from __future__ import annotations
 
+import json
+import subprocess
 import time
 from collections import Counter, defaultdict
 from pathlib import Path
@@ -19,7 +21,7 @@ from services.decision_server.recordings import RecordingStore
 from services.runtime.errors import FailedPrecondition
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, types_pb2
-from tests.conftest import wait_for
+from tests.conftest import BUF, wait_for
 from tests.decision_server.conftest import Operator
 
 
@@ -304,3 +306,34 @@ def test_an_mcap_recording_of_a_session_reads_back_and_replays_the_recorded_path
     reached.append(station.tool_position())
     misses = [min(np.linalg.norm(p - t) for p in reached) for t in targets]
     assert max(misses) < 2e-3, misses
+
+
+@pytest.mark.e2e
+def test_the_readme_buf_curl_calls_record_in_mcap_and_replay(driven):
+    """README, Record and replay: the same calls, through buf curl and server reflection."""
+    station, lease, _ = driven
+    url = f"http://{station.address}/telerobot.v1.DecisionServer"
+
+    def curl(method: str, body: dict, lease_id: str | None = None) -> dict:
+        header = ["-H", f"telerobot-lease-id: {lease_id}"] if lease_id else []
+        done = subprocess.run([BUF, "curl", "--protocol", "grpc", "--http2-prior-knowledge",
+                               *header, "-d", json.dumps(body), f"{url}/{method}"],
+                              capture_output=True, text=True, timeout=30)
+        assert done.returncode == 0, done.stdout + done.stderr
+        return json.loads(done.stdout)
+
+    started = curl("StartRecording", {"name": "drive2", "format": "RECORDING_FORMAT_MCAP"},
+                   lease)
+    assert started["recording"]["format"] == "RECORDING_FORMAT_MCAP"
+    operator = Operator(station, lease)
+    for _ in range(3):
+        operator.move((0, 0, 0.002))
+        station.wait_status(types_pb2.ROBOT_STATUS_READY)
+    operator.close()
+    saved = curl("StopRecording", {})["recording"]
+    assert saved["name"] == "drive2" and saved["commandCount"] == 3
+    assert saved["format"] == "RECORDING_FORMAT_MCAP"
+    events = station.core.events.subscribe(256)
+    curl("StartReplay", {"name": "drive2", "speed": 1}, lease)
+    wait_for(lambda: (event := events.get(0.1)) is not None
+             and getattr(event.payload, "state", "") == "FINISHED", 5, "the replay to finish")
