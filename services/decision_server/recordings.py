@@ -224,12 +224,17 @@ class RecordingStore:
                 raise FailedPrecondition("not recording", reason="NOT_RECORDING")
             self._active = None
         path = self._path(active.name, active.format)
-        if active.recorder is None:
-            write_jsonl(path, active.name, active.create_time_ns, active.commands)
-            commands = active.commands
-        else:
-            commands = active.recorder.finish()  # raises when the writing failed
-            active.recorder.path.replace(path)
+        try:
+            if active.recorder is None:
+                write_jsonl(path, active.name, active.create_time_ns, active.commands)
+                commands = active.commands
+            else:
+                commands = active.recorder.finish()  # raises when the writing failed
+                active.recorder.path.replace(path)
+        except OSError as error:  # a full disk at the last write: nothing half-written stays
+            path.with_name(path.name + ".partial").unlink(missing_ok=True)
+            raise FailedPrecondition(f"the recording '{active.name}' could not be saved: "
+                                     f"{error}", reason="RECORDING_FAILED") from error
         return self._info(active.name, active.create_time_ns, commands, active.format)
 
     def load(self, name: str) -> tuple[RecordingInfo, list[RecordedCommand]]:
