@@ -417,10 +417,11 @@ class DecisionCore:
     def start_recording(self, lease_id: str, name: str, format: str = "JSONL"
                         ) -> RecordingInfo:
         """An MCAP recording also samples the arm's latest state and wrench (20 Hz): the
-        samples the streams brought, never a call to the arm."""
+        samples the streams brought (the arm is asked only before its stream's first), on the
+        recording's writer thread."""
         self.locks.require(lease_id)
-        return self.recordings.start(name, format,
-                                     Sources(lambda: self._state, self.slave.wrench))
+        return self.recordings.start(name, format, Sources(
+            lambda: self._state or self.slave.state(), self.slave.wrench))
 
     def start_replay(self, lease_id: str, name: str, speed: float) -> RecordingInfo:
         self.locks.require(lease_id)
