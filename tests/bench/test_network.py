@@ -208,3 +208,21 @@ def test_the_passivity_verdict_judges_the_tdpa_runs_against_their_loopback_peak(
     for miss in ("peak 190.0 N > 180.0 N", "5 swings", "drift 7.0 mm"):
         assert miss in lines[2]
     assert network.passivity_verdict({"rows": [result["rows"][1]]})[0].startswith("No feedback")
+
+
+def test_tdpa_rows_are_made_of_three_runs_judged_on_the_median_peak():
+    assert network.RowSpec("feedback", 100.0).repeats == network.TDPA_REPEATS == 3
+    assert network.RowSpec("feedback", 100.0, passivity=False).repeats == 1
+    assert network.RowSpec("feedback", 183.0, 3.0).repeats == 1  # a cut runs once
+    assert network.RowSpec("compliance", 100.0).repeats == 1
+    runs = [{"success": True, "peak_force_n": 240.0, "drift_m": 0.001},
+            {"success": True, "peak_force_n": 130.0, "drift_m": 0.002},
+            {"success": True, "peak_force_n": 180.0, "drift_m": 0.003}]
+    middle = network.median_run(runs)
+    assert middle["peak_force_n"] == 180.0 and middle["drift_m"] == 0.003  # one run's figures
+    assert middle["peaks_n"] == [240.0, 130.0, 180.0] and middle["success"]
+    failed = network.median_run([*runs[:2], {"success": False, "peak_force_n": None,
+                                             "error": "UnavailableError: gone"}])
+    assert failed["success"] is False and failed["error"] == "UnavailableError: gone"
+    assert failed["peak_force_n"] == 130.0  # the median of the peaks there are
+    assert network.median_run(runs[:1]) is runs[0]
