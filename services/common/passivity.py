@@ -32,7 +32,7 @@ Passivity controllers keep each W at or above zero:
 
 - at the slave (admittance type, its output is motion) the part of Δx_s that pushes into the
   environment beyond what W_s covers is removed along F_e:  Δx_s' = Δx_s + λ F̂_e with
-  λ = (−F_e·Δx_s − W_s) / ‖F_e‖ when −F_e·Δx_s > W_s (eq. 14 of Ryu et al. 2004 in increments);
+  λ = (−F_e·Δx_s − W_s) / ‖F_e‖ when −F_e·Δx_s > W_s (Ryu et al. 2004, in increments);
 - at the master (impedance type, its output is force) the part of F_d along the hand's motion
   that W_m does not cover is removed: F_d' = F_d − μ ĥ with μ = (F_d·Δx_h − W_m) / ‖Δx_h‖.
 
