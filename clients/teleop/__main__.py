@@ -33,7 +33,7 @@ from clients.python.decision_server import DecisionClient
 from clients.python.errors import TelerobotRpcError
 from clients.teleop.artifacts import plot, write_summary
 from clients.teleop.dependencies import DependencyMonitor, as_json, describe
-from clients.teleop.mcap_log import SessionRecorder
+from clients.teleop.mcap_log import RobotStateFeed, SessionRecorder
 from clients.teleop.stack import station_at
 from clients.teleop.task import PegInHole, Result, ready_the_arm
 from clients.teleop.video import StereoView
@@ -185,7 +185,8 @@ def main(argv: list[str] | None = None) -> int:
                              "passive under delay; off, for comparison)")
     parser.add_argument("--mcap", action="store_true",
                         help="also record the session as <out>/session.mcap (commands, acks, "
-                             "tool pose and wrench, stereo pairs, the DecisionServer's events; "
+                             "tool pose and wrench, stereo pairs, the DecisionServer's events, "
+                             "the arm's state, and Foxglove's /tf, images, force arrow; "
                              "python -m clients.teleop.mcap_inspect FILE summarizes it)")
     args = parser.parse_args(argv)
     try:
@@ -227,6 +228,9 @@ def run(args: argparse.Namespace) -> int:
             # The station's services as the session goes: what is down now, then every change.
             monitor = DependencyMonitor(client, status.note,
                                         on_event=recorder and recorder.event).start()
+            # The arm's state samples, for the recording's /robot/state, /tf and /joint_states:
+            # a stream of their own, so the monitor's stays free of their flood.
+            states = RobotStateFeed(client, recorder.robot_state).start() if recorder else None
             for dependency in monitor.initial():
                 if not dependency.serving:
                     status.note(describe(dependency))
@@ -248,6 +252,8 @@ def run(args: argparse.Namespace) -> int:
                 if view is not None:
                     view.stop()
                 monitor.stop()
+                if states is not None:
+                    states.stop()
             dependencies = monitor.final()
     artifacts = plot(traces, out)
     summary = {
@@ -264,6 +270,8 @@ def run(args: argparse.Namespace) -> int:
         "mcap": str(recorder.path) if recorder else None,
         "mcap_counts": dict(recorder.counts) if recorder else None,
         "mcap_error": recorder.error if recorder else None,
+        "mcap_state_samples": states.samples if states else 0,
+        "mcap_state_feed_error": states.error if states else None,
     }
     write_summary(summary, out)
     print(table(results))

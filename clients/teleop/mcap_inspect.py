@@ -1,20 +1,25 @@
 """python -m clients.teleop.mcap_inspect FILE: what an MCAP recording holds.
 
 For each channel: its topic, schema (a protobuf message name), message count and first/last
-log time; then the file's time range and its metadata (make teleop's counts and runs). It scans
-every message, so the times are exact. Exits 2 when the file cannot be read.
+log time; then the file's time range, which of Foxglove's channels it has (and the frame tree
+its first /tf message gives) and its metadata (make teleop's counts and runs). It scans every
+message, so the times are exact. Exits 2 when the file cannot be read.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
 
+from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
+from google.protobuf.message import DecodeError
 from mcap.exceptions import McapError
 from mcap.reader import make_reader
+
+from services.foxglove.channels import FOXGLOVE_TOPICS, TF
 
 
 @dataclass
@@ -34,6 +39,13 @@ class FileSummary:
     library: str
     channels: list[ChannelSummary]
     metadata: dict[str, dict[str, str]]
+    tf_frames: list[tuple[str, str]] = field(default_factory=list)  # first /tf: (parent, child)
+
+    @property
+    def foxglove_topics(self) -> list[str]:
+        """Foxglove's channels (services.foxglove.channels) the file holds, in their order."""
+        present = {c.topic for c in self.channels}
+        return [topic for topic in FOXGLOVE_TOPICS if topic in present]
 
     @property
     def messages(self) -> int:
@@ -57,12 +69,15 @@ def summarize(path: Path) -> FileSummary:
         reader = make_reader(stream)
         header = reader.get_header()
         channels: dict[int, ChannelSummary] = {}
+        tf_frames: list[tuple[str, str]] = []
         for schema, channel, message in reader.iter_messages(log_time_order=False):
             summary = channels.get(channel.id)
             if summary is None:
                 summary = channels[channel.id] = ChannelSummary(
                     channel.topic, schema.name if schema else "", channel.message_encoding)
             summary.count += 1
+            if channel.topic == TF and summary.count == 1:
+                tf_frames = _frames(message.data)
             t = message.log_time
             summary.first_ns = t if summary.first_ns is None else min(summary.first_ns, t)
             summary.last_ns = t if summary.last_ns is None else max(summary.last_ns, t)
@@ -73,7 +88,15 @@ def summarize(path: Path) -> FileSummary:
         except McapError:
             pass  # a file cut short has no metadata index
     return FileSummary(Path(path), header.profile, header.library,
-                       sorted(channels.values(), key=lambda c: c.topic), metadata)
+                       sorted(channels.values(), key=lambda c: c.topic), metadata, tf_frames)
+
+
+def _frames(data: bytes) -> list[tuple[str, str]]:
+    try:
+        transforms = FrameTransforms.FromString(data).transforms
+    except DecodeError:
+        return []
+    return [(t.parent_frame_id, t.child_frame_id) for t in transforms]
 
 
 def _time(ns: int | None) -> str:
@@ -96,6 +119,13 @@ def report(summary: FileSummary) -> str:
     duration = (end - start) / 1e9 if start is not None else 0.0
     lines.append(f"{len(summary.channels)} channels, {summary.messages} messages, "
                  f"{_time(start)} to {_time(end)} ({duration:.3f} s)")
+    foxglove = summary.foxglove_topics
+    missing = [topic for topic in FOXGLOVE_TOPICS if topic not in foxglove]
+    lines.append(f"Foxglove channels: {len(foxglove)} of {len(FOXGLOVE_TOPICS)}"
+                 + (f" (none on {', '.join(missing)})" if missing else ""))
+    if summary.tf_frames:
+        lines.append("frames (first /tf): " + ", ".join(
+            f"{parent}->{child}" for parent, child in summary.tf_frames))
     for name, values in summary.metadata.items():
         lines.append(f"metadata {name}:")
         lines += [f"  {key}: {value}" for key, value in values.items()]

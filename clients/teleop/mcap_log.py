@@ -14,7 +14,23 @@ monotonic per channel):
 - ``/camera/stereo_header``  StereoHeader, once per stream of pairs (calibration of both eyes)
 - ``/camera/stereo_pair``  StereoPair, the pairs as they came (JPEG bytes, capture times)
 - ``/decision_server/events``  StreamEventsResponse, the DecisionServer's events (control,
-  watchdog holds, assistance changes, teleop session states, dependency changes)
+  watchdog holds, assistance changes, teleop session states, dependency changes); never the
+  arm's state samples, which come on a stream of their own (`RobotStateFeed`) so their flood
+  can neither crowd these out nor change what this channel's count means
+- ``/robot/state``  RobotState, the arm's state samples (ProxyRobot's DATA_RECEIVED events as
+  the DecisionServer forwards them, about 10 Hz); publish time: the sample time
+
+And the same session in Foxglove's own schemas (services.foxglove.channels), so Foxglove or
+Lichtblick shows it in stock panels (docs/foxglove_layout.json):
+
+- ``/tf``  FrameTransforms, the arm's frames (base -> link1..link6 -> flange -> tool) from each
+  /robot/state sample's joint angles, stamped with its sample time; the cameras' frames too
+  once a stereo header has given their poses
+- ``/joint_states``  JointStates, each /robot/state sample's joint angles and rates
+- ``/force/arrow``  SceneUpdate, one per /robot/wrench: the force as an arrow in the tool frame
+- ``/camera/{left,right}/image``  CompressedImage, one per stereo pair and eye (the same JPEG)
+- ``/camera/{left,right}/calibration``  CameraCalibration, one per stereo pair and eye (so a
+  player that seeks always has the calibration next to the image)
 
 A metadata record ``teleop`` holds the counts written per channel, and one ``run`` per task run
 (its mode and time range). `python -m clients.teleop.mcap_inspect FILE` summarizes a file.
@@ -33,9 +49,12 @@ from pathlib import Path
 
 from mcap_protobuf.writer import Writer
 
+from clients.python.errors import TelerobotRpcError
 from clients.python.values import Ack, StereoFrame
+from services.foxglove import channels as fox
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
+from telerobot.v1 import types_pb2
 from wire.convert import time_ns
 
 log = logging.getLogger(__name__)
@@ -48,7 +67,10 @@ WRENCH = "/robot/wrench"
 STEREO_HEADER = "/camera/stereo_header"
 STEREO_PAIR = "/camera/stereo_pair"
 EVENTS = "/decision_server/events"
-CHANNELS = (COMMAND, HEARTBEAT, ACK, TOOL_POSE, WRENCH, STEREO_HEADER, STEREO_PAIR, EVENTS)
+ROBOT_STATE = "/robot/state"
+CHANNELS = (COMMAND, HEARTBEAT, ACK, TOOL_POSE, WRENCH, STEREO_HEADER, STEREO_PAIR, EVENTS,
+            ROBOT_STATE)
+FOXGLOVE_CHANNELS = tuple(fox.FOXGLOVE_TOPICS)
 PROFILE = "telerobot"
 
 
@@ -62,8 +84,10 @@ class SessionRecorder:
         self._lock = threading.Lock()
         self._last: dict[str, int] = {}  # topic -> last log time written
         self._header: sc_pb.StereoHeader | None = None
+        self._arm = fox.ArmTransforms()  # used on the state feed's thread only
         self._runs: list[dict] = []
         self.counts: Counter[str] = Counter()
+        self.skipped: Counter[str] = Counter()  # Foxglove messages our messages had no form for
         self.closed = False
         self.error: str | None = None  # why the recording stopped early, if it did
 
@@ -84,16 +108,26 @@ class SessionRecorder:
             self.write(TOOL_POSE, ack.message.tool_pose, now, ack.apply_time_ns or now)
         if ack.message.HasField("tool_wrench"):
             self.write(WRENCH, ack.message.tool_wrench, now, ack.apply_time_ns or now)
+            self._foxglove(fox.FORCE_ARROW, lambda: fox.force_arrow(
+                ack.message.tool_wrench, ack.apply_time_ns or now), now)
 
     def stereo(self, frame: StereoFrame, received_ns: int | None = None) -> None:
         """A stereo pair as it came from the camera (its header first when it is new);
         received now unless `received_ns` says when."""
         now = received_ns or time.time_ns()
+        captured = time_ns(frame.pair.left_capture_time) or now
         if frame.header != self._header:
             self._header = frame.header
+            self._arm.set_cameras(frame.header)
             self.write(STEREO_HEADER, frame.header, now)
-        self.write(STEREO_PAIR, frame.pair, now,
-                   time_ns(frame.pair.left_capture_time) or now)
+        self.write(STEREO_PAIR, frame.pair, now, captured)
+        images = self._convert(fox.LEFT_IMAGE, lambda: fox.camera_images(frame.pair))
+        calibrations = self._convert(fox.LEFT_CALIBRATION,
+                                     lambda: fox.camera_calibrations(frame.header, captured))
+        for topics, messages in (((fox.LEFT_IMAGE, fox.RIGHT_IMAGE), images),
+                                 ((fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION), calibrations)):
+            for topic, message in zip(topics, messages or (), strict=False):
+                self.write(topic, message, now, captured)
 
     def event(self, event: pb.StreamEventsResponse, received_ns: int | None = None) -> None:
         """One of the DecisionServer's events, as the station's event stream delivered it;
@@ -101,11 +135,39 @@ class SessionRecorder:
         now = received_ns or time.time_ns()
         self.write(EVENTS, event, now, time_ns(event.event_time) or now)
 
+    def robot_state(self, state: types_pb2.RobotState, received_ns: int | None = None) -> None:
+        """One of the arm's state samples (/robot/state), with its frames (/tf) and joint
+        angles (/joint_states); received now unless `received_ns` says when. Call from one
+        thread (the state feed's)."""
+        now = received_ns or time.time_ns()
+        sampled = time_ns(state.sample_time) or now
+        self.write(ROBOT_STATE, state, now, sampled)
+        self._foxglove(fox.JOINT_STATES, lambda: fox.joint_states(state), now, sampled)
+        self._foxglove(fox.TF, lambda: self._arm.state_transforms(state), now, sampled)
+
     def run(self, mode: str, start_ns: int, end_ns: int, **fields) -> None:
         """One task run (goes into the file's metadata when it closes)."""
         self._runs.append({"mode": mode, "start_ns": start_ns, "end_ns": end_ns, **fields})
 
     # -- writing --------------------------------------------------------------------------------
+    def _convert(self, topic: str, convert):
+        """`convert()`, or None when our message has no Foxglove form (raw images, a state with
+        the wrong number of joints): counted in `skipped`, said once per topic."""
+        try:
+            return convert()
+        except ValueError as error:
+            with self._lock:
+                if not self.skipped[topic]:
+                    log.warning("MCAP: %s left out (%s)", topic, error)
+                self.skipped[topic] += 1
+            return None
+
+    def _foxglove(self, topic: str, convert, log_time_ns: int,
+                  publish_time_ns: int | None = None) -> None:
+        message = self._convert(topic, convert)
+        if message is not None:
+            self.write(topic, message, log_time_ns, publish_time_ns)
+
     def write(self, topic: str, message, log_time_ns: int, publish_time_ns: int | None = None
               ) -> None:
         """`message` on `topic` at `log_time_ns` (raised to the channel's last, so log times
@@ -135,6 +197,7 @@ class SessionRecorder:
             try:
                 self._writer.add_metadata("teleop", {
                     "counts": json.dumps(dict(self.counts)), "runs": json.dumps(self._runs),
+                    "foxglove_skipped": json.dumps(dict(self.skipped)),
                     "error": self.error or ""})
                 self._writer.finish()
             finally:
@@ -145,3 +208,50 @@ class SessionRecorder:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+class RobotStateFeed:
+    """The arm's state samples for the recording: a DecisionServer event stream of its own with
+    ``include_data_received``, on a thread, handing each DATA_RECEIVED sample to `on_state`
+    (the other events come on the session's own stream, which leaves the samples out). From
+    start() until stop()."""
+
+    def __init__(self, client, on_state):
+        self._client = client
+        self._on_state = on_state
+        self._events = None
+        self._thread: threading.Thread | None = None
+        self.samples = 0
+        self.error: str | None = None  # why the feed ended early, if it did
+
+    def start(self) -> RobotStateFeed:
+        self._events = self._client.stream_events(include_data_received=True, timeout=None)
+        self._thread = threading.Thread(target=self._read, name="mcap-robot-state", daemon=True)
+        self._thread.start()
+        return self
+
+    def _read(self) -> None:
+        try:
+            for event in self._events:
+                if (event.WhichOneof("event") == "robot"
+                        and event.robot.WhichOneof("event") == "data_received"):
+                    self._on_state(event.robot.data_received.state)
+                    self.samples += 1
+        except TelerobotRpcError as error:  # (a stream cancelled by stop() just ends)
+            self.error = str(error)
+            log.warning("MCAP: the arm's state samples stopped (%s)", error)
+
+    def stop(self) -> None:
+        if self._events is not None:
+            try:
+                self._events.cancel()
+            except Exception as error:  # noqa: BLE001 - stopping goes on regardless
+                log.debug("cancel: %s", error)
+        if self._thread is not None:
+            self._thread.join(timeout=5.0)
+
+    def __enter__(self) -> RobotStateFeed:
+        return self.start()
+
+    def __exit__(self, *exc) -> None:
+        self.stop()

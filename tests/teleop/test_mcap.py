@@ -2,8 +2,10 @@
 
 A scripted sequence goes through the recorder and comes back through the `mcap` reader (with
 mcap-protobuf-support's decoder, from the schemas in the file alone); then a real session
-(`python -m clients.teleop --modes feedback --no-video --mcap`) against a local station leaves a
-file whose command and ack counts are the session's own."""
+(`python -m clients.teleop --modes feedback --mcap`) against a local station leaves a file whose
+counts are the session's own, in our channels and Foxglove's: its images decode to the
+header's size and each /tf is Pinocchio's forward kinematics of the state sample it came
+from."""
 
 from __future__ import annotations
 
@@ -24,16 +26,20 @@ from clients.teleop import mcap_inspect
 from clients.teleop import mcap_log as channels
 from clients.teleop.mcap_log import SessionRecorder
 from clients.teleop.stack import local_station
+from services.foxglove import channels as fox
 from services.launcher import STATION
+from services.robot_model.kinematics import PumaKinematics
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 from tests.conftest import REPO
+from tests.foxglove.test_channels import stereo_header, world_poses
 from tests.world.conftest import unique_shm_name
 from wire import convert
 
 T0 = 1_700_000_000_000_000_000  # a fixed wall-clock time, ns
 MS = 1_000_000
+ALL_CHANNELS = {*channels.CHANNELS, *channels.FOXGLOVE_CHANNELS}
 
 
 def read_back(path) -> dict[str, list]:
@@ -48,6 +54,45 @@ def read_back(path) -> dict[str, list]:
     return messages
 
 
+def check_the_foxglove_channels(read: dict[str, list]) -> None:
+    """Every image decodes to its calibration's size (the header's); each /tf is Pinocchio's
+    forward kinematics of the /robot/state and /joint_states sample with the same stamp."""
+    headers = [proto for *_, proto in read[channels.STEREO_HEADER]]
+    sizes = {(h.height_px, h.width_px) for h in headers}
+    for image_topic, calibration_topic in ((fox.LEFT_IMAGE, fox.LEFT_CALIBRATION),
+                                           (fox.RIGHT_IMAGE, fox.RIGHT_CALIBRATION)):
+        assert len(read[image_topic]) == len(read[calibration_topic]) == \
+            len(read[channels.STEREO_PAIR])
+        for (*_, image), (*_, calibration) in zip(read[image_topic], read[calibration_topic],
+                                                  strict=True):
+            decoded = cv2.imdecode(np.frombuffer(image.data, np.uint8), cv2.IMREAD_COLOR)
+            assert image.format == "jpeg" and decoded is not None
+            assert decoded.shape[:2] == (calibration.height, calibration.width)
+            assert decoded.shape[:2] in sizes
+            assert calibration.K[0] > 0 and image.frame_id == calibration.frame_id
+    kinematics = PumaKinematics()
+    states = {proto.sample_time.ToNanoseconds(): proto for *_, proto in read[channels.ROBOT_STATE]}
+    joints = {proto.timestamp.ToNanoseconds(): proto for *_, proto in read[fox.JOINT_STATES]}
+    assert len(states) == len(read[channels.ROBOT_STATE]) == len(read[fox.TF]) > 0
+    for *_, tf in read[fox.TF]:
+        stamp = tf.transforms[0].timestamp.ToNanoseconds()
+        q = np.array(states[stamp].joint_positions_rad)
+        assert [j.position for j in joints[stamp].joints] == pytest.approx(q.tolist())
+        poses = world_poses(tf)
+        for frame in fox.LINK_FRAMES:
+            assert np.allclose(poses[frame].homogeneous,
+                               kinematics.frame_pose(q, frame).homogeneous, atol=1e-9), frame
+        assert np.allclose(poses[fox.FLANGE_FRAME].homogeneous,
+                           kinematics.flange_pose(q).homogeneous, atol=1e-9)
+        # The tool where the arm said it was (its own tool frame), to the wire's precision.
+        tool = convert.pose_value(states[stamp].tool_pose)
+        assert np.allclose(poses[fox.TOOL_FRAME].translation, tool.translation, atol=1e-9)
+        assert np.allclose(poses[fox.TOOL_FRAME].rotation, tool.rotation, atol=1e-9)
+        if headers and fox.LEFT_CAMERA_FRAME in poses:  # the eyes where the header put them
+            eye = convert.pose_value(headers[0].left.camera_pose)
+            assert np.allclose(poses[fox.LEFT_CAMERA_FRAME].translation, eye.translation)
+
+
 def jpeg(value: int) -> bytes:
     image = np.full((24, 32, 3), value, dtype=np.uint8)
     return cv2.imencode(".jpg", image)[1].tobytes()
@@ -57,10 +102,8 @@ def scripted_session(recorder: SessionRecorder) -> dict[str, list]:
     """What a short session sends and receives, through the recorder's hooks; returns the
     protos written per topic, in order."""
     written = defaultdict(list)
-    header = sc_pb.StereoHeader(width_px=32, height_px=24,
-                                encoding=sc_pb.IMAGE_ENCODING_JPEG, source="sim",
-                                left=sc_pb.CameraCalibration(fx_px=40.0),
-                                right=sc_pb.CameraCalibration(fx_px=40.0), baseline_m=0.1)
+    header = stereo_header(32, 24)  # the simulation's cameras, with their poses
+    kinematics = PumaKinematics()
     event = pb.StreamEventsResponse(
         sequence=1, event_time=convert.timestamp(T0),
         teleop_session=pb.TeleopSessionEvent(session_id="s1", operator_id="teleop-script",
@@ -69,6 +112,19 @@ def scripted_session(recorder: SessionRecorder) -> dict[str, list]:
     written[channels.EVENTS].append(event)
     for i in range(1, 6):
         sent = T0 + i * 20 * MS
+        q = kinematics.home_q + 0.05 * i
+        state = types_pb2.RobotState(
+            sequence=i, sample_time=convert.timestamp(sent - MS), joint_positions_rad=q,
+            joint_velocities_rad_per_s=[0.1 * i] * 6,
+            flange_pose=convert.pose_to_proto(kinematics.flange_pose(q)),
+            tool_pose=convert.pose_to_proto(kinematics.tool_pose(q)))
+        recorder.robot_state(state, sent + MS)
+        written[channels.ROBOT_STATE].append(state)
+        written[fox.JOINT_STATES].append(fox.joint_states(state))
+        tf = fox.ArmTransforms()
+        if i > 1:  # the cameras' frames, once the header has come
+            tf.set_cameras(header)
+        written[fox.TF].append(tf.state_transforms(state))
         command = pb.MasterCommand(sequence=i, send_time=convert.timestamp(sent),
                                    delta_position_m=types_pb2.Vector3(z=-0.001 * i),
                                    clutch_engaged=i == 3)
@@ -87,6 +143,7 @@ def scripted_session(recorder: SessionRecorder) -> dict[str, list]:
         written[channels.ACK].append(ack)
         written[channels.TOOL_POSE].append(ack.tool_pose)
         written[channels.WRENCH].append(ack.tool_wrench)
+        written[fox.FORCE_ARROW].append(fox.force_arrow(ack.tool_wrench, sent + 2 * MS))
         beat_ack = pb.CommandAck(sequence=0, command_send_time=heartbeat.send_time,
                                  outcome=pb.COMMAND_OUTCOME_HEARTBEAT)  # no pose, no wrench
         recorder.ack(Ack.from_proto(beat_ack, sent + 6 * MS))
@@ -98,6 +155,11 @@ def scripted_session(recorder: SessionRecorder) -> dict[str, list]:
         if i == 1:  # the header goes once, before its first pair
             written[channels.STEREO_HEADER].append(header)
         written[channels.STEREO_PAIR].append(pair)
+        for topic, message in zip((fox.LEFT_IMAGE, fox.RIGHT_IMAGE,
+                                   fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION),
+                                  (*fox.camera_images(pair),
+                                   *fox.camera_calibrations(header, sent)), strict=True):
+            written[topic].append(message)
     # The wall clock steps back (NTP): the ack channel's log times still never go back.
     late = pb.CommandAck(sequence=6, outcome=pb.COMMAND_OUTCOME_APPLIED)
     recorder.ack(Ack.from_proto(late, T0))
@@ -114,7 +176,7 @@ def test_a_scripted_session_reads_back_channel_for_channel(tmp_path):
     recorder.ack(Ack.from_proto(pb.CommandAck(sequence=7), T0))  # after close: ignored
 
     read = read_back(path)
-    assert set(read) == set(channels.CHANNELS) == set(written)
+    assert set(read) == ALL_CHANNELS == set(written)
     for topic, protos in written.items():
         assert len(read[topic]) == len(protos) == recorder.counts[topic], topic
         # Decoded with the file's own schema (a class of its own), equal to what was written.
@@ -137,9 +199,16 @@ def test_a_scripted_session_reads_back_channel_for_channel(tmp_path):
     right = cv2.imdecode(np.frombuffer(pair.right_image, np.uint8), cv2.IMREAD_COLOR)
     assert left.shape == right.shape == (24, 32, 3)
     assert abs(int(left.mean()) - 30) <= 2 and abs(int(right.mean()) - 35) <= 2
+    check_the_foxglove_channels(read)
+    # Foxglove's force arrow: the wrench's force, 0.01 m per newton, pointing down (-z tool).
+    arrows = [update.entities[0].arrows[0] for *_, update in read[fox.FORCE_ARROW]]
+    assert [a.shaft_length + a.head_length for a in arrows] == pytest.approx(
+        [fox.FORCE_ARROW_M_PER_N * i for i in range(1, 6)])
 
     summary = mcap_inspect.summarize(path)
     assert {c.topic: c.count for c in summary.channels} == dict(recorder.counts)
+    assert summary.foxglove_topics == list(fox.FOXGLOVE_TOPICS)
+    assert ("base", "link1") in summary.tf_frames and ("flange", "tool") in summary.tf_frames
     assert {c.topic: c.schema for c in summary.channels}[channels.COMMAND] == \
         "telerobot.v1.MasterCommand"
     assert summary.start_ns == T0 and summary.end_ns == T0 + 106 * MS
@@ -166,9 +235,11 @@ def test_inspect_prints_every_channel_and_says_when_it_cannot_read(tmp_path, cap
         scripted_session(recorder)
     assert mcap_inspect.main([str(path)]) == 0
     out = capsys.readouterr().out
-    for topic in channels.CHANNELS:
+    for topic in ALL_CHANNELS:
         assert topic in out
-    assert "telerobot.v1.CommandAck" in out and f"{len(channels.CHANNELS)} channels" in out
+    assert "telerobot.v1.CommandAck" in out and f"{len(ALL_CHANNELS)} channels" in out
+    assert "foxglove.FrameTransforms" in out and "Foxglove channels: 7 of 7" in out
+    assert "link5->link6" in out
     (tmp_path / "junk.mcap").write_bytes(b"not an mcap file")
     assert mcap_inspect.main([str(tmp_path / "junk.mcap")]) == 2
     assert "cannot read" in capsys.readouterr().err
@@ -182,7 +253,7 @@ def test_make_teleop_mcap_counts_match_the_sessions_own(tmp_path):
     with local_station(env=env) as addresses:
         result = subprocess.run(
             [sys.executable, "-m", "clients.teleop", "--address",
-             addresses["decision_server"], "--modes", "feedback", "--no-video", "--mcap",
+             addresses["decision_server"], "--modes", "feedback", "--mcap",
              "--out", str(out), "--calibration", str(tmp_path / "cameras.json")],
             cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True, timeout=400)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
@@ -206,8 +277,30 @@ def test_make_teleop_mcap_counts_match_the_sessions_own(tmp_path):
     # The DecisionServer's events (the arm's status changes, at least), decoded from the file.
     assert read[channels.EVENTS]
     assert all(e.WhichOneof("event") for *_, e in read[channels.EVENTS])
-    assert channels.STEREO_PAIR not in read  # --no-video
+    # Every channel, ours and Foxglove's, with the session's own counts: the recorder's (in
+    # the summary and in the file's metadata), the feed's state samples, the video's frames.
+    assert set(read) == ALL_CHANNELS, ALL_CHANNELS ^ set(read)
     for topic, messages in read.items():
         times = [log_time for log_time, *_ in messages]
         assert times == sorted(times), topic
-    assert summary["mcap_counts"] == {topic: len(m) for topic, m in read.items()}
+    counts = {topic: len(m) for topic, m in read.items()}
+    assert summary["mcap_counts"] == counts and summary["mcap_error"] is None
+    metadata = mcap_inspect.summarize(out / "session.mcap").metadata["teleop"]
+    assert json.loads(metadata["counts"]) == counts
+    assert json.loads(metadata["foxglove_skipped"]) == {}
+    assert counts[channels.ROBOT_STATE] == summary["mcap_state_samples"] > 10, summary
+    assert summary["mcap_state_feed_error"] is None
+    assert counts[fox.TF] == counts[fox.JOINT_STATES] == counts[channels.ROBOT_STATE]
+    assert counts[fox.FORCE_ARROW] == counts[channels.WRENCH]
+    assert counts[channels.STEREO_PAIR] == summary["video_frames"] > 0, summary
+    for topic in (fox.LEFT_IMAGE, fox.RIGHT_IMAGE, fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION):
+        assert counts[topic] == counts[channels.STEREO_PAIR], topic
+    # The events channel still holds no state samples (they have a stream of their own).
+    assert not [e for *_, e in read[channels.EVENTS]
+                if e.WhichOneof("event") == "robot"
+                and e.robot.WhichOneof("event") == "data_received"]
+    check_the_foxglove_channels(read)
+    # The arm moved during the run, and /tf followed it.
+    tool_heights = {round(world_poses(tf)[fox.TOOL_FRAME].translation[2], 4)
+                    for *_, tf in read[fox.TF]}
+    assert len(tool_heights) > 5, tool_heights
