@@ -433,9 +433,9 @@ class TeleopSession(_SessionState):
 
     def _with_energy(self, request: pb.TeleoperateRequest) -> None:
         """The master port's energy, as it is now, on a command or heartbeat."""
-        ledger, passivity = self.passivity.ledger, self.passivity
+        ledger = self.passivity.ledger
         energy = pb.PortEnergy(energy_in_j=ledger.energy_in_j, energy_out_j=ledger.energy_out_j,
-                               dissipated_j=passivity.dissipated_j,
+                               dissipated_j=self.passivity.dissipated_j,
                                sample_time=convert.timestamp(time.time_ns()))
         message = getattr(request, request.WhichOneof("message"))
         message.master_energy.CopyFrom(energy)

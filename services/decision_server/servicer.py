@@ -230,9 +230,7 @@ class _WithoutStateSamples(Subscription):
     """Every event but ProxyRobot's forwarded state samples (data_received)."""
 
     def offer(self, item) -> None:
-        payload = item.payload
-        if not (isinstance(payload, RobotEventForwarded)
-                and payload.message.WhichOneof("event") == "data_received"):
+        if not _is_state_sample(item):
             super().offer(item)
 
 
