@@ -11,6 +11,10 @@ step (0 to 1 ms: both run 1 kHz loops, unsynchronized), for the project and the 
 `dropped` is what the server's per-subscriber queue dropped (`dropped_count`) plus gaps in the
 kept samples' sequence numbers. A sampler that is late skips the tick (it takes no sample), so
 that shows as a delivered rate under the offered one, not as drops.
+
+With `mcap_path` (force_1000_mcap, recording.py) the subscriber writes every sample it
+receives into an MCAP file, as `make teleop --mcap` does, before it takes the latency
+timestamp: the recording's cost is in the latency, and the file must hold every sample.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Iterator
+from pathlib import Path
 
 import grpc
 
@@ -102,8 +107,16 @@ def sequence_gaps(last: int | None, sequence: int, decimation: int) -> int:
 
 
 def measure_stream(transport: str, address: str, decimation: int, duration_s: float,
-                   on_first: Callable[[], None] | None = None) -> dict:
-    """Receive the wrench stream for WARMUP_S + duration_s; the scenario's summary."""
+                   on_first: Callable[[], None] | None = None,
+                   mcap_path: str | None = None) -> dict:
+    """Receive the wrench stream for WARMUP_S + duration_s; the scenario's summary.
+    `mcap_path`: record every sample there (recording.WrenchRecorder), the result's
+    `recording` says what the file holds."""
+    recorder = None
+    if mcap_path is not None:
+        from bench.recording import WrenchRecorder  # the MCAP writer: only when recording
+
+        recorder = WrenchRecorder(Path(mcap_path))
     stop = threading.Event()
     latencies, arrivals = [], []
     server_dropped = gaps = 0
@@ -113,6 +126,8 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
     started = time.monotonic()
     timeout_s = WARMUP_S + duration_s + 10.0
     for message in STREAMS[transport](address, decimation, timeout_s, stop):
+        if recorder is not None:
+            recorder.write(message)
         now_ns = time.time_ns()
         now = time.monotonic()
         if on_first is not None:
@@ -142,6 +157,8 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
                      transport=TRANSPORT_NAMES[transport], decimation=decimation,
                      duration_s=round(elapsed, 3), server_dropped=server_dropped,
                      sequence_gaps=gaps, **interarrival(arrivals, 1000.0 / rate))
+    if recorder is not None:
+        result["recording"] = recorder.close()
     result["latencies_ms"] = [round(v, 4) for v in latencies]
     return result
 

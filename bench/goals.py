@@ -8,7 +8,10 @@ there to be compared with, not judged.
 A goal relative to a baseline (command_1000: p99 <= 1.5 x command_1000_zmq's) is judged
 against the baseline measured in the same run; until that baseline has run it is PENDING, and
 if the run never measured it (``--only`` without ``baselines``) it FAILs, saying why. The TLS
-variants' goals (issue #13) are relative the same way, to their plaintext twins.
+variants' goals (issue #13) are relative the same way, to their plaintext twins, and so are
+the recording-on twins' (issue #17, `_mcap`: recording.py): their overhead is judged on the
+delivered rate and the p50 against the twin of the same run, and a recording that lost a
+sample or a command FAILs the row.
 
 The soak's goal (issue #16) is of another kind: no station process's memory grows steadily
 (`rss_misses`) and nothing is lost (`loss_misses`); bench/README.md says why these bounds.
@@ -31,6 +34,9 @@ class Goal:
     p50_ms: float | None = None
     p99_ms: float | None = None
     p99_vs: tuple[str, float] | None = None  # (baseline scenario, factor) from the same run
+    p50_vs: tuple[str, float] | None = None  # the same, on the p50
+    rate_vs: tuple[str, float] | None = None  # delivered >= factor x the baseline's
+    recording_complete: bool = False  # the row's MCAP file holds all it was given
     max_overrun_pct: float | None = None  # the world loop's overruns, % of its steps
     max_rss_slope: float | None = None  # MiB/min, sustained, of every station process (soak)
     no_loss: bool = False  # soak: every command acked, no watchdog trip, no lease lost...
@@ -44,6 +50,10 @@ class Goal:
             parts.append(f"p50 <= {self.p50_ms:g} ms")
         if self.p99_ms is not None:
             parts.append(f"p99 <= {self.p99_ms:g} ms")
+        if self.rate_vs is not None:
+            parts.append(f"delivered >= {self.rate_vs[1]:g} x {self.rate_vs[0]}")
+        if self.p50_vs is not None:
+            parts.append(f"p50 <= {self.p50_vs[1]:g} x {self.p50_vs[0]}")
         if self.p99_vs is not None:
             parts.append(f"p99 <= {self.p99_vs[1]:g} x {self.p99_vs[0]}")
         if self.max_overrun_pct is not None:
@@ -52,11 +62,31 @@ class Goal:
             parts.append(f"RSS growth <= {self.max_rss_slope:g} MiB/min per process")
         if self.no_loss:
             parts.append("no loss")
+        if self.recording_complete:
+            parts.append("recording complete")
         return ", ".join(parts)
 
+    def relative(self) -> list[tuple[str, str, float]]:
+        """(result key, baseline scenario, factor) of each bound relative to a baseline."""
+        return [(key, *bound) for key, bound in (("delivered_hz", self.rate_vs),
+                                                 ("p50_ms", self.p50_vs),
+                                                 ("p99_ms", self.p99_vs))
+                if bound is not None]
 
-_ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE = ("issue #12", "architecture brief", "issue #13",
-                                           "issue #16")
+
+_ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE, _MCAP_ISSUE = (
+    "issue #12", "architecture brief", "issue #13", "issue #16", "issue #17")
+
+
+def _recording_overhead(twin: str) -> Goal:
+    """Issue #17's "overhead <= 10 %" against the twin without recording, from the same run:
+    on the delivered rate and the p50, which hold still across runs on this shared 2-core
+    machine; the p99 moves by more than 10 % between two runs of one scenario (bench/README.md),
+    so its ratio is reported (ratio_vs_recording_off), not judged."""
+    return Goal(rate_vs=(twin, 0.9), p50_vs=(twin, 1.1), recording_complete=True,
+                source=_MCAP_ISSUE)
+
+
 # First match wins: the exact names before the patterns.
 GOALS: tuple[tuple[str, Goal], ...] = (
     ("teleop_1000", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
@@ -64,6 +94,8 @@ GOALS: tuple[tuple[str, Goal], ...] = (
     ("command_1000", Goal(min_rate=990, p99_vs=("command_1000_zmq", 1.5), source=_ISSUE)),
     ("teleop_1000_tls", Goal(p99_vs=("teleop_1000", 1.2), source=_TLS_ISSUE)),
     ("command_1000_tls", Goal(p99_vs=("command_1000", 1.2), source=_TLS_ISSUE)),
+    ("teleop_1000_mcap", _recording_overhead("teleop_1000")),
+    ("force_1000_mcap", _recording_overhead("force_1000")),
     ("observers_16", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("observers_32", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("closed_loop", Goal(p50_ms=15.0, p99_ms=25.0, source=_ISSUE)),
@@ -115,17 +147,23 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
         misses.append(f"p50 {_num(p50)} ms > {goal.p50_ms:g}")
     if goal.p99_ms is not None and (p99 is None or p99 > goal.p99_ms):
         misses.append(f"p99 {_num(p99)} ms > {goal.p99_ms:g}")
-    if goal.p99_vs is not None:
-        baseline, factor = goal.p99_vs
-        base_p99 = results.get(baseline, {}).get("p99_ms")
-        if base_p99 is None:
-            if not final and not misses:
-                return {"goal": goal.text(), "pass": None,
-                        "misses": [f"waits for {baseline}"]}
-            misses.append(f"{baseline} not measured in this run" if final
-                          else f"{baseline} not run yet")
-        elif p99 is None or p99 > factor * base_p99:
-            misses.append(f"p99 {_num(p99)} ms > {factor:g} x {base_p99:.3f}")
+    missing = []  # baselines not measured (yet)
+    for key, baseline, factor in goal.relative():
+        base, value = results.get(baseline, {}).get(key), result.get(key)
+        if base is None:
+            if baseline not in missing:
+                missing.append(baseline)
+        elif key == "delivered_hz":
+            if value is None or value < factor * base:
+                misses.append(f"{_num(value)} Hz < {factor:g} x {base:.1f}")
+        elif value is None or value > factor * base:
+            misses.append(f"{key.removesuffix('_ms')} {_num(value)} ms > {factor:g} x "
+                          f"{base:.3f}")
+    for baseline in missing:
+        if not final and not misses:
+            return {"goal": goal.text(), "pass": None, "misses": [f"waits for {baseline}"]}
+        misses.append(f"{baseline} not measured in this run" if final
+                      else f"{baseline} not run yet")
     if goal.max_overrun_pct is not None:
         pct = result.get("overrun_pct")
         if pct is None or pct > goal.max_overrun_pct:
@@ -134,7 +172,22 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
         misses += rss_misses(result.get("rss") or {}, goal.max_rss_slope)
     if goal.no_loss:
         misses += loss_misses(result)
+    if goal.recording_complete:
+        misses += recording_misses(result.get("recording"))
     return {"goal": goal.text(), "pass": not misses, "misses": misses}
+
+
+def recording_misses(recording: dict | None) -> list[str]:
+    """What a row's MCAP file lost (recording.py): each channel holding fewer (or more) than
+    the `expected` count, and the recorder's own error."""
+    if not recording:
+        return ["no recording checked"]
+    misses = [f"recording: {name} {count} of {recording.get('expected')}"
+              for name, count in (recording.get("recorded") or {}).items()
+              if count != recording.get("expected")]
+    if recording.get("error"):
+        misses.append(f"recording: {recording['error']}"[:200])
+    return misses
 
 
 def growing(trend: dict, limit: float) -> bool:
@@ -219,7 +272,7 @@ def verdict_text(judged: dict) -> str:
 def dependents(name: str) -> list[str]:
     """The scenarios whose goal is judged against `name` (a baseline)."""
     return [pattern for pattern, goal in GOALS
-            if goal.p99_vs is not None and goal.p99_vs[0] == name]
+            if any(baseline == name for _, baseline, _ in goal.relative())]
 
 
 def add_goals(results: dict[str, dict]) -> None:

@@ -41,6 +41,10 @@ NETWORK_PLOT = REPO / "docs" / "bench_network.png"
 WHAT = (
     ("command_*", "ProxyRobot unary call → target at the servo, lockstep"),
     ("teleop_1000_lockstep", "diagnostic: `teleop_1000` sent lockstep (wait for each ack)"),
+    ("teleop_1000_mcap", "`teleop_1000` with the DecisionServer recording it as MCAP "
+                         "(StartRecording)"),
+    ("force_1000_mcap", "`force_1000` with the subscriber writing each sample to MCAP (wrench "
+                        "and Foxglove arrow, as `make teleop --mcap`)"),
     ("teleop_*", "Teleoperate command → applied, streamed at the rate (pipelined)"),
     ("force_*", "wrench sampled → at the operator"),
     ("observers_*", "the operator's 1 kHz stream with n observers at 100 Hz"),
@@ -53,6 +57,9 @@ WHAT = (
     ("stereo_*", "stereo pair captured → decoded, 640×480 JPEG"),
     ("world_loop", "the world's 1 kHz loop over the whole run"),
 )
+# The ratios a variant's row shows over its twin: the TLS goal's p99; the recording goal's
+# p50, and the p99 beside it.
+_TWIN_RATIOS = {report.PLAINTEXT: ("p99",), report.RECORDING_OFF: ("p50", "p99")}
 _METADATA = ("time", "machine", "quick", "run_s", "world_shm", "ratios")
 
 
@@ -106,17 +113,20 @@ def _verdict(name: str, result: dict, results: dict[str, dict]) -> tuple[str, st
 
 
 def _baselines(name: str, results: dict[str, dict]) -> str:
-    """The baselines' figures (a TLS variant's: its plaintext twin's, and its p99 over it)."""
+    """The baselines' figures (a TLS variant's: its plaintext twin's, and its p99 over it;
+    a recording-on variant's: its twin's, and its p50 and p99 over them)."""
     parts = []
     for label, other in report.compared_with(name):
         base = results.get(other)
         if base and base.get("p50_ms") is not None:
             rate = (f"{base['delivered_hz']:.0f} Hz, " if base.get("rate_hz")
                     and base.get("delivered_hz") is not None else "")
-            text = f"{label} {rate}{_ms(base['p50_ms'])} / {_ms(base['p99_ms'])}"
-            if label == report.PLAINTEXT:
-                p99_ratio = ratio(results[name].get("p99_ms"), base["p99_ms"])
-                text += f" (p99 ×{p99_ratio:.2f})" if p99_ratio is not None else ""
+            text = (f"{label.replace('_', ' ')} {rate}{_ms(base['p50_ms'])} / "
+                    f"{_ms(base['p99_ms'])}")
+            ratios = [(key, ratio(results[name].get(f"{key}_ms"), base[f"{key}_ms"]))
+                      for key in _TWIN_RATIOS.get(label, ())]
+            shown = [f"{key} ×{value:.2f}" for key, value in ratios if value is not None]
+            text += f" ({', '.join(shown)})" if shown else ""
             parts.append(text)
     return "; ".join(parts) or "–"
 
@@ -134,7 +144,8 @@ def table(document: dict) -> str:
         f"at {document.get('time')}, on {machine.get('cores')} cores ({machine.get('cpu_model')},"
         f" Python {machine.get('python')}, load average {loads or '?'}). Latency in ms; "
         "baselines: the same domain code over pyzmq and plain TCP in the same run, and for a "
-        "`_tls` row the plaintext scenario it repeats (delivered, p50 / p99).",
+        "`_tls` or `_mcap` row the scenario it repeats, without TLS or recording (delivered, "
+        "p50 / p99).",
         "",
         "| scenario | what | delivered | p50 | p99 | goal | result | baselines |",
         "|---|---|---|---|---|---|---|---|",

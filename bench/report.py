@@ -1,5 +1,6 @@
-"""Ratios against the baselines (and of each TLS variant against its plaintext twin), the
-terminal table and results/latest.json (the goals and their PASS/FAIL are goals.py's)."""
+"""Ratios against the baselines (and of each TLS variant against its plaintext twin, each
+recording-on variant against its twin without), the terminal table and results/latest.json
+(the goals and their PASS/FAIL are goals.py's)."""
 
 from __future__ import annotations
 
@@ -32,6 +33,9 @@ PAPERS = {
 
 TLS_SUFFIX = "_tls"
 PLAINTEXT = "plaintext"  # what a TLS variant is compared with, as the ratios name it
+MCAP_SUFFIX = "_mcap"
+RECORDING_OFF = "recording_off"  # what a recording-on variant is compared with
+TWINS = {TLS_SUFFIX: PLAINTEXT, MCAP_SUFFIX: RECORDING_OFF}
 
 
 def family(name: str) -> str:
@@ -43,14 +47,23 @@ def plaintext_twin(name: str) -> str | None:
     return name.removesuffix(TLS_SUFFIX) if name.endswith(TLS_SUFFIX) else None
 
 
+def twin_of(name: str) -> tuple[str, str] | None:
+    """(label, scenario) of the scenario a variant repeats: teleop_1000_tls's plaintext
+    teleop_1000, teleop_1000_mcap's teleop_1000 without recording; None for the others."""
+    for suffix, label in TWINS.items():
+        if name.endswith(suffix):
+            return label, name.removesuffix(suffix)
+    return None
+
+
 def compared_with(name: str) -> list[tuple[str, str]]:
-    """(label, scenario) for each scenario whose figures `name`'s are divided by: a TLS
-    variant's plaintext twin; a project scenario's baselines of the same name (zmq, tcp)."""
+    """(label, scenario) for each scenario whose figures `name`'s are divided by: a variant's
+    twin (twin_of); a project scenario's baselines of the same name (zmq, tcp)."""
     if is_baseline(name):
         return []
-    twin = plaintext_twin(name)
+    twin = twin_of(name)
     if twin is not None:
-        return [(PLAINTEXT, twin)]
+        return [twin]
     return [(transport, f"{name}_{transport}") for transport in ("zmq", "tcp")]
 
 
@@ -142,18 +155,19 @@ def table(results: dict[str, dict]) -> str:
               if r.get("goal_misses")]
     if misses:
         lines += ["", "Goals missed:", *misses]
-    baseline_lines, tls_lines = [], []
+    titles = {"baselines": "Project / baseline (same payloads, same domain cores, same run):",
+              PLAINTEXT: "Mutual TLS / plaintext (the same scenario, right after it):",
+              RECORDING_OFF: "MCAP recording on / off (the same scenario, right after it):"}
+    sections: dict[str, list[str]] = {key: [] for key in titles}
     for name, r in results.items():
         for label, other in compared_with(name):
             entry = r.get(f"ratio_vs_{label}")
             if entry:
-                (tls_lines if label == PLAINTEXT else baseline_lines).append(
+                sections[label if label in titles else "baselines"].append(
                     f"  {name} / {other}: {ratio_text(entry)}")
-    if baseline_lines:
-        lines += ["", "Project / baseline (same payloads, same domain cores, same run):",
-                  *baseline_lines]
-    if tls_lines:
-        lines += ["", "Mutual TLS / plaintext (the same scenario, right after it):", *tls_lines]
+    for key, title in titles.items():
+        if sections[key]:
+            lines += ["", title, *sections[key]]
     extras = _extras(results)
     if extras:
         lines += ["", *extras]
@@ -175,6 +189,8 @@ def _short_transport(text: str) -> str:
 def _extras(results: dict[str, dict]) -> list[str]:
     lines = []
     for name, r in results.items():
+        if r.get("recording"):
+            lines.append(f"  {name}: {recording_text(r['recording'])}")
         if r.get("status") == "pending":
             lines.append(f"  {name}: pending: {r.get('reason')}")
         elif family(name) in ("command", "teleop"):
@@ -208,6 +224,16 @@ def _extras(results: dict[str, dict]) -> list[str]:
     if lines:
         lines.insert(0, "Details:")
     return lines
+
+
+def recording_text(recording: dict) -> str:
+    """What a recording-on row's file holds against what it was given (recording.py)."""
+    held = ", ".join(f"{name} {count}" for name, count in recording.get("recorded", {}).items())
+    moves = (f"; {recording['moves']} moves (StopRecording: {recording['moves_saved']})"
+             if "moves" in recording else "")
+    error = f"; error: {recording['error']}" if recording.get("error") else ""
+    return (f"{recording.get('format')} of {recording.get('expected')}: {held}{moves}, "
+            f"{(recording.get('file_bytes') or 0) / 1e6:.1f} MB{error}")
 
 
 def _soak_lines(r: dict) -> list[str]:

@@ -11,6 +11,10 @@ When the command or decision group runs, a twin of the station's services (proxy
 force_sensor, emergency_stop, and a DecisionServer when needed) serves mutual TLS with a PKI
 made for the run in its scratch directory; it joins the same world, which one of the two
 drives at a time. Its scenarios (`*_tls`) run right after their plaintext twins.
+
+teleop_1000_mcap and force_1000_mcap (issue #17, recording.py) repeat teleop_1000 and
+force_1000 right after them, recording in MCAP: the DecisionServer (the same process) records
+the Teleoperate session; the wrench subscriber records each sample it receives.
 """
 
 from __future__ import annotations
@@ -237,8 +241,8 @@ class Bench:
 
     def _count_steps(self) -> int:
         p = self.plan
-        counts = {"command": 2, "force": len(p.force_rates), "baselines": 2,
-                  "observers": len(p.observer_counts), "estop": 4, "decision": 6 + p.profile,
+        counts = {"command": 2, "force": len(p.force_rates) + 1, "baselines": 2,
+                  "observers": len(p.observer_counts), "estop": 4, "decision": 7 + p.profile,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes), "soak": 1,
                   "network": len(network.row_specs(p.quick))}
@@ -391,13 +395,14 @@ class Bench:
             return result
 
     def _rate_worker(self, kind: str, transport: str, address: str, rates,
-                     station_params: dict | None = None, retry: bool = True) -> dict[str, dict]:
+                     params: dict | None = None, retry: bool = True) -> dict[str, dict]:
         """A command or teleop worker: each of `rates` for plan.command_s over `transport` to
-        `address` (`station_params`: Station.client_params); {str(rate): result}."""
+        `address` (`params`: more of the worker's, e.g. Station.client_params);
+        {str(rate): result}."""
         plan = self.plan
         return self._worker(kind, {
             "transport": transport, "address": address, "shm": self.shm, "rates": list(rates),
-            "duration_s": plan.command_s, **(station_params or {})},
+            "duration_s": plan.command_s, **(params or {})},
             60 + 3 * plan.command_s * len(rates), retry)
 
     def _tls_twin(self, twin: str, measure: Callable[[Station], dict]) -> None:
@@ -413,6 +418,20 @@ class Bench:
         self._record(name, result)
         versus = report.comparison(result, self.results.get(twin, {}))
         self.progress.done(f"{self._headline(name)} (/ {twin}: {report.ratio_text(versus)})")
+
+    def _mcap_twin(self, twin: str, what: str, measure: Callable[[], dict]) -> None:
+        """`<twin>_mcap`: `measure()` (the twin's worker, recording in MCAP) right after
+        `twin` ran, on the same processes."""
+        name = f"{twin}_mcap"
+        self.progress.step(f"{name}: {twin} again, {what}")
+        try:
+            result = measure()
+        except ChildFailed as error:
+            return self._fail([name], error)
+        self._record(name, result)
+        versus = report.comparison(result, self.results.get(twin, {}))
+        self.progress.done(f"{self._headline(name)} (/ {twin}: {report.ratio_text(versus)}; "
+                           f"{report.recording_text(result.get('recording') or {})})")
 
     def commands(self) -> None:
         plan = self.plan
@@ -443,15 +462,24 @@ class Bench:
             self.progress.step(f"{name}: StreamWrench, sensor period 1 ms, decimation "
                                f"{decimation} ({1000 / decimation:.0f} Hz)")
             try:
-                result = self._worker("force", {
-                    "transport": "grpc", "address": self.station.address["force_sensor"],
-                    "decimation": decimation, "duration_s": self.plan.force_s},
-                    60 + 3 * self.plan.force_s)
+                result = self._force_worker(decimation)
             except ChildFailed as error:
                 self._fail([name], error)
-                continue
-            self._record(name, result)
-            self.progress.done(self._headline(name))
+            else:
+                self._record(name, result)
+                self.progress.done(self._headline(name))
+            if name == "force_1000":
+                self._mcap_twin(name, "the subscriber writing each sample to MCAP (wrench and "
+                                "Foxglove arrow, as make teleop --mcap) before its timestamp",
+                                lambda: self._force_worker(1, str(self.procs.scratch
+                                                                  / "force_1000.mcap")))
+
+    def _force_worker(self, decimation: int, mcap_path: str | None = None) -> dict:
+        """force_<rate>'s worker; `mcap_path`: recording each sample there."""
+        return self._worker("force", {
+            "transport": "grpc", "address": self.station.address["force_sensor"],
+            "decimation": decimation, "duration_s": self.plan.force_s,
+            **({"mcap_path": mcap_path} if mcap_path else {})}, 60 + 3 * self.plan.force_s)
 
     def baselines(self) -> None:
         """The command round trip and the force stream over pyzmq and over plain TCP, with the
@@ -618,10 +646,11 @@ class Bench:
     def decision(self) -> None:
         """Through the DecisionServer, the operator's one address: teleop_<rate> (master
         commands streamed on Teleoperate, pipelined; teleop_1000_lockstep the same sent
-        lockstep, a diagnostic), then teleop_1000_zmq (the same DecisionCore over pyzmq) with
-        the DecisionServer stopped, so nothing else follows ProxyRobot's streams meanwhile;
-        then, through a fresh DecisionServer, the emergency stop idle and under its intended
-        load (200 RunAction BusyWork on the low lane)."""
+        lockstep, a diagnostic; teleop_1000_mcap teleop_1000 recorded in MCAP), then
+        teleop_1000_tls through a DecisionServer of the TLS station, teleop_1000_zmq (the same
+        DecisionCore over pyzmq) with the DecisionServer stopped, so nothing else follows
+        ProxyRobot's streams meanwhile; then, through a fresh DecisionServer, the emergency
+        stop idle and under its intended load (200 RunAction BusyWork on the low lane)."""
         teleop = [f"teleop_{rate}" for rate in self.plan.command_rates]
         self._with_decision_server(teleop + ["teleop_1000_lockstep"], self._teleop)
         self._tls_twin("teleop_1000", self._teleop_tls)
@@ -706,6 +735,12 @@ class Bench:
                                                lockstep_p99_ms=lockstep["p99_ms"])
         self.progress.done("; ".join(f"{r}: {self._headline(f'teleop_{r}')}"
                                      for r in plan.command_rates))
+        # The same DecisionServer, right after. Back the way teleop_1000 went (it moved +y):
+        # one more stretch the same way would take the arm further out for the rows after.
+        self._mcap_twin("teleop_1000", "the DecisionServer recording the session in MCAP",
+                        lambda: self._rate_worker("teleop", "grpc", address, [1000], {
+                            "first_sign": -1.0,
+                            "record_dir": str(self.procs.scratch / "recordings")})["1000"])
 
     def _teleop_tls(self, tls: Station) -> dict:
         """teleop_1000 through a DecisionServer of the TLS station (which presents its own

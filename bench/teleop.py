@@ -23,6 +23,10 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
   so the arm comes back; a long stream, the soak's, flips every ``swing`` commands too); each
   rate has a stream (a session) of its own, after WARMUP_COMMANDS sent the same way and
   waited for. The soak also asks for ``windows``: the latency per minute of the stream.
+- ``record_dir`` (teleop_1000_mcap, recording.py): the DecisionServer records the session as
+  MCAP (StartRecording before the stream opens, StopRecording after it ends), and the file, in
+  the server's recordings directory, is checked against ``session_applied``: the commands
+  acked APPLIED or MODIFIED in the whole session, warm-up included.
 
 Transports (the same MasterCommand and TeleoperateResponse bytes on both):
 
@@ -36,12 +40,15 @@ Transports (the same MasterCommand and TeleoperateResponse bytes on both):
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import itertools
 import queue
 import threading
 import time
 import uuid
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from pathlib import Path
 from typing import Protocol
 
 import grpc
@@ -54,6 +61,7 @@ from bench.stats import summary
 from bench.worldloop import LoopMeter
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import decision_server_pb2_grpc, types_pb2
+from wire.metadata import LEASE_METADATA_KEY
 from wire.tls import ChannelSecurity, open_channel
 
 WARMUP_COMMANDS = 20
@@ -140,6 +148,14 @@ class GrpcTeleop:
 
     def open(self) -> GrpcStream:
         return GrpcStream(self._stub, self._lease, self._watchdog_s)
+
+    def start_recording(self, name: str) -> None:
+        self._stub.StartRecording(
+            dpb.StartRecordingRequest(name=name, format=dpb.RECORDING_FORMAT_MCAP),
+            metadata=[(LEASE_METADATA_KEY, self._lease)], timeout=10)
+
+    def stop_recording(self) -> dpb.Recording:
+        return self._stub.StopRecording(dpb.StopRecordingRequest(), timeout=30).recording
 
     def close(self) -> None:
         release_control(self._stub, self._lease)
@@ -240,6 +256,7 @@ class AckTracker:
         self._drained = threading.Event()
         self.ended = threading.Event()
         self.error: str | None = None
+        self.applied_total = 0  # every command acked APPLIED or MODIFIED, books or not
         self.forget()
 
     def forget(self) -> None:
@@ -279,6 +296,7 @@ class AckTracker:
                          ack.apply_time.ToNanoseconds())
                 with self._lock:
                     self._highest = max(self._highest, ack.sequence)
+                    self.applied_total += ack.outcome in ACCEPTED
                     sent = self._pending.pop(ack.sequence, None)
                     if not self._pending:
                         self._drained.set()
@@ -368,6 +386,7 @@ def run_rate(client, rate_hz: float, duration_s: float, sign: float,
         stream.close()
     result = _summarize(books, tracker.error, client.name, rate_hz, ticks, sent, skipped,
                         first_ns, world_loop)
+    result["session_applied"] = tracker.applied_total  # what a recording of it holds
     if window_s:
         result["windows"] = windows(books[0], first_ns, window_s)
     return result
@@ -422,19 +441,45 @@ def _summarize(books: tuple[list, list[str], int, int], error: str | None, trans
     return result
 
 
+def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict]) -> dict:
+    """`run()` (one session) with the DecisionServer recording it as MCAP into `record_dir`
+    (its recordings directory); the result gets `recording` (recording.teleop_check)."""
+    from bench import recording  # the MCAP readers: only in a recording worker
+
+    name = f"bench_{uuid.uuid4().hex[:12]}"  # a retried worker must not meet ALREADY_EXISTS
+    client.start_recording(name)
+    try:
+        result = run()
+    except BaseException:
+        with contextlib.suppress(grpc.RpcError):
+            client.stop_recording()
+        raise
+    saved = client.stop_recording()
+    result["recording"] = recording.teleop_check(record_dir / f"{name}.mcap",
+                                                 result["session_applied"],
+                                                 saved.command_count, TELEOP_STEP_M)
+    return result
+
+
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
             duration_s: float, swing: int | None = None, window_s: float | None = None,
-            drain_s: float = DRAIN_S, **client_options) -> dict[str, dict]:
-    """run_rate for each rate (a session each, the direction of motion alternating);
-    {str(rate): result}. `client_options` go to the client (`security` for gRPC, and
-    `watchdog_s`); `swing`, `window_s`, `drain_s`: see run_rate (the soak's long stream)."""
+            drain_s: float = DRAIN_S, first_sign: float = 1.0, record_dir: str | None = None,
+            **client_options) -> dict[str, dict]:
+    """run_rate for each rate (a session each, the direction of motion alternating from
+    `first_sign`); {str(rate): result}. `client_options` go to the client (`security` for
+    gRPC, and `watchdog_s`); `swing`, `window_s`, `drain_s`: see run_rate (the soak's long
+    stream); `record_dir`: each session recorded (`recorded`)."""
     client = CLIENTS[transport_kind](address, **client_options)
     loop = LoopMeter(shm_name) if shm_name else None
+    results = {}
     try:
-        return {str(int(rate)): run_rate(client, rate, duration_s,
-                                         1.0 if index % 2 == 0 else -1.0, loop, swing,
-                                         window_s, drain_s)
-                for index, rate in enumerate(rates)}
+        for index, rate in enumerate(rates):
+            sign = first_sign if index % 2 == 0 else -first_sign
+            run = functools.partial(run_rate, client, rate, duration_s, sign, loop, swing,
+                                    window_s, drain_s)
+            results[str(int(rate))] = (run() if record_dir is None
+                                       else recorded(client, Path(record_dir), run))
+        return results
     finally:
         if loop is not None:
             loop.close()

@@ -4,7 +4,9 @@ Every client of the bench runs here, apart from the orchestrator, so the orchest
 threads never share an interpreter (and its GIL) with a measurement. Kinds and their
 parameters are in KINDS below. A long-running worker (observers, load, events) prints
 BENCH_READY once it is up and runs until SIGTERM or its `max_s`. The result is written as
-JSON to OUT_PATH. The command and teleop kinds reach a TLS station given `tls_dir` and
+JSON to OUT_PATH. A teleop worker given `record_dir` has the DecisionServer record each
+session as MCAP there, a force worker given `mcap_path` records the samples it receives
+(recording.py). The command and teleop kinds reach a TLS station given `tls_dir` and
 `identity` (which of the directory's certificates to present), explicitly: never from the
 environment.
 
@@ -57,7 +59,8 @@ def _command(p: dict) -> dict:
 def _teleop(p: dict) -> dict:
     from bench.teleop import measure
 
-    options = {key: p[key] for key in ("swing", "window_s", "drain_s") if p.get(key)}
+    options = {key: p[key] for key in ("swing", "window_s", "drain_s", "first_sign",
+                                       "record_dir") if p.get(key)}
     if p.get("watchdog_s"):  # the session's watchdog (the soak's); else teleop's own
         options["watchdog_s"] = p["watchdog_s"]
     return measure(p["transport"], p["address"], p.get("shm"), p["rates"], p["duration_s"],
@@ -67,7 +70,8 @@ def _teleop(p: dict) -> dict:
 def _force(p: dict) -> dict:
     from bench.force import measure_stream
 
-    return measure_stream(p["transport"], p["address"], p["decimation"], p["duration_s"])
+    return measure_stream(p["transport"], p["address"], p["decimation"], p["duration_s"],
+                          mcap_path=p.get("mcap_path"))
 
 
 def _observers(p: dict) -> dict:

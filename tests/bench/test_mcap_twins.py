@@ -1,0 +1,112 @@
+"""The recording-on twins (issue #17): each `_mcap` row judged against its twin of the same run
+(goals.py), compared with it (report.py, readme.py), and its MCAP file counted (recording.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from bench import goals, readme, recording, report
+from services.decision_server import recording_mcap
+from services.decision_server.recordings import RecordedCommand
+from telerobot.v1 import decision_server_pb2 as dpb
+from telerobot.v1 import force_sensor_pb2, types_pb2
+
+
+def _row(delivered_hz, p50_ms, p99_ms, **extra) -> dict:
+    return {"rate_hz": 1000.0, "delivered_hz": delivered_hz, "p50_ms": p50_ms,
+            "p99_ms": p99_ms, "max_ms": p99_ms, "dropped": 0, **extra}
+
+
+def _complete(count: int) -> dict:
+    return {"expected": count, "recorded": {"/robot/wrench": count, "/force/arrow": count},
+            "error": None}
+
+
+def test_the_goal_is_rate_and_p50_within_10_percent_of_the_twin_and_a_whole_recording():
+    for name, twin in (("teleop_1000_mcap", "teleop_1000"), ("force_1000_mcap", "force_1000")):
+        goal = goals.goal_for(name)
+        assert (goal.rate_vs, goal.p50_vs, goal.p99_vs) == ((twin, 0.9), (twin, 1.1), None)
+        assert goal.text() == (f"delivered >= 0.9 x {twin}, p50 <= 1.1 x {twin}, "
+                               "recording complete")
+    assert goals.dependents("force_1000") == ["force_1000_mcap"]
+    assert goals.dependents("teleop_1000") == ["teleop_1000_tls", "teleop_1000_mcap"]
+
+
+def test_an_mcap_row_waits_for_its_twin_then_is_judged_on_rate_p50_and_its_file():
+    results = {"force_1000_mcap": _row(990.0, 0.55, 9.0, recording=_complete(2500))}
+    assert goals.verdict_text(goals.judge("force_1000_mcap", results, final=False)) == "PENDING"
+    assert goals.judge("force_1000_mcap", results)["misses"] == [
+        "force_1000 not measured in this run"]
+    results["force_1000"] = _row(999.0, 0.5, 2.0)  # the p99 ratio (x4.5) is not judged
+    assert goals.judge("force_1000_mcap", results)["pass"] is True
+    results["force_1000_mcap"].update(delivered_hz=880.0, p50_ms=0.6)
+    assert goals.judge("force_1000_mcap", results)["misses"] == [
+        "880 Hz < 0.9 x 999.0", "p50 0.6 ms > 1.1 x 0.500"]
+
+
+def test_a_recording_that_lost_a_sample_or_failed_fails_the_row():
+    results = {"force_1000": _row(999.0, 0.5, 2.0),
+               "force_1000_mcap": _row(999.0, 0.5, 2.0, recording=_complete(2500))}
+    results["force_1000_mcap"]["recording"]["recorded"]["/force/arrow"] = 2499
+    assert goals.judge("force_1000_mcap", results)["misses"] == [
+        "recording: /force/arrow 2499 of 2500"]
+    results["force_1000_mcap"]["recording"] = {**_complete(10), "error": "disk full"}
+    assert goals.judge("force_1000_mcap", results)["misses"] == ["recording: disk full"]
+    del results["force_1000_mcap"]["recording"]
+    assert goals.judge("force_1000_mcap", results)["misses"] == ["no recording checked"]
+
+
+def test_an_mcap_row_is_compared_with_its_twin_in_the_table_and_the_readme():
+    assert report.compared_with("teleop_1000_mcap") == [("recording_off", "teleop_1000")]
+    results = {"teleop_1000": _row(995.0, 0.5, 4.0),
+               "teleop_1000_mcap": _row(990.0, 0.55, 6.0, mode="pipelined", recording={
+                   "format": "MCAP", "expected": 2020, "file_bytes": 900_000,
+                   "recorded": {"applied acks": 2020}, "moves": 2001, "moves_saved": 2001})}
+    report.add_ratios(results)
+    assert results["teleop_1000_mcap"]["ratio_vs_recording_off"]["p50"] == 1.1
+    text = report.table(results)
+    assert "MCAP recording on / off" in text
+    assert "teleop_1000_mcap / teleop_1000: p50 x1.10, p99 x1.50, delivered x0.99" in text
+    assert "MCAP of 2020: applied acks 2020; 2001 moves (StopRecording: 2001), 0.9 MB" in text
+    document = {"quick": True, "machine": {}, **results}
+    rows = {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[1:-1]]
+            for line in readme.table(document).splitlines() if line.startswith("| `")}
+    name, what, delivered, p50, p99, goal, result, baselines = rows["teleop_1000_mcap"]
+    assert what.startswith("`teleop_1000` with the DecisionServer recording it as MCAP")
+    assert goal == "delivered ≥ 0.9 x teleop_1000, p50 ≤ 1.1 x teleop_1000, recording complete"
+    assert baselines == "recording off 995 Hz, 0.50 / 4.00 (p50 ×1.10, p99 ×1.50)"
+
+
+def test_the_wrench_recorder_writes_each_sample_and_its_arrow(tmp_path):
+    recorder = recording.WrenchRecorder(tmp_path / "w.mcap")
+    for sequence in range(1, 4):
+        message = force_sensor_pb2.StreamWrenchResponse(samples=[force_sensor_pb2.WrenchSample(
+            sequence=sequence, wrench=types_pb2.Wrench(force_n=types_pb2.Vector3(z=-2.0)))])
+        message.samples[0].sample_time.FromNanoseconds(sequence * 1_000_000)
+        recorder.write(message)
+    checked = recorder.close()
+    assert checked["expected"] == 3 and checked["error"] is None
+    assert checked["recorded"] == {"/robot/wrench": 3, "/force/arrow": 3}
+    assert goals.recording_misses(checked) == []
+
+
+def test_a_teleop_recording_counts_merged_moves_in_commands(tmp_path):
+    """Five 10 µm commands, two of them merged into one move: four increments, five commands;
+    heartbeats' acks (sequence 0) and refused commands are not applied ones."""
+    path = tmp_path / "t.mcap"
+    file = recording_mcap.McapFile(path)
+    for index, steps in enumerate((1, 2, 1, 1)):
+        file.write(recording_mcap.INCREMENT, recording_mcap.increment_to_proto(RecordedCommand(
+            0.001 * index, "BASE", np.array([0.0, -1e-5 * steps, 0.0]), np.eye(3),
+            np.zeros(3), None)), 1_000_000 * (index + 1))
+    for sequence, outcome in ((0, dpb.COMMAND_OUTCOME_APPLIED), (1, dpb.COMMAND_OUTCOME_APPLIED),
+                              (2, dpb.COMMAND_OUTCOME_MODIFIED), (3, dpb.COMMAND_OUTCOME_REJECTED)):
+        file.write(recording_mcap.ACK, dpb.CommandAck(sequence=sequence, outcome=outcome),
+                   1_000_000 * (sequence + 1))
+    file.finish({"name": "t"})
+    checked = recording.teleop_check(path, applied=5, server_moves=4, step_m=1e-5)
+    assert checked["recorded"] == {"increments (in commands)": 5, "applied acks": 2}
+    assert (checked["moves"], checked["error"]) == (4, None)
+    assert goals.recording_misses(checked) == ["recording: applied acks 2 of 5"]
+    assert "StopRecording saved 5" in recording.teleop_check(path, 5, 5, 1e-5)["error"]
+    assert recording.topic_counts(path) == {recording_mcap.INCREMENT: 4, recording_mcap.ACK: 4}
