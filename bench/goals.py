@@ -36,6 +36,7 @@ class Goal:
     p99_vs: tuple[str, float] | None = None  # (baseline scenario, factor) from the same run
     p50_vs: tuple[str, float] | None = None  # the same, on the p50
     rate_vs: tuple[str, float] | None = None  # delivered >= factor x the baseline's
+    cpu_vs: tuple[str, float] | None = None  # the server's CPU per command, as p99_vs
     recording_complete: bool = False  # the row's MCAP file holds all it was given
     max_overrun_pct: float | None = None  # the world loop's overruns, % of its steps
     max_rss_slope: float | None = None  # MiB/min, sustained, of every station process (soak)
@@ -54,6 +55,8 @@ class Goal:
             parts.append(f"delivered >= {self.rate_vs[1]:g} x {self.rate_vs[0]}")
         if self.p50_vs is not None:
             parts.append(f"p50 <= {self.p50_vs[1]:g} x {self.p50_vs[0]}")
+        if self.cpu_vs is not None:
+            parts.append(f"server CPU/command <= {self.cpu_vs[1]:g} x {self.cpu_vs[0]}")
         if self.p99_vs is not None:
             parts.append(f"p99 <= {self.p99_vs[1]:g} x {self.p99_vs[0]}")
         if self.max_overrun_pct is not None:
@@ -70,20 +73,28 @@ class Goal:
         """(result key, baseline scenario, factor) of each bound relative to a baseline."""
         return [(key, *bound) for key, bound in (("delivered_hz", self.rate_vs),
                                                  ("p50_ms", self.p50_vs),
-                                                 ("p99_ms", self.p99_vs))
+                                                 ("p99_ms", self.p99_vs),
+                                                 (CPU_KEY, self.cpu_vs))
                 if bound is not None]
+
+
+CPU_KEY = "server_cpu_ms_per_command"  # teleop.py's, with a server_pid
+_LABELS = {"p50_ms": "p50", "p99_ms": "p99", CPU_KEY: "server CPU/command"}
 
 
 _ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE, _MCAP_ISSUE = (
     "issue #12", "architecture brief", "issue #13", "issue #16", "issue #17")
 
 
-def _recording_overhead(twin: str) -> Goal:
-    """Issue #17's "overhead <= 10 %" against the twin without recording, from the same run:
-    on the delivered rate and the p50, which hold still across runs on this shared 2-core
-    machine; the p99 moves by more than 10 % between two runs of one scenario (bench/README.md),
-    so its ratio is reported (ratio_vs_recording_off), not judged."""
-    return Goal(rate_vs=(twin, 0.9), p50_vs=(twin, 1.1), recording_complete=True,
+def _recording_overhead(twin: str, cost: str) -> Goal:
+    """Issue #17's "overhead <= 10 %" against the twin without recording, from the same run
+    (bench/README.md says why these figures): the delivered rate, and `cost` ("p50": the
+    subscriber's latency; "cpu": the DecisionServer's CPU per command, as its p50 is a queue
+    the machine's load sets); the p99s' ratio is reported, not judged: it moves by more than
+    10 % between two runs of one scenario on this shared 2-core machine."""
+    bound = (twin, 1.1)
+    return Goal(rate_vs=(twin, 0.9), p50_vs=bound if cost == "p50" else None,
+                cpu_vs=bound if cost == "cpu" else None, recording_complete=True,
                 source=_MCAP_ISSUE)
 
 
@@ -94,8 +105,8 @@ GOALS: tuple[tuple[str, Goal], ...] = (
     ("command_1000", Goal(min_rate=990, p99_vs=("command_1000_zmq", 1.5), source=_ISSUE)),
     ("teleop_1000_tls", Goal(p99_vs=("teleop_1000", 1.2), source=_TLS_ISSUE)),
     ("command_1000_tls", Goal(p99_vs=("command_1000", 1.2), source=_TLS_ISSUE)),
-    ("teleop_1000_mcap", _recording_overhead("teleop_1000")),
-    ("force_1000_mcap", _recording_overhead("force_1000")),
+    ("teleop_1000_mcap", _recording_overhead("teleop_1000", "cpu")),
+    ("force_1000_mcap", _recording_overhead("force_1000", "p50")),
     ("observers_16", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("observers_32", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("closed_loop", Goal(p50_ms=15.0, p99_ms=25.0, source=_ISSUE)),
@@ -157,8 +168,7 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
             if value is None or value < factor * base:
                 misses.append(f"{_num(value)} Hz < {factor:g} x {base:.1f}")
         elif value is None or value > factor * base:
-            misses.append(f"{key.removesuffix('_ms')} {_num(value)} ms > {factor:g} x "
-                          f"{base:.3f}")
+            misses.append(f"{_LABELS[key]} {_num(value)} ms > {factor:g} x {base:.3f}")
     for baseline in missing:
         if not final and not misses:
             return {"goal": goal.text(), "pass": None, "misses": [f"waits for {baseline}"]}

@@ -57,9 +57,11 @@ WHAT = (
     ("stereo_*", "stereo pair captured → decoded, 640×480 JPEG"),
     ("world_loop", "the world's 1 kHz loop over the whole run"),
 )
-# The ratios a variant's row shows over its twin: the TLS goal's p99; the recording goal's
-# p50, and the p99 beside it.
-_TWIN_RATIOS = {report.PLAINTEXT: ("p99",), report.RECORDING_OFF: ("p50", "p99")}
+# The ratios a variant's row shows over its twin (label, result key): the TLS goal's p99; the
+# recording goal's p50 or the DecisionServer's CPU per command, and the p99 beside them.
+_TWIN_RATIOS = {report.PLAINTEXT: (("p99", "p99_ms"),),
+                report.RECORDING_OFF: (("p50", "p50_ms"), ("p99", "p99_ms"),
+                                       ("CPU/command", goals.CPU_KEY))}
 _METADATA = ("time", "machine", "quick", "run_s", "world_shm", "ratios")
 
 
@@ -114,7 +116,7 @@ def _verdict(name: str, result: dict, results: dict[str, dict]) -> tuple[str, st
 
 def _baselines(name: str, results: dict[str, dict]) -> str:
     """The baselines' figures (a TLS variant's: its plaintext twin's, and its p99 over it;
-    a recording-on variant's: its twin's, and its p50 and p99 over them)."""
+    a recording-on variant's: its twin's, and its p50, p99 and CPU per command over them)."""
     parts = []
     for label, other in report.compared_with(name):
         base = results.get(other)
@@ -123,8 +125,8 @@ def _baselines(name: str, results: dict[str, dict]) -> str:
                     and base.get("delivered_hz") is not None else "")
             text = (f"{label.replace('_', ' ')} {rate}{_ms(base['p50_ms'])} / "
                     f"{_ms(base['p99_ms'])}")
-            ratios = [(key, ratio(results[name].get(f"{key}_ms"), base[f"{key}_ms"]))
-                      for key in _TWIN_RATIOS.get(label, ())]
+            ratios = [(text, ratio(results[name].get(key), base.get(key)))
+                      for text, key in _TWIN_RATIOS.get(label, ())]
             shown = [f"{key} ×{value:.2f}" for key, value in ratios if value is not None]
             text += f" ({', '.join(shown)})" if shown else ""
             parts.append(text)

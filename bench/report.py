@@ -11,7 +11,7 @@ import time
 from importlib import metadata
 from pathlib import Path
 
-from bench.goals import is_baseline, verdict_text
+from bench.goals import CPU_KEY, is_baseline, verdict_text
 from bench.network import NAME as NETWORK
 from bench.network import terminal_lines as network_lines
 from bench.stats import ratio
@@ -69,7 +69,8 @@ def compared_with(name: str) -> list[tuple[str, str]]:
 
 def comparison(result: dict, base: dict) -> dict[str, float | None]:
     """result / base: p50, p99, the delivered rate when both stream, the ack round trip's p50
-    and p99 when the result has one. Empty when `base` has no latencies."""
+    and p99 when the result has one, the server's CPU per command when both have it. Empty
+    when `base` has no latencies."""
     if base.get("p50_ms") is None:
         return {}
     entry = {"p50": ratio(result.get("p50_ms"), base["p50_ms"]),
@@ -79,6 +80,8 @@ def comparison(result: dict, base: dict) -> dict[str, float | None]:
     if "ack_p50_ms" in result:
         entry["ack_p50"] = ratio(result.get("ack_p50_ms"), base.get("ack_p50_ms"))
         entry["ack_p99"] = ratio(result.get("ack_p99_ms"), base.get("ack_p99_ms"))
+    if CPU_KEY in result and CPU_KEY in base:
+        entry["server_cpu"] = ratio(result[CPU_KEY], base[CPU_KEY])
     return entry
 
 
@@ -194,9 +197,11 @@ def _extras(results: dict[str, dict]) -> list[str]:
         if r.get("status") == "pending":
             lines.append(f"  {name}: pending: {r.get('reason')}")
         elif family(name) in ("command", "teleop"):
+            cpu = (f"; DecisionServer CPU {fmt(r[CPU_KEY], 3)} ms/command" if CPU_KEY in r
+                   else "")
             lines.append(f"  {name}: ack round trip p50 {fmt(r.get('ack_p50_ms'), 3)} / p99 "
                          f"{fmt(r.get('ack_p99_ms'), 3)} ms; late ticks skipped "
-                         f"{r.get('late_skipped')}")
+                         f"{r.get('late_skipped')}{cpu}")
         elif family(name) == "observers":
             lines.append(f"  {name}: operator jitter {fmt(r.get('jitter_ms'), 3)} ms, "
                          f"inter-arrival p99 {fmt(r.get('interarrival_p99_ms'), 3)} ms; "

@@ -723,8 +723,9 @@ class Bench:
         names = [f"teleop_{rate}" for rate in plan.command_rates]
         self.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate, commands streamed "
                            f"at the offered rate (pipelined), {plan.command_s:.0f} s each")
+        server = {"server_pid": self._pid("decision_server")}  # its CPU per command
         try:
-            results = self._rate_worker("teleop", "grpc", address, plan.command_rates)
+            results = self._rate_worker("teleop", "grpc", address, plan.command_rates, server)
         except ChildFailed as error:
             return self._fail(names, error)
         for rate in plan.command_rates:
@@ -739,8 +740,13 @@ class Bench:
         # one more stretch the same way would take the arm further out for the rows after.
         self._mcap_twin("teleop_1000", "the DecisionServer recording the session in MCAP",
                         lambda: self._rate_worker("teleop", "grpc", address, [1000], {
-                            "first_sign": -1.0,
+                            "first_sign": -1.0, **server,
                             "record_dir": str(self.procs.scratch / "recordings")})["1000"])
+
+    def _pid(self, name: str) -> int | None:
+        """The process id of the running child `name` (a service), if there is one."""
+        return next((child.pid for child in self.procs.children
+                     if child.name == name and child.process.poll() is None), None)
 
     def _teleop_tls(self, tls: Station) -> dict:
         """teleop_1000 through a DecisionServer of the TLS station (which presents its own

@@ -26,7 +26,13 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
 - ``record_dir`` (teleop_1000_mcap, recording.py): the DecisionServer records the session as
   MCAP (StartRecording before the stream opens, StopRecording after it ends), and the file, in
   the server's recordings directory, is checked against ``session_applied``: the commands
-  acked APPLIED or MODIFIED in the whole session, warm-up included.
+  acked APPLIED or MODIFIED in the whole session, warm-up included;
+- ``server_pid``: ``server_cpu_ms_per_command``, the server process's CPU time (user + system,
+  all its threads: a recording's writer too) over the session, from before it opens (before
+  StartRecording) to after it ends (after StopRecording), per command applied in it. At 1 kHz
+  the DecisionServer is the stream's bottleneck on a 2-core machine: it keeps the rate by
+  merging a backlog into fewer moves, so what recording costs it shows in its CPU, while the
+  latency is a queue whose length the machine's load sets.
 
 Transports (the same MasterCommand and TeleoperateResponse bytes on both):
 
@@ -43,6 +49,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import itertools
+import os
 import queue
 import threading
 import time
@@ -461,14 +468,22 @@ def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict]) -> d
     return result
 
 
+def process_cpu_s(pid: int) -> float:
+    """A process's CPU time so far (user + system, every thread), s; 10 ms ticks."""
+    with open(f"/proc/{pid}/stat") as stat:
+        fields = stat.read().rsplit(")", 1)[1].split()  # after the command, which may hold " "
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
             duration_s: float, swing: int | None = None, window_s: float | None = None,
             drain_s: float = DRAIN_S, first_sign: float = 1.0, record_dir: str | None = None,
-            **client_options) -> dict[str, dict]:
+            server_pid: int | None = None, **client_options) -> dict[str, dict]:
     """run_rate for each rate (a session each, the direction of motion alternating from
     `first_sign`); {str(rate): result}. `client_options` go to the client (`security` for
     gRPC, and `watchdog_s`); `swing`, `window_s`, `drain_s`: see run_rate (the soak's long
-    stream); `record_dir`: each session recorded (`recorded`)."""
+    stream); `record_dir`: each session recorded (`recorded`); `server_pid`: the server's CPU
+    per command of each session (`server_cpu_ms_per_command`)."""
     client = CLIENTS[transport_kind](address, **client_options)
     loop = LoopMeter(shm_name) if shm_name else None
     results = {}
@@ -477,8 +492,12 @@ def measure(transport_kind: str, address: str, shm_name: str | None, rates: list
             sign = first_sign if index % 2 == 0 else -first_sign
             run = functools.partial(run_rate, client, rate, duration_s, sign, loop, swing,
                                     window_s, drain_s)
-            results[str(int(rate))] = (run() if record_dir is None
-                                       else recorded(client, Path(record_dir), run))
+            cpu_s = process_cpu_s(server_pid) if server_pid else None
+            result = run() if record_dir is None else recorded(client, Path(record_dir), run)
+            if cpu_s is not None and result["session_applied"]:
+                result["server_cpu_ms_per_command"] = round(
+                    1e3 * (process_cpu_s(server_pid) - cpu_s) / result["session_applied"], 4)
+            results[str(int(rate))] = result
         return results
     finally:
         if loop is not None:

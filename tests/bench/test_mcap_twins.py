@@ -22,12 +22,16 @@ def _complete(count: int) -> dict:
             "error": None}
 
 
-def test_the_goal_is_rate_and_p50_within_10_percent_of_the_twin_and_a_whole_recording():
-    for name, twin in (("teleop_1000_mcap", "teleop_1000"), ("force_1000_mcap", "force_1000")):
-        goal = goals.goal_for(name)
-        assert (goal.rate_vs, goal.p50_vs, goal.p99_vs) == ((twin, 0.9), (twin, 1.1), None)
-        assert goal.text() == (f"delivered >= 0.9 x {twin}, p50 <= 1.1 x {twin}, "
-                               "recording complete")
+def test_the_goal_is_rate_and_cost_within_10_percent_of_the_twin_and_a_whole_recording():
+    force, teleop = goals.goal_for("force_1000_mcap"), goals.goal_for("teleop_1000_mcap")
+    assert (force.rate_vs, force.p50_vs, force.cpu_vs, force.p99_vs) == (
+        ("force_1000", 0.9), ("force_1000", 1.1), None, None)
+    assert force.text() == ("delivered >= 0.9 x force_1000, p50 <= 1.1 x force_1000, "
+                            "recording complete")
+    assert (teleop.rate_vs, teleop.p50_vs, teleop.cpu_vs, teleop.p99_vs) == (
+        ("teleop_1000", 0.9), None, ("teleop_1000", 1.1), None)
+    assert teleop.text() == ("delivered >= 0.9 x teleop_1000, server CPU/command <= 1.1 x "
+                             "teleop_1000, recording complete")
     assert goals.dependents("force_1000") == ["force_1000_mcap"]
     assert goals.dependents("teleop_1000") == ["teleop_1000_tls", "teleop_1000_mcap"]
 
@@ -44,6 +48,19 @@ def test_an_mcap_row_waits_for_its_twin_then_is_judged_on_rate_p50_and_its_file(
         "880 Hz < 0.9 x 999.0", "p50 0.6 ms > 1.1 x 0.500"]
 
 
+def test_teleop_s_cost_is_the_decision_server_s_cpu_per_command_not_its_queued_p50():
+    cpu = goals.CPU_KEY
+    results = {"teleop_1000": _row(995.0, 7.5, 60.0, **{cpu: 0.45}),
+               "teleop_1000_mcap": _row(993.0, 73.0, 160.0, **{cpu: 0.48},
+                                        recording=_complete(2014))}
+    assert goals.judge("teleop_1000_mcap", results)["pass"] is True
+    results["teleop_1000_mcap"][cpu] = 0.5
+    assert goals.judge("teleop_1000_mcap", results)["misses"] == [
+        "server CPU/command 0.5 ms > 1.1 x 0.450"]
+    assert report.comparison(results["teleop_1000_mcap"], results["teleop_1000"])[
+        "server_cpu"] == 1.11
+
+
 def test_a_recording_that_lost_a_sample_or_failed_fails_the_row():
     results = {"force_1000": _row(999.0, 0.5, 2.0),
                "force_1000_mcap": _row(999.0, 0.5, 2.0, recording=_complete(2500))}
@@ -58,23 +75,27 @@ def test_a_recording_that_lost_a_sample_or_failed_fails_the_row():
 
 def test_an_mcap_row_is_compared_with_its_twin_in_the_table_and_the_readme():
     assert report.compared_with("teleop_1000_mcap") == [("recording_off", "teleop_1000")]
-    results = {"teleop_1000": _row(995.0, 0.5, 4.0),
-               "teleop_1000_mcap": _row(990.0, 0.55, 6.0, mode="pipelined", recording={
+    results = {"teleop_1000": _row(995.0, 0.5, 4.0, server_cpu_ms_per_command=0.4),
+               "teleop_1000_mcap": _row(990.0, 0.55, 6.0, mode="pipelined",
+                                        server_cpu_ms_per_command=0.42, recording={
                    "format": "MCAP", "expected": 2020, "file_bytes": 900_000,
                    "recorded": {"applied acks": 2020}, "moves": 2001, "moves_saved": 2001})}
     report.add_ratios(results)
     assert results["teleop_1000_mcap"]["ratio_vs_recording_off"]["p50"] == 1.1
     text = report.table(results)
     assert "MCAP recording on / off" in text
-    assert "teleop_1000_mcap / teleop_1000: p50 x1.10, p99 x1.50, delivered x0.99" in text
+    assert ("teleop_1000_mcap / teleop_1000: p50 x1.10, p99 x1.50, delivered x0.99, "
+            "server_cpu x1.05") in text
     assert "MCAP of 2020: applied acks 2020; 2001 moves (StopRecording: 2001), 0.9 MB" in text
     document = {"quick": True, "machine": {}, **results}
     rows = {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[1:-1]]
             for line in readme.table(document).splitlines() if line.startswith("| `")}
     name, what, delivered, p50, p99, goal, result, baselines = rows["teleop_1000_mcap"]
     assert what.startswith("`teleop_1000` with the DecisionServer recording it as MCAP")
-    assert goal == "delivered ≥ 0.9 x teleop_1000, p50 ≤ 1.1 x teleop_1000, recording complete"
-    assert baselines == "recording off 995 Hz, 0.50 / 4.00 (p50 ×1.10, p99 ×1.50)"
+    assert goal == ("delivered ≥ 0.9 x teleop_1000, server CPU/command ≤ 1.1 x teleop_1000, "
+                    "recording complete")
+    assert baselines == ("recording off 995 Hz, 0.50 / 4.00 (p50 ×1.10, p99 ×1.50, "
+                         "CPU/command ×1.05)")
 
 
 def test_the_wrench_recorder_writes_each_sample_and_its_arrow(tmp_path):
