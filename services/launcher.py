@@ -35,6 +35,7 @@ import argparse
 import logging
 import os
 import signal
+import socket
 import sys
 import tempfile
 import threading
@@ -67,16 +68,18 @@ from services.runtime.supervisor_state import (
     write_state,
 )
 from services.runtime.tls import station_channel_security
-from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, open_channel
+from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
 
 log = logging.getLogger("launcher")
 
 # Start order: dependencies first (the world stands in for the hardware). Stop order is the
 # reverse, so the hardware goes last.
 STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
-           "decision_server", "web_console"]
+           "decision_server", "web_console", "foxglove"]
 # Children that answer HTTP, not gRPC: their health is GET /healthz (the browser console).
 HTTP_CHILDREN = {"web_console"}
+# Children that speak only WebSocket: they serve once their port accepts (the live view).
+TCP_CHILDREN = {"foxglove"}
 STARTUP_TIMEOUT_S = 60.0
 # The banner's first line.
 UP_LINE = "Slave station is up"
@@ -278,7 +281,8 @@ def _wait_until_serving(child: Child, stop: threading.Event,
     SERVING; None if a stop was requested first; ChildFailed if it died or took too long."""
     deadline = time.monotonic() + STARTUP_TIMEOUT_S
     address = child.wait_ready(timeout_s=STARTUP_TIMEOUT_S, cancel=stop)
-    serving = _http_serving if child.name in HTTP_CHILDREN else _is_serving
+    serving = (_http_serving if child.name in HTTP_CHILDREN
+               else _accepts if child.name in TCP_CHILDREN else _is_serving)
     while address is not None and not serving(address, security):
         if child.returncode is not None:
             raise ChildFailed(child.describe())
@@ -310,6 +314,15 @@ def _http_serving(address: str, _security: ChannelSecurity) -> bool:
         return False
 
 
+def _accepts(address: str, _security: ChannelSecurity) -> bool:
+    host, _, port = dialable(address).rpartition(":")
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), timeout=1.0).close()
+        return True
+    except OSError:
+        return False
+
+
 def _print_banner(station: list[Child], tls_dir: str) -> None:
     operator = next(c.address for c in station if c.name == "decision_server")
     extra_ports = [(name, address) for c in station for name, address in c.ready.items()
@@ -326,6 +339,11 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
     console = next((c.address for c in station if c.name == "web_console"), None)
     if console:
         lines += ["", f"The web console: http://{console}/ (in any browser on this host)"]
+    live = next((c.address for c in station if c.name == "foxglove"), None)
+    if live:
+        lines += [f"The live view: {'wss' if tls_dir else 'ws'}://{live} (Foxglove or "
+                  "Lichtblick: Open connection > Foxglove WebSocket; layout "
+                  "docs/foxglove_layout.json)"]
     lines += ["", f"The operator's address is {operator} (set "
                   f"{env_name('decision_server', 'address')} to move it). Try:"]
     if tls_dir:

@@ -19,6 +19,7 @@ DEFAULT_PORTS = {
     "stereo_camera": 50054,
     "emergency_stop": 50055,  # the emergency-stop band: ProxyRobot.EmergencyStop past the driver
     "web_console": 50080,  # HTTP: the browser console's page, Connect and WebSocket (#18)
+    "foxglove": 8765,  # WebSocket: the live view for Foxglove or Lichtblick (Foxglove's port)
 }
 
 

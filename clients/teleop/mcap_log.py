@@ -63,11 +63,11 @@ COMMAND = "/teleop/command"
 HEARTBEAT = "/teleop/heartbeat"
 ACK = "/teleop/ack"
 TOOL_POSE = "/robot/tool_pose"
-WRENCH = "/robot/wrench"
+WRENCH = fox.ROBOT_WRENCH
 STEREO_HEADER = "/camera/stereo_header"
 STEREO_PAIR = "/camera/stereo_pair"
 EVENTS = "/decision_server/events"
-ROBOT_STATE = "/robot/state"
+ROBOT_STATE = fox.ROBOT_STATE
 CHANNELS = (COMMAND, HEARTBEAT, ACK, TOOL_POSE, WRENCH, STEREO_HEADER, STEREO_PAIR, EVENTS,
             ROBOT_STATE)
 FOXGLOVE_CHANNELS = tuple(fox.FOXGLOVE_TOPICS)

@@ -47,6 +47,9 @@ LEFT_IMAGE = "/camera/left/image"
 RIGHT_IMAGE = "/camera/right/image"
 LEFT_CALIBRATION = "/camera/left/calibration"
 RIGHT_CALIBRATION = "/camera/right/calibration"
+# Our own messages, next to Foxglove's, in recordings and the live view.
+ROBOT_STATE = "/robot/state"  # telerobot.v1.RobotState
+ROBOT_WRENCH = "/robot/wrench"  # telerobot.v1.Wrench, in tool axes
 FOXGLOVE_TOPICS: dict[str, type] = {
     TF: FrameTransforms,
     JOINT_STATES: JointStates,

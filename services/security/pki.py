@@ -41,6 +41,8 @@ DEFAULT_PKI_DIR = "var/pki"
 # Every process of the station, and the identities a fresh station hands out.
 STATION_SERVICES = ("world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
                     "decision_server")
+# Station services that only read: the live view (services.foxglove) watches as an observer.
+VIEWER_SERVICES = ("foxglove",)
 CLIENT_IDENTITIES = {"admin": Role.ADMIN, "operator": Role.OPERATOR, "observer": Role.OBSERVER,
                      "launcher": Role.STATION}  # the launcher asks each service for its health
 LOOPBACK_NAMES = ("localhost", "127.0.0.1", "::1")
@@ -80,6 +82,8 @@ def init(directory: Path, hosts: Iterable[str] = (), force: bool = False) -> lis
     server_names = [*LOOPBACK_NAMES, socket.gethostname(), *hosts]
     for service in STATION_SERVICES:
         written += issue(directory, service, Role.STATION, server_names)
+    for service in VIEWER_SERVICES:
+        written += issue(directory, service, Role.OBSERVER, server_names)
     for identity, role in CLIENT_IDENTITIES.items():
         written += issue(directory, identity, role)
     return written

@@ -8,11 +8,13 @@ import signal
 import subprocess
 import urllib.request
 
+import cv2
 import grpc
+import numpy as np
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import HTTP_CHILDREN, STATION
+from services.launcher import HTTP_CHILDREN, STATION, TCP_CHILDREN
 from services.runtime.children import refused_address
 from services.runtime.process import metrics_port_name
 from tests.conftest import (
@@ -53,9 +55,11 @@ def test_every_process_is_serving_where_the_launcher_says(station):
     launcher, addresses = station
     # Every service, and each one's Prometheus port beside it.
     assert sorted(addresses) == sorted([*STATION, *(metrics_port_name(name) for name in STATION
-                                                    if name not in HTTP_CHILDREN)])
+                                                    if name not in HTTP_CHILDREN | TCP_CHILDREN)])
     for name in STATION:
         assert not addresses[name].endswith(":0"), addresses
+        if name in TCP_CHILDREN:  # the live view: WebSocket only (test_the_live_view_…)
+            continue
         if name in HTTP_CHILDREN:  # the web console: HTTP, its health at /healthz
             with urllib.request.urlopen(f"http://{addresses[name]}/healthz", timeout=5) as r:
                 assert r.status == 200, name
@@ -63,6 +67,7 @@ def test_every_process_is_serving_where_the_launcher_says(station):
         assert _serving(addresses[name]) == health_pb2.HealthCheckResponse.SERVING, name
     banner = "\n".join(launcher.lines)
     assert f"The operator's address is {addresses['decision_server']}" in banner
+    assert f"The live view: ws://{addresses['foxglove']}" in banner
 
 
 def test_buf_curl_lists_every_rpc_of_all_four_services_on_the_operator_address(station):
@@ -186,6 +191,55 @@ def test_node_client_reports_an_unreachable_server():
     result = subprocess.run(["node", "clients/node/client.js", refused_address()],
                             cwd=REPO, capture_output=True, text=True, timeout=30)
     assert result.returncode == 1 and "cannot reach" in result.stdout
+
+
+def test_the_live_view_streams_the_arm_force_and_cameras_to_a_foxglove_client(station):
+    """#17's done-when: a WebSocket client connects to the live server and sees the channels
+    advertised and data flowing; the frames are Pinocchio's, the images decode."""
+    from foxglove_schemas_protobuf.CompressedImage_pb2 import CompressedImage
+    from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
+    from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
+
+    from services.foxglove import channels as fx
+    from services.foxglove.live import LIVE_TOPICS
+    from services.robot_model.kinematics import PumaKinematics
+    from telerobot.v1 import force_sensor_pb2, force_sensor_pb2_grpc, types_pb2
+    from tests.foxglove.test_channels import world_poses
+    from tests.foxglove.ws_client import FoxgloveClient
+
+    _, addresses = station
+    # The arm's state streams once it is connected; the force, once the sensor reads.
+    _call(addresses["proxy_robot"], "Connect")
+    with grpc.insecure_channel(addresses["force_sensor"]) as channel:
+        force_sensor_pb2_grpc.ForceSensorStub(channel).StartReading(
+            force_sensor_pb2.StartReadingRequest(), timeout=10)
+    with FoxgloveClient(f"ws://{addresses['foxglove']}") as client:
+        client.wait_advertised(LIVE_TOPICS)
+        client.subscribe(LIVE_TOPICS)
+        # Two of each, so the stream is flowing, not one message that was waiting.
+        client.collect(lambda got: all(len(got[t]) >= 2 for t in LIVE_TOPICS), timeout_s=30)
+    for topic, messages in client.received.items():
+        stamps = [stamp for stamp, _ in messages]
+        assert stamps == sorted(stamps), topic
+    kinematics = PumaKinematics()
+    states = {stamp: types_pb2.RobotState.FromString(data)
+              for stamp, data in client.received[fx.ROBOT_STATE]}
+    matched = 0
+    for stamp, data in client.received[fx.TF]:
+        if stamp not in states:
+            continue  # a sample whose /robot/state came before the subscription
+        q = np.array(states[stamp].joint_positions_rad)
+        poses = world_poses(FrameTransforms.FromString(data))
+        assert np.allclose(poses[fx.TOOL_FRAME].homogeneous,
+                           kinematics.tool_pose(q).homogeneous, atol=1e-6)
+        assert {fx.LEFT_CAMERA_FRAME, fx.RIGHT_CAMERA_FRAME} <= set(poses)
+        matched += 1
+    assert matched >= 1
+    image = CompressedImage.FromString(client.received[fx.RIGHT_IMAGE][-1][1])
+    decoded = cv2.imdecode(np.frombuffer(image.data, np.uint8), cv2.IMREAD_COLOR)
+    assert decoded is not None and decoded.ndim == 3 and decoded.std() > 0
+    arrow = SceneUpdate.FromString(client.received[fx.FORCE_ARROW][-1][1])
+    assert arrow.entities[0].frame_id == fx.TOOL_FRAME
 
 
 def test_sigint_stops_the_whole_group_within_5_s_with_no_orphans(station):

@@ -324,3 +324,22 @@ def test_anyone_identified_may_stop_the_arm_and_the_stop_is_audited(station, pki
         json.loads(line)["method"].endswith("/EmergencyStop")
         and json.loads(line)["identity"] == "observer" for line in path.read_text().splitlines()),
         what="the stop in the audit log")
+
+
+def test_the_live_view_serves_wss_and_reads_the_station_as_an_observer(station, pki):
+    """The live view under TLS: wss:// with its own certificate (the station's CA), reading
+    ProxyRobot with the observer certificate `make certs` issued it."""
+    import ssl
+
+    from websockets.exceptions import InvalidHandshake
+
+    from services.foxglove import channels as fx
+    from tests.foxglove.ws_client import FoxgloveClient
+
+    context = ssl.create_default_context(cafile=str(pki / "ca.pem"))
+    with FoxgloveClient(f"wss://{station['address']['foxglove']}", ssl=context) as client:
+        client.wait_advertised([fx.JOINT_STATES])
+        client.subscribe([fx.JOINT_STATES])
+        client.collect(lambda got: len(got[fx.JOINT_STATES]) >= 2, timeout_s=30)
+    with pytest.raises(InvalidHandshake):  # plain ws:// gets no WebSocket upgrade
+        FoxgloveClient(f"ws://{station['address']['foxglove']}").close()

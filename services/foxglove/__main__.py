@@ -1,0 +1,152 @@
+"""python -m services.foxglove: the slave station's live view, a Foxglove WebSocket server
+(foxglove-sdk) streaming the arm's frames, joint states, the force arrow and both cameras, in
+the same channels as the MCAP recordings (services.foxglove.live). Open it in Foxglove or
+Lichtblick: "Open connection" > "Foxglove WebSocket" > ws://127.0.0.1:8765, with the layout
+docs/foxglove_layout.json.
+
+It reads ProxyRobot, ForceSensor and StereoCamera as an observer, each stream only while a
+viewer watches one of its topics. It listens on loopback by default. The Foxglove protocol has
+no client authentication, so beyond loopback it listens only when told so explicitly
+(--allow-network or TELEROBOT_ALLOW_LIVE_VIEW_NETWORK=1): anyone who reaches the port then sees
+the arm and the video (never moves it: the view is read-only). With the station's TLS
+directory it serves wss:// with its own certificate (`make certs` issues foxglove.pem).
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import signal
+import sys
+import threading
+from pathlib import Path
+
+import foxglove
+from foxglove import Context, StatusLevel
+
+from services.foxglove.feeds import station_feeds
+from services.foxglove.live import Demand, LiveChannels
+from services.runtime.config import configure_logging
+from services.runtime.process import ready_line, watch_parent
+from services.runtime.server import is_loopback
+from services.runtime.tls import station_channel_security
+from wire.addresses import address_for, env_name
+from wire.tls import TLS_DIR_ENV, open_channel
+
+log = logging.getLogger("foxglove")
+
+NAME = "foxglove"
+NETWORK_ENV = "TELEROBOT_ALLOW_LIVE_VIEW_NETWORK"
+SERVER_NAME = "telerobot slave station"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="python -m services.foxglove", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--address", default=address_for(NAME),
+                        help=f"host:port to listen on (env {env_name(NAME, 'address')})")
+    for service in ("proxy_robot", "force_sensor", "stereo_camera"):
+        parser.add_argument(f"--{service.replace('_', '-')}", default=address_for(service),
+                            help=f"its address (env {env_name(service, 'address')})")
+    parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
+                        help=f"the station's TLS directory (env {TLS_DIR_ENV}): wss:// with "
+                             "foxglove.pem, and the services read with that certificate")
+    parser.add_argument("--allow-network", action="store_true",
+                        default=os.environ.get(NETWORK_ENV) == "1",
+                        help=f"listen beyond loopback (env {NETWORK_ENV}=1): viewers are not "
+                             "authenticated")
+    parser.add_argument("--state-hz", type=float, default=30.0,
+                        help="the arm's state rate (/tf, /joint_states)")
+    parser.add_argument("--wrench-hz", type=float, default=50.0,
+                        help="the force rate (/force/arrow), decimated from the sensor's 1 kHz")
+    parser.add_argument("--stereo-fps", type=float, default=10.0,
+                        help="the cameras' frame rate, at most")
+    parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    configure_logging(NAME, args.log_level)
+    for option in ("state_hz", "wrench_hz", "stereo_fps"):
+        if not getattr(args, option) > 0:
+            print(f"{NAME}: --{option.replace('_', '-')} must be > 0", file=sys.stderr)
+            return 2
+    host, _, port = args.address.rpartition(":")
+    if not is_loopback(args.address) and not args.allow_network:
+        print(f"{NAME}: refusing to listen on {args.address}: Foxglove viewers are not "
+              f"authenticated, so anyone who reaches it would watch the arm and the cameras. "
+              f"Listen on 127.0.0.1, or pass --allow-network ({NETWORK_ENV}=1)", file=sys.stderr)
+        return 2
+    tls = {}
+    if args.tls_dir:
+        cert, key = (Path(args.tls_dir) / f"{NAME}.{ext}" for ext in ("pem", "key"))
+        if not (cert.exists() and key.exists()):
+            print(f"{NAME}: {cert} or {key} is missing: run `make certs` again (it issues the "
+                  "live view's certificate)", file=sys.stderr)
+            return 2
+        tls = {"tls_cert": cert.read_bytes(), "tls_key": key.read_bytes()}
+
+    security = station_channel_security(args.tls_dir or None, NAME)
+    upstream = [open_channel(address, security=security)
+                for address in (args.proxy_robot, args.force_sensor, args.stereo_camera)]
+    context = Context()
+    channels = LiveChannels(context)
+    viewers = _Viewers()
+    feeds = station_feeds(channels, *upstream, state_hz=args.state_hz,
+                          wrench_hz=args.wrench_hz, stereo_fps=args.stereo_fps,
+                          on_status=viewers.show_feed_status)
+    demand = Demand(lambda feed, wanted: feeds[feed].want(wanted))
+    for feed in feeds.values():
+        feed.start()
+    stop = threading.Event()
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, lambda *_: stop.set())
+    watch_parent(stop.set, stop)
+    server = None
+    try:
+        try:
+            server = foxglove.start_server(name=SERVER_NAME, host=host.strip("[]"),
+                                           port=int(port), server_listener=demand,
+                                           context=context, **tls)
+        except (RuntimeError, ValueError) as error:  # the port taken, a bad certificate
+            print(f"{NAME}: cannot serve on {args.address}: {error}", file=sys.stderr)
+            return 1
+        viewers.server = server
+        address = f"{host}:{server.port}"
+        log.info("the live view serves %s://%s/", "wss" if tls else "ws", address)
+        print(ready_line(NAME, address), flush=True)
+        stop.wait()
+    finally:
+        if server is not None:
+            server.stop()
+        for feed in feeds.values():
+            feed.stop()
+        channels.close()
+        for channel in upstream:
+            channel.close()
+    log.info("stopped; published %s", dict(channels.published))
+    return 0
+
+
+class _Viewers:
+    """Tells the viewers (Foxglove's problems panel) why a feed stopped, e.g. the arm not
+    connected yet, and clears it once the feed flows again."""
+
+    def __init__(self):
+        self.server: foxglove.WebSocketServer | None = None  # once it serves
+
+    def show_feed_status(self, feed: str, why: str | None) -> None:
+        if self.server is None:
+            return
+        status_id = f"feed-{feed}"
+        if why is None:
+            self.server.remove_status([status_id])
+        else:
+            self.server.publish_status(f"the {feed} feed stopped ({why}); retrying",
+                                       StatusLevel.Warning, status_id)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

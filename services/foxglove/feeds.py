@@ -1,0 +1,147 @@
+"""The live view's upstream streams: one thread per feed that holds its server stream open
+while the feed is wanted, cancels it when no viewer watches any more, and reopens it after an
+error (a service restarting) with a capped back-off. Read-only calls (role observer)."""
+
+from __future__ import annotations
+
+import logging
+import threading
+from collections.abc import Callable, Iterator
+
+import grpc
+from google.protobuf import duration_pb2
+
+from services.foxglove.live import STATE, STEREO, WRENCH, LiveChannels
+from telerobot.v1 import force_sensor_pb2 as fs_pb
+from telerobot.v1 import force_sensor_pb2_grpc, proxy_robot_pb2_grpc, stereo_camera_pb2_grpc
+from telerobot.v1 import proxy_robot_pb2 as pr_pb
+from telerobot.v1 import stereo_camera_pb2 as sc_pb
+
+log = logging.getLogger(__name__)
+
+RETRY_MIN_S = 0.5
+RETRY_MAX_S = 2.0  # (the arm not connected yet is the usual cause: show it soon after)
+
+
+class Feed:
+    """One upstream server stream, open while wanted. `open_stream()` starts the call (an
+    iterator that can be cancelled); `handle(message)` takes each message it yields;
+    `on_status(name, why)` hears why the stream ended under a viewer, and (name, None) once
+    it flows again."""
+
+    def __init__(self, name: str, open_stream: Callable[[], Iterator], handle: Callable,
+                 on_status: Callable[[str, str | None], None] = lambda name, why: None):
+        self.name = name
+        self._open_stream = open_stream
+        self._handle = handle
+        self._on_status = on_status
+        self._wake = threading.Condition()
+        self._wanted = False
+        self._stopped = False
+        self._call = None
+        self.opened = 0  # how many times the stream was opened
+        self.error: str | None = None  # the last error, while it keeps failing
+        self._thread = threading.Thread(target=self._run, name=f"live-{name}", daemon=True)
+
+    def start(self) -> Feed:
+        self._thread.start()
+        return self
+
+    def want(self, wanted: bool) -> None:
+        with self._wake:
+            self._wanted = wanted
+            call = None if wanted else self._call
+            self._wake.notify_all()
+        if call is not None:
+            call.cancel()
+
+    def stop(self) -> None:
+        with self._wake:
+            self._stopped = True
+            call = self._call
+            self._wake.notify_all()
+        if call is not None:
+            call.cancel()
+        self._thread.join(timeout=5.0)
+
+    def _run(self) -> None:
+        retry_s = RETRY_MIN_S
+        while True:
+            with self._wake:
+                self._wake.wait_for(lambda: self._stopped or self._wanted)
+                if self._stopped:
+                    return
+            call = self._open_stream()  # (outside the lock: it may make a unary call first)
+            with self._wake:
+                if self._stopped or not self._wanted:
+                    call.cancel()
+                    continue
+                self._call = call
+            self.opened += 1
+            try:
+                for message in call:
+                    self._handle(message)
+                    if self.error is not None:
+                        self.error = None
+                        self._on_status(self.name, None)
+                    retry_s = RETRY_MIN_S
+                ended = "the service ended the stream"
+            except grpc.RpcError as error:
+                ended = f"{error.code().name}: {error.details()}"
+            with self._wake:
+                self._call = None
+                if self._stopped or not self._wanted:
+                    continue  # cancelled by want(False) or stop()
+                # Ended under a viewer (the service restarting): again after a back-off.
+                if ended != self.error:
+                    log.warning("live view: the %s feed ended (%s); reopening it in %.1f s",
+                                self.name, ended, retry_s)
+                    self._on_status(self.name, ended)
+                self.error = ended
+                self._wake.wait_for(lambda: self._stopped or not self._wanted, retry_s)
+            retry_s = min(2 * retry_s, RETRY_MAX_S)
+
+def station_feeds(channels: LiveChannels, proxy_robot: grpc.Channel, force_sensor: grpc.Channel,
+                  stereo_camera: grpc.Channel, *, state_hz: float, wrench_hz: float,
+                  stereo_fps: float, sensor_hz: float = 1000.0,
+                  on_status: Callable[[str, str | None], None] = lambda name, why: None,
+                  ) -> dict[str, Feed]:
+    """The three feeds of the live view (services.foxglove.live), not started; `on_status`
+    as Feed's."""
+    robot = proxy_robot_pb2_grpc.ProxyRobotStub(proxy_robot)
+    sensor = force_sensor_pb2_grpc.ForceSensorStub(force_sensor)
+    camera = stereo_camera_pb2_grpc.StereoCameraStub(stereo_camera)
+
+    def open_state():
+        if channels.cameras_unknown():  # the cameras' frames in /tf, before any video
+            try:
+                info = camera.GetStreamInfo(sc_pb.GetStreamInfoRequest(), timeout=2.0)
+                channels.set_cameras(info.header)
+            except grpc.RpcError as error:
+                log.info("live view: no camera frames in /tf yet (%s)", error.code().name)
+        period = duration_pb2.Duration()
+        period.FromNanoseconds(int(1e9 / state_hz))
+        return robot.StreamState(pr_pb.StreamStateRequest(period=period))
+
+    def open_wrench():
+        decimation = max(1, round(sensor_hz / wrench_hz))
+        return sensor.StreamWrench(fs_pb.StreamWrenchRequest(decimation=decimation))
+
+    def open_stereo():
+        return camera.StreamPairs(sc_pb.StreamPairsRequest(
+            encoding=sc_pb.IMAGE_ENCODING_JPEG, max_fps=stereo_fps))
+
+    def on_wrench(response: fs_pb.StreamWrenchResponse) -> None:
+        for sample in response.samples:
+            channels.wrench(sample)
+
+    def on_pairs(response: sc_pb.StreamPairsResponse) -> None:
+        if response.WhichOneof("content") == "header":
+            channels.set_cameras(response.header)
+        else:
+            channels.stereo_pair(response.pair)
+
+    return {STATE: Feed(STATE, open_state, lambda response: channels.robot_state(response.state),
+                        on_status),
+            WRENCH: Feed(WRENCH, open_wrench, on_wrench, on_status),
+            STEREO: Feed(STEREO, open_stereo, on_pairs, on_status)}

@@ -1,0 +1,158 @@
+"""The live view's core: the station's feeds published on Foxglove channels, and which feeds
+the viewers want. No grpc here (services.foxglove.feeds reads the services; __main__ serves).
+
+Three feeds, each an upstream stream that runs only while a viewer watches one of its topics,
+so an idle live view costs the station nothing (the cameras render only for subscribers):
+
+- ``state`` (ProxyRobot.StreamState): /tf (the arm's frames from Pinocchio, and the cameras'),
+  /joint_states and our own /robot/state;
+- ``wrench`` (ForceSensor.StreamWrench): /force/arrow and our own /robot/wrench (tool axes);
+- ``stereo`` (StereoCamera.StreamPairs, JPEG): each eye's /camera/…/image and
+  /camera/…/calibration.
+
+Each channel's schema is the message's protobuf file descriptors, as in the MCAP recordings, so
+Foxglove, Lichtblick or any client of the Foxglove WebSocket protocol decodes it as it comes.
+Log times are the sample's own time (sample or capture time, ns since the epoch).
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+from collections import Counter
+from collections.abc import Callable
+
+from foxglove import Channel, Context, Schema
+from mcap_protobuf.schema import build_file_descriptor_set
+
+from services.foxglove import channels as fox
+from telerobot.v1 import force_sensor_pb2 as fs_pb
+from telerobot.v1 import stereo_camera_pb2 as sc_pb
+from telerobot.v1 import types_pb2
+
+log = logging.getLogger(__name__)
+
+STATE, WRENCH, STEREO = "state", "wrench", "stereo"
+FEED_TOPICS: dict[str, tuple[str, ...]] = {
+    STATE: (fox.TF, fox.JOINT_STATES, fox.ROBOT_STATE),
+    WRENCH: (fox.FORCE_ARROW, fox.ROBOT_WRENCH),
+    STEREO: (fox.LEFT_IMAGE, fox.RIGHT_IMAGE, fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION),
+}
+LIVE_TOPICS: dict[str, type] = {**fox.FOXGLOVE_TOPICS, fox.ROBOT_STATE: types_pb2.RobotState,
+                                fox.ROBOT_WRENCH: types_pb2.Wrench}
+_FEED_OF_TOPIC = {topic: feed for feed, topics in FEED_TOPICS.items() for topic in topics}
+
+
+def protobuf_schema(message_class: type) -> Schema:
+    """A Foxglove schema for a protobuf message class: its name and file descriptors."""
+    descriptors = build_file_descriptor_set(message_class).SerializeToString()
+    return Schema(name=message_class.DESCRIPTOR.full_name, encoding="protobuf", data=descriptors)
+
+
+class Demand:
+    """Which feeds the viewers want: a feed is wanted while any client subscribes to any of its
+    topics. `on_change(feed, wanted)` is called when that flips (from the server's thread)."""
+
+    def __init__(self, on_change: Callable[[str, bool], None]):
+        self._on_change = on_change
+        self._lock = threading.Lock()
+        self._subscribers: dict[str, set[tuple[int, str]]] = {feed: set() for feed in FEED_TOPICS}
+
+    def subscribed(self, client_id: int, topic: str) -> None:
+        self._update(client_id, topic, add=True)
+
+    def unsubscribed(self, client_id: int, topic: str) -> None:
+        self._update(client_id, topic, add=False)
+
+    def wanted(self, feed: str) -> bool:
+        with self._lock:
+            return bool(self._subscribers[feed])
+
+    def _update(self, client_id: int, topic: str, add: bool) -> None:
+        feed = _FEED_OF_TOPIC.get(topic)
+        if feed is None:
+            return
+        with self._lock:
+            watchers = self._subscribers[feed]
+            before = bool(watchers)
+            (watchers.add if add else watchers.discard)((client_id, topic))
+            after = bool(watchers)
+        if before != after:
+            self._on_change(feed, after)
+
+    # The foxglove.websocket.ServerListener protocol (the SDK calls these on its own thread).
+    def on_subscribe(self, client, channel) -> None:
+        self.subscribed(client.id, channel.topic)
+
+    def on_unsubscribe(self, client, channel) -> None:
+        self.unsubscribed(client.id, channel.topic)
+
+
+class LiveChannels:
+    """The live view's channels in a Foxglove context, and what the feeds hand them. Each feed
+    calls its own methods from one thread; a message is converted and serialized only when its
+    channel has a subscriber."""
+
+    def __init__(self, context: Context):
+        self._channels = {topic: Channel(topic, schema=protobuf_schema(message_class),
+                                         message_encoding="protobuf", context=context)
+                          for topic, message_class in LIVE_TOPICS.items()}
+        self._arm = fox.ArmTransforms()  # the state feed's thread only
+        self._header: sc_pb.StereoHeader | None = None
+        self._lock = threading.Lock()
+        self.published: Counter[str] = Counter()
+        self.skipped: Counter[str] = Counter()  # messages with no Foxglove form (said once)
+
+    def cameras_unknown(self) -> bool:
+        return self._header is None
+
+    def set_cameras(self, header: sc_pb.StereoHeader) -> None:
+        """The cameras' calibration: their frames go into /tf from now on."""
+        self._header = header
+        self._arm.set_cameras(header)
+
+    def robot_state(self, state: types_pb2.RobotState) -> None:
+        stamp = state.sample_time.ToNanoseconds()
+        self._publish(fox.ROBOT_STATE, lambda: state, stamp)
+        self._publish(fox.JOINT_STATES, lambda: fox.joint_states(state), stamp)
+        self._publish(fox.TF, lambda: self._arm.state_transforms(state), stamp)
+
+    def wrench(self, sample: fs_pb.WrenchSample) -> None:
+        stamp = sample.sample_time.ToNanoseconds()
+        self._publish(fox.ROBOT_WRENCH, lambda: sample.wrench, stamp)
+        self._publish(fox.FORCE_ARROW, lambda: fox.force_arrow(sample.wrench, stamp), stamp)
+
+    def stereo_pair(self, pair: sc_pb.StereoPair) -> None:
+        """A pair from the stream whose header set_cameras() was given."""
+        stamp, header = pair.left_capture_time.ToNanoseconds(), self._header
+        for topic, convert in (
+                (fox.LEFT_IMAGE, lambda: fox.camera_images(pair)[0]),
+                (fox.RIGHT_IMAGE, lambda: fox.camera_images(pair)[1]),
+                (fox.LEFT_CALIBRATION, lambda: fox.camera_calibrations(header, stamp)[0]),
+                (fox.RIGHT_CALIBRATION, lambda: fox.camera_calibrations(header, stamp)[1])):
+            self._publish(topic, convert, stamp)
+
+    def _publish(self, topic: str, convert, stamp_ns: int) -> None:
+        channel = self._channels[topic]
+        if not channel.has_sinks():
+            return
+        message = self._converted(topic, convert)
+        if message is None:
+            return
+        channel.log(message.SerializeToString(), log_time=int(stamp_ns))
+        with self._lock:
+            self.published[topic] += 1
+
+    def _converted(self, topic: str, convert):
+        try:
+            return convert()
+        except ValueError as error:
+            with self._lock:
+                if not self.skipped[topic]:
+                    log.warning("live view: %s left out (%s)", topic, error)
+                self.skipped[topic] += 1
+            return None
+
+    def close(self) -> None:
+        for channel in self._channels.values():
+            channel.close()
