@@ -210,8 +210,8 @@ def test_the_passivity_verdict_judges_the_tdpa_runs_against_their_loopback_peak(
     assert network.passivity_verdict({"rows": [result["rows"][1]]})[0].startswith("No feedback")
 
 
-def test_tdpa_rows_are_made_of_three_runs_judged_on_the_median_peak():
-    assert network.RowSpec("feedback", 100.0).repeats == network.TDPA_REPEATS == 3
+def test_tdpa_rows_are_made_of_five_runs_judged_on_the_median_peak():
+    assert network.RowSpec("feedback", 100.0).repeats == network.TDPA_REPEATS == 5
     assert network.RowSpec("feedback", 100.0, passivity=False).repeats == 1
     assert network.RowSpec("feedback", 183.0, 3.0).repeats == 1  # a cut runs once
     assert network.RowSpec("compliance", 100.0).repeats == 1
