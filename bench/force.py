@@ -15,6 +15,11 @@ that shows as a delivered rate under the offered one, not as drops.
 With `mcap_path` (force_1000_mcap, recording.py) the subscriber writes every sample it
 receives into an MCAP file, as `make teleop --mcap` does, before it takes the latency
 timestamp: the recording's cost is in the latency, and the file must hold every sample.
+
+`subscriber_cpu_us_per_sample`: the subscriber process's own CPU (time.process_time: user +
+system, every thread, gRPC's included) over the measured window, per sample received: the
+p50 includes waiting (for the sample, for the core), the CPU is what receiving, and
+recording, cost. Closing the MCAP file after the window is not in it.
 """
 
 from __future__ import annotations
@@ -123,6 +128,7 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
     first_dropped = None
     last_sequence = None
     window_start = window_end = None
+    cpu_start = cpu_end = 0.0
     started = time.monotonic()
     timeout_s = WARMUP_S + duration_s + 10.0
     for message in STREAMS[transport](address, decimation, timeout_s, stop):
@@ -138,6 +144,7 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
         if window_start is None:
             window_start = now
             first_dropped = message.dropped_count
+            cpu_start = time.process_time()
         for sample in message.samples:
             latencies.append((now_ns - sample.sample_time.ToNanoseconds()) / 1e6)
             gaps += sequence_gaps(last_sequence, sample.sequence, decimation)
@@ -145,6 +152,7 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
         arrivals.append(now_ns)
         server_dropped = message.dropped_count - (first_dropped or 0)
         window_end = now
+        cpu_end = time.process_time()
         if now - window_start >= duration_s:
             stop.set()
             break
@@ -157,6 +165,9 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
                      transport=TRANSPORT_NAMES[transport], decimation=decimation,
                      duration_s=round(elapsed, 3), server_dropped=server_dropped,
                      sequence_gaps=gaps, **interarrival(arrivals, 1000.0 / rate))
+    if len(latencies) > 1:  # the window opens after the first message's CPU
+        result["subscriber_cpu_us_per_sample"] = round(
+            1e6 * (cpu_end - cpu_start) / (len(latencies) - 1), 2)
     if recorder is not None:
         result["recording"] = recorder.close()
     result["latencies_ms"] = [round(v, 4) for v in latencies]

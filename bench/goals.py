@@ -10,8 +10,11 @@ against the baseline measured in the same run; until that baseline has run it is
 if the run never measured it (``--only`` without ``baselines``) it FAILs, saying why. The TLS
 variants' goals (issue #13) are relative the same way, to their plaintext twins, and so are
 the recording-on twins' (issue #17, `_mcap`: recording.py): their overhead is judged on the
-delivered rate and the p50 against the twin of the same run, and a recording that lost a
-sample or a command FAILs the row.
+delivered rate and a cost (force: the p50; Teleoperate: the DecisionServer's CPU per command)
+against the twin of the same run, as the median of the on / off ratios of K interleaved pairs
+when the row has them (`overhead_median`, report.interleaved: one pair moves by more than
+10 % by itself on this machine), and a recording that lost a sample or a command, in any
+pair, FAILs the row.
 
 The soak's goal (issue #16) is of another kind: no station process's memory grows steadily
 (`rss_misses`) and nothing is lost (`loss_misses`); bench/README.md says why these bounds.
@@ -38,6 +41,7 @@ class Goal:
     rate_vs: tuple[str, float] | None = None  # delivered >= factor x the baseline's
     cpu_vs: tuple[str, float] | None = None  # the server's CPU per command, as p99_vs
     recording_complete: bool = False  # the row's MCAP file holds all it was given
+    paired: bool = False  # relative bounds on `overhead_median` when the row has it
     max_overrun_pct: float | None = None  # the world loop's overruns, % of its steps
     max_rss_slope: float | None = None  # MiB/min, sustained, of every station process (soak)
     no_loss: bool = False  # soak: every command acked, no watchdog trip, no lease lost...
@@ -59,6 +63,8 @@ class Goal:
             parts.append(f"server CPU/command <= {self.cpu_vs[1]:g} x {self.cpu_vs[0]}")
         if self.p99_vs is not None:
             parts.append(f"p99 <= {self.p99_vs[1]:g} x {self.p99_vs[0]}")
+        if self.paired and parts:
+            parts[-1] += " (medians of interleaved pairs)"
         if self.max_overrun_pct is not None:
             parts.append(f"overruns <= {self.max_overrun_pct:g} %")
         if self.max_rss_slope is not None:
@@ -79,7 +85,12 @@ class Goal:
 
 
 CPU_KEY = "server_cpu_ms_per_command"  # teleop.py's, with a server_pid
+SUBSCRIBER_CPU_KEY = "subscriber_cpu_us_per_sample"  # force.py's
 _LABELS = {"p50_ms": "p50", "p99_ms": "p99", CPU_KEY: "server CPU/command"}
+# The name of each relative bound's ratio in an interleaved row's overhead_median
+# (report.OVERHEAD_RATIOS).
+_MEDIANS = {"delivered_hz": "delivered", "p50_ms": "p50", "p99_ms": "p99",
+            CPU_KEY: "server_cpu"}
 
 
 _ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE, _MCAP_ISSUE = (
@@ -91,11 +102,12 @@ def _recording_overhead(twin: str, cost: str) -> Goal:
     (bench/README.md says why these figures): the delivered rate, and `cost` ("p50": the
     subscriber's latency; "cpu": the DecisionServer's CPU per command, as its p50 is a queue
     the machine's load sets); the p99s' ratio is reported, not judged: it moves by more than
-    10 % between two runs of one scenario on this shared 2-core machine."""
+    10 % between two runs of one scenario on this shared 2-core machine. Paired: on the
+    median of the interleaved pairs' ratios when the row has them."""
     bound = (twin, 1.1)
     return Goal(rate_vs=(twin, 0.9), p50_vs=bound if cost == "p50" else None,
                 cpu_vs=bound if cost == "cpu" else None, recording_complete=True,
-                source=_MCAP_ISSUE)
+                paired=True, source=_MCAP_ISSUE)
 
 
 # First match wins: the exact names before the patterns.
@@ -159,7 +171,11 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
     if goal.p99_ms is not None and (p99 is None or p99 > goal.p99_ms):
         misses.append(f"p99 {_num(p99)} ms > {goal.p99_ms:g}")
     missing = []  # baselines not measured (yet)
+    medians = result.get("overhead_median") if goal.paired else None
     for key, baseline, factor in goal.relative():
+        if medians:
+            misses += _median_misses(key, factor, medians, result.get("overhead_ratios") or {})
+            continue
         base, value = results.get(baseline, {}).get(key), result.get(key)
         if base is None:
             if baseline not in missing:
@@ -183,8 +199,27 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
     if goal.no_loss:
         misses += loss_misses(result)
     if goal.recording_complete:
-        misses += recording_misses(result.get("recording"))
+        if result.get("recordings"):  # an interleaved row: every on leg's file
+            for index, entry in enumerate(result["recordings"], 1):
+                misses += [f"pair {index}: {miss}" for miss in recording_misses(entry)]
+        else:
+            misses += recording_misses(result.get("recording"))
     return {"goal": goal.text(), "pass": not misses, "misses": misses}
+
+
+def _median_misses(key: str, factor: float, medians: dict, ratios: dict) -> list[str]:
+    """The miss of one relative bound judged on an interleaved row's median ratio (on / off)
+    of `key`: under `factor` for the delivered rate, over it for a cost."""
+    name = _MEDIANS[key]
+    value = medians.get(name)
+    pairs = ", ".join("-" if v is None else f"x{v:.2f}" for v in ratios.get(name, []))
+    label = "delivered" if key == "delivered_hz" else _LABELS[key]
+    if value is None:
+        return [f"{label}: no ratio measured in the pairs"]
+    if (value < factor) if key == "delivered_hz" else (value > factor):
+        sign = "<" if key == "delivered_hz" else ">"
+        return [f"{label} median x{value:.2f} {sign} {factor:g} (pairs {pairs})"]
+    return []
 
 
 def recording_misses(recording: dict | None) -> list[str]:

@@ -42,9 +42,10 @@ WHAT = (
     ("command_*", "ProxyRobot unary call → target at the servo, lockstep"),
     ("teleop_1000_lockstep", "diagnostic: `teleop_1000` sent lockstep (wait for each ack)"),
     ("teleop_1000_mcap", "`teleop_1000` with the DecisionServer recording it as MCAP "
-                         "(StartRecording)"),
+                         "(StartRecording); pairs off / on interleaved"),
     ("force_1000_mcap", "`force_1000` with the subscriber writing each sample to MCAP (wrench "
-                        "and Foxglove arrow, as `make teleop --mcap`)"),
+                        "and Foxglove arrow, as `make teleop --mcap`); pairs off / on "
+                        "interleaved"),
     ("teleop_*", "Teleoperate command → applied, streamed at the rate (pipelined)"),
     ("force_*", "wrench sampled → at the operator"),
     ("observers_*", "the operator's 1 kHz stream with n observers at 100 Hz"),
@@ -116,7 +117,8 @@ def _verdict(name: str, result: dict, results: dict[str, dict]) -> tuple[str, st
 
 def _baselines(name: str, results: dict[str, dict]) -> str:
     """The baselines' figures (a TLS variant's: its plaintext twin's, and its p99 over it;
-    a recording-on variant's: its twin's, and its p50, p99 and CPU per command over them)."""
+    a recording-on variant's: its twin's, and its p50, p99 and CPU per command over them, then
+    the medians of its interleaved pairs' ratios and the ratios)."""
     parts = []
     for label, other in report.compared_with(name):
         base = results.get(other)
@@ -129,8 +131,28 @@ def _baselines(name: str, results: dict[str, dict]) -> str:
                       for text, key in _TWIN_RATIOS.get(label, ())]
             shown = [f"{key} ×{value:.2f}" for key, value in ratios if value is not None]
             text += f" ({', '.join(shown)})" if shown else ""
+            if label == report.RECORDING_OFF and results[name].get("overhead_median"):
+                text += (f"; medians of {len(results[name].get('overhead_pairs') or [])} "
+                         f"interleaved pairs: {_overhead(results[name])}")
             parts.append(text)
     return "; ".join(parts) or "–"
+
+
+# An interleaved row's medians (report.interleaved) as the README shows them, in this order.
+_OVERHEAD_LABELS = {"delivered": "delivered", "p50": "p50", "server_cpu": "CPU/command",
+                    "subscriber_cpu": "subscriber CPU/sample"}
+
+
+def _overhead(result: dict) -> str:
+    """"CPU/command ×1.04 (×1.02 ×1.04 ×1.10), ...": an interleaved row's medians of the
+    pairs' ratios (on / off) and the ratios, those it judges or reports (not the p99)."""
+    medians, ratios = result["overhead_median"], result.get("overhead_ratios") or {}
+    parts = []
+    for key, label in _OVERHEAD_LABELS.items():
+        if medians.get(key) is not None:
+            each = " ".join("–" if v is None else f"×{v:.2f}" for v in ratios.get(key, []))
+            parts.append(f"{label} ×{medians[key]:.2f} ({each})")
+    return ", ".join(parts)
 
 
 def table(document: dict) -> str:

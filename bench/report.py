@@ -5,13 +5,15 @@ recording-on variant against its twin without), the terminal table and results/l
 from __future__ import annotations
 
 import json
+import math
 import os
 import platform
+import statistics
 import time
 from importlib import metadata
 from pathlib import Path
 
-from bench.goals import CPU_KEY, is_baseline, verdict_text
+from bench.goals import CPU_KEY, SUBSCRIBER_CPU_KEY, is_baseline, verdict_text
 from bench.network import NAME as NETWORK
 from bench.network import terminal_lines as network_lines
 from bench.stats import ratio
@@ -82,7 +84,61 @@ def comparison(result: dict, base: dict) -> dict[str, float | None]:
         entry["ack_p99"] = ratio(result.get("ack_p99_ms"), base.get("ack_p99_ms"))
     if CPU_KEY in result and CPU_KEY in base:
         entry["server_cpu"] = ratio(result[CPU_KEY], base[CPU_KEY])
+    if SUBSCRIBER_CPU_KEY in result and SUBSCRIBER_CPU_KEY in base:
+        entry["subscriber_cpu"] = ratio(result[SUBSCRIBER_CPU_KEY], base[SUBSCRIBER_CPU_KEY])
     return entry
+
+
+# A leg's figures an interleaved pair keeps (the rest, e.g. latencies, is the leg's worker's).
+LEG_KEYS = ("delivered_hz", "p50_ms", "p99_ms", "dropped", CPU_KEY, SUBSCRIBER_CPU_KEY,
+            "session_applied", "retried_after")
+# The ratios (on / off) of an interleaved pair: {name: result key}; goals.py judges some.
+OVERHEAD_RATIOS = {"delivered": "delivered_hz", "p50": "p50_ms", "p99": "p99_ms",
+                   "server_cpu": CPU_KEY, "subscriber_cpu": SUBSCRIBER_CPU_KEY}
+
+
+def _leg(result: dict) -> dict:
+    return {key: result[key] for key in LEG_KEYS if result.get(key) is not None}
+
+
+def _ratio3(numerator: float | None, denominator: float | None) -> float | None:
+    if numerator is None or denominator is None or denominator <= 0:
+        return None
+    value = numerator / denominator
+    return round(value, 3) if math.isfinite(value) else None
+
+
+def interleaved(pairs: list[tuple[dict, dict]]) -> dict:
+    """A recording-on row (issue #17) from interleaved pairs [(off leg, on leg), ...] made
+    off, on, off, on...: the first on leg's result (its figures are the row's, as the first
+    off leg's are the twin's), with `overhead_pairs` (each leg's figures, and the on leg's
+    `recording`), `overhead_ratios` (on / off per pair, for each of OVERHEAD_RATIOS both
+    legs have), `overhead_median` (their median: what goals.py judges) and `recordings`
+    (every on leg's, each checked by goals.recording_misses)."""
+    row = dict(pairs[0][1])
+    ratios: dict[str, list[float | None]] = {}
+    for name, key in OVERHEAD_RATIOS.items():
+        values = [_ratio3(on.get(key), off.get(key)) for off, on in pairs]
+        if any(value is not None for value in values):
+            ratios[name] = values
+    row["overhead_pairs"] = [{"off": _leg(off), "on": _leg(on)} for off, on in pairs]
+    row["overhead_ratios"] = ratios
+    row["overhead_median"] = {
+        name: round(statistics.median(known), 3)
+        for name, values in ratios.items()
+        if (known := [value for value in values if value is not None])}
+    row["recordings"] = [on.get("recording") for _, on in pairs]
+    return row
+
+
+def overhead_text(row: dict, symbol: str = "x") -> str:
+    """"server_cpu x1.04 (x1.02, x1.04, x1.10), ...": each median of an interleaved row and
+    its pairs' ratios; "" for a row without them."""
+    medians, ratios = row.get("overhead_median") or {}, row.get("overhead_ratios") or {}
+    return ", ".join(
+        f"{name} {symbol}{value:.2f} ("
+        + ", ".join("-" if v is None else f"{symbol}{v:.2f}" for v in ratios.get(name, []))
+        + ")" for name, value in medians.items())
 
 
 def ratio_text(entry: dict[str, float | None]) -> str:
@@ -160,7 +216,8 @@ def table(results: dict[str, dict]) -> str:
         lines += ["", "Goals missed:", *misses]
     titles = {"baselines": "Project / baseline (same payloads, same domain cores, same run):",
               PLAINTEXT: "Mutual TLS / plaintext (the same scenario, right after it):",
-              RECORDING_OFF: "MCAP recording on / off (the same scenario, right after it):"}
+              RECORDING_OFF: "MCAP recording on / off (the same scenario, right after it; "
+                             "then off, on, off, on...):"}
     sections: dict[str, list[str]] = {key: [] for key in titles}
     for name, r in results.items():
         for label, other in compared_with(name):
@@ -168,6 +225,10 @@ def table(results: dict[str, dict]) -> str:
             if entry:
                 sections[label if label in titles else "baselines"].append(
                     f"  {name} / {other}: {ratio_text(entry)}")
+            if label == RECORDING_OFF and r.get("overhead_median"):
+                sections[label].append(
+                    f"  {name}, median of {len(r.get('overhead_pairs') or [])} interleaved "
+                    f"pairs (on / off): {overhead_text(r)}")
     for key, title in titles.items():
         if sections[key]:
             lines += ["", title, *sections[key]]
@@ -192,7 +253,10 @@ def _short_transport(text: str) -> str:
 def _extras(results: dict[str, dict]) -> list[str]:
     lines = []
     for name, r in results.items():
-        if r.get("recording"):
+        if r.get("recordings"):  # an interleaved row: every on leg's
+            lines += [f"  {name}, pair {index}: {recording_text(entry or {})}"
+                      for index, entry in enumerate(r["recordings"], 1)]
+        elif r.get("recording"):
             lines.append(f"  {name}: {recording_text(r['recording'])}")
         if r.get("status") == "pending":
             lines.append(f"  {name}: pending: {r.get('reason')}")
@@ -202,6 +266,8 @@ def _extras(results: dict[str, dict]) -> list[str]:
             lines.append(f"  {name}: ack round trip p50 {fmt(r.get('ack_p50_ms'), 3)} / p99 "
                          f"{fmt(r.get('ack_p99_ms'), 3)} ms; late ticks skipped "
                          f"{r.get('late_skipped')}{cpu}")
+        elif family(name) == "force" and SUBSCRIBER_CPU_KEY in r and not is_baseline(name):
+            lines.append(f"  {name}: subscriber CPU {fmt(r[SUBSCRIBER_CPU_KEY], 1)} µs/sample")
         elif family(name) == "observers":
             lines.append(f"  {name}: operator jitter {fmt(r.get('jitter_ms'), 3)} ms, "
                          f"inter-arrival p99 {fmt(r.get('interarrival_p99_ms'), 3)} ms; "

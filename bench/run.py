@@ -14,7 +14,9 @@ drives at a time. Its scenarios (`*_tls`) run right after their plaintext twins.
 
 teleop_1000_mcap and force_1000_mcap (issue #17, recording.py) repeat teleop_1000 and
 force_1000 right after them, recording in MCAP: the DecisionServer (the same process) records
-the Teleoperate session; the wrench subscriber records each sample it receives.
+the Teleoperate session; the wrench subscriber records each sample it receives. They run as
+interleaved pairs, off, on, off, on... (Plan.overhead_pairs; the twin's own run is the first
+off leg), and are judged on the median of the pairs' ratios (report.interleaved).
 """
 
 from __future__ import annotations
@@ -81,6 +83,16 @@ class Plan:
     @property
     def force_s(self) -> float:
         return 2.5 if self.quick else 10.0
+
+    @property
+    def overhead_pairs(self) -> int:
+        """The interleaved (recording off, on) pairs of an `_mcap` row (issue #17)."""
+        return 3 if self.quick else 5
+
+    # Each leg of those pairs after the twin's own run (the first off leg, as long as the
+    # twin): the quick run's length, enough for a steady p50 and CPU per command.
+    overhead_teleop_leg_s: float = 2.0
+    overhead_force_leg_s: float = 2.5
 
     @property
     def observers_s(self) -> float:
@@ -419,19 +431,39 @@ class Bench:
         versus = report.comparison(result, self.results.get(twin, {}))
         self.progress.done(f"{self._headline(name)} (/ {twin}: {report.ratio_text(versus)})")
 
-    def _mcap_twin(self, twin: str, what: str, measure: Callable[[], dict]) -> None:
-        """`<twin>_mcap`: `measure()` (the twin's worker, recording in MCAP) right after
-        `twin` ran, on the same processes."""
+    def _mcap_twin(self, twin: str, what: str, off: Callable[[int], dict],
+                   on: Callable[[int], dict]) -> None:
+        """`<twin>_mcap`: plan.overhead_pairs interleaved pairs right after `twin` ran, on the
+        same processes: the twin's run (else `off(0)` if it failed), `on(0)`, then `off(i)`,
+        `on(i)` for each pair i after it (`on`: the twin's worker, recording in MCAP). The
+        row is report.interleaved's: the first on leg's figures, each pair's ratios and their
+        medians, which goals.py judges."""
         name = f"{twin}_mcap"
-        self.progress.step(f"{name}: {twin} again, {what}")
+        count = self.plan.overhead_pairs
+        self.progress.step(f"{name}: {twin} again, {what}; {count} pairs interleaved (off, on, "
+                           "off, on...)")
+        pairs = []
         try:
-            result = measure()
+            for index in range(count):
+                base = self.results.get(twin, {})
+                first = base if index == 0 and base.get("p50_ms") is not None else None
+                leg_off = first if first is not None else off(index)
+                leg_on = on(index)
+                for leg in (leg_off, leg_on):
+                    leg.pop("ack_latencies_ms", None)
+                    if index > 0:  # the row keeps pair 1's on leg's (raw_latencies.json)
+                        leg.pop("latencies_ms", None)
+                pairs.append((leg_off, leg_on))
+                versus = report.comparison(leg_on, leg_off)
+                self.progress.note(f"{name} pair {index + 1}: {report.ratio_text(versus)}")
         except ChildFailed as error:
             return self._fail([name], error)
+        result = report.interleaved(pairs)
+        if pairs[0][0] is not self.results.get(twin):  # the twin failed: pair 1 had its own
+            result["overhead_first_off"] = "a leg of its own (the twin's run failed)"
         self._record(name, result)
-        versus = report.comparison(result, self.results.get(twin, {}))
-        self.progress.done(f"{self._headline(name)} (/ {twin}: {report.ratio_text(versus)}; "
-                           f"{report.recording_text(result.get('recording') or {})})")
+        self.progress.done(f"{self._headline(name)} (medians of {count} pairs, on / off: "
+                           f"{report.overhead_text(result)})")
 
     def commands(self) -> None:
         plan = self.plan
@@ -471,15 +503,24 @@ class Bench:
             if name == "force_1000":
                 self._mcap_twin(name, "the subscriber writing each sample to MCAP (wrench and "
                                 "Foxglove arrow, as make teleop --mcap) before its timestamp",
-                                lambda: self._force_worker(1, str(self.procs.scratch
-                                                                  / "force_1000.mcap")))
+                                self._force_leg, lambda index: self._force_leg(index, True))
 
-    def _force_worker(self, decimation: int, mcap_path: str | None = None) -> dict:
-        """force_<rate>'s worker; `mcap_path`: recording each sample there."""
+    def _force_leg(self, index: int, record: bool = False) -> dict:
+        """A leg of force_1000_mcap's pair `index`: force_1000 for overhead_force_leg_s,
+        recording into a file of the pair's own when `record`."""
+        path = self.procs.scratch / f"force_1000_{index + 1}.mcap"
+        return self._force_worker(1, str(path) if record else None,
+                                  duration_s=self.plan.overhead_force_leg_s)
+
+    def _force_worker(self, decimation: int, mcap_path: str | None = None,
+                      duration_s: float | None = None) -> dict:
+        """force_<rate>'s worker (plan.force_s, or `duration_s`); `mcap_path`: recording each
+        sample there."""
+        duration_s = duration_s or self.plan.force_s
         return self._worker("force", {
             "transport": "grpc", "address": self.station.address["force_sensor"],
-            "decimation": decimation, "duration_s": self.plan.force_s,
-            **({"mcap_path": mcap_path} if mcap_path else {})}, 60 + 3 * self.plan.force_s)
+            "decimation": decimation, "duration_s": duration_s,
+            **({"mcap_path": mcap_path} if mcap_path else {})}, 60 + 3 * duration_s)
 
     def baselines(self) -> None:
         """The command round trip and the force stream over pyzmq and over plain TCP, with the
@@ -646,7 +687,8 @@ class Bench:
     def decision(self) -> None:
         """Through the DecisionServer, the operator's one address: teleop_<rate> (master
         commands streamed on Teleoperate, pipelined; teleop_1000_lockstep the same sent
-        lockstep, a diagnostic; teleop_1000_mcap teleop_1000 recorded in MCAP), then
+        lockstep, a diagnostic; teleop_1000_mcap teleop_1000 recorded in MCAP, in pairs
+        interleaved with it), then
         teleop_1000_tls through a DecisionServer of the TLS station, teleop_1000_zmq (the same
         DecisionCore over pyzmq) with the DecisionServer stopped, so nothing else follows
         ProxyRobot's streams meanwhile; then, through a fresh DecisionServer, the emergency
@@ -736,11 +778,14 @@ class Bench:
                                                lockstep_p99_ms=lockstep["p99_ms"])
         self.progress.done("; ".join(f"{r}: {self._headline(f'teleop_{r}')}"
                                      for r in plan.command_rates))
-        # The same DecisionServer, right after. Back the way teleop_1000 went (it moved +y):
-        # one more stretch the same way would take the arm further out for the rows after.
+        # The same DecisionServer, right after. teleop_1000 moved +y: each on leg goes back
+        # (-y), each off leg after it out again, so the arm swings about where it was.
+        leg = {"duration_s": plan.overhead_teleop_leg_s, **server}
         self._mcap_twin("teleop_1000", "the DecisionServer recording the session in MCAP",
-                        lambda: self._rate_worker("teleop", "grpc", address, [1000], {
-                            "first_sign": -1.0, **server,
+                        lambda index: self._rate_worker("teleop", "grpc", address, [1000], {
+                            "first_sign": 1.0, **leg})["1000"],
+                        lambda index: self._rate_worker("teleop", "grpc", address, [1000], {
+                            "first_sign": -1.0, **leg,
                             "record_dir": str(self.procs.scratch / "recordings")})["1000"])
 
     def _pid(self, name: str) -> int | None:
