@@ -171,8 +171,8 @@ class GrpcSlave:
 
     def emergency_stop(self, reason: str) -> str:
         """Latch through the band and through ProxyRobot at once: the band is fast under any
-        ProxyRobot load, ProxyRobot records the reason, stops its interpolator and is the path
-        left when the band is down; neither path delays the other's stop. Returns once both
+        ProxyRobot load, ProxyRobot records the reason and is the path left when the band is
+        down; neither path delays the other's stop. Returns once both
         have answered (a band stop still in flight could re-latch the arm after a prompt
         Reset), with ProxyRobot's status, or ESTOPPED when only the band confirmed; raises
         only when neither path latched."""

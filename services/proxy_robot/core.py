@@ -12,10 +12,11 @@ Cartesian increments, by frame (the increment is (ΔM, ΔX) as a rigid transform
 - BASE:  translate along the base axes and rotate about the tool point in base axes
   (R⁺ = ΔM · R, p⁺ = p + ΔX).
 
-Time comes from an injectable Clock. In service two threads run beside the calls: the monitor
-samples the link every STATE_PERIOD_S (`sample_once`) and the setpoint interpolator writes every
-millisecond (`write_setpoint`). With ``threads=False`` neither starts and the caller runs both
-itself, so a test on a fake clock and a fake link decides exactly when each happens.
+Each target goes to the servo once, with the segment's duration to spread it over
+(segment_timing.py); the servo writes the setpoints along it. Time comes from an injectable
+Clock. In service one thread runs beside the calls: the monitor samples the link every
+STATE_PERIOD_S (`sample_once`). With ``threads=False`` it does not start and the caller runs it
+itself, so a test on a fake clock and a fake link decides exactly when it happens.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ import pinocchio as pin
 
 from services.common.fanout import Fanout
 from services.common.geometry import finite_vector, moved_by, rotation_angle
-from services.proxy_robot.interpolator import SetpointInterpolator
+from services.proxy_robot.segment_timing import SegmentTiming
 from services.proxy_robot.status import (
     MOTION_STATUSES,
     Moved,
@@ -77,8 +78,8 @@ RELEASE_POLL_S = 0.0005
 class ProxyRobotCore:
     """The arm proxy. Thread-safe; `close()` stops its monitor thread.
 
-    ``threads=False`` starts no monitor and no setpoint thread: the caller calls `sample_once()`
-    every STATE_PERIOD_S and `write_setpoint()` every millisecond of its clock instead."""
+    ``threads=False`` starts no monitor: the caller calls `sample_once()` every STATE_PERIOD_S
+    of its clock instead."""
 
     def __init__(self, link_factory: Callable[[], ArmLink],
                  state_period_s: float = STATE_PERIOD_S, *, clock: Clock = SYSTEM_CLOCK,
@@ -97,7 +98,7 @@ class ProxyRobotCore:
         self._change_time_ns = self._clock.time_ns()
         self._initialized = False
         self._link: ArmLink | None = None
-        self._interpolator: SetpointInterpolator | None = None
+        self._segments = SegmentTiming(clock.monotonic_ns)
         self._target_q: np.ndarray | None = None
         self._latest: RobotSnapshot | None = None
         self._event_sequence = 0
@@ -145,9 +146,6 @@ class ProxyRobotCore:
             sample, self._latest = self._sample(link, self._monitor_kinematics)
             self._link = link
             self._target_q = sample.joint_targets_rad.copy()
-            self._interpolator = SetpointInterpolator(
-                link.write_target, self._target_q, self._on_setpoint_error,
-                self._clock.monotonic_ns, thread=self._threads)
             self._initialized = False
             self._start_monitor()
             if sample.hold_latched:
@@ -203,15 +201,12 @@ class ProxyRobotCore:
         with self._lock:
             self._monitor_stop.set()
             link, self._link = self._link, None
-            interpolator, self._interpolator = self._interpolator, None
             self._initialized = False
             self._latest = None
             self._set_status(RobotStatus.NOT_CONNECTED, reason)
         monitor = self._monitor
         if monitor is not None and monitor is not threading.current_thread():
             monitor.join(1.0)
-        if interpolator is not None:
-            interpolator.close()
         if link is not None:
             link.close()
 
@@ -367,11 +362,13 @@ class ProxyRobotCore:
             return self._target_q.copy()
 
     def _command(self, target: np.ndarray) -> np.ndarray:
-        """Hand a target to the servo, interpolated (unless the status changed meanwhile)."""
+        """Hand a target to the servo, with the segment to reach it over (unless the status
+        changed meanwhile)."""
         with self._lock:
             self._motion_base()  # an e-stop may have landed during the IK
-            self._require_link()
-            self._interpolator.go(target)
+            link = self._require_link()
+            motion = float(np.max(np.abs(target - self._target_q)))
+            link.write_target(target, self._segments.duration_s(motion))
             self._target_q = target.copy()
             self._set_status(RobotStatus.MOVING, "moving to a new target")
             return target.copy()
@@ -386,14 +383,8 @@ class ProxyRobotCore:
         link = self._link
         if link is None:
             return RobotStatus.NOT_CONNECTED, self._clock.time_ns()
-        link.hold()  # before any lock: nothing may delay the stop
+        link.hold()  # before any lock: nothing may delay the stop (it drops the segment too)
         stop_time_ns = self._clock.time_ns()
-        interpolator = self._interpolator
-        if interpolator is not None:
-            try:
-                interpolator.stop(link.read_arm().joint_targets_rad)
-            except Unavailable:
-                pass  # the monitor reports the lost link
         with self._lock:
             text = f"emergency stop: {reason or 'no reason given'}"
             if self._status == RobotStatus.ESTOPPED:
@@ -438,12 +429,8 @@ class ProxyRobotCore:
 
     def _hold_at(self, target: np.ndarray) -> None:
         """Send the servo straight to `target`, dropping any segment in progress."""
-        self._interpolator.stop(target)
         self._require_link().write_target(target)
         self._target_q = np.asarray(target, float).copy()
-
-    def _on_setpoint_error(self, error: Exception) -> None:
-        self._emit(RobotErrorRaised("SETPOINT_REFUSED", str(error)))
 
     def _await_release(self, link: ArmLink) -> None:
         """Wait until the hardware reports the hold released, so the monitor does not read the
@@ -462,13 +449,6 @@ class ProxyRobotCore:
         """The monitor's work for one period: sample the link; note arrival, faults and latched
         stops; publish the state. False when there is no link (any more)."""
         return self._sample_once(self._monitor_stop)
-
-    def write_setpoint(self) -> None:
-        """The setpoint thread's work for one period: the next setpoint of a move in progress."""
-        with self._lock:
-            interpolator = self._interpolator
-        if interpolator is not None:
-            interpolator.step()
 
     def _start_monitor(self) -> None:
         self._monitor_stop = threading.Event()

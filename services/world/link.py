@@ -41,6 +41,16 @@ def checked_joint_target(joint_positions_rad, lower: np.ndarray,
     return target
 
 
+def checked_duration(duration_s) -> float:
+    """A target's segment duration (s), as every ArmLink takes it: InvalidArgument unless a
+    finite number >= 0 (the servo clips a long one to its own cap)."""
+    duration = float(duration_s)
+    if not np.isfinite(duration) or duration < 0.0:
+        raise InvalidArgument(f"a target's segment duration must be finite and >= 0 s, got "
+                              f"{duration_s!r}", reason="BAD_DURATION")
+    return duration
+
+
 @dataclass(frozen=True)
 class ArmSample:
     """One servo-rate sample of the arm."""
@@ -49,7 +59,7 @@ class ArmSample:
     sample_time_ns: int  # wall clock (time.time_ns) when the sample was taken
     joint_positions_rad: np.ndarray  # (6,)
     joint_velocities_rad_per_s: np.ndarray  # (6,)
-    joint_targets_rad: np.ndarray  # (6,) the target the servo is tracking now
+    joint_targets_rad: np.ndarray  # (6,) the latest target (the end of its segment, if one runs)
     hold_latched: bool  # a latched hold (emergency stop) is in force: targets are ignored
     fault: str  # empty when healthy; otherwise what the hardware reported
 
@@ -70,8 +80,11 @@ class ArmLink(Protocol):
     def read_arm(self) -> ArmSample:
         """The latest sample."""
 
-    def write_target(self, joint_positions_rad: np.ndarray) -> None:
-        """Make the servo track a new joint target (6,). Ignored while a hold is latched."""
+    def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
+        """Make the servo track a new joint target (6,), reached along a straight joint-space
+        segment from its setpoint now, lasting `duration_s` (0: at once); a target written
+        meanwhile replaces the segment from where it is. Ignored while a hold is latched,
+        which also drops the segment."""
 
     def hold(self) -> None:
         """Controlled stop: brake to rest at the acceleration cap and latch there, so later

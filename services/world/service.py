@@ -156,7 +156,7 @@ class WorldService:
             sim.release_hold()
         else:
             try:
-                sim.set_target(command.target)
+                sim.set_target(command.target, command.duration_s)
             except InvalidArgument as exc:  # the driver checks too; never trust shared memory
                 log.warning("ignored a bad target: %s", exc)
 

@@ -6,7 +6,8 @@ cache line, so the world's writes and the driver's writes never share a line:
 
     header   written once by the world at creation, except `status` and `heartbeat_ns`
     state    seqlock record, written by the world every servo step (arm sample + wrench + loop)
-    command  seqlock record, written by the driver (target, hold, release)
+    command  seqlock record, written by the driver (target and its segment's duration,
+             hold, release)
     emergency one aligned word, written by any emergency-stop device (see below)
 
 Commands are numbered: every command a driver issues takes the next `command_sequence`, and the
@@ -34,7 +35,7 @@ SHM_NAME_ENV = "TELEROBOT_WORLD_SHM"
 DEFAULT_SHM_NAME = "telerobot_world"
 
 MAGIC = 0x5445_4C45_5752_4C44  # "TELEWRLD": set last at creation, so a half-made segment is seen
-LAYOUT_VERSION = 2
+LAYOUT_VERSION = 3
 CACHE_LINE = 64
 FAULT_BYTES = 240  # UTF-8, truncated
 
@@ -78,6 +79,7 @@ COMMAND_DTYPE = np.dtype([
     ("command_sequence", "u8"),  # number of the latest command of any kind
     ("target_command", "u8"),  # number of the latest target (0: none yet)
     ("target", "f8", (JOINT_COUNT,)),  # rad
+    ("target_duration_s", "f8"),  # the straight segment to reach it over (0: at once)
     ("hold_command", "u8"),  # number of the latest hold (0: none yet)
     ("release_command", "u8"),  # number of the latest release (0: none yet)
     ("driver_pid", "i8"),

@@ -30,6 +30,7 @@ from services.runtime.errors import AlreadyExists, Unavailable
 from services.world.link import (
     ArmSample,
     RawWrench,
+    checked_duration,
     checked_joint_target,
 )
 from services.world.realtime import LoopStats
@@ -72,6 +73,7 @@ class Command:
     number: int  # command_sequence when it was issued; commands apply in this order
     kind: str  # "target", "hold" or "release"
     target: np.ndarray | None = None  # rad (6,), for "target"
+    duration_s: float = 0.0  # for "target": the segment to reach it over (0: at once)
 
 
 # -- world side ---------------------------------------------------------------------------------
@@ -153,8 +155,11 @@ class WorldPublisher:
                             (_TARGET, "target_command")):
             number = int(record[field])
             if number > self._applied:
-                target = record["target"].copy() if kind == _TARGET else None
-                commands.append(Command(number, kind, target))
+                if kind == _TARGET:
+                    commands.append(Command(number, kind, record["target"].copy(),
+                                            float(record["target_duration_s"])))
+                else:
+                    commands.append(Command(number, kind))
         self._applied = max(self._applied, int(record["command_sequence"]))
         return sorted(commands, key=lambda command: command.number)
 
@@ -334,12 +339,13 @@ class SharedMemoryArmLink:
             fault=bytes(record["fault"]).decode("utf-8", "replace"),
         )
 
-    def write_target(self, joint_positions_rad: np.ndarray) -> None:
-        """Make the servo track a new joint target (6,) in rad; the world ignores it while a
-        hold is latched. InvalidArgument on a wrong shape or NaN; OutOfRange past a joint limit
-        (by more than LIMIT_TOLERANCE_RAD; the world clips onto the limit)."""
+    def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
+        """Make the servo track a new joint target (6,) in rad, reached along a straight
+        joint-space segment of `duration_s`; the world ignores it while a hold is latched.
+        InvalidArgument on a wrong shape or NaN; OutOfRange past a joint limit (by more than
+        LIMIT_TOLERANCE_RAD; the world clips onto the limit)."""
         target = checked_joint_target(joint_positions_rad, self.joint_lower, self.joint_upper)
-        self._issue(_TARGET, target)
+        self._issue(_TARGET, target, checked_duration(duration_s))
 
     def hold(self) -> None:
         """Latch a controlled stop: the arm brakes at its acceleration cap and holds where it
@@ -376,7 +382,8 @@ class SharedMemoryArmLink:
             worst_step_ns=int(record["loop_worst_step_ns"]),
         )
 
-    def _issue(self, kind: str, target: np.ndarray | None = None) -> None:
+    def _issue(self, kind: str, target: np.ndarray | None = None, duration_s: float = 0.0
+               ) -> None:
         with self._command_lock:
             connection = self._connection
             segment = connection.require()
@@ -386,6 +393,7 @@ class SharedMemoryArmLink:
                 # Payload first, numbers last: a driver killed in between leaves no new number.
                 if kind == _TARGET:
                     record["target"] = target
+                    record["target_duration_s"] = duration_s
                     record["target_command"] = number
                 elif kind == _HOLD:
                     record["hold_command"] = number

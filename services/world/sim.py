@@ -140,16 +140,18 @@ class ArmSim:
 
     # -- commands ---------------------------------------------------------------------------
 
-    def set_target(self, joint_positions_rad: np.ndarray) -> bool:
-        """Track a new joint target (rad), clipped into the joint limits. Returns False (and
-        changes nothing) while a hold is latched. InvalidArgument on a wrong shape or NaN."""
+    def set_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> bool:
+        """Track a new joint target (rad), clipped into the joint limits, reached along a
+        straight joint-space segment of `duration_s` (trajectory.SegmentedGoal). Returns False
+        (and changes nothing) while a hold is latched. InvalidArgument on a wrong shape or
+        NaN."""
         target = np.asarray(joint_positions_rad, dtype=float)
         if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
             raise InvalidArgument(
                 f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}")
         if self.hold_latched:
             return False
-        self._reference.goal[:] = np.clip(target, self.joint_lower, self.joint_upper)
+        self._reference.set_goal(np.clip(target, self.joint_lower, self.joint_upper), duration_s)
         return True
 
     def hold(self) -> None:
@@ -159,8 +161,8 @@ class ArmSim:
             return
         self.hold_latched = True
         self._reference.reset(self.joint_positions, self.joint_velocities)
-        np.clip(self._reference.goal, self.joint_lower, self.joint_upper,
-                out=self._reference.goal)
+        self._reference.set_goal(np.clip(self._reference.goal, self.joint_lower,
+                                         self.joint_upper))
 
     def release_hold(self) -> None:
         """Clear the latch (and a fault). The target becomes the current position, so nothing

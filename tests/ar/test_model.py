@@ -252,7 +252,7 @@ class OffsetArm:
             return ArmSample(self._sequence, time.time_ns(), self._target + self.OFFSET,
                              np.zeros(6), self._target.copy(), False, "")
 
-    def write_target(self, joint_positions_rad: np.ndarray) -> None:
+    def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
         with self._lock:
             self._target = np.asarray(joint_positions_rad, float).copy()
 

@@ -2,10 +2,12 @@
 
 `FakeArm` is the hardware: six joints whose servo steps once per SERVO_PERIOD_S of the clock.
 Each step it applies the commands issued since the last one, in order (as the world does), then
-moves every joint toward its target with a first-order lag of time constant `time_constant_s`,
-at most `max_speed_rad_per_s`:
+moves the setpoint one period along the target's segment (the world's own SegmentedGoal: a
+straight line over the duration the driver asked) and every joint toward that setpoint with a
+first-order lag of time constant `time_constant_s`, at most `max_speed_rad_per_s`:
 
-    dq = clip((target - q) * (1 - exp(-dt / tau)), -v_max * dt, v_max * dt);  q += dq;  qd = dq / dt
+    dq = clip((setpoint - q) * (1 - exp(-dt / tau)), -v_max * dt, v_max * dt)
+    q += dq;  qd = dq / dt
 
 so the reported velocity is what the position really did over the last period. Steps are taken
 lazily, whenever a link or the test looks at the arm, for every whole period the clock has
@@ -39,8 +41,9 @@ import numpy as np
 
 from services.robot_model.puma560 import HOME_Q, JOINT_LOWER, JOINT_UPPER
 from services.runtime.errors import Unavailable
-from services.world.link import JOINT_COUNT, ArmSample, checked_joint_target
+from services.world.link import JOINT_COUNT, ArmSample, checked_duration, checked_joint_target
 from services.world.shm_link import STALE_AFTER_S
+from services.world.trajectory import SegmentedGoal
 from tests.fakes.clock import FakeClock
 
 SERVO_PERIOD_S = 0.001  # the world's servo rate
@@ -52,11 +55,13 @@ HOLD, RELEASE, TARGET = "hold", "release", "target"
 
 @dataclass(frozen=True)
 class Command:
-    """One command a driver issued: kind HOLD, RELEASE or TARGET (with its target, rad)."""
+    """One command a driver issued: kind HOLD, RELEASE or TARGET (with its target, rad, and
+    its segment's duration, s)."""
 
     kind: str
     target: np.ndarray | None = None
     issued_ns: int = 0  # monotonic
+    duration_s: float = 0.0
 
 
 class FakeArm:
@@ -77,7 +82,7 @@ class FakeArm:
         self._start_ns = clock.monotonic_ns()
         self._q = np.asarray(start_q, float).copy()
         self._qd = np.zeros(JOINT_COUNT)
-        self._target = self._q.copy()
+        self._goal = SegmentedGoal(self._q, period_s)
         self._latched = False
         self._fault = ""
         self._steps = 0
@@ -141,7 +146,8 @@ class FakeArm:
         with self._lock:
             self._catch_up()
             self._check_alive()
-            command = Command(command.kind, command.target, self.clock.monotonic_ns())
+            command = Command(command.kind, command.target, self.clock.monotonic_ns(),
+                              command.duration_s)
             self.commands.append(command)
             self._pending.append(command)
 
@@ -186,12 +192,13 @@ class FakeArm:
     def _step(self) -> None:
         for command in self._pending:
             if command.kind == TARGET and not self._latched:
-                self._target = np.clip(command.target, self.joint_lower, self.joint_upper)
+                self._goal.head_for(np.clip(command.target, self.joint_lower, self.joint_upper),
+                                    command.duration_s)
             elif command.kind == HOLD:
                 self._latch()
             elif command.kind == RELEASE and self._latched:
                 self._latched, self._fault = False, ""
-                self._target = self._q.copy()
+                self._goal.reset(self._q)
         self._pending.clear()
         if self._stop_requested:  # after the driver's commands, as the world does
             self._stop_requested = False
@@ -199,7 +206,7 @@ class FakeArm:
         if self._fault_requested:
             self._fault, self._fault_requested = self._fault_requested, ""
             self._latch()
-        step = np.clip((self._target - self._q) * (1.0 - self._decay),
+        step = np.clip((self._goal.step() - self._q) * (1.0 - self._decay),
                        -self._max_step, self._max_step)
         self._q = self._q + step
         self._qd = step * (1e9 / self._period_ns)
@@ -208,7 +215,7 @@ class FakeArm:
     def _latch(self) -> None:
         if not self._latched:
             self._latched = True
-            self._target = self._q.copy()
+            self._goal.reset(self._q)
 
     def _sample(self) -> ArmSample:
         now_ns = self.clock.monotonic_ns()
@@ -217,7 +224,7 @@ class FakeArm:
             sample_time_ns=self.clock.time_ns() - (now_ns - self._step_ns(self._steps)),
             joint_positions_rad=self._q.copy(),
             joint_velocities_rad_per_s=self._qd.copy(),
-            joint_targets_rad=self._target.copy(),
+            joint_targets_rad=self._goal.target.copy(),
             hold_latched=self._latched,
             fault=self._fault,
         )
@@ -240,10 +247,10 @@ class FakeArmLink:
     def read_arm(self) -> ArmSample:
         return self._require().read()
 
-    def write_target(self, joint_positions_rad: np.ndarray) -> None:
+    def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
         arm = self._require()
         target = checked_joint_target(joint_positions_rad, arm.joint_lower, arm.joint_upper)
-        arm.issue(Command(TARGET, target.copy()))
+        arm.issue(Command(TARGET, target.copy(), duration_s=checked_duration(duration_s)))
 
     def hold(self) -> None:
         self._require().issue(Command(HOLD))

@@ -1,5 +1,5 @@
 """ProxyRobot tests run in-process on a fake arm and a fake clock (tests/fakes), and drive the
-proxy's monitor and setpoints themselves, so every event happens at a known instant. The few
+proxy's monitor themselves, so every event happens at a known instant. The few
 tests marked e2e run against a real world process through the shared-memory link."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from services.proxy_robot import core as core_module
-from services.proxy_robot import interpolator as interpolator_module
+from services.proxy_robot import segment_timing as segment_timing_module
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.status import RobotStatus
 from services.robot_model.puma560 import HOME_Q
@@ -21,7 +21,7 @@ from tests.fakes.arm_link import FakeArm
 from tests.fakes.clock import FakeClock
 from tests.in_process import refuse_processes, reject_process_fixtures
 
-TICK_S = interpolator_module.SETPOINT_PERIOD_S  # the setpoint thread's period, 1 ms
+TICK_S = segment_timing_module.SERVO_PERIOD_S  # the servo's period, 1 ms
 TICKS_PER_SAMPLE = round(core_module.STATE_PERIOD_S / TICK_S)  # the monitor's period
 
 
@@ -37,13 +37,13 @@ def _in_process_only(request, monkeypatch) -> None:
     """Tests not marked e2e start no process, attach no shared memory (so no world) and read no
     real time in the proxy."""
     if not request.node.get_closest_marker("e2e"):
-        refuse_processes(monkeypatch, (core_module, interpolator_module))
+        refuse_processes(monkeypatch, (core_module, segment_timing_module))
 
 
 class Rig:
     """A ProxyRobotCore on a FakeArm, both on one FakeClock, driven tick by tick: each tick
-    (1 ms) advances the clock and writes the next setpoint, and every second tick the monitor
-    samples the arm, as the core's own threads would in service."""
+    (1 ms) advances the clock (the arm steps with it), and every STATE_PERIOD_S the monitor
+    samples the arm, as the core's own thread would in service."""
 
     def __init__(self) -> None:
         self.clock = FakeClock()
@@ -53,7 +53,6 @@ class Rig:
 
     def tick(self) -> None:
         self.clock.advance(TICK_S)
-        self.core.write_setpoint()
         self.ticks += 1
         if self.ticks % TICKS_PER_SAMPLE == 0:
             self.core.sample_once()
