@@ -213,3 +213,12 @@ def test_a_teleop_recording_counts_merged_moves_in_commands(tmp_path):
     assert goals.recording_misses(checked) == ["recording: applied acks 2 of 5"]
     assert "StopRecording saved 5" in recording.teleop_check(path, 5, 5, 1e-5)["error"]
     assert recording.topic_counts(path) == {recording_mcap.INCREMENT: 4, recording_mcap.ACK: 4}
+
+
+def test_the_pairs_are_three_quick_and_five_full_each_leg_the_quick_length():
+    from bench.run import Plan
+
+    quick, full = Plan(quick=True), Plan(quick=False)
+    assert (quick.overhead_pairs, full.overhead_pairs) == (3, 5)
+    assert (full.overhead_teleop_leg_s, full.overhead_force_leg_s) == (quick.command_s,
+                                                                       quick.force_s)
