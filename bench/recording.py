@@ -66,8 +66,8 @@ def teleop_check(path: Path, applied: int, server_moves: int, step_m: float) -> 
 
 
 class WrenchRecorder:
-    """What `make teleop --mcap` writes per wrench (SessionRecorder.ack: the Wrench and its
-    Foxglove arrow), for each sample of a StreamWrench message."""
+    """What `make teleop --mcap` writes per wrench (SessionRecorder.wrench, as its ack hook
+    does: the Wrench and its Foxglove arrow), for each sample of a StreamWrench message."""
 
     def __init__(self, path: Path):
         self.path = Path(path)
@@ -77,10 +77,7 @@ class WrenchRecorder:
     def write(self, message) -> None:
         now = time.time_ns()  # received: the log time, as the operator station logs it
         for sample in message.samples:
-            sampled = sample.sample_time.ToNanoseconds()
-            self.recorder.write(mcap_log.WRENCH, sample.wrench, now, sampled)
-            self.recorder.write(fox.FORCE_ARROW, fox.force_arrow(sample.wrench, sampled), now,
-                                sampled)
+            self.recorder.wrench(sample.wrench, now, sample.sample_time.ToNanoseconds())
             self.samples += 1
 
     def close(self) -> dict:

@@ -80,6 +80,8 @@ STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_cam
 HTTP_CHILDREN = {"web_console"}
 # Children that speak only WebSocket: they serve once their port accepts (the live view).
 TCP_CHILDREN = {"foxglove"}
+# The gRPC services: health checked over gRPC, each with its Prometheus /metrics port.
+GRPC_CHILDREN = tuple(name for name in STATION if name not in HTTP_CHILDREN | TCP_CHILDREN)
 STARTUP_TIMEOUT_S = 60.0
 # The banner's first line.
 UP_LINE = "Slave station is up"

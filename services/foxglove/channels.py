@@ -16,6 +16,7 @@ Frames (Foxglove frame ids):
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -189,24 +190,35 @@ def force_arrow(wrench: types_pb2.Wrench, stamp_ns: int, frame_id: str = TOOL_FR
                 ) -> SceneUpdate:
     """The wrench's force as an arrow from ``frame_id``'s origin (the tool frame's: the wrench
     is in tool axes), pointing along the force, FORCE_ARROW_M_PER_N (0.01 m per newton) long.
-    A force of (near) zero clears the arrow (an entity with no arrows)."""
-    force = np.array([wrench.force_n.x, wrench.force_n.y, wrench.force_n.z], float)
-    if not np.all(np.isfinite(force)):
-        raise ValueError(f"the wrench's force is not finite: {force.tolist()}")
+    A force of (near) zero clears the arrow (an entity with no arrows). Plain float math: it
+    runs once per wrench a recording or the live view takes (up to 1 kHz)."""
+    fx, fy, fz = wrench.force_n.x, wrench.force_n.y, wrench.force_n.z
+    if not all(math.isfinite(v) for v in (fx, fy, fz)):
+        raise ValueError(f"the wrench's force is not finite: {[fx, fy, fz]}")
     entity = SceneEntity(timestamp=_stamp(stamp_ns), frame_id=frame_id, id=FORCE_ARROW_ENTITY,
                          frame_locked=True)
-    magnitude = float(np.linalg.norm(force))
+    magnitude = math.sqrt(fx * fx + fy * fy + fz * fz)
     if magnitude > _MIN_FORCE_N:
         length = FORCE_ARROW_M_PER_N * magnitude
         head = min(_ARROW_HEAD_FRACTION * length, _ARROW_HEAD_MAX_M)
-        # An arrow points along its pose's +x: rotate +x onto the force.
-        rotation = pin.Quaternion.FromTwoVectors(np.array([1.0, 0.0, 0.0]), force / magnitude)
         entity.arrows.append(ArrowPrimitive(
             pose=FoxglovePose(position=Vector3(x=0.0, y=0.0, z=0.0),
-                              orientation=_quaternion(rotation.toRotationMatrix())),
+                              orientation=_x_onto(fx / magnitude, fy / magnitude,
+                                                  fz / magnitude)),
             shaft_length=length - head, shaft_diameter=_ARROW_SHAFT_DIAMETER_M,
             head_length=head, head_diameter=_ARROW_HEAD_DIAMETER_M, color=_ARROW_COLOR))
     return SceneUpdate(entities=[entity])
+
+
+def _x_onto(ux: float, uy: float, uz: float) -> Quaternion:
+    """The shortest rotation taking +x onto the unit vector u (an arrow points along its
+    pose's +x): the half-way quaternion (1 + x·u, x × u) normalized, x × u = (0, -uz, uy);
+    for u = -x, half a turn about z."""
+    w = 1.0 + ux
+    if w < 1e-12:
+        return Quaternion(x=0.0, y=0.0, z=1.0, w=0.0)
+    norm = math.sqrt(w * w + uy * uy + uz * uz)
+    return Quaternion(x=0.0, y=-uz / norm, z=uy / norm, w=w / norm)
 
 
 _FORMATS = ((b"\xff\xd8\xff", "jpeg"), (b"\x89PNG\r\n\x1a\n", "png"))

@@ -70,7 +70,7 @@ from grpc_reflection.v1alpha.proto_reflection_descriptor_database import (
     ProtoReflectionDescriptorDatabase,
 )
 
-from services.launcher import HTTP_CHILDREN, STATION
+from services.launcher import GRPC_CHILDREN
 from services.runtime.children import Child
 from telerobot.v1 import (
     decision_server_pb2,
@@ -420,9 +420,10 @@ class Fuzzer:
         self.channels = {name: grpc.insecure_channel(address, options=[
             ("grpc.max_receive_message_length", 64 << 20)])
             for name, address in station.addresses.items()
-            # The station's gRPC services: not the web console (HTTP, tests/web_console), nor
-            # the services' /metrics ports (HTTP, tests/runtime/test_metrics.py).
-            if name in STATION and name not in HTTP_CHILDREN}
+            # The station's gRPC services: not the web console (HTTP, tests/web_console), the
+            # live view (WebSocket, tests/foxglove), nor the services' /metrics ports (HTTP,
+            # tests/runtime/test_metrics.py).
+            if name in GRPC_CHILDREN}
         inner = self.channels["proxy_robot"]
         operator = self.channels["decision_server"]
         self.inner_robot = proxy_robot_pb2_grpc.ProxyRobotStub(inner)

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import HTTP_CHILDREN, STATION, TCP_CHILDREN
+from services.launcher import GRPC_CHILDREN, HTTP_CHILDREN, STATION, TCP_CHILDREN
 from services.runtime.children import refused_address
 from services.runtime.process import metrics_port_name
 from tests.conftest import (
@@ -54,8 +54,7 @@ def station():
 def test_every_process_is_serving_where_the_launcher_says(station):
     launcher, addresses = station
     # Every service, and each one's Prometheus port beside it.
-    assert sorted(addresses) == sorted([*STATION, *(metrics_port_name(name) for name in STATION
-                                                    if name not in HTTP_CHILDREN | TCP_CHILDREN)])
+    assert sorted(addresses) == sorted([*STATION, *map(metrics_port_name, GRPC_CHILDREN)])
     for name in STATION:
         assert not addresses[name].endswith(":0"), addresses
         if name in TCP_CHILDREN:  # the live view: WebSocket only (test_the_live_view_…)

@@ -119,7 +119,8 @@ def test_joint_states_name_the_models_joints():
         fx.joint_states(types_pb2.RobotState(joint_positions_rad=[0.0] * 3))
 
 
-@pytest.mark.parametrize("force", [(0, 0, -12.5), (3, 0, 0), (0, -40, 0), (1.5, -2, 7)])
+@pytest.mark.parametrize("force", [(0, 0, -12.5), (3, 0, 0), (-5, 0, 0), (0, -40, 0),
+                                   (1.5, -2, 7)])
 def test_the_force_arrow_points_along_the_force_and_scales_with_it(force):
     wrench = types_pb2.Wrench(force_n=types_pb2.Vector3(x=force[0], y=force[1], z=force[2]),
                               torque_nm=types_pb2.Vector3(x=9.0))

@@ -16,7 +16,7 @@ import pytest
 from prometheus_client.parser import text_string_to_metric_families
 
 from clients.teleop.stack import local_station
-from services.launcher import HTTP_CHILDREN, STATION
+from services.launcher import GRPC_CHILDREN, STATION
 from services.runtime.process import metrics_port_name
 from services.security import pki
 from tests.conftest import REPO
@@ -35,9 +35,10 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls)
                    TELEROBOT_AUDIT_DIR=str(tmp_path / "audit"))
     out = tmp_path / "run"
     with local_station(env=env) as addresses:
-        # local_station yields once the DecisionServer is up; the web console comes after it.
+        # local_station yields once the DecisionServer is up; the web console and the live view
+        # come after it.
         services = {name for name in addresses if name in STATION}  # (and /metrics ports)
-        assert set(STATION) - HTTP_CHILDREN <= services
+        assert set(GRPC_CHILDREN) <= services
         operator = addresses["decision_server"]
         result = subprocess.run(
             [sys.executable, "-m", "clients.teleop", "--address", operator, "--out", str(out),
@@ -93,7 +94,7 @@ def _total(samples, name: str, **labels) -> float:
 def _check_the_station_metrics_moved(addresses: dict[str, str]) -> None:
     """After a session, each service's /metrics parses and its counters moved with the
     session's traffic: calls, the commands' ages, the streams' lags, the world's steps."""
-    grpc_services = set(STATION) - HTTP_CHILDREN
+    grpc_services = set(GRPC_CHILDREN)
     scraped = {name: _scrape(addresses[metrics_port_name(name)]) for name in grpc_services}
     for name, samples in scraped.items():
         if name != "world":  # the world serves shared memory, no gRPC calls
