@@ -36,6 +36,7 @@ import logging
 import os
 import signal
 import socket
+import ssl
 import sys
 import tempfile
 import threading
@@ -78,10 +79,10 @@ STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_cam
            "decision_server", "web_console", "foxglove"]
 # Children that answer HTTP, not gRPC: their health is GET /healthz (the browser console).
 HTTP_CHILDREN = {"web_console"}
-# Children that speak only WebSocket: they serve once their port accepts (the live view).
-TCP_CHILDREN = {"foxglove"}
+# Children that speak only WebSocket: they serve once they answer a handshake (the live view).
+WEBSOCKET_CHILDREN = {"foxglove"}
 # The gRPC services: health checked over gRPC, each with its Prometheus /metrics port.
-GRPC_CHILDREN = tuple(name for name in STATION if name not in HTTP_CHILDREN | TCP_CHILDREN)
+GRPC_CHILDREN = tuple(name for name in STATION if name not in HTTP_CHILDREN | WEBSOCKET_CHILDREN)
 STARTUP_TIMEOUT_S = 60.0
 # The banner's first line.
 UP_LINE = "Slave station is up"
@@ -152,8 +153,8 @@ def main(argv: list[str] | None = None) -> int:
                     return 0
                 for other, other_address in station.children[name].ready.items():
                     if other != name:  # its token and metrics ports, if it has them
-                        print(ready_line(other, other_address), flush=True)
-                print(ready_line(name, address), flush=True)
+                        _say(ready_line(other, other_address))
+                _say(ready_line(name, address))
             _print_banner(list(station.children.values()), args.tls_dir)
             door = station.children["decision_server"]
             # Withdrawn on leaving the block, before the children stop: however it ends.
@@ -271,10 +272,24 @@ def _restart_order(name: str) -> int:
     return -1 if name == "emergency_stop" else STATION.index(name)
 
 
+_OUTPUT = threading.Lock()
+
+
+def _say(text: str, stream=None) -> None:
+    """`text` and a newline in one write, one writer at a time. Whoever started the launcher
+    may read its stdout and stderr from one pipe: print() writes the text and the newline
+    apart, so a child's log line forwarded meanwhile from another thread could land inside a
+    ready line and hide it."""
+    stream = stream or sys.stdout
+    with _OUTPUT:
+        stream.write(text + "\n")
+        stream.flush()
+
+
 def _forward(_child: Child, line: str) -> None:
     """A child's log line, to the launcher's stderr (its ready line is the launcher's to say)."""
     if parse_ready_line(line) is None:
-        print(line, file=sys.stderr, flush=True)
+        _say(line, sys.stderr)
 
 
 def _wait_until_serving(child: Child, stop: threading.Event,
@@ -284,7 +299,7 @@ def _wait_until_serving(child: Child, stop: threading.Event,
     deadline = time.monotonic() + STARTUP_TIMEOUT_S
     address = child.wait_ready(timeout_s=STARTUP_TIMEOUT_S, cancel=stop)
     serving = (_http_serving if child.name in HTTP_CHILDREN
-               else _accepts if child.name in TCP_CHILDREN else _is_serving)
+               else _websocket_serving if child.name in WEBSOCKET_CHILDREN else _is_serving)
     while address is not None and not serving(address, security):
         if child.returncode is not None:
             raise ChildFailed(child.describe())
@@ -316,12 +331,28 @@ def _http_serving(address: str, _security: ChannelSecurity) -> bool:
         return False
 
 
-def _accepts(address: str, _security: ChannelSecurity) -> bool:
+def _websocket_serving(address: str, security: ChannelSecurity) -> bool:
+    """Whether a Foxglove WebSocket server answers a handshake at `address` (wss:// with the
+    station's CA when TLS is on); it is closed at once, as a client that leaves. A bare TCP
+    connect would do, but the server logs every connection that never shakes hands as an
+    error."""
     host, _, port = dialable(address).rpartition(":")
+    host = host.strip("[]")
+    request = (f"GET / HTTP/1.1\r\nHost: {host}:{port}\r\nUpgrade: websocket\r\n"
+               "Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+               "Sec-WebSocket-Version: 13\r\nSec-WebSocket-Protocol: foxglove.sdk.v1\r\n\r\n")
     try:
-        socket.create_connection((host.strip("[]"), int(port)), timeout=1.0).close()
-        return True
-    except OSError:
+        with socket.create_connection((host, int(port)), timeout=1.0) as raw:
+            stream = raw
+            if security.secure:
+                context = ssl.create_default_context(cafile=str(security.tls_dir / "ca.pem"))
+                stream = context.wrap_socket(raw, server_hostname=host)
+            stream.sendall(request.encode())
+            answered = stream.recv(12).startswith(b"HTTP/1.1 101")
+            if answered:
+                stream.sendall(b"\x88\x80\x00\x00\x00\x00")  # a close frame (masked, empty)
+            return answered
+    except OSError:  # (ssl.SSLError is one)
         return False
 
 
@@ -369,7 +400,7 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
             f"  npx buf curl --protocol grpc --http2-prior-knowledge --list-methods "
             f"http://{operator}",
         ]
-    print("\n".join([*lines, ""]), flush=True)
+    _say("\n".join([*lines, ""]))
 
 
 if __name__ == "__main__":

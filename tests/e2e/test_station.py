@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import GRPC_CHILDREN, HTTP_CHILDREN, STATION, TCP_CHILDREN
+from services.launcher import GRPC_CHILDREN, HTTP_CHILDREN, STATION, WEBSOCKET_CHILDREN
 from services.runtime.children import refused_address
 from services.runtime.process import metrics_port_name
 from tests.conftest import (
@@ -57,7 +57,7 @@ def test_every_process_is_serving_where_the_launcher_says(station):
     assert sorted(addresses) == sorted([*STATION, *map(metrics_port_name, GRPC_CHILDREN)])
     for name in STATION:
         assert not addresses[name].endswith(":0"), addresses
-        if name in TCP_CHILDREN:  # the live view: WebSocket only (test_the_live_view_…)
+        if name in WEBSOCKET_CHILDREN:  # the live view: WebSocket only (test_the_live_view_…)
             continue
         if name in HTTP_CHILDREN:  # the web console: HTTP, its health at /healthz
             with urllib.request.urlopen(f"http://{addresses[name]}/healthz", timeout=5) as r:
@@ -67,6 +67,29 @@ def test_every_process_is_serving_where_the_launcher_says(station):
     banner = "\n".join(launcher.lines)
     assert f"The operator's address is {addresses['decision_server']}" in banner
     assert f"The live view: ws://{addresses['foxglove']}" in banner
+    # The launcher's check that the live view serves shakes hands as a client would: the live
+    # view logs no failed handshake for it.
+    assert "handshake failed" not in banner
+
+
+def test_the_launchers_lines_are_whole_when_threads_write_at_once():
+    """A ready line printed while a child's log line is forwarded to stderr, and both read from
+    one pipe (as the tests and `make teleop` read the launcher): each line is one write."""
+    from services.launcher import _say
+
+    class Stream:
+        def __init__(self):
+            self.writes = []
+
+        def write(self, text):
+            self.writes.append(text)
+
+        def flush(self):
+            pass
+
+    stream = Stream()
+    _say("TELEROBOT_READY foxglove 127.0.0.1:8765", stream)
+    assert stream.writes == ["TELEROBOT_READY foxglove 127.0.0.1:8765\n"]
 
 
 def test_buf_curl_lists_every_rpc_of_all_four_services_on_the_operator_address(station):
