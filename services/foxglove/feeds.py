@@ -88,6 +88,9 @@ class Feed:
                 ended = "the service ended the stream"
             except grpc.RpcError as error:
                 ended = f"{error.code().name}: {error.details()}"
+            except Exception as error:  # noqa: BLE001 - a message this view cannot show
+                call.cancel()  # start over (after the back-off) rather than lose the feed
+                ended = f"{type(error).__name__}: {error}"
             with self._wake:
                 self._call = None
                 if self._stopped or not self._wanted:

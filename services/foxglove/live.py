@@ -123,8 +123,10 @@ class LiveChannels:
         self._publish(fox.FORCE_ARROW, lambda: fox.force_arrow(sample.wrench, stamp), stamp)
 
     def stereo_pair(self, pair: sc_pb.StereoPair) -> None:
-        """A pair from the stream whose header set_cameras() was given."""
+        """A pair from the stream whose header set_cameras() was given (none yet: skipped)."""
         stamp, header = pair.left_capture_time.ToNanoseconds(), self._header
+        if header is None:
+            return
         for topic, convert in (
                 (fox.LEFT_IMAGE, lambda: fox.camera_images(pair)[0]),
                 (fox.RIGHT_IMAGE, lambda: fox.camera_images(pair)[1]),

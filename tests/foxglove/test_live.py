@@ -219,3 +219,25 @@ def test_the_live_view_refuses_a_network_address_unless_allowed_and_checks_its_r
     assert "viewers are not authenticated" in capsys.readouterr().err
     assert main(["--address", "127.0.0.1:0", "--stereo-fps", "0"]) == 2
     assert "--stereo-fps must be > 0" in capsys.readouterr().err
+
+
+def test_a_message_the_view_cannot_show_restarts_the_feed_instead_of_ending_it():
+    calls: list[FakeCall] = []
+
+    def open_stream():
+        calls.append(FakeCall())
+        return calls[-1]
+
+    def handle(message):
+        if message == "bad":
+            raise ValueError("no Foxglove form")
+
+    feed = Feed("test", open_stream, handle).start()
+    try:
+        feed.want(True)
+        wait_for(lambda: len(calls) == 1, timeout_s=5, what="the stream opened")
+        calls[0].items.put("bad")
+        wait_for(lambda: len(calls) == 2, timeout_s=5, what="the stream reopened")
+        assert calls[0].cancelled.is_set() and "ValueError" in feed.error
+    finally:
+        feed.stop()
