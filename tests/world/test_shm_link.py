@@ -110,6 +110,19 @@ def test_commands_arrive_in_the_order_they_were_issued(publisher, link) -> None:
     assert kinds(publisher.poll_commands()) == ["release", "hold"]
 
 
+def test_a_target_carries_the_segment_to_reach_it_over(publisher, link) -> None:
+    target = link.read_arm().joint_targets_rad + 0.01
+    link.write_target(target, 0.02)
+    (command,) = publisher.poll_commands()
+    assert command.kind == "target" and command.duration_s == 0.02
+    link.write_target(target)  # at once
+    assert publisher.poll_commands()[0].duration_s == 0.0
+    for bad in (-0.01, float("nan"), float("inf")):
+        with pytest.raises(InvalidArgument, match="segment duration"):
+            link.write_target(target, bad)
+    assert publisher.poll_commands() == []  # nothing half-written
+
+
 def test_no_edge_is_lost_between_two_polls(publisher, link) -> None:
     for _ in range(3):
         link.hold()
