@@ -121,6 +121,8 @@ class ForceLoop:
                 continue
             delta_x, delta_m = pending_x, pin.exp3(pending_r)
             pending_x, pending_r = np.zeros(3), np.zeros(3)
+            if self._stop.is_set():  # stopped while integrating: no step after the stop
+                return
             try:
                 self._slave.move_cartesian(delta_x, delta_m, "TOOL")
             except Unavailable:

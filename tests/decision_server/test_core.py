@@ -29,6 +29,11 @@ def moves_in(rig: Rig, steps: int, loops: int) -> int:
     """Force-control moves sent while the arm steps `steps` servo periods, once `loops` loops
     read the sensor. One loop acts on every 5th sample; a second one would double it."""
     wait_for(lambda: rig.slave.subscribers() == loops, what=f"{loops} loops reading")
+    # A stopped loop leaves the sensor first and its thread after: a step it was already
+    # sending lands in between, so wait for the threads themselves to be gone.
+    wait_for(lambda: sum(t.name == "force-control" and t.is_alive()
+                         for t in threading.enumerate()) <= loops,
+             what=f"at most {loops} loop threads")
     rig.slave.step(SERVO_PERIOD_S, 10)  # a fresh loop skips its first sample
     before = rig.moves()
     rig.slave.step(SERVO_PERIOD_S, steps)
