@@ -39,7 +39,6 @@ class Feed:
         self._wanted = False
         self._stopped = False
         self._call = None
-        self.opened = 0  # how many times the stream was opened
         self.error: str | None = None  # the last error, while it keeps failing
         self._thread = threading.Thread(target=self._run, name=f"live-{name}", daemon=True)
 
@@ -77,7 +76,6 @@ class Feed:
                     call.cancel()
                     continue
                 self._call = call
-            self.opened += 1
             try:
                 for message in call:
                     self._handle(message)

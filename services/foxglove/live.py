@@ -51,7 +51,8 @@ def protobuf_schema(message_class: type) -> Schema:
 
 class Demand:
     """Which feeds the viewers want: a feed is wanted while any client subscribes to any of its
-    topics. `on_change(feed, wanted)` is called when that flips (from the server's thread)."""
+    topics. `on_change(feed, wanted)` is called when that flips (from the server's thread),
+    under the lock, so two flips are never told in the wrong order; it must not block."""
 
     def __init__(self, on_change: Callable[[str, bool], None]):
         self._on_change = on_change
@@ -76,9 +77,8 @@ class Demand:
             watchers = self._subscribers[feed]
             before = bool(watchers)
             (watchers.add if add else watchers.discard)((client_id, topic))
-            after = bool(watchers)
-        if before != after:
-            self._on_change(feed, after)
+            if before != bool(watchers):
+                self._on_change(feed, not before)
 
     # The foxglove.websocket.ServerListener protocol (the SDK calls these on its own thread).
     def on_subscribe(self, client, channel) -> None:
