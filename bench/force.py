@@ -24,6 +24,7 @@ recording, cost. Closing the MCAP file after the window is not in it.
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -32,6 +33,7 @@ from pathlib import Path
 import grpc
 
 from bench import framing
+from bench.cpu import CpuWindow
 from bench.stats import interarrival, summary
 from telerobot.v1 import force_sensor_pb2, force_sensor_pb2_grpc
 
@@ -113,10 +115,13 @@ def sequence_gaps(last: int | None, sequence: int, decimation: int) -> int:
 
 def measure_stream(transport: str, address: str, decimation: int, duration_s: float,
                    on_first: Callable[[], None] | None = None,
-                   mcap_path: str | None = None) -> dict:
+                   mcap_path: str | None = None,
+                   watch_pids: dict[str, int] | None = None) -> dict:
     """Receive the wrench stream for WARMUP_S + duration_s; the scenario's summary.
     `mcap_path`: record every sample there (recording.WrenchRecorder), the result's
-    `recording` says what the file holds."""
+    `recording` says what the file holds. `watch_pids`: the result's `cpu` says how busy the
+    machine was over the measured window and what each of these processes, and this
+    subscriber ("operator"), took of it (bench/cpu.py)."""
     recorder = None
     if mcap_path is not None:
         from bench.recording import WrenchRecorder  # the MCAP writer: only when recording
@@ -145,6 +150,8 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
             window_start = now
             first_dropped = message.dropped_count
             cpu_start = time.process_time()
+            if watch_pids is not None:
+                cpu_window = CpuWindow({**watch_pids, "operator": os.getpid()})
         for sample in message.samples:
             latencies.append((now_ns - sample.sample_time.ToNanoseconds()) / 1e6)
             gaps += sequence_gaps(last_sequence, sample.sequence, decimation)
@@ -168,6 +175,8 @@ def measure_stream(transport: str, address: str, decimation: int, duration_s: fl
     if len(latencies) > 1:  # the window opens after the first message's CPU
         result["subscriber_cpu_us_per_sample"] = round(
             1e6 * (cpu_end - cpu_start) / (len(latencies) - 1), 2)
+    if watch_pids is not None:
+        result["cpu"] = cpu_window.stop()
     if recorder is not None:
         result["recording"] = recorder.close()
     result["latencies_ms"] = [round(v, 4) for v in latencies]

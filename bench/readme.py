@@ -135,7 +135,22 @@ def _baselines(name: str, results: dict[str, dict]) -> str:
                 text += (f"; medians of {len(results[name].get('overhead_pairs') or [])} "
                          f"interleaved pairs: {_overhead(results[name])}")
             parts.append(text)
+    if results[name].get("cpu"):
+        parts.append(_cpu_text(results[name]["cpu"]))
     return "; ".join(parts) or "–"
+
+
+def _cpu_text(cpu: dict) -> str:
+    """"while measured: both cores 95 % busy; force_sensor 60 %, ... of a core" (bench/cpu.py),
+    the observer processes summed."""
+    shares: dict[str, float] = {}
+    for name, pct in cpu.get("cpu_pct", {}).items():
+        key = "observers" if name.startswith("observers") else name
+        shares[key] = shares.get(key, 0.0) + pct
+    each = ", ".join(f"{name.replace('_', ' ')} {pct:.0f} %"
+                     for name, pct in sorted(shares.items(), key=lambda item: -item[1]))
+    return (f"while measured: the machine {cpu['machine_busy_pct']:.0f} % busy"
+            + (f"; {each} of a core" if each else ""))
 
 
 # An interleaved row's medians (report.interleaved) as the README shows them, in this order.

@@ -610,9 +610,15 @@ class Bench:
                     "decimation": plan.observer_decimation, "max_s": plan.observers_s + 60}))
             for group in groups:
                 self.procs.wait_worker_ready(group, 60.0)
+            # Where the CPU goes while the operator is measured: the station's busy
+            # processes, and the observers' (on the same cores, as the bench runs).
+            watched = {name: pid for name in ("force_sensor", "world")
+                       if (pid := self._pid(name)) is not None}
+            watched.update({f"observers {i + 1}": group.pid for i, group in enumerate(groups)})
             result = self.procs.run_worker("force", {
                 "transport": "grpc", "address": address, "decimation": 1,
-                "duration_s": plan.observers_s}, 60 + 3 * plan.observers_s)
+                "duration_s": plan.observers_s, "watch_pids": watched},
+                60 + 3 * plan.observers_s)
             observed = []
             for group in groups:
                 group.stop(grace_s=5.0)

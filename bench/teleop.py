@@ -49,7 +49,6 @@ from __future__ import annotations
 import contextlib
 import functools
 import itertools
-import os
 import queue
 import threading
 import time
@@ -63,6 +62,7 @@ from google.protobuf import duration_pb2, timestamp_pb2
 
 from bench import framing
 from bench.command import PLAINTEXT, TELEOP_STEP_M, acquire_control, release_control
+from bench.cpu import process_cpu_s
 from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldloop import LoopMeter
@@ -466,13 +466,6 @@ def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict]) -> d
                                                  result["session_applied"],
                                                  saved.command_count, TELEOP_STEP_M)
     return result
-
-
-def process_cpu_s(pid: int) -> float:
-    """A process's CPU time so far (user + system, every thread), s; 10 ms ticks."""
-    with open(f"/proc/{pid}/stat") as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()  # after the command, which may hold " "
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],

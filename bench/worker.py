@@ -71,7 +71,7 @@ def _force(p: dict) -> dict:
     from bench.force import measure_stream
 
     return measure_stream(p["transport"], p["address"], p["decimation"], p["duration_s"],
-                          mcap_path=p.get("mcap_path"))
+                          mcap_path=p.get("mcap_path"), watch_pids=p.get("watch_pids"))
 
 
 def _observers(p: dict) -> dict:

@@ -81,3 +81,14 @@ def test_rewrite_replaces_only_what_lies_between_the_markers():
     assert readme.rewrite(new, "| new |") == new
     with pytest.raises(ValueError):
         readme.rewrite("no markers here", "| new |")
+
+
+def test_an_observers_row_says_where_the_cpu_went_while_it_was_measured(document):
+    document["observers_32"] = {
+        "rate_hz": 1000.0, "delivered_hz": 773.0, "p50_ms": 15.5, "p99_ms": 92.7,
+        "cpu": {"machine_busy_pct": 95.4, "window_s": 2.0,
+                "cpu_pct": {"force_sensor": 59.8, "world": 34.3, "operator": 44.1,
+                            "observers 1": 12.7, "observers 2": 11.8}}}
+    baselines = _rows(readme.table(document))["observers_32"][7]
+    assert baselines == ("while measured: the machine 95 % busy; force sensor 60 %, "
+                         "operator 44 %, world 34 %, observers 24 % of a core")

@@ -1,0 +1,60 @@
+"""Where the machine's CPU went over a measured window: how busy all cores were (/proc/stat),
+and each watched process's share of one core (/proc/<pid>/stat, user + system, every thread).
+
+A scenario that misses its goal while the machine has no idle core left is limited by the
+machine, not by the code under test; the bench clients run on the same cores as the station,
+so their share is part of the answer."""
+
+from __future__ import annotations
+
+import os
+import time
+
+_TICKS_PER_S = os.sysconf("SC_CLK_TCK")
+
+
+def process_cpu_s(pid: int) -> float:
+    """A process's CPU time so far (user + system, every thread), s; 10 ms ticks."""
+    with open(f"/proc/{pid}/stat") as stat:
+        fields = stat.read().rsplit(")", 1)[1].split()  # after the command, which may hold " "
+    return (int(fields[11]) + int(fields[12])) / _TICKS_PER_S
+
+
+def machine_ticks() -> tuple[int, int]:
+    """(busy, total) jiffies of all cores so far; idle and iowait are not busy."""
+    with open("/proc/stat") as stat:
+        values = [int(v) for v in stat.readline().split()[1:]]
+    total = sum(values[:8])  # user nice system idle iowait irq softirq steal (guests are in user)
+    return total - values[3] - values[4], total
+
+
+class CpuWindow:
+    """Started, then stopped: the machine's busy share and each process's CPU in between."""
+
+    def __init__(self, pids: dict[str, int]):
+        self._pids = dict(pids)
+        self._started_at = time.monotonic()
+        self._machine = machine_ticks()
+        self._cpu = {name: _cpu_or_none(pid) for name, pid in self._pids.items()}
+
+    def stop(self) -> dict:
+        """{"machine_busy_pct": % of all cores, "cpu_pct": {name: % of one core}}; a process
+        that exited meanwhile is left out."""
+        elapsed = max(time.monotonic() - self._started_at, 1e-9)
+        busy, total = machine_ticks()
+        busy_then, total_then = self._machine
+        shares = {}
+        for name, pid in self._pids.items():
+            now, then = _cpu_or_none(pid), self._cpu[name]
+            if now is not None and then is not None:
+                shares[name] = round(100.0 * (now - then) / elapsed, 1)
+        return {"machine_busy_pct": round(100.0 * (busy - busy_then)
+                                          / max(total - total_then, 1), 1),
+                "window_s": round(elapsed, 3), "cpu_pct": shares}
+
+
+def _cpu_or_none(pid: int) -> float | None:
+    try:
+        return process_cpu_s(pid)
+    except (FileNotFoundError, ProcessLookupError):
+        return None
