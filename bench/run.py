@@ -700,7 +700,8 @@ class Bench:
         ProxyRobot's streams meanwhile; then, through a fresh DecisionServer, the emergency
         stop idle and under its intended load (200 RunAction BusyWork on the low lane)."""
         teleop = [f"teleop_{rate}" for rate in self.plan.command_rates]
-        self._with_decision_server(teleop + ["teleop_1000_lockstep"], self._teleop)
+        self._with_decision_server(teleop + ["teleop_1000_lockstep", "teleop_1000_mcap"],
+                                   self._teleop)
         self._tls_twin("teleop_1000", self._teleop_tls)
         if self.plan.profile:
             self._with_decision_server(["profile"], self._profile)
@@ -733,7 +734,7 @@ class Bench:
                 address = stack.enter_context(self._decision_server(self.station))
             except ChildFailed as error:
                 self.progress.step(f"starting the DecisionServer for {', '.join(names)}")
-                return self._fail(names, error)
+                return self._fail([*names, "teleop_1000_mcap"], error)
             body(address)
 
     def _profile(self, address: str) -> None:
@@ -774,8 +775,8 @@ class Bench:
         server = {"server_pid": self._pid("decision_server")}  # its CPU per command
         try:
             results = self._rate_worker("teleop", "grpc", address, plan.command_rates, server)
-        except ChildFailed as error:
-            return self._fail(names, error)
+        except ChildFailed as error:  # the recording's twin has nothing to compare with
+            return self._fail([*names, "teleop_1000_mcap"], error)
         for rate in plan.command_rates:
             self._record(f"teleop_{rate}", results[str(rate)])
         lockstep = self.results.get(name, {})

@@ -222,3 +222,26 @@ def test_the_pairs_are_three_quick_and_five_full_each_leg_the_quick_length():
     assert (quick.overhead_pairs, full.overhead_pairs) == (3, 5)
     assert (full.overhead_teleop_leg_s, full.overhead_force_leg_s) == (quick.command_s,
                                                                        quick.force_s)
+
+
+def test_when_the_teleop_streams_fail_their_recording_twin_is_a_failed_row_too():
+    """teleop_1000_mcap repeats teleop_1000: with no teleop_1000 it has nothing to compare
+    with, and it must show as failed, not vanish from the table."""
+    from types import SimpleNamespace
+
+    from bench.run import Bench, Plan
+    from services.runtime.children import ChildFailed
+
+    def worker_fails(*args, **kwargs):
+        raise ChildFailed("decision_server exited (code 1)")
+
+    bench = Bench.__new__(Bench)  # no station: the failure path only
+    bench.plan, bench.results = Plan(quick=True, only=("decision",)), {}
+    bench.progress = SimpleNamespace(step=lambda *a: None, done=lambda *a: None)
+    bench.driver = SimpleNamespace(arm_ready=lambda: None)
+    bench._pid = lambda name: None
+    bench._rate_worker = worker_fails
+    bench._teleop("127.0.0.1:1")
+    for name in ("teleop_50", "teleop_1000", "teleop_1000_lockstep", "teleop_1000_mcap"):
+        assert bench.results[name]["status"] == "failed", name
+    assert "decision_server exited" in bench.results["teleop_1000_mcap"]["reason"]
