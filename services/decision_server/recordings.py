@@ -122,6 +122,8 @@ class RecordingStore:
         # The servicer sets this: a DecisionEvent as the protobuf event the MCAP recordings
         # hold (None to leave one out). Without it, MCAP recordings hold no events.
         self.event_to_message: Callable[[object], object] | None = None
+        # Told (name, why) when a recording stops by itself (the core raises an event).
+        self.on_failed: Callable[[str, str], None] | None = None
 
     def _path(self, name: str, format: str = "JSONL") -> Path:
         if not NAME_PATTERN.fullmatch(name or ""):
@@ -206,11 +208,16 @@ class RecordingStore:
             active.recorder.event(event)
 
     def _died(self, active: _Active, why: str) -> None:
-        """An MCAP recording's writer failed: the recording is over (StopRecording says why)."""
+        """An MCAP recording's writer failed: the recording is over (StopRecording says why,
+        and `on_failed` hears of it now)."""
         with self._lock:
-            if self._active is active:
-                self._active = None
-                self._failure = (active.name, why)
+            if self._active is not active:
+                return  # stopped meanwhile: StopRecording answered the failure itself
+            self._active = None
+            self._failure = (active.name, why)
+        on_failed = self.on_failed
+        if on_failed is not None:
+            on_failed(active.name, why)
 
     def stop(self) -> RecordingInfo:
         with self._lock:

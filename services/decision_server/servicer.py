@@ -24,6 +24,7 @@ from services.decision_server.supervisor import (
     AssistanceChanged,
     ControlChanged,
     DecisionCore,
+    RecordingFailed,
     ReplayProgress,
     RobotEventForwarded,
 )
@@ -217,6 +218,9 @@ def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
             reason=payload.reason, commands_processed=counts.processed,
             commands_applied=counts.applied, resends_answered=counts.resends,
             last_sequence=counts.last_sequence))
+    elif isinstance(payload, RecordingFailed):
+        message.recording_failed.CopyFrom(pb.RecordingFailedEvent(name=payload.name,
+                                                                  reason=payload.reason))
     elif isinstance(payload, DependencyChanged):
         message.dependency_changed.CopyFrom(pb.DependencyChangedEvent(
             dependency=dependency_to_proto(payload.dependency),

@@ -95,6 +95,12 @@ class ReplayProgress:
 
 
 @dataclass(frozen=True)
+class RecordingFailed:
+    name: str
+    reason: str
+
+
+@dataclass(frozen=True)
 class RobotEventForwarded:
     message: object  # the ProxyRobot event, as it came
 
@@ -142,6 +148,7 @@ class DecisionCore:
         self.processor = SimulatedProcessor()
         slave.on_state = self._note_state
         slave.on_robot_event = lambda message: self.emit(RobotEventForwarded(message))
+        recordings.on_failed = lambda name, why: self.emit(RecordingFailed(name, why))
 
     def emit(self, payload) -> None:
         event = DecisionEvent(next(self._event_sequence), self.clock.time_ns(), payload)

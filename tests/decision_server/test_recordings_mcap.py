@@ -128,10 +128,14 @@ def test_a_truncated_or_corrupt_mcap_file_is_refused_clearly(rig, tmp_path):
 
 
 def test_a_recording_whose_file_cannot_be_written_stops_and_commands_go_on(rig, tmp_path):
-    """A full disk (the partial file is /dev/full): the recording stops with the reason, the
-    commands keep being applied, and StopRecording says what happened, once."""
+    """A full disk (the partial file is /dev/full): the recording stops with the reason, an
+    event says so at once, the commands keep being applied, and StopRecording says what
+    happened, once."""
+    from services.decision_server.servicer import event_to_proto
+
     (tmp_path / "full.mcap.partial").symlink_to("/dev/full")
     lease = rig.lease.lease_id
+    events = rig.core.events.subscribe(1024)
     rig.core.start_recording(lease, "full", "MCAP")
 
     def stopped() -> bool:
@@ -140,6 +144,18 @@ def test_a_recording_whose_file_cannot_be_written_stops_and_commands_go_on(rig, 
         return not rig.core.recordings.recording
 
     wait_for(stopped, 5, "the recording to stop by itself")
+    failed = []
+
+    def failures_seen() -> list:
+        while (event := events.get(0)) is not None:
+            message = event_to_proto(event, rig.clock)  # as StreamEvents sends it
+            if message.WhichOneof("event") == "recording_failed":
+                failed.append(message.recording_failed)
+        return failed
+
+    wait_for(failures_seen, 5, "the recording_failed event")
+    assert [event.name for event in failed] == ["full"]
+    assert "No space left on device" in failed[0].reason
     moves = rig.moves()
     rig.core.move_cartesian(lease, np.array([0.0, 0.0, 0.0005]), np.eye(3), "BASE")
     assert rig.moves() == moves + 1

@@ -499,7 +499,7 @@ class StreamEventsRequest(_message.Message):
     def __init__(self, include_data_received: _Optional[bool] = ...) -> None: ...
 
 class StreamEventsResponse(_message.Message):
-    __slots__ = ("sequence", "event_time", "robot", "control_changed", "watchdog_hold", "assistance_changed", "replay_progress", "dependency_changed", "teleop_session")
+    __slots__ = ("sequence", "event_time", "robot", "control_changed", "watchdog_hold", "assistance_changed", "replay_progress", "dependency_changed", "teleop_session", "recording_failed")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     EVENT_TIME_FIELD_NUMBER: _ClassVar[int]
     ROBOT_FIELD_NUMBER: _ClassVar[int]
@@ -509,6 +509,7 @@ class StreamEventsResponse(_message.Message):
     REPLAY_PROGRESS_FIELD_NUMBER: _ClassVar[int]
     DEPENDENCY_CHANGED_FIELD_NUMBER: _ClassVar[int]
     TELEOP_SESSION_FIELD_NUMBER: _ClassVar[int]
+    RECORDING_FAILED_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     event_time: _timestamp_pb2.Timestamp
     robot: _proxy_robot_pb2.StreamRobotEventsResponse
@@ -518,7 +519,16 @@ class StreamEventsResponse(_message.Message):
     replay_progress: ReplayProgressEvent
     dependency_changed: DependencyChangedEvent
     teleop_session: TeleopSessionEvent
-    def __init__(self, sequence: _Optional[int] = ..., event_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., robot: _Optional[_Union[_proxy_robot_pb2.StreamRobotEventsResponse, _Mapping]] = ..., control_changed: _Optional[_Union[ControlChangedEvent, _Mapping]] = ..., watchdog_hold: _Optional[_Union[WatchdogHoldEvent, _Mapping]] = ..., assistance_changed: _Optional[_Union[AssistanceChangedEvent, _Mapping]] = ..., replay_progress: _Optional[_Union[ReplayProgressEvent, _Mapping]] = ..., dependency_changed: _Optional[_Union[DependencyChangedEvent, _Mapping]] = ..., teleop_session: _Optional[_Union[TeleopSessionEvent, _Mapping]] = ...) -> None: ...
+    recording_failed: RecordingFailedEvent
+    def __init__(self, sequence: _Optional[int] = ..., event_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., robot: _Optional[_Union[_proxy_robot_pb2.StreamRobotEventsResponse, _Mapping]] = ..., control_changed: _Optional[_Union[ControlChangedEvent, _Mapping]] = ..., watchdog_hold: _Optional[_Union[WatchdogHoldEvent, _Mapping]] = ..., assistance_changed: _Optional[_Union[AssistanceChangedEvent, _Mapping]] = ..., replay_progress: _Optional[_Union[ReplayProgressEvent, _Mapping]] = ..., dependency_changed: _Optional[_Union[DependencyChangedEvent, _Mapping]] = ..., teleop_session: _Optional[_Union[TeleopSessionEvent, _Mapping]] = ..., recording_failed: _Optional[_Union[RecordingFailedEvent, _Mapping]] = ...) -> None: ...
+
+class RecordingFailedEvent(_message.Message):
+    __slots__ = ("name", "reason")
+    NAME_FIELD_NUMBER: _ClassVar[int]
+    REASON_FIELD_NUMBER: _ClassVar[int]
+    name: str
+    reason: str
+    def __init__(self, name: _Optional[str] = ..., reason: _Optional[str] = ...) -> None: ...
 
 class ControlChangedEvent(_message.Message):
     __slots__ = ("state", "reason")
