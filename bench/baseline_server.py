@@ -42,7 +42,7 @@ from services.common import convert
 from services.decision_server.arbitration import ControlMode
 from services.decision_server.backends import GrpcSlave
 from services.decision_server.recordings import RecordingStore
-from services.decision_server.servicer import DecisionServerServicer
+from services.decision_server.servicer import _END_OF_SESSION, DecisionServerServicer
 from services.decision_server.supervisor import DecisionCore
 from services.decision_server.teleop import TeleopSession
 from services.force_sensor.core import ForceSensorCore
@@ -215,7 +215,7 @@ class TeleopSessions:
     def __init__(self, core: DecisionCore):
         self.core = core
         self.servicer = DecisionServerServicer(core)
-        self._sessions: dict[bytes, tuple[TeleopSession, str | None]] = {}
+        self._sessions: dict[bytes, tuple[TeleopSession, str | None, bool]] = {}  # grouped acks
 
     def handle(self, frames: list[tuple[bytes, bytes]]) -> list[tuple[bytes, list[bytes]]]:
         """Frames (identity, payload) that arrived together, in order: the replies, in order.
@@ -251,10 +251,12 @@ class TeleopSessions:
             if entry is None:
                 raise InvalidArgument("a Teleoperate stream starts with an init",
                                       reason="NO_INIT")
+            session, _, grouped = entry
             received = [self.servicer._received(request) for request in requests]
-            return [ack.SerializeToString()
-                    for ack in self.servicer._serve_batch(entry[0], entry[0].stream,
-                                                          received)]
+            return [answer.SerializeToString()
+                    for answer in self.servicer._answers(session, session.stream, received,
+                                                         grouped)
+                    if answer is not _END_OF_SESSION]
 
         try:
             return [(identity, [framing.REPLY_OK, ack]) for ack in acks()]
@@ -285,7 +287,7 @@ class TeleopSessions:
             if own_lease:
                 self.core.locks.release(own_lease)
             raise
-        self._sessions[identity] = (session, own_lease)
+        self._sessions[identity] = (session, own_lease, init.grouped_acks)
         mapping = session.mapping or self.core.assistance.mapping
         return dpb.TeleoperateResponse(ready=dpb.TeleoperateReady(
             session_id=session.session_id,
@@ -296,7 +298,7 @@ class TeleopSessions:
         entry = self._sessions.pop(identity, None)
         if entry is None:
             return
-        session, own_lease = entry
+        session, own_lease, _ = entry
         session.close(reason)
         if own_lease:
             try:

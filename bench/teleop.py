@@ -23,6 +23,9 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
   so the arm comes back; a long stream, the soak's, flips every ``swing`` commands too); each
   rate has a stream (a session) of its own, after WARMUP_COMMANDS sent the same way and
   waited for. The soak also asks for ``windows``: the latency per minute of the stream.
+- the stream asks for grouped acks (``TeleoperateInit.grouped_acks``), as the project's Python
+  client does: the acks of the commands the server took together come in one message (the
+  zmq baseline answers the same way, with the servicer's own code);
 - ``record_dir`` (teleop_1000_mcap, recording.py): the DecisionServer records the session as
   MCAP (StartRecording before the stream opens, StopRecording after it ends), and the file, in
   the server's recordings directory, is checked against ``session_applied``: the commands
@@ -108,7 +111,7 @@ def init_request(lease_id: str, watchdog_s: float = WATCHDOG_S) -> dpb.Teleopera
     watchdog.FromNanoseconds(int(round(watchdog_s * 1e9)))
     return dpb.TeleoperateRequest(init=dpb.TeleoperateInit(
         operator_id="bench", lease_id=lease_id, mapping=types_pb2.REFERENCE_FRAME_BASE,
-        watchdog_timeout=watchdog))
+        watchdog_timeout=watchdog, grouped_acks=True))
 
 
 # -- gRPC -------------------------------------------------------------------------------------
@@ -296,28 +299,32 @@ class AckTracker:
         try:
             for response in responses:
                 arrived = time.time_ns()
-                if response.WhichOneof("message") != "ack":
-                    continue
-                ack = response.ack
-                times = (arrived, ack.receive_time.ToNanoseconds(),
-                         ack.apply_time.ToNanoseconds())
-                with self._lock:
-                    self._highest = max(self._highest, ack.sequence)
-                    self.applied_total += ack.outcome in ACCEPTED
-                    sent = self._pending.pop(ack.sequence, None)
-                    if not self._pending:
-                        self._drained.set()
-                    if sent is None:
-                        continue  # not counted (the warm-up's, or after the books closed)
-                    self._acks.append((sent, *times, ack.outcome))
-                    if ack.outcome not in ACCEPTED and len(self._refusals) < 5:
-                        self._refusals.append(f"{dpb.CommandOutcome.Name(ack.outcome)}: "
-                                              f"{ack.detail}")
+                kind = response.WhichOneof("message")
+                if kind == "acks":
+                    for ack in response.acks.acks:
+                        self._took(ack, arrived)
+                elif kind == "ack":
+                    self._took(response.ack, arrived)
         except StreamFailed as error:
             self.error = str(error)
         finally:
             self.ended.set()
             self._drained.set()
+
+    def _took(self, ack: dpb.CommandAck, arrived: int) -> None:
+        times = (arrived, ack.receive_time.ToNanoseconds(), ack.apply_time.ToNanoseconds())
+        with self._lock:
+            self._highest = max(self._highest, ack.sequence)
+            self.applied_total += ack.outcome in ACCEPTED
+            sent = self._pending.pop(ack.sequence, None)
+            if not self._pending:
+                self._drained.set()
+            if sent is None:
+                return  # not counted (the warm-up's, or after the books closed)
+            self._acks.append((sent, *times, ack.outcome))
+            if ack.outcome not in ACCEPTED and len(self._refusals) < 5:
+                self._refusals.append(f"{dpb.CommandOutcome.Name(ack.outcome)}: "
+                                      f"{ack.detail}")
 
 
 def _command(sequence: int, sign: float) -> tuple[dpb.TeleoperateRequest, int]:

@@ -106,10 +106,20 @@ def teleoperate_init(operator_id: str, lease_id: str, mapping: int | None,
                      ) -> pb.TeleoperateInit:
     init = pb.TeleoperateInit(operator_id=operator_id, lease_id=lease_id,
                               mapping=int(mapping or 0),
-                              passivity=pb.PASSIVITY_TDPA if passivity else pb.PASSIVITY_OFF)
+                              passivity=pb.PASSIVITY_TDPA if passivity else pb.PASSIVITY_OFF,
+                              grouped_acks=True)
     if watchdog_timeout_s:
         init.watchdog_timeout.CopyFrom(convert.duration(watchdog_timeout_s))
     return init
+
+
+def acks_in(reply: pb.TeleoperateResponse) -> list[pb.CommandAck]:
+    """The acks a reply carries, in order: one (`ack`) or a group (`acks`, which this client
+    asks for: fewer messages at high rates); none in a `ready`."""
+    kind = reply.WhichOneof("message")
+    if kind == "acks":
+        return list(reply.acks.acks)
+    return [reply.ack] if kind == "ack" else []
 
 
 def _again(error: TelerobotRpcError) -> TelerobotRpcError:
@@ -268,8 +278,9 @@ class TeleopSession(_SessionState):
                 if reply.WhichOneof("message") == "ready":
                     self.ready = reply.ready
                     self._ready_event.set()
-                else:
-                    self._on_reply(Ack.from_proto(reply.ack, time.time_ns()))
+                arrived = time.time_ns()
+                for ack in acks_in(reply):
+                    self._on_reply(Ack.from_proto(ack, arrived))
             return None
         except grpc.RpcError as error:
             if self._cancelled and error.code() == grpc.StatusCode.CANCELLED:
@@ -310,7 +321,8 @@ class TeleopSession(_SessionState):
         deadline = time.monotonic() + window
         init = pb.TeleoperateInit(operator_id=self._init.operator_id,
                                   lease_id=self._init.lease_id,
-                                  resume_session_id=self.session_id)
+                                  resume_session_id=self.session_id,
+                                  grouped_acks=self._init.grouped_acks)
         delay, tries = 0.0, 0
         while (left := deadline - time.monotonic()) > 0 and not self._closing:
             if self._stop_reconnecting.wait(min(delay, left)):
@@ -579,12 +591,14 @@ class AsyncTeleopSession(_SessionState):
                     if not self._ready.done():
                         self._ready.set_result(None)
                     continue
-                ack = Ack.from_proto(reply.ack, time.time_ns())
-                self._received += 1
-                future = self._waiters.pop(self._received, None)
-                if future is not None and not future.done():
-                    future.set_result(ack)
-                self._deliver(ack)
+                arrived = time.time_ns()
+                for message in acks_in(reply):
+                    ack = Ack.from_proto(message, arrived)
+                    self._received += 1
+                    future = self._waiters.pop(self._received, None)
+                    if future is not None and not future.done():
+                        future.set_result(ack)
+                    self._deliver(ack)
         except grpc.aio.AioRpcError as error:
             if not (self._cancelled and error.code() == grpc.StatusCode.CANCELLED):
                 self._error = from_rpc_error(error, TELEOPERATE_METHOD)

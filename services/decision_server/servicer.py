@@ -326,13 +326,15 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             # arm, this one writes the acks; the arm never waits for an ack to be written.
             inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
 
+            grouped = first.init.grouped_acks
+
             def serve(emit) -> None:
                 while batch := inbox.take():
-                    for ack in self._serve_batch(session, stream, batch):
-                        if ack is _END_OF_SESSION:
+                    for answer in self._answers(session, stream, batch, grouped):
+                        if answer is _END_OF_SESSION:
                             ended.set()
                             return
-                        emit(ack)
+                        emit(answer)
 
             try:
                 yield from Producer(serve, name=f"teleop-{session.session_id}")
@@ -387,6 +389,30 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             convert.rotation_from_proto(command.delta_rotation, "delta_rotation"),
             command.clutch_engaged, received_ns, command.sequence,
             _master_energy_in(command))
+
+    def _answers(self, session: TeleopSession, stream: int, batch, grouped: bool
+                 ) -> Iterator[pb.TeleoperateResponse]:
+        """What messages that arrived together are answered with, in order: an ack each, or
+        (`grouped`, TeleoperateInit.grouped_acks) all their acks in one message; then
+        _END_OF_SESSION if they held the operator's end."""
+        if not grouped:
+            yield from self._serve_batch(session, stream, batch)
+            return
+        acks, ended = [], False
+        try:
+            for answer in self._serve_batch(session, stream, batch):
+                if answer is _END_OF_SESSION:
+                    ended = True
+                    break
+                acks.append(answer.ack)
+        except TelerobotError:
+            if acks:  # what was done before the error is still answered
+                yield pb.TeleoperateResponse(acks=pb.CommandAcks(acks=acks))
+            raise
+        if acks:
+            yield pb.TeleoperateResponse(acks=pb.CommandAcks(acks=acks))
+        if ended:
+            yield _END_OF_SESSION
 
     def _serve_batch(self, session: TeleopSession, stream: int, batch
                      ) -> Iterator[pb.TeleoperateResponse]:

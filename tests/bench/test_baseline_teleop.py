@@ -34,14 +34,17 @@ def _command(sequence: int) -> bytes:
         delta_position_m=types_pb2.Vector3(y=1e-4))).SerializeToString()
 
 
-def test_commands_that_arrived_together_are_one_move_with_an_ack_each_in_order(sessions):
+def test_commands_that_arrived_together_are_one_move_and_one_group_of_acks_in_order(sessions):
+    """The bench asks for grouped acks (TeleoperateInit.grouped_acks), as the gRPC stream
+    does: the commands taken together are answered in one message."""
     sessions, slave = sessions
     peer = b"peer"
     [(who, (kind, payload))] = sessions.handle([(peer, init_request("").SerializeToString())])
     assert (who, kind) == (peer, framing.REPLY_OK)
     assert dpb.TeleoperateResponse.FromString(payload).WhichOneof("message") == "ready"
     replies = sessions.handle([(peer, _command(n)) for n in (1, 2, 3)])
-    acks = [dpb.TeleoperateResponse.FromString(payload).ack for _, (_, payload) in replies]
+    [(_, (_, payload))] = replies
+    acks = dpb.TeleoperateResponse.FromString(payload).acks.acks
     assert [ack.sequence for ack in acks] == [1, 2, 3]
     assert {ack.outcome for ack in acks} == {dpb.COMMAND_OUTCOME_APPLIED}
     assert [c.kind for c in slave.commands] == ["cartesian"]  # merged into one move

@@ -8,6 +8,8 @@ import numpy as np
 import pytest
 
 from services.common import convert
+from services.decision_server.teleop import CommandResult
+from services.runtime.errors import FailedPrecondition
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
@@ -67,6 +69,68 @@ def test_a_burst_of_commands_gets_one_ack_each_in_order_and_moves_by_their_sum(f
     assert {a.outcome for a in acks[:10] + acks[11:]} == {pb.COMMAND_OUTCOME_APPLIED}
     moves = [c.detail[1] for c in slave.commands if c.kind == "cartesian"]
     np.testing.assert_allclose(np.sum(moves, axis=0), [0.0, 0.0, 0.01], atol=1e-9)
+
+
+def test_grouped_acks_answer_every_command_in_order_in_acks_messages(fake_station):
+    """TeleoperateInit.grouped_acks: every reply after ready is an `acks` group, and the
+    groups together answer every command and heartbeat, in order, as single acks would."""
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    messages = [pb.TeleoperateRequest(init=pb.TeleoperateInit(
+        operator_id="tester", lease_id=lease, mapping=types_pb2.REFERENCE_FRAME_BASE,
+        watchdog_timeout=convert.duration(1.0), grouped_acks=True))]
+    for sequence in range(1, 21):
+        messages.append(pb.TeleoperateRequest(command=pb.MasterCommand(
+            sequence=sequence, delta_position_m=types_pb2.Vector3(z=0.0005))))
+        if sequence == 10:
+            messages.append(pb.TeleoperateRequest(heartbeat=pb.Heartbeat()))
+    replies = list(station.decisions.Teleoperate(iter(messages), timeout=30))
+    assert {r.WhichOneof("message") for r in replies[1:]} == {"acks"}
+    acks = [a for r in replies[1:] for a in r.acks.acks]
+    assert [a.sequence for a in acks] == [*range(1, 11), 0, *range(11, 21)]
+    assert all(a.HasField("tool_pose") for a in acks)
+
+
+class _Session:
+    """A TeleopSession's two calls _serve_batch makes: each run of commands gets APPLIED,
+    until `fail_on_run`, which raises as a lost lease would."""
+
+    passivity = None
+
+    def __init__(self, fail_on_run: int | None = None):
+        self.runs = 0
+        self.fail_on_run = fail_on_run
+
+    def commands(self, increments, stream):
+        self.runs += 1
+        if self.runs == self.fail_on_run:
+            raise FailedPrecondition("control was lost", reason="NO_CONTROL")
+        return [CommandResult("APPLIED", "", 1, 2) for _ in increments]
+
+    def heartbeat(self, stream, master_energy_in_j=None):
+        return CommandResult("HEARTBEAT", "", 1, 1)
+
+
+def _batch(servicer, *kinds):
+    requests = [pb.TeleoperateRequest(command=pb.MasterCommand(sequence=i + 1))
+                if kind == "command" else pb.TeleoperateRequest(heartbeat=pb.Heartbeat())
+                for i, kind in enumerate(kinds)]
+    return [servicer._received(request) for request in requests]
+
+
+def test_a_batch_taken_together_is_one_acks_message_and_what_ran_before_an_error_is_answered(
+        fake_station):
+    servicer = fake_station[0].servicer
+    batch = _batch(servicer, "command", "command", "heartbeat", "command")
+    grouped = list(servicer._answers(_Session(), 1, batch, grouped=True))
+    assert [[a.sequence for a in r.acks.acks] for r in grouped] == [[1, 2, 0, 4]]
+    single = list(servicer._answers(_Session(), 1, batch, grouped=False))
+    assert [r.ack.sequence for r in single] == [1, 2, 0, 4]
+    answered = []
+    with pytest.raises(FailedPrecondition):  # the second run of commands fails
+        for reply in servicer._answers(_Session(fail_on_run=2), 1, batch, grouped=True):
+            answered.append([a.sequence for a in reply.acks.acks])
+    assert answered == [[1, 2, 0]]  # done before the error: still answered
 
 
 def test_the_first_message_must_be_init_and_the_lock_is_needed(fake_station):

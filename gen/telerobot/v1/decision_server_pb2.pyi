@@ -119,20 +119,22 @@ class TeleoperateEnd(_message.Message):
     def __init__(self) -> None: ...
 
 class TeleoperateInit(_message.Message):
-    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout", "resume_session_id", "passivity")
+    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout", "resume_session_id", "passivity", "grouped_acks")
     OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
     LEASE_ID_FIELD_NUMBER: _ClassVar[int]
     MAPPING_FIELD_NUMBER: _ClassVar[int]
     WATCHDOG_TIMEOUT_FIELD_NUMBER: _ClassVar[int]
     RESUME_SESSION_ID_FIELD_NUMBER: _ClassVar[int]
     PASSIVITY_FIELD_NUMBER: _ClassVar[int]
+    GROUPED_ACKS_FIELD_NUMBER: _ClassVar[int]
     operator_id: str
     lease_id: str
     mapping: _types_pb2.ReferenceFrame
     watchdog_timeout: _duration_pb2.Duration
     resume_session_id: str
     passivity: Passivity
-    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., resume_session_id: _Optional[str] = ..., passivity: _Optional[_Union[Passivity, str]] = ...) -> None: ...
+    grouped_acks: bool
+    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., resume_session_id: _Optional[str] = ..., passivity: _Optional[_Union[Passivity, str]] = ..., grouped_acks: _Optional[bool] = ...) -> None: ...
 
 class MasterCommand(_message.Message):
     __slots__ = ("sequence", "send_time", "delta_position_m", "delta_rotation", "clutch_engaged", "master_energy")
@@ -171,12 +173,20 @@ class PortEnergy(_message.Message):
     def __init__(self, energy_in_j: _Optional[float] = ..., energy_out_j: _Optional[float] = ..., dissipated_j: _Optional[float] = ..., sample_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ...) -> None: ...
 
 class TeleoperateResponse(_message.Message):
-    __slots__ = ("ready", "ack")
+    __slots__ = ("ready", "ack", "acks")
     READY_FIELD_NUMBER: _ClassVar[int]
     ACK_FIELD_NUMBER: _ClassVar[int]
+    ACKS_FIELD_NUMBER: _ClassVar[int]
     ready: TeleoperateReady
     ack: CommandAck
-    def __init__(self, ready: _Optional[_Union[TeleoperateReady, _Mapping]] = ..., ack: _Optional[_Union[CommandAck, _Mapping]] = ...) -> None: ...
+    acks: CommandAcks
+    def __init__(self, ready: _Optional[_Union[TeleoperateReady, _Mapping]] = ..., ack: _Optional[_Union[CommandAck, _Mapping]] = ..., acks: _Optional[_Union[CommandAcks, _Mapping]] = ...) -> None: ...
+
+class CommandAcks(_message.Message):
+    __slots__ = ("acks",)
+    ACKS_FIELD_NUMBER: _ClassVar[int]
+    acks: _containers.RepeatedCompositeFieldContainer[CommandAck]
+    def __init__(self, acks: _Optional[_Iterable[_Union[CommandAck, _Mapping]]] = ...) -> None: ...
 
 class TeleoperateReady(_message.Message):
     __slots__ = ("session_id", "mapping", "watchdog_timeout", "assistance", "resumed", "last_sequence", "resume_window", "passivity")
