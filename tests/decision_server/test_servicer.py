@@ -49,20 +49,25 @@ def test_each_command_is_aged_on_arrival_from_the_send_time_it_carries(fake_stat
     assert ages == pytest.approx([0.200, 0.001])
 
 
-def test_a_burst_of_commands_gets_one_ack_each_in_order_and_moves_by_their_sum(fake_station):
-    """However the server batches a backlog, every command gets its ack, in order, heartbeats
-    in their place; the arm moves by all the increments."""
-    station, slave = fake_station
-    lease, _ = station.acquire()
+def _burst(lease: str, grouped_acks: bool = False) -> list[pb.TeleoperateRequest]:
+    """An init, then 20 commands of 0.5 mm up with a heartbeat after the tenth."""
     messages = [pb.TeleoperateRequest(init=pb.TeleoperateInit(
         operator_id="tester", lease_id=lease, mapping=types_pb2.REFERENCE_FRAME_BASE,
-        watchdog_timeout=convert.duration(1.0)))]
+        watchdog_timeout=convert.duration(1.0), grouped_acks=grouped_acks))]
     for sequence in range(1, 21):
         messages.append(pb.TeleoperateRequest(command=pb.MasterCommand(
             sequence=sequence, delta_position_m=types_pb2.Vector3(z=0.0005))))
         if sequence == 10:
             messages.append(pb.TeleoperateRequest(heartbeat=pb.Heartbeat()))
-    replies = list(station.decisions.Teleoperate(iter(messages), timeout=30))
+    return messages
+
+
+def test_a_burst_of_commands_gets_one_ack_each_in_order_and_moves_by_their_sum(fake_station):
+    """However the server batches a backlog, every command gets its ack, in order, heartbeats
+    in their place; the arm moves by all the increments."""
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    replies = list(station.decisions.Teleoperate(iter(_burst(lease)), timeout=30))
     acks = [r.ack for r in replies[1:]]
     assert [a.sequence for a in acks] == [*range(1, 11), 0, *range(11, 21)]
     assert acks[10].outcome == pb.COMMAND_OUTCOME_HEARTBEAT
@@ -74,17 +79,10 @@ def test_a_burst_of_commands_gets_one_ack_each_in_order_and_moves_by_their_sum(f
 def test_grouped_acks_answer_every_command_in_order_in_acks_messages(fake_station):
     """TeleoperateInit.grouped_acks: every reply after ready is an `acks` group, and the
     groups together answer every command and heartbeat, in order, as single acks would."""
-    station, slave = fake_station
+    station, _ = fake_station
     lease, _ = station.acquire()
-    messages = [pb.TeleoperateRequest(init=pb.TeleoperateInit(
-        operator_id="tester", lease_id=lease, mapping=types_pb2.REFERENCE_FRAME_BASE,
-        watchdog_timeout=convert.duration(1.0), grouped_acks=True))]
-    for sequence in range(1, 21):
-        messages.append(pb.TeleoperateRequest(command=pb.MasterCommand(
-            sequence=sequence, delta_position_m=types_pb2.Vector3(z=0.0005))))
-        if sequence == 10:
-            messages.append(pb.TeleoperateRequest(heartbeat=pb.Heartbeat()))
-    replies = list(station.decisions.Teleoperate(iter(messages), timeout=30))
+    replies = list(station.decisions.Teleoperate(iter(_burst(lease, grouped_acks=True)),
+                                                 timeout=30))
     assert {r.WhichOneof("message") for r in replies[1:]} == {"acks"}
     acks = [a for r in replies[1:] for a in r.acks.acks]
     assert [a.sequence for a in acks] == [*range(1, 11), 0, *range(11, 21)]
