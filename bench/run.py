@@ -734,7 +734,7 @@ class Bench:
                 address = stack.enter_context(self._decision_server(self.station))
             except ChildFailed as error:
                 self.progress.step(f"starting the DecisionServer for {', '.join(names)}")
-                return self._fail([*names, "teleop_1000_mcap"], error)
+                return self._fail(names, error)
             body(address)
 
     def _profile(self, address: str) -> None:
