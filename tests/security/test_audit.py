@@ -163,3 +163,16 @@ def test_each_service_has_its_file_in_the_audit_dir(tmp_path, monkeypatch):
     for bad in ["", "../x", "a/b", ".hidden"]:
         with pytest.raises(ValueError):
             audit_log_for(bad)
+
+
+def test_a_flush_writes_the_gathered_records_before_it_returns(path):
+    """The writer gathers records for a few ms before it writes them; flush() does not wait
+    for that: what was recorded before it is in the file when it returns, in order."""
+    log = AuditLog(path)
+    for number in range(5):
+        record(log, detail=f"first {number}")
+    log.flush()
+    assert [entry["detail"] for entry in lines(path)] == [f"first {n}" for n in range(5)]
+    record(log, detail="after")
+    log.close()
+    assert lines(path)[-1]["detail"] == "after"
