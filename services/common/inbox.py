@@ -74,6 +74,17 @@ class Inbox(Generic[T]):
             return [self._items.popleft() for _ in range(count)]
 
 
+def queued_now(pending: queue.SimpleQueue) -> list:
+    """Everything in `pending` now, oldest first, without waiting: a writer thread that
+    wakes once for many items (the audit log, the MCAP recorder) takes them this way."""
+    items = []
+    while True:
+        try:
+            items.append(pending.get_nowait())
+        except queue.Empty:
+            return items
+
+
 _END = object()
 
 

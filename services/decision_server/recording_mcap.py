@@ -29,6 +29,7 @@ from mcap.reader import make_reader
 from mcap_protobuf.decoder import DecoderFactory
 from mcap_protobuf.writer import Writer
 
+from services.common.inbox import queued_now
 from services.runtime.clock import Clock
 from services.runtime.errors import FailedPrecondition, TelerobotError
 from telerobot.v1 import decision_server_pb2 as pb
@@ -223,7 +224,10 @@ class McapRecorder:
         try:
             while self.error is None:
                 self._finishing.wait(DRAIN_PERIOD_S)
-                for item in self._drain():
+                for item in queued_now(self._queue):
+                    self._queued -= 1
+                    if self.error is not None:
+                        break  # it fell behind meanwhile: what is left is not written
                     if item[0] == "finish":
                         self._sample()
                         self._file.finish(metadata_for(self.name, self.create_time_ns,
@@ -242,16 +246,6 @@ class McapRecorder:
         self.path.unlink(missing_ok=True)
         log.warning("the recording '%s' stopped: %s", self.name, self.error)
         self._on_failure(self.error)
-
-    def _drain(self):
-        """What is queued now, oldest first (stopping if the recording failed meanwhile)."""
-        while self.error is None:
-            try:
-                item = self._queue.get_nowait()
-            except queue.Empty:
-                return
-            self._queued -= 1
-            yield item
 
     def _write(self, item) -> None:
         kind = item[0]

@@ -21,6 +21,8 @@ from collections.abc import Callable
 from logging.handlers import RotatingFileHandler
 from pathlib import Path
 
+from services.common.inbox import queued_now
+
 DEFAULT_AUDIT_DIR = "var/audit"
 AUDIT_DIR_ENV = "TELEROBOT_AUDIT_DIR"
 MAX_DETAIL_CHARS = 500
@@ -138,11 +140,7 @@ class AuditLog:
             items = [self._pending.get()]
             if isinstance(items[0], tuple):
                 time.sleep(GATHER_S)  # let the calls meanwhile join this write
-            while True:
-                try:
-                    items.append(self._pending.get_nowait())
-                except queue.Empty:
-                    break
+            items += queued_now(self._pending)
             lines: list[str] = []
             for item in items:
                 if isinstance(item, tuple):
