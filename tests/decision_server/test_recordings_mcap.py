@@ -18,6 +18,7 @@ from mcap_protobuf.decoder import DecoderFactory
 
 from services.decision_server import recording_convert, recording_mcap
 from services.decision_server.recordings import RecordingStore
+from services.decision_server.servicer import event_to_proto
 from services.runtime.errors import FailedPrecondition
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, types_pb2
@@ -131,8 +132,6 @@ def test_a_recording_whose_file_cannot_be_written_stops_and_commands_go_on(rig, 
     """A full disk (the partial file is /dev/full): the recording stops with the reason, an
     event says so at once, the commands keep being applied, and StopRecording says what
     happened, once."""
-    from services.decision_server.servicer import event_to_proto
-
     (tmp_path / "full.mcap.partial").symlink_to("/dev/full")
     lease = rig.lease.lease_id
     events = rig.core.events.subscribe(1024)

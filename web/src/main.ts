@@ -363,12 +363,12 @@ follow("events", async (signal) => {
       $("replay-state").textContent = `${ev.value.name}: ${ReplayState[ev.value.state]} ${ev.value.detail}`;
     }
     if (ev.case === "watchdogHold") $("drive-state").dataset.watchdog = ev.value.reason;
-    if (ev.case === "recordingFailed") {
-      say(`recording ${ev.value.name} stopped by itself: ${ev.value.reason}`, true);
-    }
     let detail = "";
     if (ev.case === "watchdogHold" || ev.case === "controlChanged") detail = ev.value.reason;
-    if (ev.case === "recordingFailed") detail = `${ev.value.name}: ${ev.value.reason}`;
+    if (ev.case === "recordingFailed") {
+      detail = `${ev.value.name}: ${ev.value.reason}`;
+      say(`recording ${ev.value.name} stopped by itself: ${ev.value.reason}`, true);
+    }
     if (ev.case === "teleopSession") {
       detail = `${TeleopSessionState[ev.value.state]} ${ev.value.operatorId} ${ev.value.reason}`;
     }
