@@ -59,15 +59,27 @@ class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
     def __init__(self):
         self.opened = 0
         self.lock = threading.Lock()
-        self.end_at_once = False
+        self._ending = False
+        self._open: set[threading.Event] = set()  # one per stream waiting to end
+
+    def end_every_stream(self) -> None:
+        """From now on every stream ends as soon as it opens, the ones open now too."""
+        with self.lock:
+            self._ending = True
+            for end in self._open:
+                end.set()
 
     def _stream(self, context):
+        end = threading.Event()
+        context.add_callback(end.set)  # the client left
         with self.lock:
             self.opened += 1
-        if not self.end_at_once:
-            idle = threading.Event()
-            context.add_callback(idle.set)
-            idle.wait()
+            if self._ending:
+                end.set()
+            self._open.add(end)
+        end.wait()
+        with self.lock:
+            self._open.discard(end)
         return
         yield
 
@@ -108,7 +120,8 @@ def test_a_wrench_that_stopped_coming_leaves_the_acks(slave):
 def test_streams_reopened_after_a_reconnect_are_not_kept(slave):
     """Defect: every re-opened background stream was added to a list and never removed."""
     slave, _, robot = slave
-    robot.end_at_once = True
+    wait_for(lambda: robot.opened >= 2, what="the state and event streams to open")
+    robot.end_every_stream()  # the open ones end too (CI once set a flag they never saw)
     wait_for(lambda: robot.opened >= 20, 10, "the streams to reopen 20 times")
     assert slave.open_streams() <= 3  # state, wrench and events, at most
 
