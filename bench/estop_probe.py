@@ -39,7 +39,8 @@ own stack under that flood, not the transport (bench/README.md → Profiles).
 A first try at that stack, each call's wrapped handler kept by method instead of built on the
 polling thread for every call, changed nothing in two alternating A/B pairs of `--only estop`
 (50 stops each: p99 29.7, 38.6 ms before, 35.7, 29.7 after), and was dropped. Neither did
-SCHED_FIFO for the emergency-stop band: p99 5.5 and 5.1 ms under load, against 4.5-7.4 without.
+SCHED_FIFO for the emergency-stop band (p99 5.5 and 5.1 ms under load, against 4.5-7.4
+without), nor nice -10 for every server's polling thread (worse: 51 and 57 ms).
 """
 
 from __future__ import annotations
