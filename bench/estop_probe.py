@@ -1,46 +1,65 @@
-"""python -m bench.estop_probe: how soon can a loaded Python gRPC server see a stop arrive? A
+"""python -m bench.estop_probe: how soon does a loaded Python gRPC server see a stop arrive? A
 probe, not a scenario (issue #12's limits, the estop_under_load_proxy and estop_ds_busywork
 rows): it prints figures, it judges nothing.
 
-The server is bare: a `Work` method for the load and a `Stop` method, and an interceptor that
-notes the time a Stop call reaches it, as the station's LaneInterceptor latches its early stop
-(services/runtime/rpc.py: on gRPC's polling thread, before any handler runs). Stop answers with
-that time, so the figure is sent → seen by the interceptor, with no handler, lane or arm in it:
-the floor under the station's stop through a loaded ProxyRobot or DecisionServer. The GIL is
-handed over every 1 ms, as in the services. Three kinds, each server in a process of its own:
+Every kind serves the ProxyRobot contract (its generated code, so each method has its own
+request slot in grpcio, as in the station): GetState for the load, on the low lane, and
+EmergencyStop. The server notes the time each stop reaches it where the station latches its
+early stop (services/runtime/rpc.py: in the interceptor, on gRPC's polling thread, before any
+handler runs) and prints those times at the end: the figure is sent → seen, with no handler,
+arm or world in it. The GIL is handed over every 1 ms, as in the services. Each server runs
+in a process of its own; the load comes from one grpc.aio client in another, as
+bench/estop.py's does.
 
-- ``sync-flood``: grpcio's sync server (a thread pool as large as the station's), `Work` does
-  nothing, and the load offers it 1000 calls/s with at most 200 in flight: the rate ProxyRobot
-  served estop_under_load_proxy's load at (its `load_calls_per_s`, 875-1045), with less work
-  in each call;
-- ``sync-busy``: the same server, `Work` computes 20 ms in Python in 1 ms slices, at most 4
+- ``bare-paced``: grpcio's sync server (a thread pool as large as the station's), a GetState
+  that does nothing, and a load offering 1000 calls/s with at most 200 in flight: the rate
+  ProxyRobot served estop_under_load_proxy's load at (its `load_calls_per_s`, 800-1045);
+- ``bare-saturated``: the same server under estop_under_load_proxy's load itself: 200
+  GetState calls in flight, each re-issued as soon as it returns, so the server is never idle
+  however fast it answers;
+- ``aio-saturated``: the same on grpc.aio, the interceptor an async one;
+- ``stack-saturated``: ProxyRobot's own servicer (on the tests' fake arm, no monitor thread)
+  behind the station's server stack (services/runtime/server.py: lanes, interceptors,
+  metrics), under the same load;
+- ``bare-busy``: the bare server, GetState computing 20 ms in Python in 1 ms slices, at most 4
   calls at once (the low lane's threads) and one slice at a time in the process (the
   DecisionServer's SimulatedProcessor), 200 calls in flight each re-issued as it returns: the
-  load of estop_ds_busywork;
-- ``aio-flood``: grpc.aio with the flood, the interceptor an async one.
+  load of estop_ds_busywork.
 
-The load comes from one grpc.aio client in a process of its own, as bench/estop.py's does.
+Seen on the 2-core VM, quiet, 2026-11-26 (sent → seen, p50 / p99 in ms; two or three runs
+of 100 stops each):
 
-Seen on the 2-core VM, quiet, 2026-11-26, two runs of 100 stops each (sent → seen by the
-interceptor, p50 / p99 in ms):
-- sync-flood at 1000-1094 calls/s: 0.45-0.47 / 1.03-1.10. aio-flood: 0.67 / 1.52-1.64.
-- sync-busy: 1.73-1.74 / **7.26-7.34**. (Its load made 119-188 calls/s, counting the ones
-  that ran out of their 5 s deadline in the queue; the DecisionServer's made 42/s with some
-  DEADLINE_EXCEEDED. The processor is as busy in both: one 1 ms slice at a time.)
+| kind | GetState/s | stop seen |
+|---|---|---|
+| bare-paced | 1000 | 0.44-0.48 / 0.84-0.93 |
+| bare-saturated | 3017-3244 | 2.52-2.67 / **11.8-14.5** |
+| aio-saturated | 2767-4430 | 0.83-1.28 / **3.60-3.66** |
+| stack-saturated | 1364-1923 | 2.79-3.45 / 17.2-27.1 |
+| bare-busy | 121 | 1.64-1.74 / **7.20-8.31** |
 
-So under a computing load the stop reaches the interceptor, the earliest point a Python
-service can act on it, over 5 ms late at p99 before anything is done with it: the GIL is
-handed between the computing threads and gRPC's polling thread, 1 ms at a time. The
-DecisionServer must then forward the stop to ProxyRobot (one more hop), so estop_ds_busywork's
-5 ms is out of reach in one Python process. A flood of cheap calls, on the other hand, delays
-a bare server's stop by 1 ms at most: estop_under_load_proxy's 16-44 ms at p99 is ProxyRobot's
-own stack under that flood, not the transport (bench/README.md → Profiles).
+(bare-busy's rate counts the calls that ran out of their 5 s deadline in the queue; the
+DecisionServer's load made 42/s with some DEADLINE_EXCEEDED. The processor is as busy in both: one
+1 ms slice at a time.) Two steps between bare and stack, one run each: ProxyRobot's servicer on
+the bare server 2015/s, p99 16.3; the stack without metrics 1529/s, p99 19.3.
 
-A first try at that stack, each call's wrapped handler kept by method instead of built on the
-polling thread for every call, changed nothing in two alternating A/B pairs of `--only estop`
-(50 stops each: p99 29.7, 38.6 ms before, 35.7, 29.7 after), and was dropped. Neither did
-SCHED_FIFO for the emergency-stop band (p99 5.5 and 5.1 ms under load, against 4.5-7.4
-without), nor nice -10 for every server's polling thread (worse: 51 and 57 ms).
+What it says:
+- A load that keeps grpcio's sync server busy (each call re-issued as it returns) delays a
+  stop's arrival by 12-15 ms at p99 even when every call does nothing: the calls' events queue
+  for the one polling thread, which takes the GIL for each, and the stop's event waits its
+  turn. The station's stack only adds to that. So **estop_under_load_proxy's 5 ms is below the
+  floor of grpcio's sync server under that load**. grpc.aio, under the same load and answering
+  more calls, sees the stop within 3.6 ms: a ProxyRobot on grpc.aio is what would meet it.
+- Under a computing load the stop reaches the interceptor, the earliest point a Python service
+  can act on it, over 5 ms late at p99 (7.2-8.3 ms): the GIL is handed between the computing
+  threads and gRPC's polling thread, 1 ms at a time. The DecisionServer must then forward the
+  stop to ProxyRobot, so **estop_ds_busywork's 5 ms is out of reach for a stop that enters a
+  busy Python process**. The emergency-stop band, a process of its own, is the door that can.
+
+Tried on the station and dropped (bench/README.md → Profiles): each call's wrapped handler
+kept by method instead of built on the polling thread for every call (two alternating A/B pairs
+of `--only estop`, 50 stops each: p99 29.7, 38.6 ms before, 35.7, 29.7 after); SCHED_FIFO for
+the emergency-stop band (p99 5.5 and 5.1 ms under load, against 4.5-7.4 without); nice -10 for
+every server's polling thread (worse: 51 and 57 ms).
 """
 
 from __future__ import annotations
@@ -55,11 +74,14 @@ from concurrent import futures
 
 import grpc
 import numpy as np
-from google.protobuf.timestamp_pb2 import Timestamp
 
-KINDS = ("sync-flood", "sync-busy", "aio-flood")
-SERVICE = "probe.Stops"
-WORK, STOP = f"/{SERVICE}/Work", f"/{SERVICE}/Stop"
+from telerobot.v1 import proxy_robot_pb2 as pb
+from telerobot.v1 import proxy_robot_pb2_grpc
+
+KINDS = ("bare-paced", "bare-saturated", "aio-saturated", "stack-saturated", "bare-busy")
+PACED = ("bare-paced",)
+STOP = "/telerobot.v1.ProxyRobot/EmergencyStop"
+LOW_LANE = (("telerobot-lane", "low"),)
 GIL_SWITCH_INTERVAL_S = 0.001  # as every service sets it
 POOL_SIZE = 600  # about the station's (services/runtime/server.py: lanes + streams + 16)
 BUSY_S, SLICE_S = 0.02, 0.001
@@ -70,18 +92,17 @@ GAP_S = 0.02  # between stops
 
 
 class _Seen:
-    """When the interceptor last saw a Stop arrive."""
+    """The times stops reached the server, in time.time_ns()."""
 
     def __init__(self):
-        self.at_ns = 0
+        self.times_ns: list[int] = []
 
-    def stop_arrived(self, method: str) -> None:
+    def stop_arrived(self) -> None:
+        self.times_ns.append(time.time_ns())
+
+    def noted(self, method: str) -> None:
         if method == STOP:
-            self.at_ns = time.time_ns()
-
-    def answer(self, request: bytes, context) -> bytes:
-        return Timestamp(seconds=self.at_ns // 1_000_000_000,
-                         nanos=self.at_ns % 1_000_000_000).SerializeToString()
+            self.stop_arrived()
 
 
 class _SyncSeen(grpc.ServerInterceptor):
@@ -89,7 +110,7 @@ class _SyncSeen(grpc.ServerInterceptor):
         self._seen = seen
 
     def intercept_service(self, continuation, handler_call_details):
-        self._seen.stop_arrived(handler_call_details.method)
+        self._seen.noted(handler_call_details.method)
         return continuation(handler_call_details)
 
 
@@ -98,71 +119,91 @@ class _AioSeen(grpc.aio.ServerInterceptor):
         self._seen = seen
 
     async def intercept_service(self, continuation, handler_call_details):
-        self._seen.stop_arrived(handler_call_details.method)
+        self._seen.noted(handler_call_details.method)
         return await continuation(handler_call_details)
 
 
-def _handlers(seen: _Seen, work) -> grpc.GenericRpcHandler:
-    # No (de)serializers: requests and answers are bytes.
-    return grpc.method_handlers_generic_handler(SERVICE, {
-        "Work": grpc.unary_unary_rpc_method_handler(work),
-        "Stop": grpc.unary_unary_rpc_method_handler(seen.answer)})
+class _Bare(proxy_robot_pb2_grpc.ProxyRobotServicer):
+    """GetState does `work` (nothing by default); EmergencyStop answers at once."""
+
+    def __init__(self, work=lambda: None):
+        self._work = work
+
+    def GetState(self, request, context):
+        self._work()
+        return pb.GetStateResponse()
+
+    def EmergencyStop(self, request, context):
+        return pb.EmergencyStopResponse()
+
+
+class _AioBare(proxy_robot_pb2_grpc.ProxyRobotServicer):
+    async def GetState(self, request, context):
+        return pb.GetStateResponse()
+
+    async def EmergencyStop(self, request, context):
+        return pb.EmergencyStopResponse()
 
 
 def _busy_work(lane: threading.Semaphore, processor: threading.Lock):
-    def work(request: bytes, context) -> bytes:
+    def work() -> None:
         with lane:
             for _ in range(round(BUSY_S / SLICE_S)):
                 with processor:
                     busy_until = time.perf_counter() + SLICE_S
                     while time.perf_counter() < busy_until:
                         pass
-        return b""
     return work
 
 
+def _report_when_stdin_closes(seen: _Seen) -> None:
+    sys.stdin.read()
+    print(" ".join(map(str, seen.times_ns)), flush=True)
+
+
 def serve(kind: str) -> None:
-    """Serve `kind` on a free loopback port, print the port, run until stdin closes."""
+    """Serve `kind` on a free loopback port, print the port; when stdin closes, print the
+    times the stops arrived and stop."""
     sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
     seen = _Seen()
-    if kind.startswith("sync"):
+    if kind == "aio-saturated":
+        async def main():
+            server = grpc.aio.server(interceptors=[_AioSeen(seen)])
+            proxy_robot_pb2_grpc.add_ProxyRobotServicer_to_server(_AioBare(), server)
+            port = server.add_insecure_port("127.0.0.1:0")
+            await server.start()
+            print(port, flush=True)
+            await asyncio.get_running_loop().run_in_executor(None, _report_when_stdin_closes,
+                                                             seen)
+            await server.stop(0)
+
+        asyncio.run(main())
+        return
+    if kind == "stack-saturated":
+        from bench.hop_probe import _servicer
+        from services.runtime.metrics import ServiceMetrics
+        from services.runtime.server import binding, create_server
+
+        server, port = create_server(
+            "127.0.0.1:0", [binding(proxy_robot_pb2_grpc, "ProxyRobot", _servicer())],
+            on_emergency_call=seen.stop_arrived, metrics=ServiceMetrics("probe"))
+    else:
         work = (_busy_work(threading.Semaphore(LANE_THREADS), threading.Lock())
-                if kind == "sync-busy"
-                else lambda request, context: b"")
+                if kind == "bare-busy" else (lambda: None))
         server = grpc.server(futures.ThreadPoolExecutor(max_workers=POOL_SIZE),
                              interceptors=[_SyncSeen(seen)])
-        server.add_generic_rpc_handlers((_handlers(seen, work),))
+        proxy_robot_pb2_grpc.add_ProxyRobotServicer_to_server(_Bare(work), server)
         port = server.add_insecure_port("127.0.0.1:0")
-        server.start()
-        print(port, flush=True)
-        sys.stdin.read()
-        server.stop(0)
-        return
-
-    async def nothing(request: bytes, context) -> bytes:
-        return b""
-
-    async def answer(request: bytes, context) -> bytes:
-        return seen.answer(request, context)
-
-    async def main():
-        server = grpc.aio.server(interceptors=[_AioSeen(seen)])
-        server.add_generic_rpc_handlers((grpc.method_handlers_generic_handler(SERVICE, {
-            "Work": grpc.unary_unary_rpc_method_handler(nothing),
-            "Stop": grpc.unary_unary_rpc_method_handler(answer)}),))
-        port = server.add_insecure_port("127.0.0.1:0")
-        await server.start()
-        print(port, flush=True)
-        await asyncio.get_running_loop().run_in_executor(None, sys.stdin.read)
-        await server.stop(0)
-
-    asyncio.run(main())
+    server.start()
+    print(port, flush=True)
+    _report_when_stdin_closes(seen)
+    server.stop(0)
 
 
 def load(port: int, rate_hz: float) -> None:
-    """Work calls, at most CONCURRENCY in flight, until stdin closes: offered at `rate_hz`, or
-    each re-issued as it returns when `rate_hz` is 0. Prints `ready` once CONCURRENCY calls
-    have been answered, and at the end how many were made after that."""
+    """GetState calls on the low lane, at most CONCURRENCY in flight, until stdin closes:
+    offered at `rate_hz`, or each re-issued as it returns when `rate_hz` is 0. Prints `ready`
+    once CONCURRENCY calls have been answered, and at the end how many were made after that."""
 
     async def main():
         done = asyncio.Event()
@@ -171,12 +212,12 @@ def load(port: int, rate_hz: float) -> None:
         slots = asyncio.Semaphore(CONCURRENCY)
         calls, announced = 0, False
         async with grpc.aio.insecure_channel(f"127.0.0.1:{port}") as channel:
-            work = channel.unary_unary(WORK)
+            get_state = proxy_robot_pb2_grpc.ProxyRobotStub(channel).GetState
 
             async def one_call():
                 nonlocal calls, announced
                 try:
-                    await work(b"", timeout=5.0)
+                    await get_state(pb.GetStateRequest(), metadata=LOW_LANE, timeout=5.0)
                 except grpc.aio.AioRpcError:
                     await asyncio.sleep(0.001)
                 finally:
@@ -212,36 +253,41 @@ def stops(kind: str, trials: int) -> str:
     try:
         port = int(server.stdout.readline())
         with grpc.insecure_channel(f"127.0.0.1:{port}") as channel:
-            grpc.channel_ready_future(channel).result(timeout=10)
-            stop = channel.unary_unary(STOP, response_deserializer=Timestamp.FromString)
-            stop(b"", timeout=5.0)  # the connection is up before the load starts
+            stop = proxy_robot_pb2_grpc.ProxyRobotStub(channel).EmergencyStop
+            sent_ns = [time.time_ns()]
+            stop(pb.EmergencyStopRequest(reason="probe"), timeout=10.0)  # connected first
             loader = subprocess.Popen(
                 [sys.executable, "-m", "bench.estop_probe", "--load", "--port", str(port),
-                 "--rate", str(0 if kind == "sync-busy" else FLOOD_RATE_HZ)],
+                 "--rate", str(FLOOD_RATE_HZ if kind in PACED else 0)],
                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
             if loader.stdout.readline().strip() != "ready":
                 raise RuntimeError("the load did not start")
             started = time.monotonic()
-            seen_ms, answered_ms = [], []
+            answered_ms = []
             for _ in range(trials):
                 time.sleep(GAP_S)
-                sent = time.time_ns()
-                seen_at = stop(b"", timeout=5.0).ToNanoseconds()
-                answered_ms.append((time.time_ns() - sent) / 1e6)
-                seen_ms.append((seen_at - sent) / 1e6)
+                sent_ns.append(time.time_ns())
+                stop(pb.EmergencyStopRequest(reason="probe"), timeout=5.0)
+                answered_ms.append((time.time_ns() - sent_ns[-1]) / 1e6)
             elapsed = time.monotonic() - started
             loader.stdin.close()
             calls = int(loader.stdout.readline() or 0)
-        seen, answered = np.asarray(seen_ms), np.asarray(answered_ms)
-        return (f"{kind:10s} under {calls / elapsed:5.0f} Work calls/s: stop seen p50 "
+        server.stdin.close()
+        seen_ns = [int(t) for t in server.stdout.readline().split()]
+        if len(seen_ns) != len(sent_ns):
+            raise RuntimeError(f"{len(sent_ns)} stops sent, {len(seen_ns)} seen")
+        seen = (np.asarray(seen_ns[1:]) - np.asarray(sent_ns[1:])) / 1e6
+        answered = np.asarray(answered_ms)
+        return (f"{kind:15s} under {calls / elapsed:5.0f} GetState/s: stop seen p50 "
                 f"{np.percentile(seen, 50):.2f}  p99 {np.percentile(seen, 99):.2f} ms; "
                 f"answered p50 {np.percentile(answered, 50):.2f}  "
                 f"p99 {np.percentile(answered, 99):.2f} ms")
     finally:
         if loader is not None and loader.poll() is None:
             loader.kill()
-        server.stdin.close()
-        server.wait(10)
+        if server.poll() is None:
+            server.stdin.close()
+            server.wait(10)
 
 
 def main(argv: list[str] | None = None) -> int:
