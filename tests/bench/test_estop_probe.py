@@ -20,7 +20,7 @@ def test_the_interceptor_notes_only_stops():
 
 @pytest.mark.e2e  # servers and loads in processes of their own
 def test_every_stop_is_seen_before_its_answer_under_a_real_load(capsys):
-    kinds = ["bare-paced", "stack-saturated"]
+    kinds = ["bare-paced", "aio-servicer", "stack-saturated"]
     assert estop_probe.main(["--trials", "5", "--kinds", *kinds]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert [line.split()[0] for line in lines] == kinds
