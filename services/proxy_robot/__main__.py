@@ -22,6 +22,12 @@ from telerobot.v1 import proxy_robot_pb2_grpc
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
     add_shm_name_argument(parser, "shared-memory segment of the simulated arm's link")
+    parser.add_argument(
+        "--aio-server", action=argparse.BooleanOptionalAction,
+        default=os.environ.get("TELEROBOT_PROXY_ROBOT_AIO_SERVER", "") == "1",
+        help="serve on grpc.aio: an EmergencyStop sent here under a flood of other calls is "
+             "seen 5x sooner, and every other call takes about 0.3 ms longer (README: "
+             "Performance; env TELEROBOT_PROXY_ROBOT_AIO_SERVER=1)")
 
 
 def build(args: argparse.Namespace) -> CoreService:
@@ -32,7 +38,8 @@ def build(args: argparse.Namespace) -> CoreService:
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],
                        core.close, on_emergency_call=core.hold_now,
                        on_start=(lambda: core.reattach(because)) if because else None,
-                       fanouts={"robot_states": core.states, "robot_events": core.events})
+                       fanouts={"robot_states": core.states, "robot_events": core.events},
+                       aio_server=args.aio_server)
 
 
 if __name__ == "__main__":

@@ -23,6 +23,9 @@ class CoreService:
     on_start: Callable[[], None] | None = None
     # Streams fanned out to subscribers, by the name their drops are counted under.
     fanouts: dict[str, Fanout] = field(default_factory=dict)
+    # Serve on grpc.aio (services/runtime/aio_server.py): an emergency stop's arrival then
+    # does not queue behind a flood of other calls' events.
+    aio_server: bool = False
 
     def attach_metrics(self, metrics: ServiceMetrics) -> None:
         for name, fanout in self.fanouts.items():

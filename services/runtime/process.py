@@ -89,7 +89,8 @@ class Service(Protocol):
 
     # Optional: `lanes` (a dict of LaneConfig) sizes the service's lanes,
     # `on_emergency_call()` latches its stop the moment an EmergencyStop call arrives (on gRPC's
-    # polling thread: it must not block), `operator_door = True` marks the DecisionServer,
+    # polling thread or the aio server's loop: it must not block), `aio_server = True` serves
+    # on grpc.aio (services/runtime/aio_server.py), `operator_door = True` marks the DecisionServer,
     # the one port that takes operators' commands (the others are the station's inner ports),
     # and `attach_health(set_status)`, called once the server exists (before start()), gives
     # the service `set_status(service_name, serving)` to report health entries of its own
@@ -139,6 +140,7 @@ def run_service(
             on_emergency_call=getattr(service, "on_emergency_call", None),  # stop on arrival
             security=security, allow_plaintext_network=args.allow_plaintext_network,
             metrics=metrics,
+            aio=getattr(service, "aio_server", False),  # calls arrive on an event loop
         )
     except (PlaintextRefused, OSError, ValueError) as error:  # a port, or TLS files, refused
         log.error("not starting: %s", error)
@@ -178,8 +180,9 @@ def run_service(
         return 1
     server.set_serving()
     host = args.address.rsplit(":", 1)[0]
-    log.info("serving %s on %s:%d%s", ", ".join(server.service_names) or "health only", host,
-             port, " with mutual TLS" if security else " in plaintext")
+    log.info("serving %s on %s:%d%s%s", ", ".join(server.service_names) or "health only",
+             host, port, " with mutual TLS" if security else " in plaintext",
+             " (grpc.aio)" if server.aio else "")
     if server.token_port:
         token_address = f"{security.token_address.rsplit(':', 1)[0]}:{server.token_port}"
         log.info("bearer tokens from %s are taken on %s (TLS, no client certificate)",

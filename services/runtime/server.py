@@ -24,8 +24,9 @@ from typing import TYPE_CHECKING
 
 import grpc
 from grpc_health.v1 import health, health_pb2, health_pb2_grpc
-from grpc_reflection.v1alpha import reflection
+from grpc_reflection.v1alpha import reflection, reflection_pb2_grpc
 
+from services.runtime.aio_server import AioLaneInterceptor, AioServerHandle, EventLoopThread
 from services.runtime.auth import CallSecurity
 from services.runtime.lanes import Lane, LaneConfig, LaneExecutor
 from services.runtime.metrics import ServiceMetrics
@@ -96,8 +97,11 @@ class TelerobotServer:
 
     def __init__(self, servers: list[grpc.Server], health_servicer: health.HealthServicer,
                  executor: LaneExecutor, interceptor: LaneInterceptor, service_names: list[str],
-                 token_port: int | None = None, metrics: ServiceMetrics | None = None):
+                 token_port: int | None = None, metrics: ServiceMetrics | None = None,
+                 aio: bool = False, after_stop: Callable[[], None] | None = None):
         self.grpc_servers = servers  # the main port's, then the token port's if any
+        self.aio = aio  # grpc.aio servers (services/runtime/aio_server.py)
+        self._after_stop = after_stop  # closes an aio server's loop and pool
         self.health = health_servicer
         self.executor = executor
         self.interceptor = interceptor
@@ -122,6 +126,8 @@ class TelerobotServer:
         for event in stopped:
             event.wait()
         self.executor.shutdown(wait=True, timeout_s=1.0)
+        if self._after_stop is not None:
+            self._after_stop()
 
 
 def create_server(
@@ -135,6 +141,7 @@ def create_server(
     security: ServerSecurity | None = None,
     allow_plaintext_network: bool = False,
     metrics: ServiceMetrics | None = None,
+    aio: bool = False,
 ) -> tuple[TelerobotServer, int]:
     """Build a server bound to `address` (port 0 picks one); returns it and the bound port.
 
@@ -142,7 +149,9 @@ def create_server(
     `on_emergency_call` runs as an emergency-lane call arrives (see services.runtime.rpc).
     Without `security`, a non-loopback `address` raises PlaintextRefused unless
     `allow_plaintext_network`. With `metrics`, calls and lanes are measured there (serving
-    them over HTTP is the caller's: `metrics.serve(address)`).
+    them over HTTP is the caller's: `metrics.serve(address)`). With `aio`, calls arrive on a
+    grpc.aio server's event loop instead of grpcio's sync polling thread, and the same
+    servicers and interceptor run on a thread pool (services/runtime/aio_server.py).
     """
     check_plaintext(address, security is not None, allow_plaintext_network)
     executor = LaneExecutor(
@@ -156,25 +165,40 @@ def create_server(
     for name in ["", *names]:
         health_servicer.set(name, _NOT_SERVING)
 
+    aio_loop = aio_pool = None
+    if aio:
+        aio_loop = EventLoopThread()
+
     def build(call_security: CallSecurity | None, pool_size: int):
         interceptor = LaneInterceptor(executor, client_lane_limit, max_streams,
                                       on_emergency_call, call_security, metrics)
-        server = grpc.server(
-            futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc"),
-            interceptors=[interceptor],
-            # Two servers on one port would split calls between them silently: refuse instead.
-            options=[("grpc.so_reuseport", 0), *SERVER_KEEPALIVE_OPTIONS],
-        )
+        # Two servers on one port would split calls between them silently: refuse instead.
+        options = [("grpc.so_reuseport", 0), *SERVER_KEEPALIVE_OPTIONS]
+        if aio_loop is None:
+            server = grpc.server(
+                futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc"),
+                interceptors=[interceptor], options=options)
+            grpc_server = server
+        else:
+            async def aio_server():  # made on its loop, which it keeps
+                return grpc.aio.server(interceptors=[AioLaneInterceptor(interceptor, aio_pool)],
+                                       options=options, migration_thread_pool=aio_pool)
+
+            server = AioServerHandle(aio_loop.run(aio_server()), aio_loop)
+            grpc_server = server.server
         for item in bindings:
-            item.add_to_server(item.servicer, server)
-        health_pb2_grpc.add_HealthServicer_to_server(health_servicer, server)
-        reflection.enable_server_reflection(
-            [*names, health.SERVICE_NAME, reflection.SERVICE_NAME], server)
+            item.add_to_server(item.servicer, grpc_server)
+        health_pb2_grpc.add_HealthServicer_to_server(health_servicer, grpc_server)
+        # The sync reflection servicer on either kind: the interceptor wraps sync handlers.
+        reflection_pb2_grpc.add_ServerReflectionServicer_to_server(reflection.ReflectionServicer(
+            [*names, health.SERVICE_NAME, reflection.SERVICE_NAME]), grpc_server)
         return server, interceptor
 
     # gRPC threads only receive calls and wait on the lanes (or carry a stream), so there
     # must be one per call a lane can hold, plus the streams.
     pool_size = capacity + max_streams + 16
+    if aio_loop is not None:
+        aio_pool = futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc")
     main_security = (CallSecurity(security.inner_port, None, security.audit)
                      if security else None)
     server, interceptor = build(main_security, pool_size)
@@ -194,12 +218,21 @@ def create_server(
                 security.tls_dir, security.name, require_client_certificate=False))
     except BaseException:
         executor.shutdown(wait=False)
+        if aio_loop is not None:
+            _close_aio(aio_loop, aio_pool)
         raise
     if metrics is not None:
         metrics.watch_lanes(executor.counters,
                             lambda: sum(each.open_streams for each in interceptors))
+    after_stop = (lambda: _close_aio(aio_loop, aio_pool)) if aio_loop is not None else None
     return TelerobotServer(servers, health_servicer, executor, interceptor, names,
-                           token_port, metrics), port
+                           token_port, metrics, aio, after_stop), port
+
+
+def _close_aio(loop: EventLoopThread, pool: futures.ThreadPoolExecutor | None) -> None:
+    if pool is not None:
+        pool.shutdown(wait=False, cancel_futures=True)
+    loop.close()
 
 
 def check_plaintext(address: str, tls: bool, allow_plaintext_network: bool) -> None:

@@ -43,9 +43,10 @@ def _buf_curl(*args: str) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=30)
 
 
-@pytest.fixture(scope="module")
-def station():
-    launcher = start_station(station_env())
+# ProxyRobot on grpcio's sync server (the default) and on grpc.aio (--aio-server).
+@pytest.fixture(scope="module", params=["", "1"], ids=["sync", "aio-proxy"])
+def station(request):
+    launcher = start_station(station_env(TELEROBOT_PROXY_ROBOT_AIO_SERVER=request.param))
     yield launcher, launcher.ready
     if launcher.process.poll() is None:
         launcher.stop(signal.SIGKILL)

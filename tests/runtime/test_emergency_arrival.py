@@ -38,15 +38,15 @@ class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
         return proxy_robot_pb2.GetStatusResponse()
 
 
-@pytest.fixture
-def serve():
+@pytest.fixture(params=[False, True], ids=["sync", "aio"])
+def serve(request):
     started = []
 
     def start(hook):
         robot = Robot()
         server, port = create_server("127.0.0.1:0",
                                      [binding(proxy_robot_pb2_grpc, "ProxyRobot", robot)],
-                                     lanes=LANES, on_emergency_call=hook)
+                                     lanes=LANES, on_emergency_call=hook, aio=request.param)
         server.start()
         channel = grpc.insecure_channel(f"127.0.0.1:{port}")
         started.append((server, channel, robot))

@@ -77,14 +77,14 @@ class Decisions(decision_server_pb2_grpc.DecisionServerServicer):
 
 
 class Station:
-    def __init__(self, on_emergency_call=None):
+    def __init__(self, on_emergency_call=None, aio=False):
         self.decisions = Decisions()
         self.metrics = ServiceMetrics("test")
         self.server, port = create_server(
             "127.0.0.1:0",
             [binding(proxy_robot_pb2_grpc, "ProxyRobot", Robot()),
              binding(decision_server_pb2_grpc, "DecisionServer", self.decisions)],
-            lanes=LANES, metrics=self.metrics, on_emergency_call=on_emergency_call)
+            lanes=LANES, metrics=self.metrics, on_emergency_call=on_emergency_call, aio=aio)
         self.server.start()
         self.metrics_port = self.metrics.serve("127.0.0.1:0")
         self.channel = grpc.insecure_channel(f"127.0.0.1:{port}")
@@ -109,9 +109,9 @@ class Station:
         self.metrics.close()
 
 
-@pytest.fixture
-def station():
-    station = Station()
+@pytest.fixture(params=[False, True], ids=["sync", "aio"])
+def station(request):
+    station = Station(aio=request.param)
     yield station
     station.close()
 

@@ -30,10 +30,11 @@ class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
         yield proxy_robot_pb2.StreamRobotEventsResponse(sequence=3)
 
 
-@pytest.fixture
-def channel():
+@pytest.fixture(params=[False, True], ids=["sync", "aio"])
+def channel(request):
     server, port = create_server("127.0.0.1:0",
-                                 [binding(proxy_robot_pb2_grpc, "ProxyRobot", Robot())])
+                                 [binding(proxy_robot_pb2_grpc, "ProxyRobot", Robot())],
+                                 aio=request.param)
     server.start()
     with grpc.insecure_channel(f"127.0.0.1:{port}") as channel:
         yield channel

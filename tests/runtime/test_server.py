@@ -77,14 +77,14 @@ class Decisions(decision_server_pb2_grpc.DecisionServerServicer):
             recordings=[decision_server_pb2.Recording(name=where())])
 
 
-@pytest.fixture
-def station():
+@pytest.fixture(params=[False, True], ids=["sync", "aio"])
+def station(request):
     decisions = Decisions()
     server, port = create_server(
         "127.0.0.1:0",
         [binding(proxy_robot_pb2_grpc, "ProxyRobot", Robot()),
          binding(decision_server_pb2_grpc, "DecisionServer", decisions)],
-        lanes=LANES, max_streams=2,
+        lanes=LANES, max_streams=2, aio=request.param,
     )
     server.start()
     channel = grpc.insecure_channel(f"127.0.0.1:{port}")
@@ -208,6 +208,24 @@ def test_stream_cap_gives_resource_exhausted(station):
     assert error.value.code() is grpc.StatusCode.RESOURCE_EXHAUSTED
     for stream in streams:
         stream.cancel()
+
+
+def test_a_stream_the_client_leaves_gives_its_slot_back(station):
+    server, channel, _ = station
+    streams = [robot(channel).StreamRobotEvents(proxy_robot_pb2.StreamRobotEventsRequest(),
+                                                timeout=10) for _ in range(2)]
+    for stream in streams:
+        next(stream)
+    assert server.interceptor.open_streams == 2
+    streams[0].cancel()
+    # The servicer's loop ends (add_callback fired) and its generator is closed.
+    wait_for(lambda: server.interceptor.open_streams == 1, what="the slot given back")
+    again = robot(channel).StreamRobotEvents(proxy_robot_pb2.StreamRobotEventsRequest(),
+                                             timeout=10)
+    assert next(again).sequence == 1
+    again.cancel()
+    streams[1].cancel()
+    wait_for(lambda: server.interceptor.open_streams == 0, what="every slot given back")
 
 
 def test_health_is_not_serving_until_ready_and_during_drain(station):

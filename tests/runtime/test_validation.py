@@ -47,12 +47,13 @@ class Decisions(decision_server_pb2_grpc.DecisionServerServicer):
             yield decision_server_pb2.TeleoperateResponse()
 
 
-@pytest.fixture
-def server():
+@pytest.fixture(params=[False, True], ids=["sync", "aio"])
+def server(request):
     recorder = Recorder()
     server, port = create_server("127.0.0.1:0", [
         binding(proxy_robot_pb2_grpc, "ProxyRobot", Robot(recorder)),
-        binding(decision_server_pb2_grpc, "DecisionServer", Decisions(recorder))])
+        binding(decision_server_pb2_grpc, "DecisionServer", Decisions(recorder))],
+        aio=request.param)
     server.start()
     channel = grpc.insecure_channel(f"127.0.0.1:{port}")
     yield recorder, channel

@@ -36,10 +36,11 @@ def pki(tmp_path):
     return tmp_path
 
 
-@pytest.fixture
-def tls_server(pki):
+@pytest.fixture(params=[False, True], ids=["sync", "aio"])
+def tls_server(pki, request):
     server, port = create_server("127.0.0.1:0", [],
-                                 security=ServerSecurity(pki, "proxy_robot", inner_port=True))
+                                 security=ServerSecurity(pki, "proxy_robot", inner_port=True),
+                                 aio=request.param)
     server.start()
     server.set_serving()
     yield port
@@ -113,7 +114,8 @@ def test_plaintext_beyond_loopback_is_refused_unless_allowed_loudly(caplog):
         server.stop(0)
 
 
-def test_the_early_stop_fires_only_for_callers_the_port_can_identify(pki, tmp_path):
+@pytest.mark.parametrize("aio", [False, True], ids=["sync", "aio"])
+def test_the_early_stop_fires_only_for_callers_the_port_can_identify(pki, tmp_path, aio):
     """An EmergencyStop latches the stop as it arrives, before its handler runs (and so before
     the reply). On the mTLS port the handshake identified everyone; on the token port only a
     valid token does, so an anonymous or forged call must not latch anything."""
@@ -125,7 +127,7 @@ def test_the_early_stop_fires_only_for_callers_the_port_can_identify(pki, tmp_pa
     unimplemented = proxy_robot_pb2_grpc.ProxyRobotServicer()  # the hook comes before it
     server, port = create_server(
         "127.0.0.1:0", [binding(proxy_robot_pb2_grpc, "ProxyRobot", unimplemented)],
-        on_emergency_call=lambda: arrivals.append(1), security=security)
+        on_emergency_call=lambda: arrivals.append(1), security=security, aio=aio)
     server.start()
     ca = (pki / "ca.pem").read_bytes()
 
