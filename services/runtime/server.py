@@ -165,11 +165,17 @@ def create_server(
     for name in ["", *names]:
         health_servicer.set(name, _NOT_SERVING)
 
+    # gRPC threads only receive calls and wait on the lanes (or carry a stream), so there
+    # must be one per call a lane can hold, plus the streams.
+    pool_size = capacity + max_streams + 16
     aio_loop = aio_pool = None
-    if aio:
+    if aio:  # one loop for the servers, one pool for their handlers (the token port's too)
         aio_loop = EventLoopThread()
+        servers_count = 2 if security is not None and security.token_address else 1
+        aio_pool = futures.ThreadPoolExecutor(max_workers=pool_size * servers_count,
+                                              thread_name_prefix="grpc")
 
-    def build(call_security: CallSecurity | None, pool_size: int):
+    def build(call_security: CallSecurity | None):
         interceptor = LaneInterceptor(executor, client_lane_limit, max_streams,
                                       on_emergency_call, call_security, metrics)
         # Two servers on one port would split calls between them silently: refuse instead.
@@ -182,7 +188,7 @@ def create_server(
         else:
             async def aio_server():  # made on its loop, which it keeps
                 return grpc.aio.server(interceptors=[AioLaneInterceptor(interceptor, aio_pool)],
-                                       options=options, migration_thread_pool=aio_pool)
+                                       options=options)
 
             server = AioServerHandle(aio_loop.run(aio_server()), aio_loop)
             grpc_server = server.server
@@ -194,14 +200,9 @@ def create_server(
             [*names, health.SERVICE_NAME, reflection.SERVICE_NAME]), grpc_server)
         return server, interceptor
 
-    # gRPC threads only receive calls and wait on the lanes (or carry a stream), so there
-    # must be one per call a lane can hold, plus the streams.
-    pool_size = capacity + max_streams + 16
-    if aio_loop is not None:
-        aio_pool = futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc")
     main_security = (CallSecurity(security.inner_port, None, security.audit)
                      if security else None)
-    server, interceptor = build(main_security, pool_size)
+    server, interceptor = build(main_security)
     servers = [server]
     interceptors = [interceptor]
     try:
@@ -211,7 +212,7 @@ def create_server(
         token_port = None
         if security is not None and security.token_address:
             token_server, token_interceptor = build(
-                CallSecurity(security.inner_port, security.tokens, security.audit), pool_size)
+                CallSecurity(security.inner_port, security.tokens, security.audit))
             servers.append(token_server)
             interceptors.append(token_interceptor)
             token_port = _bind(token_server, security.token_address, server_credentials(
