@@ -2,10 +2,12 @@
 idle and with ProxyRobot's low lane saturated (estop_ds_*: the same through the DecisionServer).
 
 "Arm halted" is the world's hold latched: the first servo step whose state record shows
-`hold_latched` (read through the shared memory, read only), at that step's time. From then the
-servo brakes at its acceleration cap (10 rad/s²), which is physics, not software: the time until
-every joint is slower than HALT_SPEED_RAD_PER_S is reported too (`stopped_*`), as is the RPC's
-own return (`ack_*`).
+`hold_latched` (read through the shared memory, read only), at that step's time, which the
+world keeps in `hold_latched_ns`: a bench descheduled by the load may see the latch a few
+steps late (`world_step_unseen` counts those), and that is the bench's delay, not the stop's.
+From then the servo brakes at its acceleration cap (10 rad/s²), which is physics, not
+software: the time until every joint is slower than HALT_SPEED_RAD_PER_S is reported too
+(`stopped_*`), as is the RPC's own return (`ack_*`).
 
 Each trial: Reset (if stopped), a 0.15 rad move of joint 1 (alternating sign, so the arm stays
 near where it was), MOVING_S for the arm to pick up speed, then EmergencyStop (emergency lane),
@@ -109,7 +111,7 @@ def run_estop(address: str, shm_name: str, trials: int, label: str,
                 errors.append("the hold did not latch within 1 s")
                 continue
             gaps += int(gap)
-            latched.append((int(record["arm_time_ns"]) - sent_ns) / 1e6)
+            latched.append((int(record["hold_latched_ns"]) - sent_ns) / 1e6)
             record, _, _ = watch.wait_until(
                 lambda r: float(np.max(np.abs(r["qd"]))) < HALT_SPEED_RAD_PER_S, WAIT_S)
             if record is not None:

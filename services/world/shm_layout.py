@@ -35,7 +35,7 @@ SHM_NAME_ENV = "TELEROBOT_WORLD_SHM"
 DEFAULT_SHM_NAME = "telerobot_world"
 
 MAGIC = 0x5445_4C45_5752_4C44  # "TELEWRLD": set last at creation, so a half-made segment is seen
-LAYOUT_VERSION = 3
+LAYOUT_VERSION = 4
 CACHE_LINE = 64
 FAULT_BYTES = 240  # UTF-8, truncated
 
@@ -62,6 +62,9 @@ STATE_DTYPE = np.dtype([
     ("qd", "f8", (JOINT_COUNT,)),  # rad/s
     ("target", "f8", (JOINT_COUNT,)),  # rad
     ("hold_latched", "u8"),
+    # arm_time_ns of the step the hold latched at (0: not latched): what an e-stop took, even
+    # for a reader that did not see that step
+    ("hold_latched_ns", "i8"),
     ("fault", f"S{FAULT_BYTES}"),
     ("wrench_sequence", "u8"),
     ("wrench_time_ns", "i8"),

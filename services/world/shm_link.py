@@ -102,6 +102,7 @@ class WorldPublisher:
         header["magic"] = MAGIC  # last: the segment is complete
         self._applied = 0
         self._emergency_seen = 0  # the stop_request_ns already latched
+        self._latched_ns = 0  # arm_time_ns of the step the current hold latched at
         self._running = False
         self._state = np.zeros(1, STATE_DTYPE)  # filled here, then copied in one go
 
@@ -117,6 +118,11 @@ class WorldPublisher:
         record["qd"] = arm.joint_velocities_rad_per_s
         record["target"] = arm.joint_targets_rad
         record["hold_latched"] = arm.hold_latched
+        if not arm.hold_latched:
+            self._latched_ns = 0
+        elif not self._latched_ns:
+            self._latched_ns = arm.sample_time_ns
+        record["hold_latched_ns"] = self._latched_ns
         record["fault"] = arm.fault.encode()[:FAULT_BYTES]
         record["wrench_sequence"] = wrench.sequence
         record["wrench_time_ns"] = wrench.sample_time_ns

@@ -94,6 +94,22 @@ def test_faults_and_holds_arrive(publisher, link, sim: ArmSim) -> None:
     assert read.hold_latched and read.fault == "motor 3 über-hot"
 
 
+def test_the_record_keeps_the_time_of_the_step_the_hold_latched_at(publisher, sim: ArmSim):
+    """A reader that missed the first latched step (a busy bench) still reads its time."""
+    arm = sim.arm_sample()
+
+    def publish(time_ns: int, latched: bool) -> int:
+        publisher.publish(type(arm)(**{**arm.__dict__, "sample_time_ns": time_ns,
+                                       "hold_latched": latched}), sim.wrench_sample())
+        return int(publisher._segment.state.read(timeout_s=1.0)[0]["hold_latched_ns"])
+
+    assert publish(100, False) == 0
+    assert publish(200, True) == 200
+    assert publish(300, True) == 200  # still the step it latched at
+    assert publish(400, False) == 0  # released
+    assert publish(500, True) == 500  # a new stop, a new time
+
+
 def test_commands_arrive_in_the_order_they_were_issued(publisher, link) -> None:
     target = link.read_arm().joint_targets_rad + 0.1
     link.hold()
