@@ -196,12 +196,18 @@ def test_parma_high_and_emergency_calls_are_served_with_low_lane_saturated(stati
     pool.shutdown()
 
 
-def test_stream_cap_gives_resource_exhausted(station):
-    _, channel, _ = station
+def open_event_streams(channel, count: int) -> list:
+    """`count` StreamRobotEvents calls, each past its first message (so each holds a slot)."""
     streams = [robot(channel).StreamRobotEvents(proxy_robot_pb2.StreamRobotEventsRequest(),
-                                                timeout=10) for _ in range(2)]
+                                                timeout=10) for _ in range(count)]
     for stream in streams:
         next(stream)
+    return streams
+
+
+def test_stream_cap_gives_resource_exhausted(station):
+    _, channel, _ = station
+    streams = open_event_streams(channel, 2)
     with pytest.raises(grpc.RpcError) as error:
         next(robot(channel).StreamRobotEvents(proxy_robot_pb2.StreamRobotEventsRequest(),
                                               timeout=5))
@@ -212,10 +218,7 @@ def test_stream_cap_gives_resource_exhausted(station):
 
 def test_a_stream_the_client_leaves_gives_its_slot_back(station):
     server, channel, _ = station
-    streams = [robot(channel).StreamRobotEvents(proxy_robot_pb2.StreamRobotEventsRequest(),
-                                                timeout=10) for _ in range(2)]
-    for stream in streams:
-        next(stream)
+    streams = open_event_streams(channel, 2)
     assert server.interceptor.open_streams == 2
     streams[0].cancel()
     # The servicer's loop ends (add_callback fired) and its generator is closed.
