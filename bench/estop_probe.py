@@ -22,10 +22,10 @@ bench/estop.py's does.
   grpc.aio, its sync handlers run in the server's migration thread pool, under the same load;
 - ``stack-saturated``: ProxyRobot's servicer behind the station's server stack
   (services/runtime/server.py: lanes, interceptors, metrics), under the same load;
-- ``bare-busy``: the bare server, GetState computing 20 ms in Python in 1 ms slices, at most 4
-  calls at once (the low lane's threads) and one slice at a time in the process (the
-  DecisionServer's SimulatedProcessor), 200 calls in flight each re-issued as it returns: the
-  load of estop_ds_busywork.
+- ``bare-busy``: the bare server, GetState computing 20 ms on the DecisionServer's own
+  SimulatedProcessor (1 ms slices, one at a time in the process), at most 4 calls at once (the
+  low lane's threads), 200 calls in flight each re-issued as it returns: the load of
+  estop_ds_busywork.
 
 Seen on the 2-core VM, quiet, 2026-11-26 (sent → seen, p50 / p99 in ms; two or three runs
 of 100 stops each):
@@ -37,7 +37,7 @@ of 100 stops each):
 | aio-saturated | 2767-4430 | 0.83-1.28 / **3.60-3.66** |
 | aio-servicer | 1770-2264 | 1.22-1.45 / **2.75-2.95** |
 | stack-saturated | 1364-1923 | 2.79-3.45 / 17.2-27.1 |
-| bare-busy | 121 | 1.64-1.74 / **7.20-8.31** |
+| bare-busy | 119-121 | 1.64-1.79 / **7.20-8.31** |
 
 (bare-busy's rate counts the calls that ran out of their 5 s deadline in the queue; the
 DecisionServer's load made 42/s with some DEADLINE_EXCEEDED. The processor is as busy in both: one
@@ -91,7 +91,7 @@ STOP = "/telerobot.v1.ProxyRobot/EmergencyStop"
 LOW_LANE = (("telerobot-lane", "low"),)
 GIL_SWITCH_INTERVAL_S = 0.001  # as every service sets it
 POOL_SIZE = 600  # about the station's (services/runtime/server.py: lanes + streams + 16)
-BUSY_S, SLICE_S = 0.02, 0.001
+BUSY_S = 0.02
 LANE_THREADS = 4  # the low lane's most
 CONCURRENCY = 200
 FLOOD_RATE_HZ = 1000.0
@@ -152,14 +152,12 @@ class _AioBare(proxy_robot_pb2_grpc.ProxyRobotServicer):
         return pb.EmergencyStopResponse()
 
 
-def _busy_work(lane: threading.Semaphore, processor: threading.Lock):
+def _busy_work(lane: threading.Semaphore, processor):
+    """BusyWork as the DecisionServer runs it: on one of the lane's threads, computing on its
+    SimulatedProcessor (services/decision_server/cobegin.py) in 1 ms slices."""
     def work() -> None:
         with lane:
-            for _ in range(round(BUSY_S / SLICE_S)):
-                with processor:
-                    busy_until = time.perf_counter() + SLICE_S
-                    while time.perf_counter() < busy_until:
-                        pass
+            processor.run(0, BUSY_S)
     return work
 
 
@@ -203,7 +201,9 @@ def serve(kind: str) -> None:
             "127.0.0.1:0", [binding(proxy_robot_pb2_grpc, "ProxyRobot", _servicer())],
             on_emergency_call=seen.stop_arrived, metrics=ServiceMetrics("probe"))
     else:
-        work = (_busy_work(threading.Semaphore(LANE_THREADS), threading.Lock())
+        from services.decision_server.cobegin import SimulatedProcessor
+
+        work = (_busy_work(threading.Semaphore(LANE_THREADS), SimulatedProcessor())
                 if kind == "bare-busy" else (lambda: None))
         server = grpc.server(futures.ThreadPoolExecutor(max_workers=POOL_SIZE),
                              interceptors=[_SyncSeen(seen)])
