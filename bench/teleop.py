@@ -69,6 +69,7 @@ from bench.cpu import process_cpu_s
 from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldloop import LoopMeter
+from clients.python.teleoperate import acks_in
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import decision_server_pb2_grpc, types_pb2
 from wire.metadata import LEASE_METADATA_KEY
@@ -299,12 +300,8 @@ class AckTracker:
         try:
             for response in responses:
                 arrived = time.time_ns()
-                kind = response.WhichOneof("message")
-                if kind == "acks":
-                    for ack in response.acks.acks:
-                        self._took(ack, arrived)
-                elif kind == "ack":
-                    self._took(response.ack, arrived)
+                for ack in acks_in(response):
+                    self._took(ack, arrived)
         except StreamFailed as error:
             self.error = str(error)
         finally:
