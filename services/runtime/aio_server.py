@@ -20,6 +20,7 @@ messages are read from the loop for the handler's thread.
 from __future__ import annotations
 
 import asyncio
+import contextvars
 import threading
 from collections.abc import Callable, Iterator
 from concurrent import futures
@@ -98,16 +99,16 @@ class _SyncRequests:
             raise StopIteration from None
 
 
-def _close(iterator, pool: futures.Executor) -> None:
+def _close(iterator, pool: futures.Executor, context_vars: contextvars.Context) -> None:
     """Close a sync response generator (running its finally blocks: the stream's slot, the
     audit) on `pool`, or here once the pool is shut down."""
     close = getattr(iterator, "close", None)
     if close is None:
         return
     try:
-        pool.submit(close)
+        pool.submit(context_vars.run, close)
     except RuntimeError:  # the server stopped: its pool takes nothing new
-        close()
+        context_vars.run(close)
 
 
 def on_threads(handler: grpc.RpcMethodHandler, pool: futures.Executor
@@ -135,12 +136,16 @@ def on_threads(handler: grpc.RpcMethodHandler, pool: futures.Executor
 
     async def streamed(request, context):
         sync_context = SyncContext(context)
+        # One set of context variables for the stream's whole life, as its one thread has on
+        # the sync server: each pull may run on a different pool thread, and a variable the
+        # generator sets (the caller it acts as) must still be there, and be reset, later.
+        context_vars = contextvars.Context()
         responses = pending = None
         try:
-            responses = iter(await asyncio.wrap_future(
-                pool.submit(behavior, sync_request(request), sync_context)))
+            responses = iter(await asyncio.wrap_future(pool.submit(
+                context_vars.run, behavior, sync_request(request), sync_context)))
             while True:
-                pending = pool.submit(next, responses, _END)
+                pending = pool.submit(context_vars.run, next, responses, _END)
                 item = await asyncio.wrap_future(pending)
                 if item is _END:
                     return
@@ -153,9 +158,10 @@ def on_threads(handler: grpc.RpcMethodHandler, pool: futures.Executor
                 # Once the pull in flight, if any, has returned: a running generator cannot
                 # be closed.
                 if pending is None:
-                    _close(responses, pool)
+                    _close(responses, pool, context_vars)
                 else:
-                    pending.add_done_callback(lambda _done: _close(responses, pool))
+                    pending.add_done_callback(
+                        lambda _done: _close(responses, pool, context_vars))
 
     kinds = {(False, False): "unary_unary", (True, False): "stream_unary",
              (False, True): "unary_stream", (True, True): "stream_stream"}
