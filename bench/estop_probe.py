@@ -22,6 +22,8 @@ bench/estop.py's does.
   grpc.aio, its sync handlers run in the server's migration thread pool, under the same load;
 - ``stack-saturated``: ProxyRobot's servicer behind the station's server stack
   (services/runtime/server.py: lanes, interceptors, metrics), under the same load;
+- ``aio-stack``: the same stack on grpc.aio (`create_server(aio=True)`, ProxyRobot's
+  `--aio-server`), under the same load;
 - ``bare-busy``: the bare server, GetState computing 20 ms on the DecisionServer's own
   SimulatedProcessor (1 ms slices, one at a time in the process), at most 4 calls at once (the
   low lane's threads), 200 calls in flight each re-issued as it returns: the load of
@@ -39,6 +41,19 @@ of 100 stops each):
 | stack-saturated | 1364-1923 | 2.79-3.45 / 17.2-27.1 |
 | bare-busy | 119-121 | 1.64-1.79 / **7.20-8.31** |
 
+With ``--tenant 0.33`` a process computes a third of every millisecond beside the server (the
+world's share of a core in the station), 2026-11-26, session 27, one or two runs:
+
+| kind | GetState/s | stop seen |
+|---|---|---|
+| bare-saturated | 2228 | 2.25 / 12.2 |
+| aio-saturated | 3975 | 0.91 / 4.84 |
+| aio-servicer | 2231 | 1.20 / 2.55 |
+| stack-saturated | 1270-1336 | 3.71-3.82 / 16.3-16.4 |
+| aio-stack | 1459-1883 | 1.37-1.77 / **3.00-4.33** |
+
+(without the tenant, one run: aio-stack 1.22 / 2.83, stack-saturated 2.66 / 14.4.)
+
 (bare-busy's rate counts the calls that ran out of their 5 s deadline in the queue; the
 DecisionServer's load made 42/s with some DEADLINE_EXCEEDED. The processor is as busy in both: one
 1 ms slice at a time.) Two steps between bare and stack, one run each: ProxyRobot's servicer on
@@ -52,9 +67,12 @@ What it says:
   floor of grpcio's sync server under that load**. grpc.aio, under the same load and answering
   more calls, sees the stop within 3.7 ms, and within 3.0 ms with ProxyRobot's own sync
   servicer run in its migration thread pool: a ProxyRobot on grpc.aio is what would meet it.
-  The runtime's handlers cannot move as they are: the migration pool's sync context has no
-  is_active(), abort_with_status(), code() or details(), which they use, so the port needs
-  async wrappers that run them on the lanes with an adapter for the context.
+  The station's own stack on grpc.aio (``aio-stack``, services/runtime/aio_server.py) sees
+  it at p99 3.0-4.3 ms beside the world-sized tenant. The world then latches the hold at its
+  next 1 ms step: in the station, seen -> latched took p50 0.8-1.0 / p99 1.4-2.5 ms (bench
+  --only estop with the interceptor's times logged, two runs). So even on grpc.aio the sum is
+  at or over 5 ms at p99, before ProxyRobot's real GetState and the station's other
+  processes: in the station, aio, sent -> seen was p99 7.4 and 9.1 ms.
 - Under a computing load the stop reaches the interceptor, the earliest point a Python service
   can act on it, over 5 ms late at p99 (7.2-8.3 ms): the GIL is handed between the computing
   threads and gRPC's polling thread, 1 ms at a time. The DecisionServer must then forward the
@@ -85,7 +103,7 @@ from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc
 
 KINDS = ("bare-paced", "bare-saturated", "aio-saturated", "aio-servicer", "stack-saturated",
-         "bare-busy")
+         "aio-stack", "bare-busy")
 PACED = ("bare-paced",)
 STOP = "/telerobot.v1.ProxyRobot/EmergencyStop"
 LOW_LANE = (("telerobot-lane", "low"),)
@@ -192,14 +210,15 @@ def serve(kind: str) -> None:
 
         asyncio.run(main())
         return
-    if kind == "stack-saturated":
+    if kind in ("stack-saturated", "aio-stack"):
         from bench.hop_probe import _servicer
         from services.runtime.metrics import ServiceMetrics
         from services.runtime.server import binding, create_server
 
         server, port = create_server(
             "127.0.0.1:0", [binding(proxy_robot_pb2_grpc, "ProxyRobot", _servicer())],
-            on_emergency_call=seen.stop_arrived, metrics=ServiceMetrics("probe"))
+            on_emergency_call=seen.stop_arrived, metrics=ServiceMetrics("probe"),
+            aio=kind == "aio-stack")
     else:
         from services.decision_server.cobegin import SimulatedProcessor
 
@@ -261,9 +280,12 @@ def load(port: int, rate_hz: float) -> None:
     asyncio.run(main())
 
 
-def stops(kind: str, trials: int) -> str:
+def stops(kind: str, trials: int, tenant_share: float = 0.0) -> str:
     server = subprocess.Popen([sys.executable, "-m", "bench.estop_probe", "--serve", kind],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    world = (subprocess.Popen([sys.executable, "-m", "bench.fanout_probe", "--be-tenant",
+                               str(tenant_share)], stdin=subprocess.PIPE)
+             if tenant_share > 0 else None)
     loader = None
     try:
         port = int(server.stdout.readline())
@@ -293,7 +315,8 @@ def stops(kind: str, trials: int) -> str:
             raise RuntimeError(f"{len(sent_ns)} stops sent, {len(seen_ns)} seen")
         seen = (np.asarray(seen_ns[1:]) - np.asarray(sent_ns[1:])) / 1e6
         answered = np.asarray(answered_ms)
-        return (f"{kind:15s} under {calls / elapsed:5.0f} GetState/s: stop seen p50 "
+        return (f"{kind:15s} under {calls / elapsed:5.0f} GetState/s, tenant "
+                f"{tenant_share:.2f}: stop seen p50 "
                 f"{np.percentile(seen, 50):.2f}  p99 {np.percentile(seen, 99):.2f} ms; "
                 f"answered p50 {np.percentile(answered, 50):.2f}  "
                 f"p99 {np.percentile(answered, 99):.2f} ms")
@@ -303,6 +326,9 @@ def stops(kind: str, trials: int) -> str:
         if server.poll() is None:
             server.stdin.close()
             server.wait(10)
+        if world is not None:
+            world.stdin.close()
+            world.wait(10)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -314,6 +340,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--rate", type=float, help=argparse.SUPPRESS)
     parser.add_argument("--trials", type=int, default=100)
     parser.add_argument("--kinds", nargs="+", choices=KINDS, default=list(KINDS))
+    parser.add_argument("--tenant", type=float, default=0.0,
+                        help="share of a core a tenant process computes beside the server, "
+                             "every 1 ms (the world's is about 0.33; default: no tenant)")
     args = parser.parse_args(argv)
     if args.serve:
         serve(args.serve)
@@ -322,7 +351,7 @@ def main(argv: list[str] | None = None) -> int:
         load(args.port, args.rate)
         return 0
     for kind in args.kinds:
-        print(stops(kind, args.trials), flush=True)
+        print(stops(kind, args.trials, args.tenant), flush=True)
     return 0
 
 

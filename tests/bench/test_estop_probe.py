@@ -20,8 +20,8 @@ def test_the_interceptor_notes_only_stops():
 
 @pytest.mark.e2e  # servers and loads in processes of their own
 def test_every_stop_is_seen_before_its_answer_under_a_real_load(capsys):
-    kinds = ["bare-paced", "aio-servicer", "stack-saturated"]
-    assert estop_probe.main(["--trials", "5", "--kinds", *kinds]) == 0
+    kinds = ["bare-paced", "aio-servicer", "stack-saturated", "aio-stack"]
+    assert estop_probe.main(["--trials", "5", "--kinds", *kinds, "--tenant", "0.1"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert [line.split()[0] for line in lines] == kinds
     for line in lines:
@@ -29,5 +29,6 @@ def test_every_stop_is_seen_before_its_answer_under_a_real_load(capsys):
         seen_p50, seen_p99, answered_p50, answered_p99 = (
             float(v) for v in re.findall(r"p\d\d ([\d.]+)", line))
         assert rate > 100  # the load really ran beside the stops
+        assert "tenant 0.10" in line
         assert 0 < seen_p50 <= seen_p99
         assert seen_p50 < answered_p50 and seen_p99 <= answered_p99
