@@ -13,8 +13,9 @@ What stays the same: servicers are sync code, and every call still goes through
 LaneInterceptor (lanes, validation, security, audit, metrics, the early stop on arrival). The
 interceptor's wrapped handlers run on a thread pool as they ran on the sync server's, with a
 `SyncContext` that gives them the sync ServicerContext they were written for. A stream's
-messages are pulled from its sync generator one at a time on that pool; a client stream's
-messages are read from the loop for the handler's thread.
+messages are pulled from its sync generator one at a time on that pool, always in the stream's
+own set of context variables (the caller it acts as); a client stream's messages are read from
+the loop for the handler's thread.
 """
 
 from __future__ import annotations
