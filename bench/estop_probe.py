@@ -66,7 +66,7 @@ What it says:
   turn. The station's stack only adds to that. So **estop_under_load_proxy's 5 ms is below the
   floor of grpcio's sync server under that load**. grpc.aio, under the same load and answering
   more calls, sees the stop within 3.7 ms, and within 3.0 ms with ProxyRobot's own sync
-  servicer run in its migration thread pool: a ProxyRobot on grpc.aio is what would meet it.
+  servicer run in its migration thread pool: only grpc.aio comes near it.
   The station's own stack on grpc.aio (``aio-stack``, services/runtime/aio_server.py) sees
   it at p99 3.0-4.3 ms beside the world-sized tenant. The world then latches the hold at its
   next 1 ms step: in the station, seen -> latched took p50 0.8-1.0 / p99 1.4-2.5 ms (bench
