@@ -59,6 +59,7 @@ from services.runtime.process import (
     watch_parent,
 )
 from services.runtime.restart import RestartPolicy, RestartTracker
+from services.runtime.stacks import dump_stacks_on_signal
 from services.runtime.supervisor_state import (
     GAVE_UP,
     RESTARTED_BECAUSE_ENV,
@@ -114,6 +115,7 @@ def main(argv: list[str] | None = None) -> int:
                         help="do not advertise the station")
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
+    dump_stacks_on_signal()
     health_security = station_channel_security(args.tls_dir or None, "launcher")
 
     stop = threading.Event()  # SIGINT, SIGTERM, or the parent gone

@@ -24,6 +24,7 @@ import threading
 from services.discovery.advertise import ADVERTISE_ENV, STATION_NAME_ENV, plan
 from services.discovery.browse import DEFAULT_TIMEOUT_S, Browser, browse, discovered_address
 from services.discovery.station import SERVICE_TYPE, DiscoveryError, Station
+from services.runtime.stacks import dump_stacks_on_signal
 
 # The line `advertise` prints once the advertisement is out, before the name it got.
 ADVERTISED_LINE = "advertised as"
@@ -54,6 +55,7 @@ def main(argv: list[str] | None = None) -> int:
                            choices=["1", "0", "auto"],
                            help="1 (default): advertise even on loopback; auto: only beyond it")
     args = parser.parse_args(argv)
+    dump_stacks_on_signal()
     logging.basicConfig(level=args.log_level.upper(),
                         format="%(asctime)s discovery[%(process)d] %(levelname)s: %(message)s")
     try:

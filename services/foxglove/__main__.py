@@ -30,6 +30,7 @@ from services.foxglove.live import Demand, LiveChannels
 from services.runtime.config import configure_logging
 from services.runtime.process import ready_line, watch_parent
 from services.runtime.server import is_loopback
+from services.runtime.stacks import dump_stacks_on_signal
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name
 from wire.tls import TLS_DIR_ENV, open_channel
@@ -69,6 +70,7 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     configure_logging(NAME, args.log_level)
+    dump_stacks_on_signal()
     for option in ("state_hz", "wrench_hz", "stereo_fps"):
         if not getattr(args, option) > 0:
             print(f"{NAME}: --{option.replace('_', '-')} must be > 0", file=sys.stderr)

@@ -33,12 +33,17 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 
 from services.runtime.process import PARENT_PID_ENV, parse_ready_line
+from services.runtime.stacks import STACKS_LINE, STACKS_SIGNAL, runs_a_service
 
 log = logging.getLogger(__name__)
 
 READY_TIMEOUT_S = 60.0
 STOP_GRACE_S = 3.0  # SIGTERM to SIGKILL, unless the caller says otherwise
 KILL_WAIT_S = 5.0  # how long to wait for a SIGKILLed process to be reaped
+STACKS_WAIT_S = 1.0  # how long a hung service has to start writing its threads' stacks
+# A dump has no last line: it is taken as written once no line came for this long (it is written
+# in one go, from C), and a hung service is killed only then.
+STACKS_QUIET_S = 0.1
 DESCRIBE_LINES = 20  # how many of a child's last lines an error message shows
 _DRAIN_AFTER_EXIT_S = 1.0  # after an exit, how long to wait for the rest of the output
 _CANCEL_POLL_S = 0.05
@@ -54,13 +59,16 @@ class Child:
 
     def __init__(self, name: str, process: subprocess.Popen, max_lines: int | None,
                  on_line: Callable[[Child, str], None] | None,
-                 on_exit: Callable[[Child], None] | None, stop_grace_s: float = STOP_GRACE_S):
+                 on_exit: Callable[[Child], None] | None, stop_grace_s: float = STOP_GRACE_S,
+                 dumps_stacks: bool = False):
         self.name = name
         self.process = process
         self.stop_grace_s = stop_grace_s  # stop()'s default
+        self.dumps_stacks = dumps_stacks  # STACKS_SIGNAL makes it write its threads' stacks
         self.ready: dict[str, str] = {}  # name -> host:port, from the ready lines seen
         self.exited = threading.Event()  # set once the process ended and its output is read
         self._lines: collections.deque[str] = collections.deque(maxlen=max_lines)
+        self._last_line_at = time.monotonic()
         self._changed = threading.Condition()
         self._on_line, self._on_exit = on_line, on_exit
         self._pump = threading.Thread(target=self._read_output, name=f"out-{name}", daemon=True)
@@ -95,6 +103,7 @@ class Child:
             ready = parse_ready_line(line)
             with self._changed:
                 self._lines.append(line)
+                self._last_line_at = time.monotonic()
                 if ready:
                     self.ready[ready[0]] = ready[1]
                 self._changed.notify_all()
@@ -180,10 +189,39 @@ class Child:
         try:
             return self.process.wait(grace_s)
         except subprocess.TimeoutExpired:
-            log.warning("%s (pid %d) did not stop within %.1f s; killing it", self.name,
-                        self.pid, grace_s)
+            asked = self.ask_for_stacks()
             self.process.kill()
-            return self.process.wait(KILL_WAIT_S)
+            code = self.process.wait(KILL_WAIT_S)
+            log.warning("%s (pid %d) did not stop within %.1f s; killed it%s", self.name,
+                        self.pid, grace_s, self.stacks_told() if asked else "")
+            return code
+
+    def ask_for_stacks(self) -> bool:
+        """Before a hung service is killed: have it write its threads' stacks, which land in
+        its lines; waits up to STACKS_WAIT_S for them to begin. Whether they did."""
+        if not self.dumps_stacks:
+            return False
+        self.send_signal(STACKS_SIGNAL)
+        try:
+            self.wait_line(STACKS_LINE, STACKS_WAIT_S)
+        except ChildFailed:
+            return False
+        deadline = time.monotonic() + STACKS_WAIT_S
+        with self._changed:  # until the dump is written: no new line for STACKS_QUIET_S
+            while not self.exited.is_set():
+                now = time.monotonic()
+                quiet_at = self._last_line_at + STACKS_QUIET_S
+                if now >= quiet_at or now >= deadline:
+                    break
+                self._changed.wait(min(quiet_at, deadline) - now)
+        return True
+
+    def stacks_told(self) -> str:
+        """For a log line: the child's last stack dump, once its output has been read."""
+        self.exited.wait(_DRAIN_AFTER_EXIT_S + 1.0)
+        lines = self.lines
+        starts = [i for i, line in enumerate(lines) if STACKS_LINE in line]
+        return ". Its threads were at:\n" + "\n".join(lines[starts[0]:]) if starts else ""
 
     # -- telling what happened -------------------------------------------------------------
 
@@ -223,6 +261,8 @@ def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = Non
     this process dies. max_lines: how many output lines to keep (None: all). on_line(child,
     line) is called on the reading thread for every line, on_exit(child) once the child ended.
     stop_grace_s: how long Child.stop() waits after its signal before SIGKILL, by default.
+    A child that runs one of this project's services (`-m services.<name>`) is asked for its
+    threads' stacks before it is killed (services.runtime.stacks), and the log shows them.
     """
     full_env = {**os.environ, "PYTHONUNBUFFERED": "1", **(env or {})}
     if watch_parent:
@@ -231,7 +271,8 @@ def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = Non
         [sys.executable, *args], cwd=cwd, env=full_env, stdin=subprocess.DEVNULL,
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
         process_group=0 if own_group else None)
-    return Child(name, process, max_lines, on_line, on_exit, stop_grace_s)
+    return Child(name, process, max_lines, on_line, on_exit, stop_grace_s,
+                 dumps_stacks=runs_a_service(args))
 
 
 def start_service(service: str, args: Sequence[str] = (), *, address: str = "127.0.0.1:0",
@@ -252,21 +293,24 @@ def stop_all(children: Iterable[Child], grace_s: float | None = None) -> list[Ch
     for child in live:
         child.send_signal(signal.SIGTERM)
     deadline = time.monotonic() + grace_s
-    killed = []
+    hung = []
     for child in live:
         try:
             child.process.wait(max(0.0, deadline - time.monotonic()))
         except subprocess.TimeoutExpired:
-            log.warning("%s (pid %d) did not stop within %.1f s; killing it", child.name,
-                        child.pid, grace_s)
-            child.process.kill()
-            killed.append(child)
+            hung.append(child)
+    asked = {child: child.ask_for_stacks() for child in hung}
+    killed = [child for child in hung if child.returncode is None]
+    for child in killed:
+        child.process.kill()
     for child in killed:
         try:
             child.process.wait(KILL_WAIT_S)
         except subprocess.TimeoutExpired:
             log.error("%s (pid %d) outlived SIGKILL for %.0f s", child.name, child.pid,
                       KILL_WAIT_S)
+        log.warning("%s (pid %d) did not stop within %.1f s; killed it%s", child.name,
+                    child.pid, grace_s, child.stacks_told() if asked[child] else "")
     return killed
 
 

@@ -33,6 +33,7 @@ from services.runtime.server import (
     create_server,
     is_loopback,
 )
+from services.runtime.stacks import dump_stacks_on_signal
 from services.security.audit import audit_log_for
 from services.security.tokens import TokenStore, tokens_file
 
@@ -114,6 +115,7 @@ def run_service(
         add_arguments(parser)
     args = parser.parse_args(argv)
     configure_logging(name, args.log_level)
+    dump_stacks_on_signal()
     sys.setswitchinterval(switch_interval_s)
 
     stop = threading.Event()

@@ -15,6 +15,7 @@ import uvicorn
 from services.runtime.config import PLAINTEXT_ENV, configure_logging
 from services.runtime.process import ready_line, watch_parent
 from services.runtime.server import PlaintextRefused, check_plaintext
+from services.runtime.stacks import dump_stacks_on_signal
 from services.web_console.app import ConsoleApp
 from services.web_console.bridge import Upstream
 from wire.addresses import address_for, env_name
@@ -47,6 +48,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     args = parser.parse_args(argv)
     configure_logging(NAME, args.log_level)
+    dump_stacks_on_signal()
     try:
         # The console itself serves plain HTTP: beyond loopback only when told so explicitly.
         check_plaintext(args.address, False, args.allow_plaintext_network)

@@ -15,6 +15,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from services.runtime import children
 from services.runtime.children import ChildFailed
 from services.runtime.process import PARENT_PID_ENV, parse_ready_line, ready_line
+from services.runtime.stacks import STACKS_LINE, STACKS_SIGNAL, runs_a_service
 from tests.conftest import REPO
 from tests.world.conftest import unique_shm_name
 
@@ -138,6 +139,52 @@ def test_stop_all_stops_the_willing_and_kills_the_stubborn(started):
         child.wait_line("up", timeout_s=30)
     assert children.stop_all([stubborn, willing], grace_s=0.3) == [stubborn]
     assert willing.returncode == -signal.SIGTERM and stubborn.returncode == -signal.SIGKILL
+
+
+# A service-like child that ignores SIGTERM, stuck in a function whose name its stacks show.
+_HUNG_SERVICE = (
+    "import signal, threading\n"
+    "from services.runtime.stacks import dump_stacks_on_signal\n"
+    "dump_stacks_on_signal()\n"
+    "signal.signal(signal.SIGTERM, signal.SIG_IGN)\n"
+    "def stuck_in_here():\n"
+    "    print('up', flush=True)\n"
+    "    threading.Event().wait()\n"
+    "stuck_in_here()\n")
+
+
+@pytest.mark.parametrize("stopped_by", ["stop", "stop_all"])
+def test_a_hung_service_is_killed_and_the_log_says_where_it_was_stuck(started, caplog,
+                                                                     stopped_by):
+    child = started("hung", _python(_HUNG_SERVICE))
+    child.dumps_stacks = True  # as for `-m services.<name>`, which runs the same call
+    child.wait_line("up", timeout_s=30)
+    if stopped_by == "stop":
+        assert child.stop(grace_s=0.2) == -signal.SIGKILL
+    else:
+        assert children.stop_all([child], grace_s=0.2) == [child]
+        assert child.returncode == -signal.SIGKILL
+    assert any("stuck_in_here" in line for line in child.lines), child.lines
+    warning = next(r.getMessage() for r in caplog.records if "did not stop" in r.getMessage())
+    assert "killed it. Its threads were at:" in warning and "stuck_in_here" in warning
+
+
+def test_only_this_projects_services_are_asked_for_their_stacks():
+    assert runs_a_service(["-m", "services.world", "--address", "127.0.0.1:0"])
+    assert not runs_a_service(["-m", "bench.worker", "network"])
+    assert not runs_a_service(["-c", "import services"])
+
+
+def test_a_service_writes_its_stacks_on_the_signal_and_serves_on(started):
+    band = started("emergency_stop", ["-m", "services.emergency_stop", "--address",
+                                      "127.0.0.1:0", "--shm-name", unique_shm_name()])
+    assert band.dumps_stacks
+    address = band.wait_ready(timeout_s=60)
+    band.send_signal(STACKS_SIGNAL)
+    band.wait_line(STACKS_LINE, timeout_s=10)
+    band.wait_line("in run_service", timeout_s=10)  # the main thread, waiting to stop
+    assert _serving(address)
+    assert band.stop(grace_s=10) == 0, band.describe()
 
 
 def test_a_child_gets_its_own_group_the_parent_pid_and_the_extra_environment(started):

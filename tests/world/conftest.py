@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import uuid
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -51,8 +50,9 @@ def start_world(shm_name: str | None = None) -> World:
 def _cleanup(world: World) -> None:
     if world.running.process.poll() is None:
         world.running.stop()
-    if segment_exists(world.shm_name):  # only after a kill: never leave segments behind
-        os.unlink(SHM_DIR / world.shm_name)
+    # Only after a kill: never leave segments behind (the killed world's resource tracker may
+    # be removing it at the same moment).
+    (SHM_DIR / world.shm_name).unlink(missing_ok=True)
 
 
 @pytest.fixture
