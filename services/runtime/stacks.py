@@ -9,6 +9,7 @@ from __future__ import annotations
 import faulthandler
 import signal
 import sys
+from collections.abc import Sequence
 
 STACKS_SIGNAL = signal.SIGQUIT
 # In the header of each thread's stack in such a dump.
@@ -21,7 +22,9 @@ def dump_stacks_on_signal() -> None:
     faulthandler.register(STACKS_SIGNAL, file=sys.__stderr__, all_threads=True)
 
 
-def runs_a_service(args: list[str] | tuple[str, ...]) -> bool:
-    """Whether `python <args>` runs one of this project's services (`-m services.<name>`),
-    each of which calls dump_stacks_on_signal()."""
-    return len(args) >= 2 and args[0] == "-m" and args[1].startswith("services.")
+def runs_a_service(args: Sequence[str]) -> bool:
+    """Whether `python <args>` runs one of this project's processes, `-m services.<name>`
+    (a service, the launcher, the live view...), each of which calls dump_stacks_on_signal();
+    not a tool deeper down such as `-m services.security.pki`."""
+    return (len(args) >= 2 and args[0] == "-m" and args[1].startswith("services.")
+            and args[1].count(".") == 1)

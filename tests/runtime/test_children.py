@@ -171,6 +171,8 @@ def test_a_hung_service_is_killed_and_the_log_says_where_it_was_stuck(started, c
 
 def test_only_this_projects_services_are_asked_for_their_stacks():
     assert runs_a_service(["-m", "services.world", "--address", "127.0.0.1:0"])
+    assert runs_a_service(["-m", "services.launcher"])
+    assert not runs_a_service(["-m", "services.security.pki", "--dir", "pki"])
     assert not runs_a_service(["-m", "bench.worker", "network"])
     assert not runs_a_service(["-c", "import services"])
 
