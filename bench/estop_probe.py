@@ -99,6 +99,7 @@ from concurrent import futures
 import grpc
 import numpy as np
 
+from bench.fanout_probe import start_tenant
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc
 
@@ -283,9 +284,7 @@ def load(port: int, rate_hz: float) -> None:
 def stops(kind: str, trials: int, tenant_share: float = 0.0) -> str:
     server = subprocess.Popen([sys.executable, "-m", "bench.estop_probe", "--serve", kind],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-    world = (subprocess.Popen([sys.executable, "-m", "bench.fanout_probe", "--be-tenant",
-                               str(tenant_share)], stdin=subprocess.PIPE)
-             if tenant_share > 0 else None)
+    world = start_tenant(tenant_share)
     loader = None
     try:
         port = int(server.stdout.readline())

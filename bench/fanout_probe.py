@@ -143,6 +143,15 @@ def tenant(share: float) -> None:
             time.sleep(delay)
 
 
+def start_tenant(share: float) -> subprocess.Popen | None:
+    """A tenant process computing `share` of every millisecond (None for 0); it stops when its
+    stdin is closed."""
+    if share <= 0:
+        return None
+    return subprocess.Popen([sys.executable, "-m", "bench.fanout_probe", "--be-tenant",
+                             str(share)], stdin=subprocess.PIPE)
+
+
 def _handler(stream) -> grpc.GenericRpcHandler:
     # No response serializer: the streams send the sampler's bytes as they are.
     return grpc.method_handlers_generic_handler("telerobot.v1.ForceSensor", {
@@ -220,9 +229,7 @@ def observe(port: int, count: int) -> None:
 def operator(kind: str, observers: int, seconds: float, tenant_share: float) -> str:
     server = subprocess.Popen([sys.executable, "-m", "bench.fanout_probe", "--serve", kind],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-    world = (subprocess.Popen([sys.executable, "-m", "bench.fanout_probe", "--be-tenant",
-                               str(tenant_share)], stdin=subprocess.PIPE)
-             if tenant_share > 0 else None)
+    world = start_tenant(tenant_share)
     watchers = None
     try:
         port = int(server.stdout.readline())
