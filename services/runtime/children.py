@@ -192,8 +192,7 @@ class Child:
             asked = self.ask_for_stacks()
             self.process.kill()
             code = self.process.wait(KILL_WAIT_S)
-            log.warning("%s (pid %d) did not stop within %.1f s; killed it%s", self.name,
-                        self.pid, grace_s, self.stacks_told() if asked else "")
+            self._report_killed(grace_s, asked)
             return code
 
     def ask_for_stacks(self) -> bool:
@@ -216,12 +215,18 @@ class Child:
                 self._changed.wait(min(quiet_at, deadline) - now)
         return True
 
-    def stacks_told(self) -> str:
-        """For a log line: the child's last stack dump, once its output has been read."""
-        self.exited.wait(_DRAIN_AFTER_EXIT_S + 1.0)
-        lines = self.lines
-        starts = [i for i, line in enumerate(lines) if STACKS_LINE in line]
-        return ". Its threads were at:\n" + "\n".join(lines[starts[0]:]) if starts else ""
+    def _report_killed(self, grace_s: float, asked_for_stacks: bool) -> None:
+        """Log the kill, with the child's last stack dump if it was asked for one (once its
+        output has been read)."""
+        stacks = ""
+        if asked_for_stacks:
+            self.exited.wait(_DRAIN_AFTER_EXIT_S + 1.0)
+            lines = self.lines
+            starts = [i for i, line in enumerate(lines) if STACKS_LINE in line]
+            if starts:
+                stacks = ". Its threads were at:\n" + "\n".join(lines[starts[0]:])
+        log.warning("%s (pid %d) did not stop within %.1f s; killed it%s", self.name, self.pid,
+                    grace_s, stacks)
 
     # -- telling what happened -------------------------------------------------------------
 
@@ -309,8 +314,7 @@ def stop_all(children: Iterable[Child], grace_s: float | None = None) -> list[Ch
         except subprocess.TimeoutExpired:
             log.error("%s (pid %d) outlived SIGKILL for %.0f s", child.name, child.pid,
                       KILL_WAIT_S)
-        log.warning("%s (pid %d) did not stop within %.1f s; killed it%s", child.name,
-                    child.pid, grace_s, child.stacks_told() if asked[child] else "")
+        child._report_killed(grace_s, asked[child])
     return killed
 
 
