@@ -179,6 +179,8 @@ class SyncClient(_ClientCore):
                  security: ChannelSecurity | None = None):
         self._setup(target, lease=lease, lane=lane, default_timeout=default_timeout,
                     options=options, security=security, aio=False)
+        self._pending: set = set()
+        self._pending_lock = threading.Lock()
 
     def _unary(self, name: str, request, convert: Callable[[Any], Any],
                timeout: float | None, lane: str | None):
@@ -189,6 +191,20 @@ class SyncClient(_ClientCore):
         except grpc.RpcError as error:
             raise from_rpc_error(error, self._method(name)) from error
         return convert(response)
+
+    def _send_and_forget(self, name: str, request, lane: str | None) -> None:
+        """A unary call whose answer nobody waits for (receipts): it may fail unseen."""
+        if self._closed:
+            return
+        future = getattr(self._stub, name).future(request, timeout=self._timeout(None),
+                                                  metadata=self._metadata(lane))
+        with self._pending_lock:  # a call's future that nobody holds cancels the call
+            self._pending.add(future)
+        future.add_done_callback(self._forget)
+
+    def _forget(self, future) -> None:
+        with self._pending_lock:
+            self._pending.discard(future)
 
     def _server_stream(self, name: str, request, convert: Callable[[Any], Any],
                        timeout: float | None, lane: str | None) -> Stream:
@@ -284,6 +300,7 @@ class AsyncClient(_ClientCore):
                  security: ChannelSecurity | None = None):
         self._setup(target, lease=lease, lane=lane, default_timeout=default_timeout,
                     options=options, security=security, aio=True)
+        self._pending: set[asyncio.Future] = set()
 
     async def _unary(self, name: str, request, convert: Callable[[Any], Any],
                      timeout: float | None, lane: str | None):
@@ -294,6 +311,20 @@ class AsyncClient(_ClientCore):
         except grpc.aio.AioRpcError as error:
             raise from_rpc_error(error, self._method(name)) from error
         return convert(response)
+
+    def _send_and_forget(self, name: str, request, lane: str | None) -> None:
+        """A unary call whose answer nobody waits for (receipts): it may fail unseen."""
+        if self._closed:
+            return
+        task = asyncio.ensure_future(getattr(self._stub, name)(
+            request, timeout=self._timeout(None), metadata=self._metadata(lane)))
+        self._pending.add(task)  # a task nobody holds may be collected before it runs
+        task.add_done_callback(self._forget)
+
+    def _forget(self, task: asyncio.Future) -> None:
+        self._pending.discard(task)
+        if not task.cancelled():
+            task.exception()  # read, so asyncio does not log it as never retrieved
 
     def _server_stream(self, name: str, request, convert: Callable[[Any], Any],
                        timeout: float | None, lane: str | None) -> AsyncStream:

@@ -158,12 +158,14 @@ class StereoFrame:
     """One synchronized pair with the stream header that describes it.
 
     ``left``/``right`` are decoded RGB8 arrays (height, width, 3), or None when the client was
-    asked not to decode; ``pair`` keeps the encoded bytes and timing."""
+    asked not to decode; ``pair`` keeps the encoded bytes and timing; ``received_ns`` is when
+    the client read it (wall clock, ns)."""
 
     header: sc_pb.StereoHeader
     pair: sc_pb.StereoPair
     left: np.ndarray | None
     right: np.ndarray | None
+    received_ns: int = 0
 
     @property
     def sequence(self) -> int:

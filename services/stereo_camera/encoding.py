@@ -30,6 +30,10 @@ ENCODINGS = {
     pb.IMAGE_ENCODING_JPEG: "jpeg",
     pb.IMAGE_ENCODING_PNG: "png",
 }
+VIDEO_ENCODINGS = {pb.IMAGE_ENCODING_H264: "h264"}  # streams only: one encoder per stream
+# The bitrates an H.264 stream may ask for (max_kbit_per_s), and the ceiling when it asks none.
+MIN_KBIT_PER_S, MAX_KBIT_PER_S, DEFAULT_MAX_KBIT_PER_S = 150, 50_000, 8_000
+START_KBIT_PER_S = 1_500
 TRANSFER_MODES = {
     pb.TRANSFER_MODE_SINGLE_BUFFER_SERIALIZED: "single",
     pb.TRANSFER_MODE_DOUBLE_BUFFER_CONCURRENT: "double",
@@ -56,26 +60,43 @@ class StreamSettings:
     transfer_mode: int  # TransferMode, never UNSPECIFIED
     width_px: int = 0  # 0: the source's
     height_px: int = 0
+    receipts: bool = False  # the client reports what it receives (pacing.py)
+    max_kbit_per_s: int = DEFAULT_MAX_KBIT_PER_S  # H.264 only
+    max_kbit_per_s_given: bool = False  # the client set it (else the default above)
+
+    @property
+    def video(self) -> bool:
+        return self.encoding in VIDEO_ENCODINGS
 
     def image_format(self, geometry: SourceGeometry) -> ImageFormat:
-        """The client's image format; InvalidArgument for a size past the source's."""
-        width = self.width_px or geometry.width_px
-        height = self.height_px or geometry.height_px
+        """The client's image format; InvalidArgument for a size past the source's, or odd
+        for H.264. A source of odd size streams H.264 a pixel smaller."""
+        width = self.width_px or geometry.width_px - geometry.width_px % 2 * self.video
+        height = self.height_px or geometry.height_px - geometry.height_px % 2 * self.video
         if width > geometry.width_px or height > geometry.height_px:
             raise InvalidArgument(
                 f"{width}x{height} is larger than the source's {geometry.width_px}x"
                 f"{geometry.height_px}: ask for at most that (0 means the source's size)",
                 reason="SIZE_TOO_LARGE")
+        if self.video and (width % 2 or height % 2):
+            raise InvalidArgument(f"H.264 needs an even width and height, not {width}x{height}",
+                                  reason="ODD_SIZE")
         return ImageFormat(width, height, self.encoding, self.jpeg_quality)
 
 
-def _check_encoding(encoding: int, default: int, quality: int) -> tuple[int, int]:
+def _check_encoding(encoding: int, default: int, quality: int, video: bool = False,
+                    ) -> tuple[int, int]:
     if encoding == pb.IMAGE_ENCODING_UNSPECIFIED:
         encoding = default
-    if encoding not in ENCODINGS:
+    if encoding in VIDEO_ENCODINGS and not video:
         raise InvalidArgument(
-            f"unknown image encoding {encoding}: use IMAGE_ENCODING_JPEG, IMAGE_ENCODING_PNG "
-            "or IMAGE_ENCODING_RAW_RGB8", reason="BAD_ENCODING")
+            "IMAGE_ENCODING_H264 is for StreamPairs: a snapshot is one picture; use "
+            "IMAGE_ENCODING_PNG, IMAGE_ENCODING_JPEG or IMAGE_ENCODING_RAW_RGB8",
+            reason="BAD_ENCODING")
+    if encoding not in ENCODINGS and encoding not in VIDEO_ENCODINGS:
+        raise InvalidArgument(
+            f"unknown image encoding {encoding}: use IMAGE_ENCODING_H264, IMAGE_ENCODING_JPEG, "
+            "IMAGE_ENCODING_PNG or IMAGE_ENCODING_RAW_RGB8", reason="BAD_ENCODING")
     if encoding == pb.IMAGE_ENCODING_JPEG:
         if quality == 0:
             quality = DEFAULT_JPEG_QUALITY
@@ -90,7 +111,13 @@ def _check_encoding(encoding: int, default: int, quality: int) -> tuple[int, int
 def stream_settings(request: pb.StreamPairsRequest) -> StreamSettings:
     """Checks a StreamPairsRequest (all but the size limit, which needs the source)."""
     encoding, quality = _check_encoding(request.encoding, pb.IMAGE_ENCODING_JPEG,
-                                        request.jpeg_quality)
+                                        request.jpeg_quality, video=True)
+    max_kbit = request.max_kbit_per_s or DEFAULT_MAX_KBIT_PER_S
+    if not MIN_KBIT_PER_S <= max_kbit <= MAX_KBIT_PER_S:
+        raise InvalidArgument(
+            f"max_kbit_per_s {request.max_kbit_per_s} is outside what the station encodes: "
+            f"{MIN_KBIT_PER_S}..{MAX_KBIT_PER_S} kbit/s (0 means {DEFAULT_MAX_KBIT_PER_S})",
+            reason="BAD_BITRATE")
     mode = request.transfer_mode or pb.TRANSFER_MODE_DOUBLE_BUFFER_CONCURRENT
     if mode not in TRANSFER_MODES:
         raise InvalidArgument(
@@ -104,7 +131,8 @@ def stream_settings(request: pb.StreamPairsRequest) -> StreamSettings:
         raise InvalidArgument(f"width_px and height_px must not be negative, got "
                               f"{request.width_px}x{request.height_px} (0 means the source's)",
                               reason="BAD_SIZE")
-    return StreamSettings(encoding, quality, max_fps, mode, request.width_px, request.height_px)
+    return StreamSettings(encoding, quality, max_fps, mode, request.width_px, request.height_px,
+                          request.receipts, max_kbit, bool(request.max_kbit_per_s))
 
 
 def snapshot_settings(request: pb.GetSnapshotRequest) -> StreamSettings:

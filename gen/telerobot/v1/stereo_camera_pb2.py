@@ -28,7 +28,7 @@ from telerobot.v1 import options_pb2 as telerobot_dot_v1_dot_options__pb2
 from telerobot.v1 import types_pb2 as telerobot_dot_v1_dot_types__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n telerobot/v1/stereo_camera.proto\x12\x0ctelerobot.v1\x1a\x1egoogle/protobuf/duration.proto\x1a\x1fgoogle/protobuf/timestamp.proto\x1a\x1atelerobot/v1/options.proto\x1a\x18telerobot/v1/types.proto\"\x16\n\x14GetStreamInfoRequest\"C\n\x15GetStreamInfoResponse\x12*\n\x06header\x18\x01 \x01(\x0b\x32\x1a.telerobot.v1.StereoHeader\"\xc2\x01\n\x12StreamPairsRequest\x12-\n\x08\x65ncoding\x18\x01 \x01(\x0e\x32\x1b.telerobot.v1.ImageEncoding\x12\x14\n\x0cjpeg_quality\x18\x02 \x01(\x05\x12\x0f\n\x07max_fps\x18\x03 \x01(\x01\x12\x31\n\rtransfer_mode\x18\x04 \x01(\x0e\x32\x1a.telerobot.v1.TransferMode\x12\x10\n\x08width_px\x18\x05 \x01(\x05\x12\x11\n\theight_px\x18\x06 \x01(\x05\"x\n\x13StreamPairsResponse\x12,\n\x06header\x18\x01 \x01(\x0b\x32\x1a.telerobot.v1.StereoHeaderH\x00\x12(\n\x04pair\x18\x02 \x01(\x0b\x32\x18.telerobot.v1.StereoPairH\x00\x42\t\n\x07\x63ontent\"Y\n\x12GetSnapshotRequest\x12-\n\x08\x65ncoding\x18\x01 \x01(\x0e\x32\x1b.telerobot.v1.ImageEncoding\x12\x14\n\x0cjpeg_quality\x18\x02 \x01(\x05\"i\n\x13GetSnapshotResponse\x12*\n\x06header\x18\x01 \x01(\x0b\x32\x1a.telerobot.v1.StereoHeader\x12&\n\x04pair\x18\x02 \x01(\x0b\x32\x18.telerobot.v1.StereoPair\"\x98\x02\n\x0cStereoHeader\x12\x10\n\x08width_px\x18\x01 \x01(\x05\x12\x11\n\theight_px\x18\x02 \x01(\x05\x12-\n\x08\x65ncoding\x18\x03 \x01(\x0e\x32\x1b.telerobot.v1.ImageEncoding\x12\x31\n\rtransfer_mode\x18\x04 \x01(\x0e\x32\x1a.telerobot.v1.TransferMode\x12-\n\x04left\x18\x05 \x01(\x0b\x32\x1f.telerobot.v1.CameraCalibration\x12.\n\x05right\x18\x06 \x01(\x0b\x32\x1f.telerobot.v1.CameraCalibration\x12\x12\n\nbaseline_m\x18\x07 \x01(\x01\x12\x0e\n\x06source\x18\x08 \x01(\t\"\xa0\x01\n\x11\x43\x61meraCalibration\x12\r\n\x05\x66x_px\x18\x01 \x01(\x01\x12\r\n\x05\x66y_px\x18\x02 \x01(\x01\x12\r\n\x05\x63x_px\x18\x03 \x01(\x01\x12\r\n\x05\x63y_px\x18\x04 \x01(\x01\x12\x12\n\nprojection\x18\x05 \x03(\x01\x12\'\n\x0b\x63\x61mera_pose\x18\x06 \x01(\x0b\x32\x12.telerobot.v1.Pose\x12\x12\n\ndistortion\x18\x07 \x03(\x01\"\xe3\x01\n\nStereoPair\x12\x10\n\x08sequence\x18\x01 \x01(\x03\x12\x35\n\x11left_capture_time\x18\x02 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\x12\x36\n\x12right_capture_time\x18\x03 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\x12\x12\n\nleft_image\x18\x04 \x01(\x0c\x12\x13\n\x0bright_image\x18\x05 \x01(\x0c\x12+\n\x08\x65ye_skew\x18\x06 \x01(\x0b\x32\x19.google.protobuf.Duration*}\n\rImageEncoding\x12\x1e\n\x1aIMAGE_ENCODING_UNSPECIFIED\x10\x00\x12\x1b\n\x17IMAGE_ENCODING_RAW_RGB8\x10\x01\x12\x17\n\x13IMAGE_ENCODING_JPEG\x10\x02\x12\x16\n\x12IMAGE_ENCODING_PNG\x10\x03*\x85\x01\n\x0cTransferMode\x12\x1d\n\x19TRANSFER_MODE_UNSPECIFIED\x10\x00\x12*\n&TRANSFER_MODE_SINGLE_BUFFER_SERIALIZED\x10\x01\x12*\n&TRANSFER_MODE_DOUBLE_BUFFER_CONCURRENT\x10\x02\x32\xb0\x02\n\x0cStereoCamera\x12\x62\n\rGetStreamInfo\x12\".telerobot.v1.GetStreamInfoRequest\x1a#.telerobot.v1.GetStreamInfoResponse\"\x08\xc8\xf3\x18\x03\xd8\xf3\x18\x01\x12^\n\x0bStreamPairs\x12 .telerobot.v1.StreamPairsRequest\x1a!.telerobot.v1.StreamPairsResponse\"\x08\xc8\xf3\x18\x03\xd8\xf3\x18\x01\x30\x01\x12\\\n\x0bGetSnapshot\x12 .telerobot.v1.GetSnapshotRequest\x1a!.telerobot.v1.GetSnapshotResponse\"\x08\xc8\xf3\x18\x04\xd8\xf3\x18\x01\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n telerobot/v1/stereo_camera.proto\x12\x0ctelerobot.v1\x1a\x1egoogle/protobuf/duration.proto\x1a\x1fgoogle/protobuf/timestamp.proto\x1a\x1atelerobot/v1/options.proto\x1a\x18telerobot/v1/types.proto\"\x16\n\x14GetStreamInfoRequest\"C\n\x15GetStreamInfoResponse\x12*\n\x06header\x18\x01 \x01(\x0b\x32\x1a.telerobot.v1.StereoHeader\"\xec\x01\n\x12StreamPairsRequest\x12-\n\x08\x65ncoding\x18\x01 \x01(\x0e\x32\x1b.telerobot.v1.ImageEncoding\x12\x14\n\x0cjpeg_quality\x18\x02 \x01(\x05\x12\x0f\n\x07max_fps\x18\x03 \x01(\x01\x12\x31\n\rtransfer_mode\x18\x04 \x01(\x0e\x32\x1a.telerobot.v1.TransferMode\x12\x10\n\x08width_px\x18\x05 \x01(\x05\x12\x11\n\theight_px\x18\x06 \x01(\x05\x12\x10\n\x08receipts\x18\x07 \x01(\x08\x12\x16\n\x0emax_kbit_per_s\x18\x08 \x01(\x05\"j\n\x14ReportReceiptRequest\x12\x11\n\tstream_id\x18\x01 \x01(\t\x12\x10\n\x08sequence\x18\x02 \x01(\x03\x12\x16\n\x0ereceived_bytes\x18\x03 \x01(\x03\x12\x15\n\rwant_keyframe\x18\x04 \x01(\x08\"H\n\x15ReportReceiptResponse\x12\x19\n\x11target_kbit_per_s\x18\x01 \x01(\x05\x12\x14\n\x0cwindow_bytes\x18\x02 \x01(\x03\"x\n\x13StreamPairsResponse\x12,\n\x06header\x18\x01 \x01(\x0b\x32\x1a.telerobot.v1.StereoHeaderH\x00\x12(\n\x04pair\x18\x02 \x01(\x0b\x32\x18.telerobot.v1.StereoPairH\x00\x42\t\n\x07\x63ontent\"Y\n\x12GetSnapshotRequest\x12-\n\x08\x65ncoding\x18\x01 \x01(\x0e\x32\x1b.telerobot.v1.ImageEncoding\x12\x14\n\x0cjpeg_quality\x18\x02 \x01(\x05\"i\n\x13GetSnapshotResponse\x12*\n\x06header\x18\x01 \x01(\x0b\x32\x1a.telerobot.v1.StereoHeader\x12&\n\x04pair\x18\x02 \x01(\x0b\x32\x18.telerobot.v1.StereoPair\"\xab\x02\n\x0cStereoHeader\x12\x10\n\x08width_px\x18\x01 \x01(\x05\x12\x11\n\theight_px\x18\x02 \x01(\x05\x12-\n\x08\x65ncoding\x18\x03 \x01(\x0e\x32\x1b.telerobot.v1.ImageEncoding\x12\x31\n\rtransfer_mode\x18\x04 \x01(\x0e\x32\x1a.telerobot.v1.TransferMode\x12-\n\x04left\x18\x05 \x01(\x0b\x32\x1f.telerobot.v1.CameraCalibration\x12.\n\x05right\x18\x06 \x01(\x0b\x32\x1f.telerobot.v1.CameraCalibration\x12\x12\n\nbaseline_m\x18\x07 \x01(\x01\x12\x0e\n\x06source\x18\x08 \x01(\t\x12\x11\n\tstream_id\x18\t \x01(\t\"\xa0\x01\n\x11\x43\x61meraCalibration\x12\r\n\x05\x66x_px\x18\x01 \x01(\x01\x12\r\n\x05\x66y_px\x18\x02 \x01(\x01\x12\r\n\x05\x63x_px\x18\x03 \x01(\x01\x12\r\n\x05\x63y_px\x18\x04 \x01(\x01\x12\x12\n\nprojection\x18\x05 \x03(\x01\x12\'\n\x0b\x63\x61mera_pose\x18\x06 \x01(\x0b\x32\x12.telerobot.v1.Pose\x12\x12\n\ndistortion\x18\x07 \x03(\x01\"\xa5\x02\n\nStereoPair\x12\x10\n\x08sequence\x18\x01 \x01(\x03\x12\x35\n\x11left_capture_time\x18\x02 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\x12\x36\n\x12right_capture_time\x18\x03 \x01(\x0b\x32\x1a.google.protobuf.Timestamp\x12\x12\n\nleft_image\x18\x04 \x01(\x0c\x12\x13\n\x0bright_image\x18\x05 \x01(\x0c\x12+\n\x08\x65ye_skew\x18\x06 \x01(\x0b\x32\x19.google.protobuf.Duration\x12\x13\n\x0bvideo_frame\x18\x07 \x01(\x0c\x12\x10\n\x08keyframe\x18\x08 \x01(\x08\x12\x19\n\x11target_kbit_per_s\x18\t \x01(\x05*\x96\x01\n\rImageEncoding\x12\x1e\n\x1aIMAGE_ENCODING_UNSPECIFIED\x10\x00\x12\x1b\n\x17IMAGE_ENCODING_RAW_RGB8\x10\x01\x12\x17\n\x13IMAGE_ENCODING_JPEG\x10\x02\x12\x16\n\x12IMAGE_ENCODING_PNG\x10\x03\x12\x17\n\x13IMAGE_ENCODING_H264\x10\x04*\x85\x01\n\x0cTransferMode\x12\x1d\n\x19TRANSFER_MODE_UNSPECIFIED\x10\x00\x12*\n&TRANSFER_MODE_SINGLE_BUFFER_SERIALIZED\x10\x01\x12*\n&TRANSFER_MODE_DOUBLE_BUFFER_CONCURRENT\x10\x02\x32\x94\x03\n\x0cStereoCamera\x12\x62\n\rGetStreamInfo\x12\".telerobot.v1.GetStreamInfoRequest\x1a#.telerobot.v1.GetStreamInfoResponse\"\x08\xc8\xf3\x18\x03\xd8\xf3\x18\x01\x12^\n\x0bStreamPairs\x12 .telerobot.v1.StreamPairsRequest\x1a!.telerobot.v1.StreamPairsResponse\"\x08\xc8\xf3\x18\x03\xd8\xf3\x18\x01\x30\x01\x12\x62\n\rReportReceipt\x12\".telerobot.v1.ReportReceiptRequest\x1a#.telerobot.v1.ReportReceiptResponse\"\x08\xc8\xf3\x18\x03\xd8\xf3\x18\x01\x12\\\n\x0bGetSnapshot\x12 .telerobot.v1.GetSnapshotRequest\x1a!.telerobot.v1.GetSnapshotResponse\"\x08\xc8\xf3\x18\x04\xd8\xf3\x18\x01\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
@@ -39,30 +39,36 @@ if not _descriptor._USE_C_DESCRIPTORS:
   _globals['_STEREOCAMERA'].methods_by_name['GetStreamInfo']._serialized_options = b'\310\363\030\003\330\363\030\001'
   _globals['_STEREOCAMERA'].methods_by_name['StreamPairs']._loaded_options = None
   _globals['_STEREOCAMERA'].methods_by_name['StreamPairs']._serialized_options = b'\310\363\030\003\330\363\030\001'
+  _globals['_STEREOCAMERA'].methods_by_name['ReportReceipt']._loaded_options = None
+  _globals['_STEREOCAMERA'].methods_by_name['ReportReceipt']._serialized_options = b'\310\363\030\003\330\363\030\001'
   _globals['_STEREOCAMERA'].methods_by_name['GetSnapshot']._loaded_options = None
   _globals['_STEREOCAMERA'].methods_by_name['GetSnapshot']._serialized_options = b'\310\363\030\004\330\363\030\001'
-  _globals['_IMAGEENCODING']._serialized_start=1455
-  _globals['_IMAGEENCODING']._serialized_end=1580
-  _globals['_TRANSFERMODE']._serialized_start=1583
-  _globals['_TRANSFERMODE']._serialized_end=1716
+  _globals['_IMAGEENCODING']._serialized_start=1765
+  _globals['_IMAGEENCODING']._serialized_end=1915
+  _globals['_TRANSFERMODE']._serialized_start=1918
+  _globals['_TRANSFERMODE']._serialized_end=2051
   _globals['_GETSTREAMINFOREQUEST']._serialized_start=169
   _globals['_GETSTREAMINFOREQUEST']._serialized_end=191
   _globals['_GETSTREAMINFORESPONSE']._serialized_start=193
   _globals['_GETSTREAMINFORESPONSE']._serialized_end=260
   _globals['_STREAMPAIRSREQUEST']._serialized_start=263
-  _globals['_STREAMPAIRSREQUEST']._serialized_end=457
-  _globals['_STREAMPAIRSRESPONSE']._serialized_start=459
-  _globals['_STREAMPAIRSRESPONSE']._serialized_end=579
-  _globals['_GETSNAPSHOTREQUEST']._serialized_start=581
-  _globals['_GETSNAPSHOTREQUEST']._serialized_end=670
-  _globals['_GETSNAPSHOTRESPONSE']._serialized_start=672
-  _globals['_GETSNAPSHOTRESPONSE']._serialized_end=777
-  _globals['_STEREOHEADER']._serialized_start=780
-  _globals['_STEREOHEADER']._serialized_end=1060
-  _globals['_CAMERACALIBRATION']._serialized_start=1063
-  _globals['_CAMERACALIBRATION']._serialized_end=1223
-  _globals['_STEREOPAIR']._serialized_start=1226
-  _globals['_STEREOPAIR']._serialized_end=1453
-  _globals['_STEREOCAMERA']._serialized_start=1719
-  _globals['_STEREOCAMERA']._serialized_end=2023
+  _globals['_STREAMPAIRSREQUEST']._serialized_end=499
+  _globals['_REPORTRECEIPTREQUEST']._serialized_start=501
+  _globals['_REPORTRECEIPTREQUEST']._serialized_end=607
+  _globals['_REPORTRECEIPTRESPONSE']._serialized_start=609
+  _globals['_REPORTRECEIPTRESPONSE']._serialized_end=681
+  _globals['_STREAMPAIRSRESPONSE']._serialized_start=683
+  _globals['_STREAMPAIRSRESPONSE']._serialized_end=803
+  _globals['_GETSNAPSHOTREQUEST']._serialized_start=805
+  _globals['_GETSNAPSHOTREQUEST']._serialized_end=894
+  _globals['_GETSNAPSHOTRESPONSE']._serialized_start=896
+  _globals['_GETSNAPSHOTRESPONSE']._serialized_end=1001
+  _globals['_STEREOHEADER']._serialized_start=1004
+  _globals['_STEREOHEADER']._serialized_end=1303
+  _globals['_CAMERACALIBRATION']._serialized_start=1306
+  _globals['_CAMERACALIBRATION']._serialized_end=1466
+  _globals['_STEREOPAIR']._serialized_start=1469
+  _globals['_STEREOPAIR']._serialized_end=1762
+  _globals['_STEREOCAMERA']._serialized_start=2054
+  _globals['_STEREOCAMERA']._serialized_end=2458
 # @@protoc_insertion_point(module_scope)

@@ -50,6 +50,11 @@ class StereoCameraStub:
                 request_serializer=telerobot_dot_v1_dot_stereo__camera__pb2.StreamPairsRequest.SerializeToString,
                 response_deserializer=telerobot_dot_v1_dot_stereo__camera__pb2.StreamPairsResponse.FromString,
                 _registered_method=True)
+        self.ReportReceipt = channel.unary_unary(
+                '/telerobot.v1.StereoCamera/ReportReceipt',
+                request_serializer=telerobot_dot_v1_dot_stereo__camera__pb2.ReportReceiptRequest.SerializeToString,
+                response_deserializer=telerobot_dot_v1_dot_stereo__camera__pb2.ReportReceiptResponse.FromString,
+                _registered_method=True)
         self.GetSnapshot = channel.unary_unary(
                 '/telerobot.v1.StereoCamera/GetSnapshot',
                 request_serializer=telerobot_dot_v1_dot_stereo__camera__pb2.GetSnapshotRequest.SerializeToString,
@@ -78,8 +83,22 @@ class StereoCameraServicer:
     def StreamPairs(self, request, context):
         """StreamPairs sends the header first, exactly once, then pairs until cancelled.
         Errors: INVALID_ARGUMENT for an unknown encoding or transfer mode, a size larger than the
-        source's, a JPEG quality outside 1..100, or max_fps < 0; FAILED_PRECONDITION when the
-        source cannot be opened (the message names the device).
+        source's (or an odd size for H.264), a JPEG quality outside 1..100, max_fps < 0, or a
+        max_kbit_per_s outside what the station encodes (the message names the range);
+        FAILED_PRECONDITION when the source cannot be opened (the message names the device).
+        Lane: medium. Role: observer.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def ReportReceipt(self, request, context):
+        """ReportReceipt tells the sender of a stream what its client has received, so that it paces
+        the stream to what the path delivers (StreamPairsRequest.receipts): frames in flight stay
+        within the path's bandwidth-delay product and an H.264 stream's bitrate follows what
+        arrives. A client sends one per pair it receives (they may overlap: send and forget).
+        Errors: INVALID_ARGUMENT for an empty stream_id or a negative count; NOT_FOUND when no open
+        stream has that id (it ended: stop reporting).
         Lane: medium. Role: observer.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
@@ -107,6 +126,11 @@ def add_StereoCameraServicer_to_server(servicer, server):
                     servicer.StreamPairs,
                     request_deserializer=telerobot_dot_v1_dot_stereo__camera__pb2.StreamPairsRequest.FromString,
                     response_serializer=telerobot_dot_v1_dot_stereo__camera__pb2.StreamPairsResponse.SerializeToString,
+            ),
+            'ReportReceipt': grpc.unary_unary_rpc_method_handler(
+                    servicer.ReportReceipt,
+                    request_deserializer=telerobot_dot_v1_dot_stereo__camera__pb2.ReportReceiptRequest.FromString,
+                    response_serializer=telerobot_dot_v1_dot_stereo__camera__pb2.ReportReceiptResponse.SerializeToString,
             ),
             'GetSnapshot': grpc.unary_unary_rpc_method_handler(
                     servicer.GetSnapshot,
@@ -174,6 +198,33 @@ class StereoCamera:
             '/telerobot.v1.StereoCamera/StreamPairs',
             telerobot_dot_v1_dot_stereo__camera__pb2.StreamPairsRequest.SerializeToString,
             telerobot_dot_v1_dot_stereo__camera__pb2.StreamPairsResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def ReportReceipt(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/telerobot.v1.StereoCamera/ReportReceipt',
+            telerobot_dot_v1_dot_stereo__camera__pb2.ReportReceiptRequest.SerializeToString,
+            telerobot_dot_v1_dot_stereo__camera__pb2.ReportReceiptResponse.FromString,
             options,
             channel_credentials,
             insecure,
