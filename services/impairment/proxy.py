@@ -158,6 +158,11 @@ class ImpairmentProxy:
             raise ValueError(f"a cut lasts >= 0 s, not {duration_s}")
         self._on_loop(self._start_cut(duration_s, mode))
 
+    def reshape(self, up: LinkProfile | None = None, down: LinkProfile | None = None) -> None:
+        """Change a direction's link from now on, for new and open connections alike (a
+        bottleneck that narrows or widens mid-stream). Chunks already read keep their times."""
+        self._on_loop(self._reshape(up, down))
+
     @property
     def cutting(self) -> bool:
         """Whether a cut is in force."""
@@ -296,6 +301,13 @@ class ImpairmentProxy:
             writer.write(data)
             await writer.drain()
             self.stats.bytes[direction] += len(data)
+
+    async def _reshape(self, up: LinkProfile | None, down: LinkProfile | None) -> None:
+        self.up, self.down = up or self.up, down or self.down
+        for connection in self._connections:
+            connection.schedules[0].profile = self.up
+            connection.schedules[1].profile = self.down
+        self.report(f"link reshaped: up {self.up.describe()}; down {self.down.describe()}")
 
     async def _start_cut(self, duration_s: float, mode: str) -> None:
         loop = asyncio.get_running_loop()

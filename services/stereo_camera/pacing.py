@@ -13,19 +13,18 @@ sequence and the bytes received so far) tell it, one round trip late. From them 
   UNDERUSE_S lets it grow by INCREASE_PER_S a second, up to GROWTH_CAP x what was delivered
   (an encoder that needs less than its target does not inflate it).
 - **the window**: bytes sent and not yet reported, at most the target rate times the path's
-  round trip plus SLACK_S, and never less than two frames. A frame that would not fit is not
+  round trip plus SLACK_S, and never less than one frame. A frame that would not fit is not
   captured (the sender skips the tick: the frame rate falls, nothing queues, and an H.264
   stream stays decodable because it never loses an encoded frame).
 
-An image stream (JPEG) has no bitrate to set: its rate is GROWTH_CAP x the best delivery rate
-seen over MAX_DELIVERY_WINDOW_S, so the window grows while the path takes more.
+An image stream (JPEG) paces the same way: its encoder ignores the target, but the target still
+sizes the window, so frames are skipped rather than queued.
 
 Pure: times are arguments (seconds on one monotonic clock), so tests drive it with a fake link.
 """
 
 from __future__ import annotations
 
-import math
 from collections import deque
 from dataclasses import dataclass
 
@@ -38,8 +37,7 @@ SLACK_S = 0.040  # the window's room beyond one round trip
 START_RTT_S = 0.2  # assumed until the first receipt
 MIN_RTT_WINDOW_S = 10.0
 DELIVERY_WINDOW_S = 0.5
-MAX_DELIVERY_WINDOW_S = 2.0
-MIN_WINDOW_FRAMES = 2
+MIN_WINDOW_FRAMES = 1
 
 
 @dataclass(frozen=True)
@@ -56,22 +54,21 @@ class RateLimits:
 
 
 class StreamPacer:
-    """One stream's pacing (see the module docstring). `limits` None: an image stream, whose
-    rate is measured, not set. Not thread-safe: its owner holds a lock around it."""
+    """One stream's pacing (see the module docstring). Not thread-safe: its owner holds a lock
+    around it."""
 
-    def __init__(self, fps: float, limits: RateLimits | None, now_s: float):
-        self.fps = fps if fps > 0 else 30.0
+    def __init__(self, limits: RateLimits, now_s: float):
         self.limits = limits
-        self.target_bps = limits.start_kbit * 1e3 if limits else 0.0
+        self.target_bps = limits.start_kbit * 1e3
         self.sent_bytes = 0
         self.acked_bytes = 0
         self.acked_sequence = -1
         self.receipts = 0
         self.rtt_s: float | None = None  # the newest round trip
-        self._sent: deque[tuple[int, float]] = deque()  # (sequence, send time), unreported
+        self._sent: deque[tuple[int, float, int]] = deque()  # (sequence, time, size) unreported
+        self._rtt_bytes = 0  # the size of the frame the newest round trip timed
         self._rtts: deque[tuple[float, float]] = deque()  # (time, rtt), for the minimum
         self._deliveries: deque[tuple[float, int]] = deque()  # (time, acked bytes)
-        self._best_delivery: deque[tuple[float, float]] = deque()  # (time, bit/s)
         self._frame_bytes = 0.0  # a moving average of the frames sent
         self._hold_until_s = now_s  # no decrease before then (the last one's effect)
         self._last_update_s = now_s
@@ -87,17 +84,9 @@ class StreamPacer:
         return self.sent_bytes - self.acked_bytes
 
     @property
-    def rate_bps(self) -> float:
-        """The rate the window is sized for: the target, or (images) what the path takes."""
-        if self.limits is not None:
-            return self.target_bps
-        best = max((rate for _, rate in self._best_delivery), default=0.0)
-        return GROWTH_CAP * best if best > 0 else 8e6  # 1 MB/s until measured
-
-    @property
     def window_bytes(self) -> int:
         frames = MIN_WINDOW_FRAMES * max(self._frame_bytes, 1.0)
-        return int(max(frames, self.rate_bps / 8 * (self.min_rtt_s + SLACK_S)))
+        return int(max(frames, self.target_bps / 8 * (self.min_rtt_s + SLACK_S)))
 
     @property
     def target_kbit(self) -> int:
@@ -114,7 +103,7 @@ class StreamPacer:
     def sent(self, sequence: int, size_bytes: int, now_s: float) -> None:
         """A frame of `size_bytes` left for the client."""
         self.sent_bytes += size_bytes
-        self._sent.append((sequence, now_s))
+        self._sent.append((sequence, now_s, size_bytes))
         self._frame_bytes = size_bytes if not self._frame_bytes \
             else 0.9 * self._frame_bytes + 0.1 * size_bytes
 
@@ -126,23 +115,20 @@ class StreamPacer:
         self.acked_sequence = sequence
         self.receipts += 1
         self.acked_bytes = max(self.acked_bytes, min(received_bytes, self.sent_bytes))
-        sent_at = None
+        sent_at = sent_size = None
         while self._sent and self._sent[0][0] <= sequence:
-            seq, at = self._sent.popleft()
+            seq, at, size = self._sent.popleft()
             if seq == sequence:
-                sent_at = at
+                sent_at, sent_size = at, size
         if sent_at is not None:
             self.rtt_s = max(0.0, now_s - sent_at)
+            self._rtt_bytes = sent_size
             self._rtts.append((now_s, self.rtt_s))
         _expire(self._rtts, now_s - MIN_RTT_WINDOW_S)
         self._deliveries.append((now_s, self.acked_bytes))
         _expire(self._deliveries, now_s - DELIVERY_WINDOW_S)
-        delivery = self.delivery_bps()
-        if delivery is not None:
-            self._best_delivery.append((now_s, delivery))
-            _expire(self._best_delivery, now_s - MAX_DELIVERY_WINDOW_S)
-        if self.limits is not None and self.rtt_s is not None:
-            self._adapt(now_s, delivery)
+        if self.rtt_s is not None:
+            self._adapt(now_s, self.delivery_bps())
         self._last_update_s = now_s
 
     def delivery_bps(self) -> float | None:
@@ -154,7 +140,10 @@ class StreamPacer:
         return (b1 - b0) * 8 / (t1 - t0) if t1 > t0 else None
 
     def _adapt(self, now_s: float, delivery: float | None) -> None:
-        queue_s = self.rtt_s - self.min_rtt_s
+        # A frame's round trip includes its own serialization at the bottleneck: a key frame
+        # takes longer without any queue.
+        own_s = self._rtt_bytes * 8 / delivery if delivery else 0.0
+        queue_s = self.rtt_s - own_s - self.min_rtt_s
         limits = self.limits
         if queue_s > OVERUSE_S:
             if now_s >= self._hold_until_s and delivery is not None:
@@ -168,7 +157,6 @@ class StreamPacer:
             self.target_bps = grown
         self.target_bps = min(max(self.target_bps, limits.min_kbit * 1e3),
                               limits.max_kbit * 1e3)
-        assert math.isfinite(self.target_bps)
 
 
 def _expire(entries: deque, before_s: float) -> None:

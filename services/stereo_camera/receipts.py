@@ -66,9 +66,9 @@ class PacedStreams:
         self._streams: dict[str, PacedStream] = {}
 
     @contextlib.contextmanager
-    def open(self, fps: float, limits: RateLimits | None) -> Iterator[PacedStream]:
-        """A stream registered for its life; `limits` None for an image stream."""
-        stream = PacedStream(secrets.token_hex(8), StreamPacer(fps, limits, self._clock()),
+    def open(self, limits: RateLimits) -> Iterator[PacedStream]:
+        """A stream registered for its life."""
+        stream = PacedStream(secrets.token_hex(8), StreamPacer(limits, self._clock()),
                              self._clock)
         with self._lock:
             self._streams[stream.stream_id] = stream

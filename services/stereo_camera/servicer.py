@@ -50,6 +50,8 @@ OPEN_TIMEOUT_S = 10.0  # opening a camera may take a while
 SNAPSHOT_TIMEOUT_S = 10.0  # when the client set no deadline
 DEFAULT_ENCODING = pb.IMAGE_ENCODING_JPEG
 DEFAULT_TRANSFER_MODE = pb.TRANSFER_MODE_DOUBLE_BUFFER_CONCURRENT
+# An image stream's encoder ignores the pacer's target, which only sizes its window.
+IMAGE_RATE_LIMITS = RateLimits(start_kbit=1_500, min_kbit=150, max_kbit=100_000)
 
 
 def header_proto(geometry: SourceGeometry, image_format: ImageFormat,
@@ -130,8 +132,9 @@ class StereoCameraServicer(stereo_camera_pb2_grpc.StereoCameraServicer):
             paced = None
             if settings.receipts:
                 limits = RateLimits(min(START_KBIT_PER_S, settings.max_kbit_per_s),
-                                    max_kbit=settings.max_kbit_per_s) if settings.video else None
-                paced = stack.enter_context(self.streams.open(fps, limits))
+                                    max_kbit=settings.max_kbit_per_s) if settings.video \
+                    else IMAGE_RATE_LIMITS
+                paced = stack.enter_context(self.streams.open(limits))
             video = None
             if settings.video:
                 video = _VideoEncoding(image_format, fps, settings, paced)
