@@ -28,6 +28,7 @@ from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
 from services.runtime.tls import station_channel_security
 from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
+from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import open_channel
 
 # Each dependency's health entry on this server: telerobot.v1.DecisionServer/<dependency>.
@@ -55,8 +56,10 @@ class DecisionService:
         slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address,
                           self.args.emergency_stop_address or None, security)
         self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir)))
+        # A window of about one pair: the forward then reads a pair only as its client takes
+        # one, so it holds no backlog of its own (wire/stereo.py).
         self._stereo_channel = open_channel(self.args.stereo_camera_address,
-                                            RECONNECT_OPTIONS, security)
+                                            [*RECONNECT_OPTIONS, *LOW_LATENCY_OPTIONS], security)
         slave.watch_health("stereo_camera", self._stereo_channel)
         self._slave = slave
         # Each dependency's state, from its health and the launcher's state file; every change
