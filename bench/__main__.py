@@ -6,7 +6,9 @@ raw_latencies.json and PNG plots. --quick (`make bench QUICK=1`) shortens every 
 whole run takes under 3 minutes. The soak (issue #16) runs only when asked for:
 `python -m bench --only soak [--soak-minutes N]` (10 minutes; 1 with --quick); so does the
 network experiment (issue #14, bench/network.py): `python -m bench --only network` (about 8
-minutes; --quick: fewer round trips), which merges its row into an existing latest.json.
+minutes; --quick: fewer round trips), which merges its row into an existing latest.json,
+and with it the video rows (issue #27, bench/video.py; alone: `--only video`, about 9
+minutes; --video-seconds S for each probe).
 """
 
 from __future__ import annotations
@@ -31,11 +33,20 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--profile", action="store_true",
                         help="after the decision group, py-spy the DecisionServer and ProxyRobot "
                              "under Teleoperate at 1 kHz (bench/profile.py)")
+    parser.add_argument("--video-seconds", type=float, default=None, metavar="S",
+                        help="each video probe's length after its start-up (default 10, 4 "
+                             "with --quick)")
+    parser.add_argument("--video-long-seconds", type=float, default=None, metavar="S",
+                        help="the video group's long run (default 60, 20 with --quick)")
     args = parser.parse_args(argv)
     if args.soak_minutes is not None and args.soak_minutes <= 0:
         parser.error("--soak-minutes must be > 0")
+    for name in ("video_seconds", "video_long_seconds"):
+        if getattr(args, name) is not None and getattr(args, name) <= 0:
+            parser.error(f"--{name.replace('_', '-')} must be > 0")
     return run(Plan(quick=args.quick, only=tuple(args.only), profile=args.profile,
-                    soak_minutes=args.soak_minutes), Path(args.out))
+                    soak_minutes=args.soak_minutes, video_s=args.video_seconds,
+                    video_long_s=args.video_long_seconds), Path(args.out))
 
 
 if __name__ == "__main__":

@@ -13,6 +13,11 @@ as it was, and a `make bench` leaves the soak's block.
 The network experiment (issue #14, bench/network.py) has one too, between NETWORK_BEGIN and
 NETWORK_END, with its plot (peak force against the round trip) drawn again from the same rows
 into docs/ (--network-plot), so the README's figure is the table's run.
+
+The video rows (issue #27, bench/video.py) are not in README.md: a `video` row is written as a
+Markdown fragment of its own, docs/bench_video.md (--video-table; a docs page includes it), and
+its figure docs/bench_video.png (--video-plot). Results that hold nothing else leave README.md
+as it was.
 """
 
 from __future__ import annotations
@@ -22,7 +27,7 @@ import fnmatch
 import json
 from pathlib import Path
 
-from bench import goals, network, report
+from bench import goals, network, report, video
 from bench.stats import ratio
 
 REPO = Path(__file__).resolve().parent.parent
@@ -36,6 +41,10 @@ SOAK = "soak"
 NETWORK_BEGIN = "<!-- bench:network:begin -->"
 NETWORK_END = "<!-- bench:network:end -->"
 NETWORK_PLOT = REPO / "docs" / "bench_network.png"
+VIDEO_TABLE = REPO / "docs" / "bench_video.md"
+VIDEO_PLOT = REPO / "docs" / "bench_video.png"
+# Rows with a block or a file of their own, not rows of the Performance table.
+_OWN_BLOCKS = (SOAK, network.NAME, video.NAME)
 
 # What each scenario measures, for a reader of the README (first match wins, as in goals.py).
 WHAT = (
@@ -190,7 +199,7 @@ def table(document: dict) -> str:
         "|---|---|---|---|---|---|---|---|",
     ]
     for name, result in results.items():
-        if goals.is_baseline(name) or name in (SOAK, network.NAME):  # blocks of their own
+        if goals.is_baseline(name) or name in _OWN_BLOCKS:  # blocks of their own
             continue
         goal, verdict = _verdict(name, result, results)
         if result.get("status") in ("pending", "failed"):
@@ -203,9 +212,9 @@ def table(document: dict) -> str:
 
 
 def has_table(document: dict) -> bool:
-    """Whether the results hold scenarios for the table (more than a soak or the network
-    experiment and its run's world loop)."""
-    return any(name not in (SOAK, network.NAME, "world_loop") for name in scenarios(document))
+    """Whether the results hold scenarios for the table (more than a soak, the network
+    experiment or the video rows, and its run's world loop)."""
+    return any(name not in (*_OWN_BLOCKS, "world_loop") for name in scenarios(document))
 
 
 def has_soak(document: dict) -> bool:
@@ -214,6 +223,10 @@ def has_soak(document: dict) -> bool:
 
 def has_network(document: dict) -> bool:
     return "rows" in scenarios(document).get(network.NAME, {})
+
+
+def has_video(document: dict) -> bool:
+    return "cells" in scenarios(document).get(video.NAME, {})
 
 
 # -- the soak's block ---------------------------------------------------------------------------
@@ -407,13 +420,26 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--readme", default=str(README), help="the file to rewrite")
     parser.add_argument("--network-plot", default=str(NETWORK_PLOT),
                         help="where the network block's figure is drawn (README links to it)")
+    parser.add_argument("--video-table", default=str(VIDEO_TABLE),
+                        help="where the video rows' Markdown fragment is written")
+    parser.add_argument("--video-plot", default=str(VIDEO_PLOT),
+                        help="where the video rows' figure is drawn")
     args = parser.parse_args(argv)
     document = json.loads(Path(args.results).read_text())
-    readme = Path(args.readme)
-    text = readme.read_text()
+    if has_video(document):
+        row = scenarios(document)[video.NAME]
+        table_path = Path(args.video_table)
+        table_path.parent.mkdir(parents=True, exist_ok=True)
+        table_path.write_text(video.markdown(row, _shown(Path(args.results))))
+        figure = video.plot(row, Path(args.video_plot))
+        print(f"wrote the video rows' table {table_path} and drew {figure} from {args.results}")
     if not (has_table(document) or has_soak(document) or has_network(document)):
+        if has_video(document):
+            return 0  # README.md has no video block: left as it was
         print(f"{args.results} holds no scenario for README: nothing rewritten")
         return 1
+    readme = Path(args.readme)
+    text = readme.read_text()
     if has_table(document):
         text = rewrite(text, table(document))
         print(f"rewrote the Performance table in {readme} from {args.results}")

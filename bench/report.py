@@ -17,6 +17,8 @@ from bench.goals import CPU_KEY, SUBSCRIBER_CPU_KEY, is_baseline, verdict_text
 from bench.network import NAME as NETWORK
 from bench.network import terminal_lines as network_lines
 from bench.stats import ratio
+from bench.video import NAME as VIDEO
+from bench.video import terminal_lines as video_lines
 
 # What the papers report for the same path, for the table's last column.
 PAPERS = {
@@ -30,6 +32,7 @@ PAPERS = {
     "estop_ds_busywork": "Parma: no inversion",
     "teleop_50": "50 Hz; 1 ms call",
     "network": "campus routes: 183 ms round trip",
+    "video": "stereo 17 fps, 83 ms",
 }
 
 
@@ -287,6 +290,8 @@ def _extras(results: dict[str, dict]) -> list[str]:
             lines += _soak_lines(r)
         elif name == NETWORK and "rows" in r:
             lines += network_lines(r)
+        elif name == VIDEO and "cells" in r:
+            lines += video_lines(r)
         elif name == "closed_loop":
             lines.append(f"  {name}: = call ack p50 {fmt(r.get('ack_p50_ms'), 2)} ms; "
                          f"send->contact sample p50 {fmt(r.get('motion_p50_ms'), 1)} ms; "

@@ -33,7 +33,7 @@ from pathlib import Path
 
 import grpc
 
-from bench import goals, network, plots, report, soak, stereo, worldloop
+from bench import goals, network, plots, report, soak, stereo, video, worldloop
 from bench.procs import Child, ChildFailed, ProcessSet, unique_shm_name
 from bench.stats import ratio
 from bench.worldloop import LoopMeter
@@ -75,6 +75,8 @@ class Plan:
     only: tuple[str, ...] = field(default_factory=tuple)
     profile: bool = False  # py-spy the DecisionServer and ProxyRobot at 1 kHz (bench/profile.py)
     soak_minutes: float | None = None  # the soak's length; None: 10 minutes, 1 when quick
+    video_s: float | None = None  # each video probe's length; None: video.PROBE_S (quick: less)
+    video_long_s: float | None = None  # the video group's long run; None: video.LONG_S
 
     @property
     def command_s(self) -> float:
@@ -123,8 +125,11 @@ class Plan:
 
     def wants(self, group: str) -> bool:
         """Whether `group` runs: the ones asked for with --only, else every default group
-        (the soak and the network experiment run only when asked for: they take minutes)."""
-        return group in self.only if self.only else group in DEFAULT_GROUPS
+        (the soak and the network experiment run only when asked for: they take minutes).
+        The video rows (bench/video.py) are part of the network group, and a group alone."""
+        if not self.only:
+            return group in DEFAULT_GROUPS
+        return group in self.only or (group == video.NAME and network.NAME in self.only)
 
     @property
     def tls(self) -> bool:
@@ -133,9 +138,12 @@ class Plan:
 
 
 GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
-          "stereo", "soak", "network")
-# `make bench`; the soak and the network experiment (bench/network.py) take minutes.
-DEFAULT_GROUPS = tuple(group for group in GROUPS if group not in ("soak", "network"))
+          "stereo", "soak", "network", "video")
+# `make bench`; the soak and the network experiment (bench/network.py, and its video rows,
+# bench/video.py) take minutes.
+DEFAULT_GROUPS = tuple(group for group in GROUPS if group not in ("soak", "network", "video"))
+# Groups whose row carries its own run, so that a run of them alone merges into a latest.json.
+OWN_RUN_GROUPS = {network.NAME: network, video.NAME: video}
 
 
 class Progress:
@@ -257,7 +265,7 @@ class Bench:
                   "observers": len(p.observer_counts), "estop": 4, "decision": 7 + p.profile,
                   "closed_loop": 1,
                   "stereo": len(p.stereo_sources) * len(p.stereo_modes), "soak": 1,
-                  "network": len(network.row_specs(p.quick))}
+                  "network": len(network.row_specs(p.quick)), "video": video.step_count(p)}
         return 2 + sum(n for group, n in counts.items() if p.wants(group))  # + station, loop
 
     # -- running ----------------------------------------------------------------------------
@@ -279,7 +287,8 @@ class Bench:
                 ("baselines", self.baselines), ("observers", self.observers),
                 ("estop", self.estop), ("decision", self.decision),
                 ("closed_loop", self.closed_loop),
-                ("stereo", self.stereo), ("soak", self.soak), ("network", self.network)]
+                ("stereo", self.stereo), ("soak", self.soak), ("network", self.network),
+                ("video", self.video)]
             for group, step in steps:
                 if self.plan.wants(group):
                     step()
@@ -904,6 +913,10 @@ class Bench:
         """The peg-in-hole task across the impairment link (network.py)."""
         network.run(self)
 
+    def video(self) -> None:
+        """The stereo stream across the impairment link, H.264 beside JPEG (video.py)."""
+        video.run(self)
+
     def stereo(self) -> None:
         plan = self.plan
         names = [f"stereo_{s}_{m}" for s in plan.stereo_sources for m in plan.stereo_modes]
@@ -953,20 +966,26 @@ class Bench:
         info = {"machine": machine, "quick": self.plan.quick,
                 "run_s": round(self.elapsed_s, 1), "world_shm": self.shm}
         latest = self.out_dir / "latest.json"
-        row = self.results.get(network.NAME)
-        figures = []
-        if row is not None and "rows" in row:
-            # The network row carries its own run, so that it can live beside another's.
+        figures, own = [], {}
+        for name, module in OWN_RUN_GROUPS.items():
+            row = self.results.get(name)
+            if row is None or ("rows" not in row and "cells" not in row):
+                continue
+            # The network and video rows carry their own run, so that each can live beside
+            # another run's.
             row["run"] = {"time": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **info,
                           "world_loop": self.results.get("world_loop")}
-            figures.append(network.plot(row, self.out_dir / network.PLOT_FILE))
-            # The network group alone: into the latest.json there, the rest of it kept.
-            if set(self.plan.only) == {network.NAME} and network.merge(latest, row):
-                return [latest, *figures]
+            figures.append(module.plot(row, self.out_dir / module.PLOT_FILE))
+            own[name] = row
+        # The network and video groups alone: into the latest.json there, the rest kept.
+        if own and set(self.plan.only) <= set(OWN_RUN_GROUPS) and latest.exists() and all(
+                [OWN_RUN_GROUPS[name].merge(latest, row) for name, row in own.items()]):
+            return [latest, *figures]
         written = dict(self.results)
-        previous = network.previous_row(latest) if row is None else None
-        if previous is not None:  # a run without the network group keeps the one there
-            written[network.NAME] = previous
+        for name, module in OWN_RUN_GROUPS.items():
+            previous = module.previous_row(latest) if name not in self.results else None
+            if previous is not None:  # a run without the group keeps the one there
+                written[name] = previous
         report.write_json(latest, written, ratios, info)
         raw = self.out_dir / "raw_latencies.json"
         raw.write_text(json.dumps(self.raw))

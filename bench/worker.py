@@ -122,9 +122,15 @@ def _network(p: dict) -> dict:
     return task(p, _ready)  # BENCH_READY once the task starts: a cut is timed from it
 
 
+def _video(p: dict) -> dict:
+    from bench.video import measure
+
+    return measure(p)  # clients.video_probe through the link, and the CPU meanwhile
+
+
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
          "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo,
-         "events": _events, "network": _network}
+         "events": _events, "network": _network, "video": _video}
 
 
 def main(argv: list[str] | None = None) -> int:

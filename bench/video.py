@@ -1,0 +1,510 @@
+"""video: the stereo stream across real links (issue #27), H.264 paced by receipts beside the
+JPEG stream as it was.
+
+One station as the bench starts it (world, proxy_robot, force_sensor, emergency_stop), a
+StereoCamera with the sim source (the work cell's MuJoCo cameras at the live arm pose, 640x480
+per eye, at most 30 pairs/s) and a DecisionServer in front of them: the operator's one address.
+services/impairment's link sits between the probe and the DecisionServer only, with half the
+round trip each way and the bottleneck's bandwidth in both directions (no jitter, no stalls).
+
+For each cell of ROUND_TRIPS_MS x BOTTLENECKS_MBIT (QUICK_*: fewer) a fresh link, and through
+it, one after the other, clients.video_probe (the operator station's own client and meter, in a
+worker process of its own):
+
+- `h264`: IMAGE_ENCODING_H264 with receipts (ReportReceipt), what the operator station streams;
+- `jpeg`: the baseline, the JPEG stream as it was: no receipts, a small receive window.
+
+Each probe streams for `Plan.video_s` (10 s; 4 with --quick) after SKIP_S of start-up. Then
+one LONG_S run (60 s; 20 with --quick) of H.264 at LONG_CELL (the campus routes' round trip
+through the narrowest bottleneck) for the backlog check.
+
+Each H.264 run is judged against the issue's goals (`judge`): at least MIN_FPS frames a second
+shown, the age's p95 (captured -> both eyes decoded at the client) within the link's one-way
+delay + AGE_SLACK_MS, and no growing backlog: the p95 of the run's last third within
+BACKLOG_MS of its first third's. The JPEG baseline is not judged; beside it the ratios
+H.264 / JPEG of the age's p95 and the frame rate.
+
+While each probe runs the worker also reads how busy the machine was and each station
+process's share of a core (bench/cpu.py): the camera (rendering and encoding), the world's
+1 kHz loop, the DecisionServer's forward, the link (the bench's own process) and the probe.
+
+One result row, `video`, holds a record per cell (`cells`), the long run (`long`), the goals,
+and the run it came from (`run`), so that a run of this group alone merges it into the
+latest.json already there (`merge`) and a run without it keeps the one there (`previous_row`),
+as the network group's row does. `table_rows` / `terminal_lines` / `markdown` are its tables
+(`python -m bench.readme` writes `markdown` into docs/bench_video.md) and `plot` its figure.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from services.impairment import ImpairmentProxy, LinkProfile
+
+NAME = "video"
+ROUND_TRIPS_MS = (0.0, 50.0, 183.0, 400.0)
+BOTTLENECKS_MBIT = (None, 8.0, 4.0, 2.0)  # None: no bandwidth cap
+QUICK_ROUND_TRIPS_MS = (0.0, 183.0)
+QUICK_BOTTLENECKS_MBIT = (None, 2.0)
+CAMPUS_RTT_MS = 183.0  # MTDF paper, section V (as bench/network.py)
+LONG_CELL = (CAMPUS_RTT_MS, 2.0)  # (round trip ms, bottleneck Mbit/s) of the long run
+PROBE_S, QUICK_PROBE_S = 10.0, 4.0  # each probe, after SKIP_S
+LONG_S, QUICK_LONG_S = 60.0, 20.0
+SKIP_S = 2.0  # the probe's start-up, left out of its figures
+SOURCE = "sim"
+WIDTH_PX, HEIGHT_PX, SOURCE_FPS = 640, 480, 30.0  # per eye; both side by side in one picture
+CODECS = ("h264", "jpeg")  # the operator's stream, then the baseline
+# Issue #27's goals for the H.264 stream at every cell.
+MIN_FPS = 25.0
+AGE_SLACK_MS = 80.0  # the age's p95 within the one-way delay plus this
+BACKLOG_MS = 20.0  # the last third's p95 age within this of the first third's
+PLOT_FILE = "video.png"
+PROBE_TIMEOUT_S = 90.0  # beyond the probe's own time: start-up and a slow first frame
+# Whose CPU the probe's worker reads (bench/cpu.py): the station's processes by their names.
+WATCHED = ("stereo_camera", "decision_server", "world", "proxy_robot", "force_sensor")
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One link: a round trip and a bottleneck (None: none), and how long each probe runs."""
+
+    round_trip_ms: float
+    bottleneck_mbit: float | None
+    seconds: float
+    long: bool = False
+
+    @property
+    def name(self) -> str:
+        cap = "open" if self.bottleneck_mbit is None else f"{self.bottleneck_mbit:g}mbit"
+        return f"{self.round_trip_ms:g}ms_{cap}" + ("_long" if self.long else "")
+
+    @property
+    def one_way_ms(self) -> float:
+        return self.round_trip_ms / 2
+
+    @property
+    def age_bound_ms(self) -> float:
+        """The goal's bound on the age's p95."""
+        return self.one_way_ms + AGE_SLACK_MS
+
+    @property
+    def codecs(self) -> tuple[str, ...]:
+        return ("h264",) if self.long else CODECS
+
+
+def cells(quick: bool, seconds: float | None = None,
+          long_seconds: float | None = None) -> list[Cell]:
+    """The grid, round trip by round trip (each bottleneck from none to the narrowest), then
+    the long run. `seconds` / `long_seconds`: the probes' lengths instead of the defaults."""
+    seconds = seconds or (QUICK_PROBE_S if quick else PROBE_S)
+    trips = QUICK_ROUND_TRIPS_MS if quick else ROUND_TRIPS_MS
+    caps = QUICK_BOTTLENECKS_MBIT if quick else BOTTLENECKS_MBIT
+    grid = [Cell(trip, cap, seconds) for trip in trips for cap in caps]
+    return [*grid, Cell(*LONG_CELL, long_seconds or (QUICK_LONG_S if quick else LONG_S),
+                        long=True)]
+
+
+def link_profiles(cell: Cell) -> tuple[LinkProfile, LinkProfile]:
+    """(up, down): half the round trip each way, the bottleneck both ways."""
+    profile = LinkProfile(delay_s=cell.round_trip_ms / 2e3,
+                          bandwidth_bps=(cell.bottleneck_mbit or 0.0) * 1e6)
+    return profile, profile
+
+
+# -- the goals ------------------------------------------------------------------------------------
+
+def goal_text(cell: Cell | None = None) -> str:
+    age = (f"age p95 <= {cell.age_bound_ms:g} ms" if cell is not None
+           else f"age p95 <= one-way delay + {AGE_SLACK_MS:g} ms")
+    return (f">= {MIN_FPS:g} fps, {age}, no growing backlog (last third's p95 <= first's + "
+            f"{BACKLOG_MS:g} ms)")
+
+
+def judge(result: dict | None, cell: Cell) -> list[str]:
+    """What an H.264 run at `cell` fell short of the goals by; [] when it met them all."""
+    if not result or result.get("status") in ("failed", "pending"):
+        reason = (result or {}).get("reason", "no result")
+        return [f"{(result or {}).get('status', 'failed')}: {reason}"[:200]]
+    misses = []
+    fps, p95 = result.get("fps"), result.get("age_ms_p95")
+    if fps is None or fps < MIN_FPS:
+        misses.append(f"{_num(fps)} fps < {MIN_FPS:g}")
+    if p95 is None or p95 > cell.age_bound_ms:
+        misses.append(f"age p95 {_num(p95, 0)} ms > {cell.age_bound_ms:g}")
+    thirds = result.get("age_ms_p95_thirds") or []
+    first, last = (thirds[0], thirds[-1]) if len(thirds) == 3 else (None, None)
+    if first is None or last is None:
+        misses.append("backlog: too few frames for thirds")
+    elif last > first + BACKLOG_MS:
+        misses.append(f"backlog: last third's p95 {_num(last, 0)} ms > first's "
+                      f"{_num(first, 0)} + {BACKLOG_MS:g}")
+    return misses
+
+
+def ratios(h264: dict | None, jpeg: dict | None) -> dict[str, float | None]:
+    """H.264 / JPEG at one cell: the age's p95 and the frame rate."""
+    def over(key: str) -> float | None:
+        a, b = (h264 or {}).get(key), (jpeg or {}).get(key)
+        return round(a / b, 3) if a is not None and b else None
+
+    return {"age_p95": over("age_ms_p95"), "fps": over("fps")}
+
+
+# -- the orchestrator's side ----------------------------------------------------------------------
+
+def step_count(plan) -> int:
+    """The progress steps of the group: the camera's start, then one per cell."""
+    return 1 + len(cells(plan.quick, plan.video_s, plan.video_long_s))
+
+
+def run(bench) -> None:
+    """The video group: a StereoCamera (sim) and a DecisionServer before it, then a step per
+    cell; one result row (bench is run.Bench)."""
+    from bench import stereo
+    from bench.procs import ChildFailed
+
+    plan, started = bench.plan, time.monotonic()
+    grid = cells(plan.quick, plan.video_s, plan.video_long_s)
+    bench.progress.step(f"video: a StereoCamera ({SOURCE}, {WIDTH_PX}x{HEIGHT_PX} per eye, "
+                        f"{SOURCE_FPS:g} fps) and a DecisionServer in front of it")
+    reason = stereo.available()
+    if reason:
+        bench.results[NAME] = {**_blank(), "status": "pending", "reason": reason}
+        return bench.progress.done(f"pending: {reason}")
+    procs = bench.procs
+    try:
+        camera, camera_address = procs.run_service("stereo_camera", [
+            "--source", SOURCE, "--width", str(WIDTH_PX), "--height", str(HEIGHT_PX),
+            "--fps", str(SOURCE_FPS)])
+    except ChildFailed as error:
+        return bench._fail([NAME], error)
+    records = []
+    try:
+        with bench._decision_server(bench.station, camera_address) as address:
+            bench.progress.done(f"camera at {camera_address}, the operator's address {address}")
+            for cell in grid:
+                records.append(_run_cell(bench, address, cell))
+    except ChildFailed as error:  # the DecisionServer did not start
+        return bench._fail([NAME], error)
+    finally:
+        procs.stop(camera)
+    grid_records = [record for record in records if not record["long"]]
+    result = {
+        "cells": grid_records, "long": next((r for r in records if r["long"]), None),
+        "round_trips_ms": sorted({cell.round_trip_ms for cell in grid if not cell.long}),
+        "bottlenecks_mbit": [cap for cap in (QUICK_BOTTLENECKS_MBIT if plan.quick
+                                             else BOTTLENECKS_MBIT)],
+        "camera": {"source": SOURCE, "width_px": WIDTH_PX, "height_px": HEIGHT_PX,
+                   "fps": SOURCE_FPS},
+        "goals": {"min_fps": MIN_FPS, "age_slack_ms": AGE_SLACK_MS, "backlog_ms": BACKLOG_MS,
+                  "text": goal_text()},
+        "skip_s": SKIP_S, "campus_rtt_ms": CAMPUS_RTT_MS,
+        "passed": sum(1 for record in records if record["pass"]), "judged": len(records),
+        "elapsed_s": round(time.monotonic() - started, 1),
+        **_blank(),
+        "world_loop": {key: sum((r.get("world_loop") or {}).get(key) or 0 for r in records)
+                       for key in ("steps", "overruns", "dropped_steps")}}
+    bench._record(NAME, result)
+
+
+def _run_cell(bench, address: str, cell: Cell) -> dict:
+    cap = "no bottleneck" if cell.bottleneck_mbit is None else \
+        f"{cell.bottleneck_mbit:g} Mbit/s bottleneck"
+    what = "H.264 with receipts" if cell.long else "H.264 with receipts, then JPEG as it was"
+    bench.progress.step(f"video {cell.name}: round trip {cell.round_trip_ms:g} ms, {cap}; "
+                        f"{what}, {cell.seconds:g} s each after {SKIP_S:g} s")
+    record = {"name": cell.name, "round_trip_ms": cell.round_trip_ms,
+              "one_way_delay_ms": cell.one_way_ms, "bottleneck_mbit": cell.bottleneck_mbit,
+              "seconds": cell.seconds, "skip_s": SKIP_S, "long": cell.long,
+              "age_bound_ms": cell.age_bound_ms}
+    for codec in cell.codecs:
+        record[codec] = _probe(bench, address, cell, codec)
+    record["misses"] = judge(record["h264"], cell)
+    record["pass"] = not record["misses"]
+    if "jpeg" in record:
+        record["vs_jpeg"] = ratios(record["h264"], record["jpeg"])
+    record["world_loop"] = bench._loop_since_mark()
+    bench.progress.done(cell_text(record))
+    return record
+
+
+def _probe(bench, address: str, cell: Cell, codec: str) -> dict:
+    """One probe through a fresh link of its own (its bytes queue behind nobody's)."""
+    from bench.procs import ChildFailed
+    from bench.run import _reason
+
+    up, down = link_profiles(cell)
+    events: list[str] = []
+    watched = {name: pid for name in WATCHED if (pid := bench._pid(name)) is not None}
+    watched["link (bench)"] = os.getpid()
+    with ImpairmentProxy("127.0.0.1:0", address, up=up, down=down,
+                         report=events.append) as proxy:
+        try:
+            result = bench.procs.run_worker(NAME, {
+                "address": proxy.address, "encoding": codec, "receipts": codec == "h264",
+                "seconds": cell.seconds, "skip_s": SKIP_S, "watch_pids": watched},
+                PROBE_TIMEOUT_S + SKIP_S + cell.seconds, name=f"video_{codec}")
+        except ChildFailed as error:
+            result = {"status": "failed", "reason": _reason(error)}
+        stats = dataclasses.asdict(proxy.stats)
+    result["link"] = {"bytes": stats["bytes"], "connections": stats["connections"]}
+    result.pop("address", None)  # the link's port: no use after the run
+    return result
+
+
+def _blank() -> dict:
+    """No latency of its own for the other groups' columns."""
+    return {"rate_hz": None, "delivered_hz": None, "p50_ms": None, "p99_ms": None,
+            "max_ms": None, "dropped": None}
+
+
+# -- the worker's side (python -m bench.worker video) ---------------------------------------------
+
+def measure(params: dict) -> dict:
+    """clients.video_probe through `params["address"]`, and the CPU of `watch_pids` and of
+    this process (the probe) while it ran."""
+    from bench.cpu import CpuWindow
+    from clients.video_probe import probe
+
+    window = CpuWindow({**(params.get("watch_pids") or {}), "probe": os.getpid()})
+    result = probe(params["address"], params["seconds"], encoding=params["encoding"],
+                   receipts=params["receipts"], skip_s=params["skip_s"])
+    result["cpu"] = window.stop()
+    return result
+
+
+# -- latest.json ----------------------------------------------------------------------------------
+
+def previous_row(latest: Path) -> dict | None:
+    """The video row of an existing latest.json, if it holds one (with its own `run`)."""
+    try:
+        row = json.loads(latest.read_text()).get(NAME)
+    except (OSError, ValueError):
+        return None
+    return row if isinstance(row, dict) and "run" in row else None
+
+
+def merge(latest: Path, row: dict) -> bool:
+    """Put `row` into an existing latest.json in place of its video row, leaving the rest as
+    it was. False if there is no such file."""
+    try:
+        document = json.loads(latest.read_text())
+    except (OSError, ValueError):
+        return False
+    document[NAME] = row
+    latest.write_text(json.dumps(document, indent=2, default=str))
+    return True
+
+
+# -- text -----------------------------------------------------------------------------------------
+
+def _num(value, digits: int = 1) -> str:
+    return "–" if value is None else f"{value:.{digits}f}"
+
+
+def _ms(value) -> str:
+    return "–" if value is None else f"{value:.0f}"
+
+
+def _link_text(record: dict) -> tuple[str, str]:
+    trip = f"{record['round_trip_ms']:g} ms"
+    cap = record.get("bottleneck_mbit")
+    return trip, "none" if cap is None else f"{cap:g} Mbit/s"
+
+
+def _figures(result: dict | None) -> tuple[str, str, str]:
+    """(fps, age p50 / p95, kbit/s) of one probe, or its failure."""
+    if not result:
+        return "–", "–", "–"
+    if result.get("status") in ("failed", "pending"):
+        return result["status"], "–", "–"
+    return (_num(result.get("fps")),
+            f"{_ms(result.get('age_ms_p50'))} / {_ms(result.get('age_ms_p95'))}",
+            _num(result.get("kbit_per_s"), 0))
+
+
+def _thirds(result: dict | None) -> str:
+    thirds = (result or {}).get("age_ms_p95_thirds") or []
+    return " → ".join(_ms(value) for value in thirds) or "–"
+
+
+def _verdict(record: dict) -> str:
+    return "PASS" if record["pass"] else "FAIL: " + "; ".join(record["misses"])
+
+
+def _ratios_text(record: dict) -> str:
+    versus = record.get("vs_jpeg") or {}
+    parts = [f"{label} ×{versus[key]:.2f}" for key, label in (("age_p95", "age p95"),
+                                                             ("fps", "fps"))
+             if versus.get(key) is not None]
+    return ", ".join(parts) or "–"
+
+
+HEADER = ("round trip", "bottleneck", "H.264 fps", "age p50 / p95 ms", "p95 by thirds ms",
+          "kbit/s (target)", "age bound ms", "result", "JPEG fps", "JPEG age p50 / p95 ms",
+          "JPEG kbit/s", "H.264 / JPEG")
+
+
+def table_rows(result: dict) -> list[tuple[str, ...]]:
+    """A tuple per cell (HEADER), then the long run's."""
+    rows = []
+    records = [*result.get("cells", []), *([result["long"]] if result.get("long") else [])]
+    for record in records:
+        trip, cap = _link_text(record)
+        if record.get("long"):
+            cap += f", {record['seconds']:g} s"
+        h264, jpeg = record.get("h264") or {}, record.get("jpeg")
+        fps, age, _ = _figures(h264)
+        target = h264.get("target_kbit_per_s")
+        kbit = (f"{_num(h264.get('kbit_per_s'), 0)} ({target})" if "kbit_per_s" in h264
+                else "–")
+        jpeg_fps, jpeg_age, jpeg_kbit = _figures(jpeg) if jpeg is not None else ("–",) * 3
+        rows.append((trip, cap, fps, age, _thirds(h264), kbit, f"{record['age_bound_ms']:g}",
+                     _verdict(record), jpeg_fps, jpeg_age, jpeg_kbit, _ratios_text(record)))
+    return rows
+
+
+def cell_text(record: dict) -> str:
+    """A cell's figures on one line (the progress line)."""
+    h264, jpeg = record.get("h264") or {}, record.get("jpeg")
+    fps, age, kbit = _figures(h264)
+    text = (f"H.264 {fps} fps, age p50/p95 {age} ms (thirds {_thirds(h264)}), {kbit} kbit/s"
+            f" [{'PASS' if record['pass'] else 'FAIL (' + '; '.join(record['misses']) + ')'}]")
+    if jpeg is not None:
+        jpeg_fps, jpeg_age, jpeg_kbit = _figures(jpeg)
+        text += (f"; JPEG {jpeg_fps} fps, age p50/p95 {jpeg_age} ms, {jpeg_kbit} kbit/s; "
+                 f"H.264/JPEG {_ratios_text(record)}")
+    return text
+
+
+def terminal_lines(result: dict) -> list[str]:
+    """The group's table for the bench's terminal report, then the CPU while each cell's
+    H.264 probe ran."""
+    rows = [HEADER, *table_rows(result)]
+    widths = [max(len(row[i]) for row in rows) for i in range(len(HEADER))]
+    lines = [f"  video: the stereo stream across the impairment link ({goal_text()}; "
+             f"{result.get('passed')} of {result.get('judged')} H.264 runs passed)"]
+    lines += ["    " + "  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)
+                                 ).rstrip() for row in rows]
+    lines += ["  video: CPU while each H.264 probe ran (% of one core; machine % of all cores)"]
+    records = [*result.get("cells", []), *([result["long"]] if result.get("long") else [])]
+    lines += [f"    {record['name']}: {cpu_text(record.get('h264'))}" for record in records]
+    return lines
+
+
+def cpu_text(result: dict | None) -> str:
+    cpu = (result or {}).get("cpu") or {}
+    if not cpu:
+        return "–"
+    shares = sorted((cpu.get("cpu_pct") or {}).items(), key=lambda item: -item[1])
+    return (f"machine {_num(cpu.get('machine_busy_pct'), 0)} %; "
+            + ", ".join(f"{name} {value:.0f}" for name, value in shares))
+
+
+def markdown(result: dict, source: str = "bench/results/latest.json") -> str:
+    """docs/bench_video.md: the run, how it was set up, the table, the long run, the misses."""
+    run = result.get("run") or {}
+    machine = run.get("machine", {})
+    load = machine.get("load_avg_at_start"), machine.get("load_avg_at_end")
+    loads = " → ".join(f"{values[0]:.1f}" for values in load if values)
+    camera = result.get("camera") or {}
+    long = result.get("long")
+    lines = [
+        f"<!-- Generated by `python -m bench.readme` from `{source}`: do not edit. -->",
+        f"The video rows of the network group (`make bench ONLY=network`, or alone `make bench "
+        f"ONLY=video`), a {'quick' if run.get('quick') else 'full'} run of "
+        f"{result.get('elapsed_s')} s at {run.get('time')}, on {machine.get('cores')} cores "
+        f"({machine.get('cpu_model')}, Python {machine.get('python')}, load average "
+        f"{loads or '?'}). One station: the `{camera.get('source')}` StereoCamera "
+        f"({camera.get('width_px')}×{camera.get('height_px')} per eye, at most "
+        f"{_num(camera.get('fps'), 0)} pairs/s) behind a DecisionServer, and "
+        "`services/impairment`'s link between the probe (`clients.video_probe`, the operator "
+        "station's client) and the DecisionServer: half the round trip each way, the "
+        "bottleneck both ways, no jitter. Each probe streams "
+        f"{_num((result.get('cells') or [{}])[0].get('seconds'), 0)} s after "
+        f"{result.get('skip_s', SKIP_S):g} s of start-up, through a link of its own: H.264 with "
+        "receipts (paced to the path), then the JPEG baseline (no receipts, a small receive "
+        "window). Age: captured → both eyes decoded at the client. H.264 judged against "
+        f"issue #27's goals: {goal_text()}.",
+        "",
+        "| " + " | ".join(HEADER) + " |",
+        "|" + "---|" * len(HEADER),
+    ]
+    for cells_ in table_rows(result):
+        lines.append("| " + " | ".join(cell.replace("|", "\\|") for cell in cells_) + " |")
+    lines.append("")
+    failed = [r for r in result.get("cells", []) if not r["pass"]]
+    lines.append(f"H.264 met every goal in {len(result.get('cells', [])) - len(failed)} of "
+                 f"{len(result.get('cells', []))} cells"
+                 + (f"; missed in {', '.join(r['name'] for r in failed)}." if failed else "."))
+    if long:
+        h264 = long.get("h264") or {}
+        lines.append("")
+        lines.append(f"Long run, {_link_text(long)[0]} / {_link_text(long)[1]}, "
+                     f"{long['seconds']:g} s: {_figures(h264)[0]} fps, age p95 by thirds "
+                     f"{_thirds(h264)} ms: {_verdict(long)}.")
+    return "\n".join(lines) + "\n"
+
+
+# -- the figure -----------------------------------------------------------------------------------
+
+def plot(result: dict, path: Path) -> Path:
+    """Two panels, a group of bars per cell (and the long run), H.264 beside JPEG: the age's
+    p95 with each cell's goal (one-way delay + AGE_SLACK_MS) and the frame rate with MIN_FPS."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from matplotlib.ticker import FuncFormatter
+
+    records = [*result.get("cells", []), *([result["long"]] if result.get("long") else [])]
+    figure, (ages, rates) = plt.subplots(2, 1, figsize=(14, 8.5), sharex=True)
+    x = np.arange(len(records))
+    width = 0.38
+    colors = {"h264": "tab:blue", "jpeg": "tab:orange"}
+    names = {"h264": "H.264 with receipts", "jpeg": "JPEG as it was (no receipts)"}
+    for offset, codec in ((-width / 2, "h264"), (width / 2, "jpeg")):
+        values = [(r.get(codec) or {}) for r in records]
+        age = [v.get("age_ms_p95") or np.nan for v in values]
+        fps = [v.get("fps") if v.get("fps") is not None else np.nan for v in values]
+        ages.bar(x + offset, age, width, color=colors[codec], label=names[codec])
+        rates.bar(x + offset, fps, width, color=colors[codec], label=names[codec])
+    for index, record in enumerate(records):
+        bound = record["age_bound_ms"]
+        ages.hlines(bound, index - 0.45, index + 0.45, color="red", linewidth=1.5,
+                    label=f"goal: one-way delay + {AGE_SLACK_MS:g} ms" if index == 0 else None)
+        if not record["pass"]:
+            rates.text(index - width / 2, 1, "FAIL", rotation=90, ha="center", va="bottom",
+                       fontsize=7, color="white", fontweight="bold")
+    rates.axhline(MIN_FPS, color="red", linewidth=1.5, label=f"goal: {MIN_FPS:g} fps")
+    ages.set_yscale("log")
+    ages.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+    ages.set_ylabel("age p95, captured → decoded (ms, log)")
+    ages.set_title("stereo video through the impairment link: age p95 per cell")
+    rates.set_ylabel("frames shown per second")
+    rates.set_title("frame rate per cell")
+    labels = []
+    for record in records:
+        trip, cap = _link_text(record)
+        labels.append(f"{trip}\n{cap}" + (f"\n{record['seconds']:g} s" if record.get("long")
+                                          else ""))
+    rates.set_xticks(x, labels, fontsize=7)
+    rates.set_xlabel("round trip / bottleneck (both ways)")
+    for axis in (ages, rates):
+        axis.grid(True, axis="y", which="both", alpha=0.3)
+        axis.legend(fontsize=8, loc="upper left")
+        for boundary in range(1, len(records)):  # between round trips
+            if records[boundary]["round_trip_ms"] != records[boundary - 1]["round_trip_ms"] \
+                    or records[boundary].get("long"):
+                axis.axvline(boundary - 0.5, color="grey", linewidth=0.8, alpha=0.6)
+    figure.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
+    return path
