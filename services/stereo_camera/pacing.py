@@ -3,17 +3,26 @@
 The sender cannot see the path; the client's receipts (StereoCamera.ReportReceipt: the newest
 sequence and the bytes received so far) tell it, one round trip late. From them the pacer keeps:
 
-- **the round trip**: the time from sending a pair to the receipt for it. Its minimum over the
-  last MIN_RTT_WINDOW_S is the path's own round trip; anything above it is a queue building
-  somewhere on the path (the bottleneck's buffer, a socket, a forward).
-- **the delivery rate**: bytes the client reported over the last DELIVERY_WINDOW_S, by time.
+- **the delivery rate**: bytes the client reported over the last DELIVERY_WINDOW_S, by time;
+  its best over LINE_WINDOW_S is the rate of the path's narrowest link as far as it has shown
+  (a path that is full delivers exactly that; one that is not delivers less, and then no queue
+  needs to be told from a frame's size).
+- **the queue**: a frame's round trip (sent to reported) less its own serialization on that
+  link (a big frame takes longer with no queue at all), against the least such over
+  MIN_RTT_WINDOW_S (the path's own round trip). A queue that QUEUE_RECEIPTS receipts in a row
+  saw is real; one late receipt is a hiccup (a busy host).
 - **the target rate** (delay-based, after WebRTC's congestion control): a queue above
-  OVERUSE_S means the path is full, and the target drops to DECREASE of what was delivered (at
-  most once per round trip, so that a drop is seen to work before the next); a queue below
-  UNDERUSE_S lets it grow by INCREASE_PER_S a second, up to GROWTH_CAP x what was delivered
-  (an encoder that needs less than its target does not inflate it).
-- **the window**: bytes sent and not yet reported, at most the target rate times the path's
-  round trip plus SLACK_S, and never less than one frame. A frame that would not fit is not
+  OVERUSE_S means the path is full, and the target drops to DECREASE of what was delivered,
+  once per window of data (the bytes in flight then were sent at the old rate); what was
+  delivered then is the path's capacity as last seen, if the encoder had filled its target. A
+  queue below UNDERUSE_S lets the target grow: by INCREASE_PER_S a second while it is well
+  below that capacity (or none is known), near it by only NEAR_INCREASE_PER_S of the capacity
+  a second, so that a long round trip, which shows an overshoot late, overshoots little; past
+  FORGET_CAPACITY x the capacity with no queue the path has widened and the fast growth resumes.
+  Never above GROWTH_CAP x what was delivered: an encoder that needs less than its target does
+  not inflate it.
+- **the window**: bytes sent and not yet reported when a frame is sent, at most the target rate
+  times the path's round trip plus SLACK_S, and never less than a frame. A frame that would not fit is not
   captured (the sender skips the tick: the frame rate falls, nothing queues, and an H.264
   stream stays decodable because it never loses an encoded frame).
 
@@ -28,21 +37,26 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass
 
-OVERUSE_S = 0.030  # queueing delay that means the path is full
-UNDERUSE_S = 0.010  # queueing delay below which the path has room
+OVERUSE_S = 0.030  # a queue this long means the path is full...
+QUEUE_RECEIPTS = 3  # ...when this many receipts in a row see it
+UNDERUSE_S = 0.010  # a queue below this means the path has room
 DECREASE = 0.85  # of the delivery rate, on overuse
-INCREASE_PER_S = 0.25  # relative growth of the target per second while the path has room
+INCREASE_PER_S = 0.25  # relative growth of the target per second while the path has room...
+NEAR_CAPACITY = 0.9  # ...below this much of the capacity last seen; above it the growth is...
+NEAR_INCREASE_PER_S = 0.05  # ...this much of that capacity a second...
+FORGET_CAPACITY = 1.1  # ...until it passes it by this much with no queue: the path widened
 GROWTH_CAP = 1.5  # the target never exceeds this times the delivery rate
 SLACK_S = 0.040  # the window's room beyond one round trip
 START_RTT_S = 0.2  # assumed until the first receipt
 MIN_RTT_WINDOW_S = 10.0
 DELIVERY_WINDOW_S = 0.5
-MIN_WINDOW_FRAMES = 1
+LINE_WINDOW_S = 2.0
+MIN_WINDOW_FRAMES = 2
 
 
 @dataclass(frozen=True)
 class RateLimits:
-    """The bitrates an H.264 stream may use, in kbit/s."""
+    """The bitrates a stream's target may take, in kbit/s."""
 
     start_kbit: int = 1500
     min_kbit: int = 150
@@ -51,6 +65,13 @@ class RateLimits:
     def __post_init__(self) -> None:
         if not 0 < self.min_kbit <= self.start_kbit <= self.max_kbit:
             raise ValueError(f"need 0 < min_kbit <= start_kbit <= max_kbit, got {self}")
+
+
+@dataclass(frozen=True)
+class _RoundTrip:
+    at_s: float
+    rtt_s: float
+    path_s: float  # rtt_s less the frame's serialization on the line as known then
 
 
 class StreamPacer:
@@ -64,20 +85,23 @@ class StreamPacer:
         self.acked_bytes = 0
         self.acked_sequence = -1
         self.receipts = 0
+        self.skips = 0  # frames not admitted
         self.rtt_s: float | None = None  # the newest round trip
         self._sent: deque[tuple[int, float, int]] = deque()  # (sequence, time, size) unreported
-        self._rtt_bytes = 0  # the size of the frame the newest round trip timed
-        self._rtts: deque[tuple[float, float]] = deque()  # (time, rtt), for the minimum
+        self._round_trips: deque[_RoundTrip] = deque()
         self._deliveries: deque[tuple[float, int]] = deque()  # (time, acked bytes)
+        self._delivery_rates: deque[tuple[float, float]] = deque()  # (time, bit/s)
         self._frame_bytes = 0.0  # a moving average of the frames sent
-        self._hold_until_s = now_s  # no decrease before then (the last one's effect)
+        self._recovered_at_bytes = 0  # no decision until this much has arrived (_decrease)
+        self._capacity_bps: float | None = None  # delivered at the last overuse
         self._last_update_s = now_s
 
     # -- what the sender asks ---------------------------------------------------------------
 
     @property
     def min_rtt_s(self) -> float:
-        return min((rtt for _, rtt in self._rtts), default=START_RTT_S)
+        """The path's round trip: the least seen over MIN_RTT_WINDOW_S."""
+        return min((r.rtt_s for r in self._round_trips), default=START_RTT_S)
 
     @property
     def in_flight_bytes(self) -> int:
@@ -85,7 +109,9 @@ class StreamPacer:
 
     @property
     def window_bytes(self) -> int:
-        frames = MIN_WINDOW_FRAMES * max(self._frame_bytes, 1.0)
+        """The bytes that may be in flight when a frame is sent (the frame not counted: a
+        frame is a burst, and the window is for the bytes the path holds between bursts)."""
+        frames = (MIN_WINDOW_FRAMES - 1) * max(self._frame_bytes, 1.0)
         return int(max(frames, self.target_bps / 8 * (self.min_rtt_s + SLACK_S)))
 
     @property
@@ -93,10 +119,30 @@ class StreamPacer:
         return round(self.target_bps / 1e3)
 
     def may_send(self) -> bool:
-        """Whether one more frame fits in the window (an empty pipe always takes one)."""
-        if self.in_flight_bytes <= 0:
+        """Whether the window has room for one more frame."""
+        return self.in_flight_bytes <= self.window_bytes
+
+    def admit(self) -> bool:
+        """Whether a frame captured now may be sent; one that does not fit is skipped."""
+        if self.may_send():
             return True
-        return self.in_flight_bytes + self._frame_bytes <= self.window_bytes
+        self.skips += 1
+        return False
+
+    def delivery_bps(self) -> float | None:
+        """Bits per second the client reported over the last DELIVERY_WINDOW_S, or None
+        before two receipts span some time."""
+        if len(self._deliveries) < 2:
+            return None
+        (t0, b0), (t1, b1) = self._deliveries[0], self._deliveries[-1]
+        return (b1 - b0) * 8 / (t1 - t0) if t1 > t0 else None
+
+    def queue_s(self) -> float:
+        """The queue the last QUEUE_RECEIPTS receipts all saw (see the module docstring)."""
+        trips = list(self._round_trips)
+        if not trips:
+            return 0.0
+        return min(t.path_s for t in trips[-QUEUE_RECEIPTS:]) - min(t.path_s for t in trips)
 
     # -- what happens -----------------------------------------------------------------------
 
@@ -115,51 +161,63 @@ class StreamPacer:
         self.acked_sequence = sequence
         self.receipts += 1
         self.acked_bytes = max(self.acked_bytes, min(received_bytes, self.sent_bytes))
-        sent_at = sent_size = None
+        timed = None
         while self._sent and self._sent[0][0] <= sequence:
-            seq, at, size = self._sent.popleft()
-            if seq == sequence:
-                sent_at, sent_size = at, size
-        if sent_at is not None:
-            self.rtt_s = max(0.0, now_s - sent_at)
-            self._rtt_bytes = sent_size
-            self._rtts.append((now_s, self.rtt_s))
-        _expire(self._rtts, now_s - MIN_RTT_WINDOW_S)
+            entry = self._sent.popleft()
+            if entry[0] == sequence:
+                timed = entry
         self._deliveries.append((now_s, self.acked_bytes))
-        _expire(self._deliveries, now_s - DELIVERY_WINDOW_S)
+        _expire(self._deliveries, now_s - DELIVERY_WINDOW_S, lambda d: d[0])
+        delivery = self.delivery_bps()
+        if delivery is not None:
+            self._delivery_rates.append((now_s, delivery))
+            _expire(self._delivery_rates, now_s - LINE_WINDOW_S, lambda d: d[0])
+        if timed is not None:
+            self.rtt_s = max(0.0, now_s - timed[1])
+            line_bps = max((rate for _, rate in self._delivery_rates), default=0.0)
+            own_s = timed[2] * 8 / line_bps if line_bps else 0.0
+            self._round_trips.append(_RoundTrip(now_s, self.rtt_s, self.rtt_s - own_s))
+            _expire(self._round_trips, now_s - MIN_RTT_WINDOW_S, lambda r: r.at_s)
         if self.rtt_s is not None:
-            self._adapt(now_s, self.delivery_bps())
+            self._adapt(now_s, delivery)
         self._last_update_s = now_s
 
-    def delivery_bps(self) -> float | None:
-        """Bits per second the client reported over the last DELIVERY_WINDOW_S, or None
-        before two receipts span some time."""
-        if len(self._deliveries) < 2:
-            return None
-        (t0, b0), (t1, b1) = self._deliveries[0], self._deliveries[-1]
-        return (b1 - b0) * 8 / (t1 - t0) if t1 > t0 else None
-
     def _adapt(self, now_s: float, delivery: float | None) -> None:
-        # A frame's round trip includes its own serialization at the bottleneck: a key frame
-        # takes longer without any queue.
-        own_s = self._rtt_bytes * 8 / delivery if delivery else 0.0
-        queue_s = self.rtt_s - own_s - self.min_rtt_s
-        limits = self.limits
+        queue_s = self.queue_s()
         if queue_s > OVERUSE_S:
-            if now_s >= self._hold_until_s and delivery is not None:
-                self.target_bps = DECREASE * min(delivery, self.target_bps)
-                self._hold_until_s = now_s + self.rtt_s
-        elif queue_s < UNDERUSE_S and now_s >= self._hold_until_s:
-            dt = max(0.0, now_s - self._last_update_s)
-            grown = self.target_bps * (1.0 + INCREASE_PER_S * dt)
             if delivery is not None:
-                grown = min(grown, max(self.target_bps, GROWTH_CAP * delivery))
-            self.target_bps = grown
+                self._decrease(delivery)
+        elif queue_s < UNDERUSE_S and self.acked_bytes >= self._recovered_at_bytes:
+            self._increase(now_s - self._last_update_s, delivery)
+        limits = self.limits
         self.target_bps = min(max(self.target_bps, limits.min_kbit * 1e3),
                               limits.max_kbit * 1e3)
 
+    def _increase(self, dt_s: float, delivery: float | None) -> None:
+        capacity = self._capacity_bps
+        if capacity is not None and self.target_bps > FORGET_CAPACITY * capacity:
+            self._capacity_bps = capacity = None  # the path widened: probe fast again
+        if capacity is not None and self.target_bps >= NEAR_CAPACITY * capacity:
+            grown = self.target_bps + NEAR_INCREASE_PER_S * capacity * max(0.0, dt_s)
+        else:
+            grown = self.target_bps * (1.0 + INCREASE_PER_S * max(0.0, dt_s))
+        if delivery is not None:
+            grown = min(grown, max(self.target_bps, GROWTH_CAP * delivery))
+        self.target_bps = grown
 
-def _expire(entries: deque, before_s: float) -> None:
+    def _decrease(self, delivery: float) -> None:
+        """To DECREASE of what arrives, once per window: the bytes in flight when it decreased
+        were sent at the old rate, and the next decision waits until they have arrived."""
+        if self.acked_bytes < self._recovered_at_bytes:
+            return
+        self._recovered_at_bytes = self.sent_bytes
+        # What arrived is the path's capacity only if the encoder filled the target; an encoder
+        # that made less says nothing of the path.
+        self._capacity_bps = delivery if delivery >= NEAR_CAPACITY * self.target_bps else None
+        self.target_bps = DECREASE * min(delivery, self.target_bps)
+
+
+def _expire(entries: deque, before_s: float, time_of) -> None:
     """Drop the entries older than `before_s`, keeping the newest."""
-    while len(entries) > 1 and entries[0][0] < before_s:
+    while len(entries) > 1 and time_of(entries[0]) < before_s:
         entries.popleft()
