@@ -33,6 +33,11 @@ class PacedStream:
         with self._cond:
             return self._cond.wait_for(self._pacer.may_send, timeout_s)
 
+    def admit(self) -> bool:
+        """Whether the frame captured now may go (the window may have filled meanwhile)."""
+        with self._cond:
+            return self._pacer.admit()
+
     def sent(self, sequence: int, size_bytes: int) -> None:
         with self._cond:
             self._pacer.sent(sequence, size_bytes, self._clock())

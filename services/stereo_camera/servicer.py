@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import threading
 import time
 
 from google.protobuf.duration_pb2 import Duration
@@ -110,6 +111,18 @@ class StereoCameraServicer(stereo_camera_pb2_grpc.StereoCameraServicer):
         self._hub = hub
         self._cache = cache or EncodeCache()
         self.streams = streams or PacedStreams()
+        self._encoders_lock = threading.Lock()
+        self._open_encoders = 0
+
+    @property
+    def open_encoders(self) -> int:
+        """H.264 encoders held by open streams (one each)."""
+        with self._encoders_lock:
+            return self._open_encoders
+
+    def _count_encoders(self, change: int) -> None:
+        with self._encoders_lock:
+            self._open_encoders += change
 
     def GetStreamInfo(self, request, context):
         geometry = self._hub.geometry(OPEN_TIMEOUT_S)
@@ -138,6 +151,8 @@ class StereoCameraServicer(stereo_camera_pb2_grpc.StereoCameraServicer):
             video = None
             if settings.video:
                 video = _VideoEncoding(image_format, fps, settings, paced)
+                self._count_encoders(1)
+                stack.callback(self._count_encoders, -1)
                 stack.callback(video.close)  # frees the encoder when the client goes
             yield pb.StreamPairsResponse(header=header_proto(
                 geometry, image_format, settings.transfer_mode,
@@ -157,7 +172,7 @@ class StereoCameraServicer(stereo_camera_pb2_grpc.StereoCameraServicer):
             if paced is not None and not paced.wait_for_room(STREAM_POLL_S):
                 continue  # the path is full: the ticks meanwhile are skipped, not queued
             frame = view.fresh(STREAM_POLL_S) if single else view.next(STREAM_POLL_S)
-            if frame is None:
+            if frame is None or (paced is not None and not paced.admit()):
                 continue
             now = time.monotonic()
             next_due = now + period_s if next_due is None else max(next_due + period_s, now)

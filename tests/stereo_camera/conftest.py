@@ -30,6 +30,8 @@ class Camera:
     hub: CaptureHub
     server: TelerobotServer
     channel: grpc.Channel
+    servicer: StereoCameraServicer
+    address: str
 
     def stream(self, pairs: int, **request) -> list[pb.StreamPairsResponse]:
         """The first message and `pairs` more (all messages, in order), then cancel."""
@@ -56,13 +58,15 @@ class Camera:
 def start_camera(source: StereoSource, **hub_options) -> Camera:
     """Serve `source` from an in-process server on a free port; close() when done."""
     hub = CaptureHub(source, **hub_options)
+    servicer = StereoCameraServicer(hub)
     server, port = create_server(
-        "127.0.0.1:0",
-        [binding(stereo_camera_pb2_grpc, "StereoCamera", StereoCameraServicer(hub))])
+        "127.0.0.1:0", [binding(stereo_camera_pb2_grpc, "StereoCamera", servicer)])
     server.start()
     hub.start()
-    channel = open_channel(f"127.0.0.1:{port}")
-    return Camera(stereo_camera_pb2_grpc.StereoCameraStub(channel), hub, server, channel)
+    address = f"127.0.0.1:{port}"
+    channel = open_channel(address)
+    return Camera(stereo_camera_pb2_grpc.StereoCameraStub(channel), hub, server, channel,
+                  servicer, address)
 
 
 @pytest.fixture
