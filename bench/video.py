@@ -221,7 +221,8 @@ def _run_cell(bench, address: str, cell: Cell) -> dict:
     record = {"name": cell.name, "round_trip_ms": cell.round_trip_ms,
               "one_way_delay_ms": cell.one_way_ms, "bottleneck_mbit": cell.bottleneck_mbit,
               "seconds": cell.seconds, "skip_s": SKIP_S, "long": cell.long,
-              "age_bound_ms": cell.age_bound_ms}
+              "age_bound_ms": cell.age_bound_ms,
+              "load_avg_at_start": round(os.getloadavg()[0], 2)}  # others' work shows here
     for codec in cell.codecs:
         record[codec] = _probe(bench, address, cell, codec)
     record["misses"] = judge(record["h264"], cell)
@@ -393,8 +394,22 @@ def terminal_lines(result: dict) -> list[str]:
                                  ).rstrip() for row in rows]
     lines += ["  video: CPU while each H.264 probe ran (% of one core; machine % of all cores)"]
     records = [*result.get("cells", []), *([result["long"]] if result.get("long") else [])]
-    lines += [f"    {record['name']}: {cpu_text(record.get('h264'))}" for record in records]
+    lines += [f"    {record['name']}: {cpu_text(record.get('h264'))}"
+              + (f" (load average {record['load_avg_at_start']:g} at its start)"
+                 if record.get("load_avg_at_start") is not None else "")
+              for record in records]
     return lines
+
+
+def camera_ms_per_frame(result: dict | None) -> float | None:
+    """The camera's CPU per frame shown (ms): its share of a core over the probe's window
+    (start-up included) over the frame rate shown after the start-up. What a frame costs to
+    render and encode, whatever the machine's load makes of the frame rate."""
+    result = result or {}
+    share = ((result.get("cpu") or {}).get("cpu_pct") or {}).get("stereo_camera")
+    if share is None or not result.get("fps"):
+        return None
+    return round(10.0 * share / result["fps"], 1)
 
 
 def cpu_text(result: dict | None) -> str:
@@ -402,8 +417,10 @@ def cpu_text(result: dict | None) -> str:
     if not cpu:
         return "–"
     shares = sorted((cpu.get("cpu_pct") or {}).items(), key=lambda item: -item[1])
+    per_frame = camera_ms_per_frame(result)
     return (f"machine {_num(cpu.get('machine_busy_pct'), 0)} %; "
-            + ", ".join(f"{name} {value:.0f}" for name, value in shares))
+            + ", ".join(f"{name} {value:.0f}" for name, value in shares)
+            + (f"; camera {per_frame:g} ms CPU/frame" if per_frame is not None else ""))
 
 
 def markdown(result: dict, source: str = "bench/results/latest.json") -> str:

@@ -229,3 +229,10 @@ def test_readme_writes_the_fragment_and_the_figure_and_leaves_readme_alone(tmp_p
     assert figure.read_bytes().startswith(PNG_MAGIC)
     assert not readme.has_table({"video": RESULT, "world_loop": {}})
     assert "video" not in readme.table({"video": RESULT, "teleop_50": {"p50_ms": 1.0}})
+
+
+def test_the_camera_cpu_per_frame_is_its_share_of_a_core_over_the_frame_rate():
+    assert video.camera_ms_per_frame(_probe(fps=25.0)) == 28.0  # 70 % of a core / 25 fps
+    assert video.camera_ms_per_frame({"status": "failed"}) is None
+    assert video.camera_ms_per_frame({**_probe(), "fps": 0.0}) is None
+    assert "camera 23.7 ms CPU/frame" in video.cpu_text(_probe())
