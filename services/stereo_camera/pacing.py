@@ -3,17 +3,16 @@
 The sender cannot see the path; the client's receipts (StereoCamera.ReportReceipt: the newest
 sequence and the bytes received so far) tell it, one round trip late. From them the pacer keeps:
 
-- **the delivery rate**: bytes the client reported over the last DELIVERY_WINDOW_S, by time;
-  its best over LINE_WINDOW_S is the rate of the path's narrowest link as far as it has shown
-  (a path that is full delivers exactly that; one that is not delivers less, and then no queue
-  needs to be told from a frame's size).
-- **the queue**: a frame's round trip (sent to reported) less its own serialization on that
-  link (a big frame takes longer with no queue at all), against the least such over
+- **the delivery rate**: bytes the client reported over the last DELIVERY_WINDOW_S, by time.
+- **the queue**: a frame's round trip (sent to reported) against the least over
   MIN_RTT_WINDOW_S (the path's own round trip). A queue that QUEUE_RECEIPTS receipts in a row
-  saw is real; one late receipt is a hiccup (a busy host).
+  saw is real; one late receipt is a hiccup (a busy host, a big key frame). A frame's round
+  trip includes its own time on the narrowest link, so a stream whose frames fill much of the
+  link reads as a queue of up to a frame interval: the thresholds leave room for that, and the
+  target settles where its frames take under UNDERUSE_S on the line.
 - **the target rate** (delay-based, after WebRTC's congestion control): a queue above
   OVERUSE_S means the path is full, and the target drops to DECREASE of what was delivered,
-  once per window of data (the bytes in flight then were sent at the old rate); what was
+  then waits for receipts of frames sent after the drop before it judges again; what was
   delivered then is the path's capacity as last seen, if the encoder had filled its target. A
   queue below UNDERUSE_S lets the target grow: by INCREASE_PER_S a second while it is well
   below that capacity (or none is known), near it by only NEAR_INCREASE_PER_S of the capacity
@@ -39,7 +38,7 @@ from dataclasses import dataclass
 
 OVERUSE_S = 0.030  # a queue this long means the path is full...
 QUEUE_RECEIPTS = 3  # ...when this many receipts in a row see it
-UNDERUSE_S = 0.010  # a queue below this means the path has room
+UNDERUSE_S = 0.015  # a queue below this means the path has room
 DECREASE = 0.85  # of the delivery rate, on overuse
 INCREASE_PER_S = 0.25  # relative growth of the target per second while the path has room...
 NEAR_CAPACITY = 0.9  # ...below this much of the capacity last seen; above it the growth is...
@@ -49,8 +48,7 @@ GROWTH_CAP = 1.5  # the target never exceeds this times the delivery rate
 SLACK_S = 0.040  # the window's room beyond one round trip
 START_RTT_S = 0.2  # assumed until the first receipt
 MIN_RTT_WINDOW_S = 10.0
-DELIVERY_WINDOW_S = 0.5
-LINE_WINDOW_S = 2.0
+DELIVERY_WINDOW_S = 1.0
 MIN_WINDOW_FRAMES = 2
 
 
@@ -70,8 +68,8 @@ class RateLimits:
 @dataclass(frozen=True)
 class _RoundTrip:
     at_s: float
+    sequence: int
     rtt_s: float
-    path_s: float  # rtt_s less the frame's serialization on the line as known then
 
 
 class StreamPacer:
@@ -87,12 +85,12 @@ class StreamPacer:
         self.receipts = 0
         self.skips = 0  # frames not admitted
         self.rtt_s: float | None = None  # the newest round trip
-        self._sent: deque[tuple[int, float, int]] = deque()  # (sequence, time, size) unreported
+        self._sent: deque[tuple[int, float]] = deque()  # (sequence, send time), unreported
         self._round_trips: deque[_RoundTrip] = deque()
         self._deliveries: deque[tuple[float, int]] = deque()  # (time, acked bytes)
-        self._delivery_rates: deque[tuple[float, float]] = deque()  # (time, bit/s)
+        self._sends: deque[tuple[float, int]] = deque()  # (time, sent bytes)
         self._frame_bytes = 0.0  # a moving average of the frames sent
-        self._recovered_at_bytes = 0  # no decision until this much has arrived (_decrease)
+        self._judged_after = 0  # decisions use receipts of frames sent after this sequence
         self._capacity_bps: float | None = None  # delivered at the last overuse
         self._last_update_s = now_s
 
@@ -132,24 +130,29 @@ class StreamPacer:
     def delivery_bps(self) -> float | None:
         """Bits per second the client reported over the last DELIVERY_WINDOW_S, or None
         before two receipts span some time."""
-        if len(self._deliveries) < 2:
-            return None
-        (t0, b0), (t1, b1) = self._deliveries[0], self._deliveries[-1]
-        return (b1 - b0) * 8 / (t1 - t0) if t1 > t0 else None
+        return _rate(self._deliveries)
 
-    def queue_s(self) -> float:
-        """The queue the last QUEUE_RECEIPTS receipts all saw (see the module docstring)."""
-        trips = list(self._round_trips)
-        if not trips:
-            return 0.0
-        return min(t.path_s for t in trips[-QUEUE_RECEIPTS:]) - min(t.path_s for t in trips)
+    def sending_bps(self) -> float | None:
+        """Bits per second sent over the last DELIVERY_WINDOW_S."""
+        return _rate(self._sends)
+
+    def queue_s(self) -> float | None:
+        """The queue the last QUEUE_RECEIPTS receipts all saw (see the module docstring), of
+        frames sent since the last decision; None until there are that many."""
+        recent = [t.rtt_s for t in list(self._round_trips)[-QUEUE_RECEIPTS:]
+                  if t.sequence > self._judged_after]
+        if len(recent) < QUEUE_RECEIPTS:
+            return None
+        return min(recent) - self.min_rtt_s
 
     # -- what happens -----------------------------------------------------------------------
 
     def sent(self, sequence: int, size_bytes: int, now_s: float) -> None:
         """A frame of `size_bytes` left for the client."""
         self.sent_bytes += size_bytes
-        self._sent.append((sequence, now_s, size_bytes))
+        self._sent.append((sequence, now_s))
+        self._sends.append((now_s, self.sent_bytes))
+        _expire(self._sends, now_s - DELIVERY_WINDOW_S, lambda d: d[0])
         self._frame_bytes = size_bytes if not self._frame_bytes \
             else 0.9 * self._frame_bytes + 0.1 * size_bytes
 
@@ -169,14 +172,9 @@ class StreamPacer:
         self._deliveries.append((now_s, self.acked_bytes))
         _expire(self._deliveries, now_s - DELIVERY_WINDOW_S, lambda d: d[0])
         delivery = self.delivery_bps()
-        if delivery is not None:
-            self._delivery_rates.append((now_s, delivery))
-            _expire(self._delivery_rates, now_s - LINE_WINDOW_S, lambda d: d[0])
         if timed is not None:
             self.rtt_s = max(0.0, now_s - timed[1])
-            line_bps = max((rate for _, rate in self._delivery_rates), default=0.0)
-            own_s = timed[2] * 8 / line_bps if line_bps else 0.0
-            self._round_trips.append(_RoundTrip(now_s, self.rtt_s, self.rtt_s - own_s))
+            self._round_trips.append(_RoundTrip(now_s, sequence, self.rtt_s))
             _expire(self._round_trips, now_s - MIN_RTT_WINDOW_S, lambda r: r.at_s)
         if self.rtt_s is not None:
             self._adapt(now_s, delivery)
@@ -184,10 +182,12 @@ class StreamPacer:
 
     def _adapt(self, now_s: float, delivery: float | None) -> None:
         queue_s = self.queue_s()
-        if queue_s > OVERUSE_S:
+        if queue_s is None:
+            pass  # too few receipts since the last decision to judge
+        elif queue_s > OVERUSE_S:
             if delivery is not None:
                 self._decrease(delivery)
-        elif queue_s < UNDERUSE_S and self.acked_bytes >= self._recovered_at_bytes:
+        elif queue_s < UNDERUSE_S:
             self._increase(now_s - self._last_update_s, delivery)
         limits = self.limits
         self.target_bps = min(max(self.target_bps, limits.min_kbit * 1e3),
@@ -206,15 +206,22 @@ class StreamPacer:
         self.target_bps = grown
 
     def _decrease(self, delivery: float) -> None:
-        """To DECREASE of what arrives, once per window: the bytes in flight when it decreased
-        were sent at the old rate, and the next decision waits until they have arrived."""
-        if self.acked_bytes < self._recovered_at_bytes:
-            return
-        self._recovered_at_bytes = self.sent_bytes
-        # What arrived is the path's capacity only if the encoder filled the target; an encoder
+        """To DECREASE of what arrives. The frames in flight were sent at the old rate: the next
+        decision waits for receipts of frames sent after this one."""
+        self._judged_after = self._sent[-1][0] if self._sent else self.acked_sequence
+        # What arrived is the path's capacity only if the sender filled the target; an encoder
         # that made less says nothing of the path.
-        self._capacity_bps = delivery if delivery >= NEAR_CAPACITY * self.target_bps else None
+        sending = self.sending_bps() or 0.0
+        self._capacity_bps = delivery if sending >= NEAR_CAPACITY * self.target_bps else None
         self.target_bps = DECREASE * min(delivery, self.target_bps)
+
+
+def _rate(entries: deque) -> float | None:
+    """Bits per second between the first and last (time, bytes) entries; None for no span."""
+    if len(entries) < 2:
+        return None
+    (t0, b0), (t1, b1) = entries[0], entries[-1]
+    return (b1 - b0) * 8 / (t1 - t0) if t1 > t0 else None
 
 
 def _expire(entries: deque, before_s: float, time_of) -> None:

@@ -1,0 +1,61 @@
+"""The sender's rate follows the path: through the impairment link, an H.264 stream's target
+falls below a bottleneck that narrows mid-stream, and rises again once it widens; the age stays
+bounded throughout (no backlog is left behind by the narrowing)."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from clients.python.stereo_camera import StereoCameraClient
+from services.impairment.link import LinkProfile
+from services.impairment.proxy import ImpairmentProxy
+from services.stereo_camera.pattern import PatternSource
+from telerobot.v1 import stereo_camera_pb2 as pb
+from tests.stereo_camera.conftest import serve  # noqa: F401 (a fixture)
+
+ONE_WAY_S = 0.025
+WIDE_BPS, NARROW_BPS = 4e6, 0.6e6
+
+
+def _link(bandwidth_bps: float) -> LinkProfile:
+    return LinkProfile(delay_s=ONE_WAY_S, bandwidth_bps=bandwidth_bps)
+
+
+def test_the_bitrate_steps_down_when_the_bottleneck_narrows_and_back_up_when_it_widens(serve):
+    camera = serve(PatternSource(640, 480, fps=30))  # about 1.4 Mbit/s of H.264 unconstrained
+    seen: list[tuple[float, int, float]] = []  # (time, target kbit/s, age s)
+
+    def watch(stream, seconds: float) -> None:
+        end = time.monotonic() + seconds
+        for frame in stream:
+            capture_ns = frame.pair.left_capture_time.ToNanoseconds()
+            seen.append((time.monotonic(), frame.pair.target_kbit_per_s,
+                         (frame.received_ns - capture_ns) / 1e9))
+            if time.monotonic() >= end:
+                return
+
+    with ImpairmentProxy("127.0.0.1:0", camera.address, up=_link(WIDE_BPS),
+                         down=_link(WIDE_BPS), report=lambda line: None) as proxy, \
+            StereoCameraClient(proxy.address) as client, \
+            client.stream_pairs(pb.IMAGE_ENCODING_H264, decode=False) as stream:
+        watch(stream, 6.0)
+        wide_target = seen[-1][1]
+        narrowed_at = time.monotonic()
+        proxy.reshape(down=_link(NARROW_BPS))
+        watch(stream, 8.0)
+        widened_at = time.monotonic()
+        proxy.reshape(down=_link(WIDE_BPS))
+        watch(stream, 14.0)
+
+    def targets(start: float, end: float) -> list[int]:
+        return [target for at, target, _ in seen if start <= at < end]
+
+    assert wide_target > NARROW_BPS / 1e3 * 1.5, "the wide path lets the target grow"
+    assert max(targets(narrowed_at + 3.0, widened_at)) < NARROW_BPS / 1e3, \
+        "down below the narrow bottleneck within 3 s"
+    assert max(targets(widened_at, widened_at + 14.0)) > NARROW_BPS / 1e3 * 1.5, \
+        "back up once it widens"
+    settled = [age for at, _, age in seen if narrowed_at + 3.0 <= at < widened_at]
+    assert np.percentile(settled, 95) < ONE_WAY_S + 0.250, "the narrowing's queue drained"
