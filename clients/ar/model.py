@@ -46,6 +46,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from clients.ar.pose_history import PoseHistory
+
 
 class Frame(enum.StrEnum):
     """The frame a Cartesian increment is expressed in (types.proto ReferenceFrame)."""
@@ -174,6 +176,7 @@ class RobotModel:
         self._last_acknowledged = 0
         self._prediction = self._anchor.copy()
         self.corrections = 0  # how many corrections were applied
+        self.measured = PoseHistory()  # the station's timed tool poses, for the video
 
     @property
     def mode(self) -> CorrectionMode:
@@ -195,6 +198,17 @@ class RobotModel:
         goes."""
         with self._lock:
             return self._prediction[:3, 3].copy()
+
+    def observe(self, time_ns: int, tool_pose) -> None:
+        """The station measured the tool at `tool_pose` at `time_ns` (its clock): kept for
+        `tool_point_at`, without changing the prediction."""
+        self.measured.add(time_ns, as_pose(tool_pose)[:3, 3])
+
+    def tool_point_at(self, time_ns: int) -> np.ndarray:
+        """Where the tool was at `time_ns` (a video frame's capture time), from the station's
+        measurements around it; the prediction when none is near."""
+        point = self.measured.at(time_ns)
+        return self.tool_point if point is None else point
 
     @property
     def pending(self) -> int:

@@ -56,6 +56,7 @@ class StatusLine:
         self._count = 0
         self._width = 0  # of the status line on screen
         self._lock = threading.Lock()
+        self.video: Callable[[], str] | None = None  # the stereo view's figures, when it runs
 
     def __call__(self, *, mode, clutch, force, commands, acks, round_trips,
                  link_down=False) -> None:
@@ -67,7 +68,8 @@ class StatusLine:
         line = (f"[{mode:10}] {'CLUTCH ' if clutch else 'engaged'}  cmd {commands / elapsed:5.1f}/s"
                 f"  acks {acks / elapsed:5.1f}/s  rtt p50 {np.median(recent):5.1f} ms"
                 f"  F {force:6.2f} N  "
-                f"{'LINK LOST: reconnecting, the arm holds' if link_down else 'lock held'}")
+                f"{'LINK LOST: reconnecting, the arm holds' if link_down else 'lock held'}"
+                f"{'  ' + self.video() if self.video else ''}")
         with self._lock:
             self._stream.write("\r" + line)
             self._stream.flush()
@@ -225,6 +227,7 @@ def run(args: argparse.Namespace) -> int:
                                   on_frame=recorder and recorder.stereo)
                 view.start()
             status, results, traces = StatusLine(), [], []
+            status.video = view.status if view else None
             # The station's services as the session goes: what is down now, then every change.
             monitor = DependencyMonitor(client, status.note,
                                         on_event=recorder and recorder.event).start()
@@ -262,6 +265,8 @@ def run(args: argparse.Namespace) -> int:
         "video": str(out / "stereo.mp4") if view and view.recorder else None,
         "video_frames": view.recorder.frames if view and view.recorder else 0,
         "video_error": view.error if view else None,
+        # What the operator's stream delivered: fps, age (capture to shown) p50/p95, kbit/s.
+        "video_stream": view.summary() if view else {},
         "cameras_identified_now": bool(view and view.identified_now),
         "plots": [str(path) for path in artifacts],
         # Each of the station's services at the end, and every change during the session.

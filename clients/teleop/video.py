@@ -1,8 +1,11 @@
-"""The operator's stereo view: pairs from the camera, the AR ball at the predicted gripper, into
-a side-by-side video. Runs on its own thread while the task runs."""
+"""The operator's stereo view: the camera's H.264 stream (paced to the link by receipts), the AR
+ball where the station measured the gripper at each frame's capture time, into a side-by-side
+video; what the stream delivers (fps, age, bitrate) for the status line and the summary. Runs
+on its own thread while the task runs."""
 
 from __future__ import annotations
 
+import csv
 import logging
 import threading
 from collections.abc import Callable
@@ -23,14 +26,19 @@ from clients.ar.adapters import projections_from_header
 from clients.python.errors import UnavailableError
 from clients.python.stereo_camera import StereoCameraClient
 from clients.python.values import StereoFrame
+from clients.python.video_meter import VideoMeter
 from clients.teleop.artifacts import VideoRecorder
 from services.robot_model import workspace
+from telerobot.v1 import stereo_camera_pb2 as sc_pb
 
 log = logging.getLogger(__name__)
 
-WIDTH_PX, HEIGHT_PX = 320, 240
-MAX_FPS = 10.0
 RESUME_AFTER_S = 0.5  # while the camera is away, try again this often
+# Every frame shown, with where the ball went in each eye (pixels): the overlay can be checked
+# against the arm's true pose at the capture time.
+FRAMES_LOG = "stereo_frames.csv"
+FRAMES_LOG_COLUMNS = ("sequence", "capture_ns", "received_ns", "left_u", "left_v", "right_u",
+                      "right_v")
 
 
 def reference_points() -> np.ndarray:
@@ -57,8 +65,12 @@ class StereoView:
         self.error: str | None = None
         self.identified_now = False
         self.pauses = 0  # times the camera went away and the video waited for it
+        self.meter = VideoMeter()
 
     def start(self) -> None:
+        self._frames_log = (self._out / FRAMES_LOG).open("w", newline="")
+        self._frames_csv = csv.writer(self._frames_log)
+        self._frames_csv.writerow(FRAMES_LOG_COLUMNS)
         self._thread.start()
 
     def stop(self) -> None:
@@ -66,17 +78,39 @@ class StereoView:
         self._thread.join(10)
         if self.recorder is not None:
             self.recorder.close()
+        self._frames_log.close()
+
+    def _log_frame(self, frame: StereoFrame, captured_ns: int, balls) -> None:
+        """One row of stereo_frames.csv: the frame, its age, and where the ball went."""
+        centres = [c for ball in (balls.left, balls.right)
+                   for c in (ball.centre_px if ball is not None else (np.nan, np.nan))]
+        self._frames_csv.writerow([frame.sequence, captured_ns, frame.received_ns,
+                                   *(f"{c:.2f}" for c in centres)])
+
+    def status(self) -> str:
+        """What the video delivers now, for the status line."""
+        now = self.meter.now()
+        if not now["fps"]:
+            return "video -"
+        return (f"video {now['fps']:4.1f} fps {now['age_ms_p50']:4.0f} ms "
+                f"{now['kbit_per_s'] / 1e3:4.1f} Mbit/s")
+
+    def summary(self) -> dict:
+        """The whole session's video figures (VideoMeter.summary), for summary.json."""
+        return {"codec": self.meter.codec, **self.meter.summary(skip_s=1.0)} \
+            if self.meter.frames else {}
 
     def _overlay(self, header) -> StereoOverlay:
         """The saved identification, or a new one from the reference points (then saved)."""
-        identification = load_if_present(self._calibration_path, WIDTH_PX, HEIGHT_PX)
+        width, height = header.width_px, header.height_px
+        identification = load_if_present(self._calibration_path, width, height)
         if identification is None:
             # The simulated cameras say where the reference points appear (a real rig: the
             # operator clicks them); identification then works as it would on real images.
             left, right = projections_from_header(header)
             points = reference_points()
             identification = identify_stereo(points, left.project(points),
-                                             right.project(points), WIDTH_PX, HEIGHT_PX,
+                                             right.project(points), width, height,
                                              source="teleop: reference box")
             save_identification(identification, self._calibration_path)
             self.identified_now = True
@@ -86,8 +120,7 @@ class StereoView:
         overlay = composer = None
         while not self._stop.is_set():
             try:
-                stream = self._camera.stream_pairs(width_px=WIDTH_PX, height_px=HEIGHT_PX,
-                                                   max_fps=MAX_FPS, timeout=None)
+                stream = self._camera.stream_pairs(sc_pb.IMAGE_ENCODING_H264, timeout=None)
                 for frame in stream:
                     if self._stop.is_set():
                         stream.cancel()
@@ -96,12 +129,16 @@ class StereoView:
                         self._on_frame(frame)
                     if overlay is None:
                         overlay = self._overlay(frame.header)
-                        composer = SideBySideComposer(WIDTH_PX, HEIGHT_PX)
+                        composer = SideBySideComposer(frame.header.width_px,
+                                                      frame.header.height_px)
                         self.recorder = VideoRecorder(self._out / "stereo.mp4",
                                                       *composer.frame_size)
-                    left, right, _ = overlay.draw(frame.left, frame.right,
-                                                  self._model.tool_point)
+                    captured_ns = frame.pair.left_capture_time.ToNanoseconds()
+                    left, right, balls = overlay.draw(frame.left, frame.right,
+                                                      self._model.tool_point_at(captured_ns))
+                    self.meter.shown(frame)
                     self.recorder.add(composer.compose(left, right))
+                    self._log_frame(frame, captured_ns, balls)
                 return
             except UnavailableError as error:  # the camera restarts: pause, then resume
                 if self._stop.is_set():

@@ -20,10 +20,10 @@ sequence and the bytes received so far) tell it, one round trip late. From them 
   FORGET_CAPACITY x the capacity with no queue the path has widened and the fast growth resumes.
   Never above GROWTH_CAP x what was delivered: an encoder that needs less than its target does
   not inflate it.
-- **the window**: bytes sent and not yet reported when a frame is sent, at most the target rate
-  times the path's round trip plus SLACK_S, and never less than a frame. A frame that would not fit is not
-  captured (the sender skips the tick: the frame rate falls, nothing queues, and an H.264
-  stream stays decodable because it never loses an encoded frame).
+- **the window**: bytes sent and not yet reported when a frame is sent, at most the target
+  rate times the path's round trip plus SLACK_S, and never less than a frame. A frame that
+  would not fit is not encoded (the sender skips the tick: the frame rate falls, nothing
+  queues, and an H.264 stream stays decodable because it never loses an encoded frame).
 
 An image stream (JPEG) paces the same way: its encoder ignores the target, but the target still
 sizes the window, so frames are skipped rather than queued.

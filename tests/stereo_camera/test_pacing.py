@@ -17,9 +17,10 @@ STEP_S = 0.001
 class Run:
     """A stream through a bottleneck: what the client saw, and what the pacer chose."""
 
-    def __init__(self, bandwidth_bps: float, one_way_s: float, limits: RateLimits = RateLimits()):
+    def __init__(self, bandwidth_bps: float, one_way_s: float,
+                 limits: RateLimits | None = None):
         self.path = Bottleneck(bandwidth_bps, one_way_s)
-        self.pacer = StreamPacer(limits, 0.0)
+        self.pacer = StreamPacer(limits or RateLimits(), 0.0)
         self.now = 0.0
         self.sequence = 0
         self.next_tick = 0.0

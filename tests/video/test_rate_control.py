@@ -7,13 +7,14 @@ from __future__ import annotations
 import time
 
 import numpy as np
+import pytest
 
 from clients.python.stereo_camera import StereoCameraClient
 from services.impairment.link import LinkProfile
 from services.impairment.proxy import ImpairmentProxy
 from services.stereo_camera.pattern import PatternSource
 from telerobot.v1 import stereo_camera_pb2 as pb
-from tests.stereo_camera.conftest import serve  # noqa: F401 (a fixture)
+from tests.stereo_camera.conftest import start_camera
 
 ONE_WAY_S = 0.025
 WIDE_BPS, NARROW_BPS = 4e6, 0.6e6
@@ -23,8 +24,14 @@ def _link(bandwidth_bps: float) -> LinkProfile:
     return LinkProfile(delay_s=ONE_WAY_S, bandwidth_bps=bandwidth_bps)
 
 
-def test_the_bitrate_steps_down_when_the_bottleneck_narrows_and_back_up_when_it_widens(serve):
-    camera = serve(PatternSource(640, 480, fps=30))  # about 1.4 Mbit/s of H.264 unconstrained
+@pytest.fixture
+def camera():
+    camera = start_camera(PatternSource(640, 480, fps=30))  # H.264 of about 1.4 Mbit/s
+    yield camera
+    camera.close()
+
+
+def test_the_bitrate_steps_down_when_the_bottleneck_narrows_and_back_up_when_it_widens(camera):
     seen: list[tuple[float, int, float]] = []  # (time, target kbit/s, age s)
 
     def watch(stream, seconds: float) -> None:
