@@ -2,8 +2,10 @@
 
 For each channel: its topic, schema (a protobuf message name), message count and first/last
 log time; then the file's time range, which of Foxglove's channels it has (and the frame tree
-its first /tf message gives) and its metadata (make teleop's counts and runs). It scans every
-message, so the times are exact. Exits 2 when the file cannot be read.
+its first /tf message gives), its video if it has one (/camera/stereo/video: frames, key frames,
+bytes, and whether it starts at a key frame, as a player needs) and its metadata (make teleop's
+counts and runs). It scans every message, so the times are exact. Exits 2 when the file cannot
+be read.
 """
 
 from __future__ import annotations
@@ -14,12 +16,13 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
 
+from foxglove_schemas_protobuf.CompressedVideo_pb2 import CompressedVideo
 from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
 from google.protobuf.message import DecodeError
 from mcap.exceptions import McapError
 from mcap.reader import make_reader
 
-from services.foxglove.channels import FOXGLOVE_TOPICS, TF
+from services.foxglove.channels import FOXGLOVE_TOPICS, STEREO_VIDEO, TF, h264_is_keyframe
 
 
 @dataclass
@@ -33,6 +36,34 @@ class ChannelSummary:
 
 
 @dataclass
+class VideoSummary:
+    """The video channel's frames (CompressedVideo): how many, how many key frames (IDR), their
+    bytes, their formats, and whether the first (by log time) is a key frame."""
+
+    frames: int = 0
+    keyframes: int = 0
+    bytes: int = 0
+    formats: set[str] = field(default_factory=set)
+    starts_at_keyframe: bool = False
+    unreadable: int = 0  # messages that did not parse as CompressedVideo
+    first_ns: int | None = None
+
+    def add(self, data: bytes, log_time_ns: int) -> None:
+        try:
+            video = CompressedVideo.FromString(data)
+        except DecodeError:
+            self.unreadable += 1
+            return
+        key = video.format == "h264" and h264_is_keyframe(video.data)
+        self.frames += 1
+        self.keyframes += key
+        self.bytes += len(video.data)
+        self.formats.add(video.format)
+        if self.first_ns is None or log_time_ns < self.first_ns:
+            self.first_ns, self.starts_at_keyframe = log_time_ns, key
+
+
+@dataclass
 class FileSummary:
     path: Path
     profile: str
@@ -40,6 +71,7 @@ class FileSummary:
     channels: list[ChannelSummary]
     metadata: dict[str, dict[str, str]]
     tf_frames: list[tuple[str, str]] = field(default_factory=list)  # first /tf: (parent, child)
+    video: VideoSummary | None = None  # /camera/stereo/video, if the file has it
 
     @property
     def foxglove_topics(self) -> list[str]:
@@ -70,6 +102,7 @@ def summarize(path: Path) -> FileSummary:
         header = reader.get_header()
         channels: dict[int, ChannelSummary] = {}
         tf_frames: list[tuple[str, str]] = []
+        video: VideoSummary | None = None
         for schema, channel, message in reader.iter_messages(log_time_order=False):
             summary = channels.get(channel.id)
             if summary is None:
@@ -78,6 +111,9 @@ def summarize(path: Path) -> FileSummary:
             summary.count += 1
             if channel.topic == TF and summary.count == 1:
                 tf_frames = _frames(message.data)
+            if channel.topic == STEREO_VIDEO:
+                video = video or VideoSummary()
+                video.add(message.data, message.log_time)
             t = message.log_time
             summary.first_ns = t if summary.first_ns is None else min(summary.first_ns, t)
             summary.last_ns = t if summary.last_ns is None else max(summary.last_ns, t)
@@ -88,7 +124,8 @@ def summarize(path: Path) -> FileSummary:
         except McapError:
             pass  # a file cut short has no metadata index
     return FileSummary(Path(path), header.profile, header.library,
-                       sorted(channels.values(), key=lambda c: c.topic), metadata, tf_frames)
+                       sorted(channels.values(), key=lambda c: c.topic), metadata, tf_frames,
+                       video)
 
 
 def _frames(data: bytes) -> list[tuple[str, str]]:
@@ -126,6 +163,18 @@ def report(summary: FileSummary) -> str:
     if summary.tf_frames:
         lines.append("frames (first /tf): " + ", ".join(
             f"{parent}->{child}" for parent, child in summary.tf_frames))
+    video = summary.video
+    if video is not None:
+        video_channel = next(c for c in summary.channels if c.topic == STEREO_VIDEO)
+        span = (video_channel.last_ns - video_channel.first_ns) / 1e9
+        rate = f", {video.bytes * 8 / span / 1e3:.0f} kbit/s" if span > 0 else ""
+        lines.append(
+            f"video {STEREO_VIDEO}: {video.frames} frames ({', '.join(sorted(video.formats))}), "
+            f"{video.keyframes} key frame{'' if video.keyframes == 1 else 's'}, "
+            f"{video.bytes} bytes{rate}, "
+            + ("starts at a key frame" if video.starts_at_keyframe
+               else "does NOT start at a key frame (a player shows nothing until one)")
+            + (f", {video.unreadable} unreadable" if video.unreadable else ""))
     for name, values in summary.metadata.items():
         lines.append(f"metadata {name}:")
         lines += [f"  {key}: {value}" for key, value in values.items()]

@@ -12,7 +12,8 @@ monotonic per channel):
 - ``/robot/tool_pose``  Pose, the slave's measured tool pose carried by the acks (base frame)
 - ``/robot/wrench``  Wrench, the wrench at the tool carried by the acks (tool axes)
 - ``/camera/stereo_header``  StereoHeader, once per stream of pairs (calibration of both eyes)
-- ``/camera/stereo_pair``  StereoPair, the pairs as they came (JPEG bytes, capture times)
+- ``/camera/stereo_pair``  StereoPair, the pairs as they came (JPEG bytes or an H.264 frame,
+  capture times)
 - ``/decision_server/events``  StreamEventsResponse, the DecisionServer's events (control,
   watchdog holds, assistance changes, teleop session states, dependency changes); never the
   arm's state samples, which come on a stream of their own (`RobotStateFeed`) so their flood
@@ -28,7 +29,13 @@ Lichtblick shows it in stock panels (docs/foxglove_layout.json):
   once a stereo header has given their poses
 - ``/joint_states``  JointStates, each /robot/state sample's joint angles and rates
 - ``/force/arrow``  SceneUpdate, one per /robot/wrench: the force as an arrow in the tool frame
-- ``/camera/{left,right}/image``  CompressedImage, one per stereo pair and eye (the same JPEG)
+- ``/camera/{left,right}/image``  CompressedImage, one per stereo pair and eye (the same JPEG),
+  when the stream is JPEG
+- ``/camera/stereo/video``  CompressedVideo (format h264), when the stream is H.264: each pair's
+  side-by-side access unit as it came (both eyes in one picture, the left eye in the left half),
+  stamped with its capture time, frame ``camera_stereo``. It starts at a key frame: a stream's
+  pairs before its first key frame are left out of it (a player cannot start elsewhere); they
+  stay in /camera/stereo_pair
 - ``/camera/{left,right}/calibration``  CameraCalibration, one per stereo pair and eye (so a
   player that seeks always has the calibration next to the image)
 
@@ -70,6 +77,7 @@ TOOL_POSE = "/robot/tool_pose"
 WRENCH = fox.ROBOT_WRENCH
 STEREO_HEADER = "/camera/stereo_header"
 STEREO_PAIR = "/camera/stereo_pair"
+STEREO_VIDEO = fox.STEREO_VIDEO
 EVENTS = "/decision_server/events"
 ROBOT_STATE = fox.ROBOT_STATE
 CHANNELS = (COMMAND, HEARTBEAT, ACK, TOOL_POSE, WRENCH, STEREO_HEADER, STEREO_PAIR, EVENTS,
@@ -90,6 +98,7 @@ class SessionRecorder:
         self._lock = threading.Lock()  # closing
         self._last: dict[str, int] = {}  # topic -> last log time written
         self._header: sc_pb.StereoHeader | None = None
+        self._video_keyed = False  # the video channel has had this stream's first key frame
         self._arm = fox.ArmTransforms()  # the writer thread's
         self._runs: list[dict] = []
         self.counts: Counter[str] = Counter()
@@ -147,16 +156,26 @@ class SessionRecorder:
         captured = time_ns(frame.pair.left_capture_time) or now
         if frame.header != self._header:
             self._header = frame.header
+            self._video_keyed = False  # a new stream: its video starts at its first key frame
             self._arm.set_cameras(frame.header)
             self._write(STEREO_HEADER, frame.header, now)
         self._write(STEREO_PAIR, frame.pair, now, captured)
-        images = self._convert(fox.LEFT_IMAGE, lambda: fox.camera_images(frame.pair))
+        if frame.header.encoding == sc_pb.IMAGE_ENCODING_H264:
+            self._video_keyed |= frame.pair.keyframe
+            if self._video_keyed:
+                self._foxglove(STEREO_VIDEO, lambda: fox.stereo_video(frame.pair), now, captured)
+            else:
+                self.skipped[STEREO_VIDEO] += 1  # before the stream's first key frame
+        else:
+            images = self._convert(fox.LEFT_IMAGE, lambda: fox.camera_images(frame.pair))
+            for topic, message in zip((fox.LEFT_IMAGE, fox.RIGHT_IMAGE), images or (),
+                                      strict=False):
+                self._write(topic, message, now, captured)
         calibrations = self._convert(fox.LEFT_CALIBRATION,
                                      lambda: fox.camera_calibrations(frame.header, captured))
-        for topics, messages in (((fox.LEFT_IMAGE, fox.RIGHT_IMAGE), images),
-                                 ((fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION), calibrations)):
-            for topic, message in zip(topics, messages or (), strict=False):
-                self._write(topic, message, now, captured)
+        for topic, message in zip((fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION),
+                                  calibrations or (), strict=False):
+            self._write(topic, message, now, captured)
 
     def event(self, event: pb.StreamEventsResponse, received_ns: int | None = None) -> None:
         """One of the DecisionServer's events, as the station's event stream delivered it;

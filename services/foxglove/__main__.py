@@ -1,8 +1,8 @@
 """python -m services.foxglove: the slave station's live view, a Foxglove WebSocket server
-(foxglove-sdk) streaming the arm's frames, joint states, the force arrow and both cameras, in
-the same channels as the MCAP recordings (services.foxglove.live). Open it in Foxglove or
-Lichtblick: "Open connection" > "Foxglove WebSocket" > ws://127.0.0.1:8765, with the layout
-docs/foxglove_layout.json.
+(foxglove-sdk) streaming the arm's frames, joint states, the force arrow and both cameras (each
+eye's JPEG, and both side by side as H.264 video), in the same channels as the MCAP recordings
+(services.foxglove.live). Open it in Foxglove or Lichtblick: "Open connection" > "Foxglove
+WebSocket" > ws://127.0.0.1:8765, with the layout docs/foxglove_layout.json.
 
 It reads ProxyRobot, ForceSensor and StereoCamera as an observer, each stream only while a
 viewer watches one of its topics. It listens on loopback by default. The Foxglove protocol has
@@ -25,7 +25,7 @@ from pathlib import Path
 import foxglove
 from foxglove import Context, StatusLevel
 
-from services.foxglove.feeds import station_feeds
+from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
 from services.foxglove.live import Demand, LiveChannels
 from services.runtime.config import configure_logging
 from services.runtime.process import ready_line, watch_parent
@@ -62,7 +62,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--wrench-hz", type=float, default=50.0,
                         help="the force rate (/force/arrow), decimated from the sensor's 1 kHz")
     parser.add_argument("--stereo-fps", type=float, default=10.0,
-                        help="the cameras' frame rate, at most")
+                        help="the cameras' frame rate, at most (the JPEG images and the video)")
+    parser.add_argument("--video-kbit", type=int, default=DEFAULT_VIDEO_KBIT,
+                        help="the H.264 video's bitrate ceiling, kbit/s (/camera/stereo/video; "
+                             "it adapts below it to what the camera's link delivers)")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     return parser
 
@@ -71,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     configure_logging(NAME, args.log_level)
     dump_stacks_on_signal()
-    for option in ("state_hz", "wrench_hz", "stereo_fps"):
+    for option in ("state_hz", "wrench_hz", "stereo_fps", "video_kbit"):
         if not getattr(args, option) > 0:
             print(f"{NAME}: --{option.replace('_', '-')} must be > 0", file=sys.stderr)
             return 2
@@ -98,8 +101,8 @@ def main(argv: list[str] | None = None) -> int:
     viewers = _Viewers()
     feeds = station_feeds(channels, *upstream, state_hz=args.state_hz,
                           wrench_hz=args.wrench_hz, stereo_fps=args.stereo_fps,
-                          on_status=viewers.show_feed_status)
-    demand = Demand(lambda feed, wanted: feeds[feed].want(wanted))
+                          video_kbit=args.video_kbit, on_status=viewers.show_feed_status)
+    demand = Demand(lambda feed, wanted: feeds[feed].want(wanted), channels.viewer_joined)
     for feed in feeds.values():
         feed.start()
     stop = threading.Event()

@@ -1,7 +1,8 @@
 """Our telerobot.v1 messages as Foxglove's own schemas (foxglove_schemas_protobuf), so Foxglove
 or Lichtblick shows a recording or a live stream in its stock panels: the arm in the 3D panel
-(/tf), the joint angles (/joint_states), the contact force as an arrow (/force/arrow), and each
-eye's images with its calibration. Pure conversion: no grpc, no I/O.
+(/tf), the joint angles (/joint_states), the contact force as an arrow (/force/arrow), each
+eye's images with its calibration, and an H.264 stream's side-by-side video
+(/camera/stereo/video, CompressedVideo). Pure conversion: no grpc, no I/O.
 
 Frames (Foxglove frame ids):
 
@@ -12,6 +13,9 @@ Frames (Foxglove frame ids):
 - ``flange`` (DH frame 6) in ``link6``; ``tool`` (the tool frame) in ``flange``.
 - ``camera_left`` / ``camera_right`` in ``base``, where the calibration gives the eye's pose
   (OpenCV axes: x right, y down, z forward, which are also Foxglove's camera axes).
+- ``camera_stereo``: the side-by-side video's frame id (both eyes in one picture, the left eye
+  in the left half); no transform gives it a pose, as no single pinhole model describes the
+  picture (each eye's calibration describes its own half).
 """
 
 from __future__ import annotations
@@ -25,6 +29,7 @@ from foxglove_schemas_protobuf.ArrowPrimitive_pb2 import ArrowPrimitive
 from foxglove_schemas_protobuf.CameraCalibration_pb2 import CameraCalibration
 from foxglove_schemas_protobuf.Color_pb2 import Color
 from foxglove_schemas_protobuf.CompressedImage_pb2 import CompressedImage
+from foxglove_schemas_protobuf.CompressedVideo_pb2 import CompressedVideo
 from foxglove_schemas_protobuf.FrameTransform_pb2 import FrameTransform
 from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
 from foxglove_schemas_protobuf.JointState_pb2 import JointState
@@ -48,6 +53,7 @@ LEFT_IMAGE = "/camera/left/image"
 RIGHT_IMAGE = "/camera/right/image"
 LEFT_CALIBRATION = "/camera/left/calibration"
 RIGHT_CALIBRATION = "/camera/right/calibration"
+STEREO_VIDEO = "/camera/stereo/video"  # an H.264 stream's side-by-side frames
 # Our own messages, next to Foxglove's, in recordings and the live view.
 ROBOT_STATE = "/robot/state"  # telerobot.v1.RobotState
 ROBOT_WRENCH = "/robot/wrench"  # telerobot.v1.Wrench, in tool axes
@@ -59,6 +65,7 @@ FOXGLOVE_TOPICS: dict[str, type] = {
     RIGHT_IMAGE: CompressedImage,
     LEFT_CALIBRATION: CameraCalibration,
     RIGHT_CALIBRATION: CameraCalibration,
+    STEREO_VIDEO: CompressedVideo,
 }
 
 BASE_FRAME = "base"
@@ -67,6 +74,7 @@ FLANGE_FRAME = "flange"
 TOOL_FRAME = "tool"
 LEFT_CAMERA_FRAME = "camera_left"
 RIGHT_CAMERA_FRAME = "camera_right"
+STEREO_CAMERA_FRAME = "camera_stereo"
 
 FORCE_ARROW_M_PER_N = 0.01  # arrow length per newton: 10 N draws 0.1 m
 FORCE_ARROW_ENTITY = "tool_force"
@@ -240,6 +248,29 @@ def camera_images(pair: sc_pb.StereoPair) -> tuple[CompressedImage, CompressedIm
         for stamp, frame, data in ((pair.left_capture_time, LEFT_CAMERA_FRAME, pair.left_image),
                                    (pair.right_capture_time, RIGHT_CAMERA_FRAME,
                                     pair.right_image)))
+
+
+def stereo_video(pair: sc_pb.StereoPair) -> CompressedVideo:
+    """An H.264 pair's side-by-side access unit as it came (Annex B, not re-encoded), format
+    "h264", stamped with the left eye's capture time, in ``camera_stereo``."""
+    if not pair.video_frame:
+        raise ValueError("a CompressedVideo needs an H.264 frame; this pair has none (an image "
+                         "stream's pair?): ask the camera for IMAGE_ENCODING_H264")
+    return CompressedVideo(timestamp=pair.left_capture_time, frame_id=STEREO_CAMERA_FRAME,
+                           data=pair.video_frame, format="h264")
+
+
+_IDR_SLICE = 5  # H.264 NAL unit type of an IDR picture's slice
+
+
+def h264_is_keyframe(access_unit: bytes) -> bool:
+    """Whether an Annex B access unit holds an IDR picture (a decoder may start at it)."""
+    start = access_unit.find(b"\x00\x00\x01")
+    while 0 <= start < len(access_unit) - 3:
+        if access_unit[start + 3] & 0x1F == _IDR_SLICE:
+            return True
+        start = access_unit.find(b"\x00\x00\x01", start + 3)
+    return False
 
 
 def _calibration(eye: sc_pb.CameraCalibration, frame: str, header: sc_pb.StereoHeader,

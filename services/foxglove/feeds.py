@@ -1,6 +1,11 @@
 """The live view's upstream streams: one thread per feed that holds its server stream open
 while the feed is wanted, cancels it when no viewer watches any more, and reopens it after an
-error (a service restarting) with a capped back-off. Read-only calls (role observer)."""
+error (a service restarting) with a capped back-off. Read-only calls (role observer).
+
+The video feed's stream takes receipts: each pair is reported (ReportReceipt, sent without
+waiting for its answer), which keeps the frames in flight within the path and lets a receipt
+ask for a key frame when the live view needs one (LiveChannels.take_keyframe_request); its
+bitrate adapts below --video-kbit."""
 
 from __future__ import annotations
 
@@ -11,7 +16,7 @@ from collections.abc import Callable, Iterator
 import grpc
 from google.protobuf import duration_pb2
 
-from services.foxglove.live import STATE, STEREO, WRENCH, LiveChannels
+from services.foxglove.live import STATE, STEREO, VIDEO, WRENCH, LiveChannels
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import force_sensor_pb2_grpc, proxy_robot_pb2_grpc, stereo_camera_pb2_grpc
 from telerobot.v1 import proxy_robot_pb2 as pr_pb
@@ -21,6 +26,8 @@ log = logging.getLogger(__name__)
 
 RETRY_MIN_S = 0.5
 RETRY_MAX_S = 2.0  # (the arm not connected yet is the usual cause: show it soon after)
+RECEIPT_TIMEOUT_S = 5.0
+DEFAULT_VIDEO_KBIT = 1000  # the video's ceiling: 640x480 per eye, 10 fps (README: the live view)
 
 
 class Feed:
@@ -102,12 +109,48 @@ class Feed:
                 self._wake.wait_for(lambda: self._stopped or not self._wanted, retry_s)
             retry_s = min(2 * retry_s, RETRY_MAX_S)
 
+
+class VideoReceipts:
+    """The video stream's side of receipts: the stream's id from its header, then for each
+    pair a ReportReceipt sent without waiting (asking for a key frame when `channels` wants
+    one). A receipt that fails is not retried: the next one carries the bytes anyway."""
+
+    def __init__(self, camera: stereo_camera_pb2_grpc.StereoCameraStub, channels: LiveChannels):
+        self._camera = camera
+        self._channels = channels
+        self._stream_id = ""
+        self._received_bytes = 0
+        self._lock = threading.Lock()
+        self._pending: set = set()  # the calls in flight (a future nobody holds is cancelled)
+
+    def opened(self, header: sc_pb.StereoHeader) -> None:
+        self._stream_id, self._received_bytes = header.stream_id, 0
+
+    def received(self, pair: sc_pb.StereoPair) -> None:
+        self._received_bytes += len(pair.video_frame) + len(pair.left_image) + \
+            len(pair.right_image)
+        if not self._stream_id:
+            return
+        future = self._camera.ReportReceipt.future(sc_pb.ReportReceiptRequest(
+            stream_id=self._stream_id, sequence=pair.sequence,
+            received_bytes=self._received_bytes,
+            want_keyframe=self._channels.take_keyframe_request()), timeout=RECEIPT_TIMEOUT_S)
+        with self._lock:
+            self._pending.add(future)
+        future.add_done_callback(self._done)
+
+    def _done(self, future) -> None:
+        with self._lock:
+            self._pending.discard(future)
+
+
 def station_feeds(channels: LiveChannels, proxy_robot: grpc.Channel, force_sensor: grpc.Channel,
                   stereo_camera: grpc.Channel, *, state_hz: float, wrench_hz: float,
-                  stereo_fps: float, sensor_hz: float = 1000.0,
+                  stereo_fps: float, video_kbit: int = DEFAULT_VIDEO_KBIT,
+                  sensor_hz: float = 1000.0,
                   on_status: Callable[[str, str | None], None] = lambda name, why: None,
                   ) -> dict[str, Feed]:
-    """The three feeds of the live view (services.foxglove.live), not started; `on_status`
+    """The four feeds of the live view (services.foxglove.live), not started; `on_status`
     as Feed's."""
     robot = proxy_robot_pb2_grpc.ProxyRobotStub(proxy_robot)
     sensor = force_sensor_pb2_grpc.ForceSensorStub(force_sensor)
@@ -132,6 +175,21 @@ def station_feeds(channels: LiveChannels, proxy_robot: grpc.Channel, force_senso
         return camera.StreamPairs(sc_pb.StreamPairsRequest(
             encoding=sc_pb.IMAGE_ENCODING_JPEG, max_fps=stereo_fps))
 
+    def open_video():
+        return camera.StreamPairs(sc_pb.StreamPairsRequest(
+            encoding=sc_pb.IMAGE_ENCODING_H264, max_fps=stereo_fps, receipts=True,
+            max_kbit_per_s=video_kbit))
+
+    receipts = VideoReceipts(camera, channels)
+
+    def on_video(response: sc_pb.StreamPairsResponse) -> None:
+        if response.WhichOneof("content") == "header":
+            receipts.opened(response.header)
+            channels.video_stream_opened()
+        else:
+            channels.stereo_video(response.pair)  # first: a key frame clears the request
+            receipts.received(response.pair)  # that this receipt would otherwise repeat
+
     def on_wrench(response: fs_pb.StreamWrenchResponse) -> None:
         for sample in response.samples:
             channels.wrench(sample)
@@ -145,4 +203,5 @@ def station_feeds(channels: LiveChannels, proxy_robot: grpc.Channel, force_senso
     return {STATE: Feed(STATE, open_state, lambda response: channels.robot_state(response.state),
                         on_status),
             WRENCH: Feed(WRENCH, open_wrench, on_wrench, on_status),
-            STEREO: Feed(STEREO, open_stereo, on_pairs, on_status)}
+            STEREO: Feed(STEREO, open_stereo, on_pairs, on_status),
+            VIDEO: Feed(VIDEO, open_video, on_video, on_status)}

@@ -218,5 +218,26 @@ def test_every_topic_has_its_foxglove_schema():
     assert fx.FOXGLOVE_TOPICS[fx.FORCE_ARROW].DESCRIPTOR.full_name == "foxglove.SceneUpdate"
     assert {fx.FOXGLOVE_TOPICS[t].DESCRIPTOR.full_name for t in (fx.LEFT_IMAGE, fx.RIGHT_IMAGE)
             } == {"foxglove.CompressedImage"}
-    assert len(fx.FOXGLOVE_TOPICS) == 7
+    assert fx.FOXGLOVE_TOPICS[fx.STEREO_VIDEO].DESCRIPTOR.full_name == "foxglove.CompressedVideo"
+    assert len(fx.FOXGLOVE_TOPICS) == 8
     assert p.FLANGE_SITE == fx.FLANGE_FRAME
+
+
+def test_an_h264_pair_is_one_compressed_video_frame_and_key_frames_are_told_apart():
+    from services.stereo_camera.h264 import H264Encoder
+    from services.stereo_camera.pattern import pattern_image
+    from services.stereo_camera.source import LEFT, RIGHT
+
+    encoder = H264Encoder(64, 48, fps=10, kbit_per_s=300)
+    units = [encoder.encode(pattern_image(i, LEFT, 64, 48), pattern_image(i, RIGHT, 64, 48),
+                            keyframe=i == 2) for i in range(3)]
+    assert [key for _, key in units] == [True, False, True]
+    assert [fx.h264_is_keyframe(data) for data, _ in units] == [True, False, True]
+    pair = sc_pb.StereoPair(video_frame=units[1][0], left_capture_time=convert.timestamp(T0),
+                            right_capture_time=convert.timestamp(T0 + 5))
+    video = fx.stereo_video(pair)
+    assert (video.format, video.frame_id) == ("h264", fx.STEREO_CAMERA_FRAME)
+    assert video.data == units[1][0] and video.timestamp.ToNanoseconds() == T0
+    assert not fx.h264_is_keyframe(b"") and not fx.h264_is_keyframe(b"\x00\x00\x01")
+    with pytest.raises(ValueError, match="IMAGE_ENCODING_H264"):
+        fx.stereo_video(sc_pb.StereoPair(left_image=b"\xff\xd8\xff"))

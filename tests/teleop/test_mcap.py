@@ -5,7 +5,8 @@ mcap-protobuf-support's decoder, from the schemas in the file alone); then a rea
 (`python -m clients.teleop --modes feedback --mcap`) against a local station leaves a file whose
 counts are the session's own, in our channels and Foxglove's: its images decode to the
 header's size and each /tf is Pinocchio's forward kinematics of the state sample it came
-from."""
+from. An H.264 stream, from a real in-process StereoCamera, is recorded as Foxglove's
+CompressedVideo, which starts at a key frame and decodes (PyAV) to the stream's pictures."""
 
 from __future__ import annotations
 
@@ -40,6 +41,9 @@ from wire import convert
 T0 = 1_700_000_000_000_000_000  # a fixed wall-clock time, ns
 MS = 1_000_000
 ALL_CHANNELS = {*channels.CHANNELS, *channels.FOXGLOVE_CHANNELS}
+# A session's camera channels depend on its stream's encoding: each eye's JPEG, or the video.
+JPEG_CHANNELS = ALL_CHANNELS - {fox.STEREO_VIDEO}
+H264_CHANNELS = ALL_CHANNELS - {fox.LEFT_IMAGE, fox.RIGHT_IMAGE}
 
 
 def read_back(path) -> dict[str, list]:
@@ -54,15 +58,39 @@ def read_back(path) -> dict[str, list]:
     return messages
 
 
-def check_the_foxglove_channels(read: dict[str, list]) -> None:
-    """Every image decodes to its calibration's size (the header's); each /tf is Pinocchio's
-    forward kinematics of the /robot/state and /joint_states sample with the same stamp."""
-    headers = [proto for *_, proto in read[channels.STEREO_HEADER]]
-    sizes = {(h.height_px, h.width_px) for h in headers}
+def decode_video(read: dict[str, list]) -> list[np.ndarray]:
+    """The /camera/stereo/video messages decoded in order (PyAV), as RGB pictures; the first
+    must be a key frame, and every message must give one picture."""
+    import av
+
+    videos = [proto for *_, proto in read[fox.STEREO_VIDEO]]
+    assert videos and fox.h264_is_keyframe(videos[0].data)
+    decoder = av.CodecContext.create("h264", "r")
+    pictures = []
+    for video in videos:
+        assert (video.format, video.frame_id) == ("h264", fox.STEREO_CAMERA_FRAME)
+        (frame,) = decoder.decode(av.Packet(video.data))  # no B-frames: one out per one in
+        pictures.append(frame.to_ndarray(format="rgb24"))
+    return pictures
+
+
+def check_the_video(read: dict[str, list], sizes: set[tuple[int, int]]) -> None:
+    """An H.264 session: no per-eye images; the video decodes to pictures of both eyes side by
+    side, each eye the size of the header and the calibration."""
+    assert not read[fox.LEFT_IMAGE] and not read[fox.RIGHT_IMAGE]
+    (*_, calibration) = read[fox.LEFT_CALIBRATION][0]
+    for picture in decode_video(read):
+        assert picture.shape[:2] in {(height, 2 * width) for height, width in sizes}
+        assert picture.shape[:2] == (calibration.height, 2 * calibration.width)
+
+
+def check_the_images(read: dict[str, list], sizes: set[tuple[int, int]]) -> None:
+    """A JPEG session: no video; every image decodes to its calibration's size (the
+    header's)."""
+    assert not read[fox.STEREO_VIDEO]
     for image_topic, calibration_topic in ((fox.LEFT_IMAGE, fox.LEFT_CALIBRATION),
                                            (fox.RIGHT_IMAGE, fox.RIGHT_CALIBRATION)):
-        assert len(read[image_topic]) == len(read[calibration_topic]) == \
-            len(read[channels.STEREO_PAIR])
+        assert len(read[image_topic]) == len(read[calibration_topic])
         for (*_, image), (*_, calibration) in zip(read[image_topic], read[calibration_topic],
                                                   strict=True):
             decoded = cv2.imdecode(np.frombuffer(image.data, np.uint8), cv2.IMREAD_COLOR)
@@ -70,6 +98,20 @@ def check_the_foxglove_channels(read: dict[str, list]) -> None:
             assert decoded.shape[:2] == (calibration.height, calibration.width)
             assert decoded.shape[:2] in sizes
             assert calibration.K[0] > 0 and image.frame_id == calibration.frame_id
+
+
+def check_the_foxglove_channels(read: dict[str, list]) -> None:
+    """Every image (JPEG) or video frame (H.264, side by side) decodes to its calibration's
+    size (the header's); each /tf is Pinocchio's forward kinematics of the /robot/state and
+    /joint_states sample with the same stamp."""
+    headers = [proto for *_, proto in read[channels.STEREO_HEADER]]
+    sizes = {(h.height_px, h.width_px) for h in headers}
+    for calibration_topic in (fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION):
+        assert len(read[calibration_topic]) == len(read[channels.STEREO_PAIR])
+    if {h.encoding for h in headers} == {sc_pb.IMAGE_ENCODING_H264}:
+        check_the_video(read, sizes)
+    else:
+        check_the_images(read, sizes)
     kinematics = PumaKinematics()
     states = {proto.sample_time.ToNanoseconds(): proto for *_, proto in read[channels.ROBOT_STATE]}
     joints = {proto.timestamp.ToNanoseconds(): proto for *_, proto in read[fox.JOINT_STATES]}
@@ -176,7 +218,7 @@ def test_a_scripted_session_reads_back_channel_for_channel(tmp_path):
     recorder.ack(Ack.from_proto(pb.CommandAck(sequence=7), T0))  # after close: ignored
 
     read = read_back(path)
-    assert set(read) == ALL_CHANNELS == set(written)
+    assert set(read) == JPEG_CHANNELS == set(written)
     for topic, protos in written.items():
         assert len(read[topic]) == len(protos) == recorder.counts[topic], topic
         # Decoded with the file's own schema (a class of its own), equal to what was written.
@@ -207,7 +249,8 @@ def test_a_scripted_session_reads_back_channel_for_channel(tmp_path):
 
     summary = mcap_inspect.summarize(path)
     assert {c.topic: c.count for c in summary.channels} == dict(recorder.counts)
-    assert summary.foxglove_topics == list(fox.FOXGLOVE_TOPICS)
+    assert summary.foxglove_topics == [t for t in fox.FOXGLOVE_TOPICS if t in JPEG_CHANNELS]
+    assert summary.video is None
     assert ("base", "link1") in summary.tf_frames and ("flange", "tool") in summary.tf_frames
     assert {c.topic: c.schema for c in summary.channels}[channels.COMMAND] == \
         "telerobot.v1.MasterCommand"
@@ -235,14 +278,110 @@ def test_inspect_prints_every_channel_and_says_when_it_cannot_read(tmp_path, cap
         scripted_session(recorder)
     assert mcap_inspect.main([str(path)]) == 0
     out = capsys.readouterr().out
-    for topic in ALL_CHANNELS:
+    for topic in JPEG_CHANNELS:
         assert topic in out
-    assert "telerobot.v1.CommandAck" in out and f"{len(ALL_CHANNELS)} channels" in out
-    assert "foxglove.FrameTransforms" in out and "Foxglove channels: 7 of 7" in out
+    assert "telerobot.v1.CommandAck" in out and f"{len(JPEG_CHANNELS)} channels" in out
+    assert "foxglove.FrameTransforms" in out
+    assert f"Foxglove channels: 7 of 8 (none on {fox.STEREO_VIDEO})" in out
     assert "link5->link6" in out
     (tmp_path / "junk.mcap").write_bytes(b"not an mcap file")
     assert mcap_inspect.main([str(tmp_path / "junk.mcap")]) == 2
     assert "cannot read" in capsys.readouterr().err
+
+
+def test_an_h264_stream_is_recorded_as_compressed_video_that_starts_at_a_key_frame(tmp_path):
+    """A real in-process StereoCamera (the pattern source) streams H.264 to the Python client
+    (receipts, decoding), whose frames go to the recorder as make teleop's StereoView hands
+    them; the file's video is the stream, frame for frame."""
+    from clients.python.stereo_camera import StereoCameraClient
+    from services.stereo_camera.pattern import PatternSource, pattern_image
+    from services.stereo_camera.source import LEFT, RIGHT
+    from tests.stereo_camera.conftest import psnr, start_camera
+
+    width, height, pairs = 160, 120, 12
+    camera = start_camera(PatternSource(width, height, fps=30))
+    path = tmp_path / "session.mcap"
+    frames = []
+    try:
+        with StereoCameraClient(camera.channel) as client, SessionRecorder(path) as recorder:
+            stream = client.stream_pairs(encoding=sc_pb.IMAGE_ENCODING_H264, max_fps=15,
+                                         timeout=30)
+            try:
+                for frame in stream:
+                    recorder.stereo(frame, frame.received_ns)
+                    frames.append(frame)
+                    if len(frames) == pairs:
+                        break
+            finally:
+                stream.cancel()
+    finally:
+        camera.close()
+    assert frames[0].pair.keyframe and recorder.skipped[fox.STEREO_VIDEO] == 0
+
+    read = read_back(path)
+    assert set(read) == {channels.STEREO_HEADER, channels.STEREO_PAIR, fox.STEREO_VIDEO,
+                         fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION}
+    assert {schema for _, _, schema, _ in read[fox.STEREO_VIDEO]} == {"foxglove.CompressedVideo"}
+    assert len(read[fox.STEREO_VIDEO]) == len(read[channels.STEREO_PAIR]) == pairs
+    videos = [video for *_, video in read[fox.STEREO_VIDEO]]
+    assert {video.format for video in videos} == {"h264"}
+    assert fox.h264_is_keyframe(videos[0].data)
+    # Stamped with each pair's capture time; the same access units the camera sent.
+    assert [v.timestamp.ToNanoseconds() for v in videos] == [
+        f.pair.left_capture_time.ToNanoseconds() for f in frames]
+    assert [v.data for v in videos] == [f.pair.video_frame for f in frames]
+    check_the_foxglove_channels_of_the_camera(read)
+    pictures = decode_video(read)
+    assert [p.shape for p in pictures] == [(height, 2 * width, 3)] * pairs
+    for picture, frame in zip(pictures, frames, strict=True):
+        # What the operator's client decoded, and close to what the camera captured.
+        assert np.array_equal(picture[:, :width], frame.left)
+        assert np.array_equal(picture[:, width:], frame.right)
+        assert psnr(picture[:, :width], pattern_image(frame.sequence, LEFT, width, height)) > 28
+        assert psnr(picture[:, width:], pattern_image(frame.sequence, RIGHT, width, height)) > 28
+
+    summary = mcap_inspect.summarize(path)
+    assert summary.video.frames == pairs and summary.video.starts_at_keyframe
+    assert summary.video.formats == {"h264"} and summary.video.keyframes >= 1
+    assert f"video {fox.STEREO_VIDEO}: {pairs} frames (h264)" in mcap_inspect.report(summary)
+
+
+def check_the_foxglove_channels_of_the_camera(read: dict[str, list]) -> None:
+    headers = [proto for *_, proto in read[channels.STEREO_HEADER]]
+    for calibration_topic in (fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION):
+        assert len(read[calibration_topic]) == len(read[channels.STEREO_PAIR])
+    check_the_video(read, {(h.height_px, h.width_px) for h in headers})
+
+
+def test_a_recording_that_joins_a_video_stream_mid_way_starts_at_its_next_key_frame(tmp_path):
+    """A player cannot start at a delta frame: the pairs before the stream's first key frame
+    stay in /camera/stereo_pair but not in the video, which then decodes from its start."""
+    from services.stereo_camera.h264 import H264Encoder
+    from services.stereo_camera.pattern import pattern_image
+    from services.stereo_camera.source import LEFT, RIGHT
+
+    width, height = 64, 48
+    header = stereo_header(width, height)
+    header.encoding = sc_pb.IMAGE_ENCODING_H264
+    header.stream_id = "s1"
+    encoder = H264Encoder(width, height, fps=10, kbit_per_s=300)
+    path = tmp_path / "session.mcap"
+    with SessionRecorder(path) as recorder:
+        for i in range(6):
+            data, key = encoder.encode(pattern_image(i, LEFT, width, height),
+                                       pattern_image(i, RIGHT, width, height), keyframe=i == 3)
+            pair = sc_pb.StereoPair(sequence=i, video_frame=data, keyframe=key,
+                                    left_capture_time=convert.timestamp(T0 + i * 100 * MS))
+            if i:  # the recording starts after the stream's first (key) frame
+                recorder.stereo(StereoFrame(header, pair, None, None), T0 + i * 100 * MS + MS)
+    read = read_back(path)
+    assert [p.sequence for *_, p in read[channels.STEREO_PAIR]] == [1, 2, 3, 4, 5]
+    assert [v.timestamp.ToNanoseconds() for *_, v in read[fox.STEREO_VIDEO]] == [
+        T0 + i * 100 * MS for i in (3, 4, 5)]
+    assert len(decode_video(read)) == 3
+    assert recorder.skipped == {fox.STEREO_VIDEO: 2}
+    assert len(read[fox.LEFT_CALIBRATION]) == 5
+    assert "starts at a key frame" in mcap_inspect.report(mcap_inspect.summarize(path))
 
 
 @pytest.mark.e2e
@@ -279,7 +418,9 @@ def test_make_teleop_mcap_counts_match_the_sessions_own(tmp_path):
     assert all(e.WhichOneof("event") for *_, e in read[channels.EVENTS])
     # Every channel, ours and Foxglove's, with the session's own counts: the recorder's (in
     # the summary and in the file's metadata), the feed's state samples, the video's frames.
-    assert set(read) == ALL_CHANNELS, ALL_CHANNELS ^ set(read)
+    (header, *_) = [proto for *_, proto in read[channels.STEREO_HEADER]]
+    expected = H264_CHANNELS if header.encoding == sc_pb.IMAGE_ENCODING_H264 else JPEG_CHANNELS
+    assert set(read) == expected, expected ^ set(read)
     for topic, messages in read.items():
         times = [log_time for log_time, *_ in messages]
         assert times == sorted(times), topic
@@ -293,7 +434,8 @@ def test_make_teleop_mcap_counts_match_the_sessions_own(tmp_path):
     assert counts[fox.TF] == counts[fox.JOINT_STATES] == counts[channels.ROBOT_STATE]
     assert counts[fox.FORCE_ARROW] == counts[channels.WRENCH]
     assert counts[channels.STEREO_PAIR] == summary["video_frames"] > 0, summary
-    for topic in (fox.LEFT_IMAGE, fox.RIGHT_IMAGE, fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION):
+    camera_topics = {fox.LEFT_IMAGE, fox.RIGHT_IMAGE, fox.STEREO_VIDEO} & expected
+    for topic in (*camera_topics, fox.LEFT_CALIBRATION, fox.RIGHT_CALIBRATION):
         assert counts[topic] == counts[channels.STEREO_PAIR], topic
     # The events channel still holds no state samples (they have a stream of their own).
     assert not [e for *_, e in read[channels.EVENTS]
