@@ -70,7 +70,7 @@ def test_the_layout_parses_and_every_panel_is_configured():
     layout = json.loads(LAYOUT.read_text())
     assert sorted(panels(layout["layout"])) == sorted(layout["configById"])
     kinds = sorted(panel.split("!")[0] for panel in layout["configById"])
-    assert kinds == ["3D", "Image", "Image", "Plot", "Plot", "RawMessages"]
+    assert kinds == ["3D", "Image", "Plot", "Plot", "RawMessages"]
 
 
 def test_every_topic_it_names_is_recorded_down_to_the_field():
@@ -95,11 +95,10 @@ def test_the_panels_watch_the_right_topics():
     assert config["3D!arm"]["followTf"] == fox.BASE_FRAME
     assert config["3D!arm"]["topics"][fox.TF]["visible"]
     assert config["3D!arm"]["topics"][fox.FORCE_ARROW]["visible"]
-    assert config["Image!left"]["imageMode"] == {
-        "imageTopic": fox.LEFT_IMAGE, "calibrationTopic": fox.LEFT_CALIBRATION,
-        "annotations": {}}
-    assert config["Image!right"]["imageMode"]["imageTopic"] == fox.RIGHT_IMAGE
-    assert config["Image!right"]["imageMode"]["calibrationTopic"] == fox.RIGHT_CALIBRATION
+    # One panel for the cameras: the side-by-side H.264 video (an H.264 session's recording has
+    # no per-eye images, and the live view then opens one camera stream, not two).
+    assert config["Image!stereo"]["imageMode"] == {"imageTopic": fox.STEREO_VIDEO,
+                                                   "annotations": {}}
     assert config["RawMessages!events"]["topicPath"] == mcap_log.EVENTS
 
 
