@@ -38,6 +38,9 @@ def main(argv: list[str] | None = None) -> int:
                              "with --quick)")
     parser.add_argument("--video-long-seconds", type=float, default=None, metavar="S",
                         help="the video group's long run (default 60, 20 with --quick)")
+    parser.add_argument("--video-source", choices=("sim", "pattern"), default=None,
+                        help="the video group's camera source (default sim: the work cell "
+                             "rendered; pattern: a test card, next to no CPU, a diagnostic)")
     args = parser.parse_args(argv)
     if args.soak_minutes is not None and args.soak_minutes <= 0:
         parser.error("--soak-minutes must be > 0")
@@ -46,7 +49,8 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(f"--{name.replace('_', '-')} must be > 0")
     return run(Plan(quick=args.quick, only=tuple(args.only), profile=args.profile,
                     soak_minutes=args.soak_minutes, video_s=args.video_seconds,
-                    video_long_s=args.video_long_seconds), Path(args.out))
+                    video_long_s=args.video_long_seconds, video_source=args.video_source),
+               Path(args.out))
 
 
 if __name__ == "__main__":

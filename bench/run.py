@@ -77,6 +77,7 @@ class Plan:
     soak_minutes: float | None = None  # the soak's length; None: 10 minutes, 1 when quick
     video_s: float | None = None  # each video probe's length; None: video.PROBE_S (quick: less)
     video_long_s: float | None = None  # the video group's long run; None: video.LONG_S
+    video_source: str | None = None  # the video group's camera source; None: video.SOURCE
 
     @property
     def command_s(self) -> float:
