@@ -476,10 +476,10 @@ def markdown(result: dict, source: str = "bench/results/latest.json") -> str:
     for cells_ in table_rows(result):
         lines.append("| " + " | ".join(cell.replace("|", "\\|") for cell in cells_) + " |")
     lines.append("")
-    failed = [r for r in result.get("cells", []) if not r["pass"]]
-    lines.append(f"H.264 met every goal in {len(result.get('cells', [])) - len(failed)} of "
-                 f"{len(result.get('cells', []))} cells"
-                 + (f"; missed in {', '.join(r['name'] for r in failed)}." if failed else "."))
+    lines.append(goal_counts(result.get("cells", [])))
+    cpu = cpu_summary([*result.get("cells", []), *([long] if long else [])])
+    if cpu:
+        lines += ["", cpu]
     if long:
         h264 = long.get("h264") or {}
         lines.append("")
@@ -487,6 +487,56 @@ def markdown(result: dict, source: str = "bench/results/latest.json") -> str:
                      f"{long['seconds']:g} s: {_figures(h264)[0]} fps, age p95 by thirds "
                      f"{_thirds(h264)} ms: {_verdict(long)}.")
     return "\n".join(lines) + "\n"
+
+
+def goal_counts(records: list[dict]) -> str:
+    """How many cells met all the goals, and each goal on its own."""
+    cells_ = [r for r in records if not r.get("long")]
+    failed = [r["name"] for r in cells_ if not r["pass"]]
+
+    def met(missed) -> int:
+        return sum(1 for r in cells_ if not any(
+            missed(miss) or miss.startswith(("failed:", "pending:")) for miss in r["misses"]))
+
+    return (f"H.264 met every goal in {len(cells_) - len(failed)} of {len(cells_)} cells"
+            + (f" (missed in {', '.join(failed)})" if failed and len(failed) < len(cells_)
+               else "")
+            + f"; ≥ {MIN_FPS:g} fps in {met(lambda miss: 'fps <' in miss)}, the age's p95 "
+              f"bound in {met(lambda miss: miss.startswith('age p95'))}, no growing backlog in "
+              f"{met(lambda miss: miss.startswith('backlog'))}.")
+
+
+def cpu_summary(records: list[dict]) -> str:
+    """The range over the H.264 probes of how busy the machine was and of each process's
+    share of a core, and the camera's CPU per frame shown."""
+    busy, shares, per_frame = [], {}, []
+    for record in records:
+        cpu = (record.get("h264") or {}).get("cpu") or {}
+        if not cpu:
+            continue
+        busy.append(cpu.get("machine_busy_pct"))
+        for name, value in (cpu.get("cpu_pct") or {}).items():
+            shares.setdefault(name, []).append(value)
+        if (value := camera_ms_per_frame(record.get("h264"))) is not None:
+            per_frame.append(value)
+    busy = [value for value in busy if value is not None]
+    loads = [r["load_avg_at_start"] for r in records if r.get("load_avg_at_start") is not None]
+    if not busy:
+        return ""
+
+    def span(values: list[float]) -> str:
+        low, high = min(values), max(values)
+        digits = 1 if high < 10 else 0
+        return (f"{low:.{digits}f}" if round(low, digits) == round(high, digits)
+                else f"{low:.{digits}f}–{high:.{digits}f}")
+
+    ordered = sorted(shares.items(), key=lambda item: -max(item[1]))
+    return (f"While the H.264 probes ran the machine was {span(busy)} % busy (both cores); "
+            "share of one core: " + ", ".join(f"{name} {span(values)} %"
+                                              for name, values in ordered)
+            + (f"; the camera's CPU per frame shown {span(per_frame)} ms" if per_frame else "")
+            + (f"; the load average at the cells' starts {span(loads)}" if loads else "")
+            + ".")
 
 
 # -- the figure -----------------------------------------------------------------------------------

@@ -24,12 +24,13 @@ def _probe(fps=29.5, p50=40.0, p95=60.0, thirds=(60.0, 58.0, 61.0), kbit=900.0, 
                     "cpu_pct": {"stereo_camera": 70.0, "world": 33.0, "probe": 12.0}}}
 
 
-def _record(trip, cap, h264=None, jpeg=None, long=False, seconds=10.0):
+def _record(trip, cap, h264=None, jpeg=None, long=False, seconds=10.0, load=1.5):
     cell = video.Cell(trip, cap, seconds, long)
     h264 = h264 if h264 is not None else _probe(p50=trip / 2 + 30, p95=trip / 2 + 50)
     record = {"name": cell.name, "round_trip_ms": trip, "one_way_delay_ms": cell.one_way_ms,
               "bottleneck_mbit": cap, "seconds": seconds, "skip_s": video.SKIP_S,
-              "long": long, "age_bound_ms": cell.age_bound_ms, "h264": h264}
+              "long": long, "age_bound_ms": cell.age_bound_ms, "h264": h264,
+              "load_avg_at_start": load}
     if not long:
         record["jpeg"] = jpeg if jpeg is not None else _probe(
             fps=12.0, p50=trip / 2 + 200, p95=trip / 2 + 400, kbit=6000.0, codec="jpeg")
@@ -44,7 +45,7 @@ RESULT = {
               _record(183.0, None),
               _record(183.0, 2.0, h264=_probe(fps=18.0, p50=150.0, p95=260.0,
                                               thirds=(200.0, 240.0, 300.0)))],
-    "long": _record(183.0, 2.0, long=True, seconds=60.0),
+    "long": _record(183.0, 2.0, long=True, seconds=60.0, load=4.25),
     "round_trips_ms": [0.0, 183.0], "bottlenecks_mbit": [None, 2.0],
     "camera": {"source": "sim", "width_px": 640, "height_px": 480, "fps": 30.0},
     "goals": {"min_fps": 25.0, "age_slack_ms": 80.0, "backlog_ms": 20.0},
@@ -157,9 +158,21 @@ def test_the_fragment_has_the_run_the_table_the_misses_and_the_long_run():
     table = [line for line in text.splitlines() if line.startswith("| ")]
     assert table[0] == "| " + " | ".join(video.HEADER) + " |" and len(table) == 1 + 5
     assert "from `bench/results/latest.json`" in text and "load average 0.5 → 2.0" in text
-    assert "H.264 met every goal in 3 of 4 cells; missed in 183ms_2mbit." in text
+    assert ("H.264 met every goal in 3 of 4 cells (missed in 183ms_2mbit); ≥ 25 fps in 3, the "
+            "age's p95 bound in 3, no growing backlog in 3.") in text
+    assert ("the machine was 95 % busy (both cores); share of one core: stereo_camera 70 %, "
+            "world 33 %, probe 12 %; the camera's CPU per frame shown 24–39 ms") in text
     assert "Long run, 183 ms / 2 Mbit/s, 60 s: 29.5 fps" in text and ": PASS." in text
-    assert "640×480 per eye" in text
+    assert "640×480 per eye" in text and "load average at the cells' starts 1.5–4.2" in text
+
+
+def test_goal_counts_count_each_goal_met_and_a_failed_probe_meets_none():
+    records = [_record(0.0, None), _record(400.0, 2.0, h264={"status": "failed", "reason": "x"}),
+               _record(50.0, 2.0, h264=_probe(fps=20.0, p95=70.0))]
+    assert video.goal_counts(records) == (
+        "H.264 met every goal in 1 of 3 cells (missed in 400ms_2mbit, 50ms_2mbit); ≥ 25 fps "
+        "in 1, the age's p95 bound in 2, no growing backlog in 2.")
+    assert "missed in" not in video.goal_counts(records[1:])  # all missed: no list
 
 
 def test_a_failed_probe_shows_as_failed_in_the_table():
