@@ -6,7 +6,7 @@ sequence and the bytes received so far) tell it, one round trip late. From them 
 - **the delivery rate**: bytes the client reported over the last DELIVERY_WINDOW_S, by time.
 - **the queue**: a frame's round trip (sent to reported) against the least over
   MIN_RTT_WINDOW_S (the path's own round trip). A queue that QUEUE_RECEIPTS receipts in a row
-  saw is real; one late receipt is a hiccup (a busy host, a big key frame). A frame's round
+  saw is real; a few late receipts are a hiccup (a busy host, a big key frame). A frame's round
   trip includes its own time on the narrowest link, so a stream whose frames fill much of the
   link reads as a queue of up to a frame interval: the thresholds leave room for that, and the
   target settles where its frames take under UNDERUSE_S on the line.
@@ -37,14 +37,16 @@ from collections import deque
 from dataclasses import dataclass
 
 OVERUSE_S = 0.030  # a queue this long means the path is full...
-QUEUE_RECEIPTS = 3  # ...when this many receipts in a row see it
+QUEUE_RECEIPTS = 5  # ...when this many receipts in a row see it (a sixth of a second at
+# 30 fps: a host that was busy for a moment is not a full path)
 UNDERUSE_S = 0.015  # a queue below this means the path has room
 DECREASE = 0.85  # of the delivery rate, on overuse
 INCREASE_PER_S = 0.25  # relative growth of the target per second while the path has room...
 NEAR_CAPACITY = 0.9  # ...below this much of the capacity last seen; above it the growth is...
 NEAR_INCREASE_PER_S = 0.05  # ...this much of that capacity a second...
 FORGET_CAPACITY = 1.1  # ...until it passes it by this much with no queue: the path widened
-GROWTH_CAP = 1.5  # the target never exceeds this times the delivery rate
+GROWTH_CAP = 2.0  # the target never exceeds this times the delivery rate (x264 makes
+# about two thirds of its target on the simulated scenes: a tighter cap would hold it there)
 SLACK_S = 0.040  # the window's room beyond one round trip
 START_RTT_S = 0.2  # assumed until the first receipt
 MIN_RTT_WINDOW_S = 10.0

@@ -12,9 +12,8 @@ import pytest
 from clients.python.stereo_camera import StereoCameraClient
 from services.impairment.link import LinkProfile
 from services.impairment.proxy import ImpairmentProxy
-from services.stereo_camera.pattern import PatternSource
 from telerobot.v1 import stereo_camera_pb2 as pb
-from tests.stereo_camera.conftest import start_camera
+from tests.conftest import start_service
 
 ONE_WAY_S = 0.025
 WIDE_BPS, NARROW_BPS = 4e6, 0.6e6
@@ -26,9 +25,12 @@ def _link(bandwidth_bps: float) -> LinkProfile:
 
 @pytest.fixture
 def camera():
-    camera = start_camera(PatternSource(640, 480, fps=30))  # H.264 of about 1.4 Mbit/s
+    """A camera process (its encoder does not share this process's GIL with the link and the
+    client), whose pattern makes H.264 of about 1.4 Mbit/s at its best."""
+    camera = start_service("stereo_camera", "--source", "pattern", "--width", "640",
+                           "--height", "480", "--fps", "30")
     yield camera
-    camera.close()
+    camera.stop()
 
 
 def test_the_bitrate_steps_down_when_the_bottleneck_narrows_and_back_up_when_it_widens(camera):
@@ -59,10 +61,13 @@ def test_the_bitrate_steps_down_when_the_bottleneck_narrows_and_back_up_when_it_
     def targets(start: float, end: float) -> list[int]:
         return [target for at, target, _ in seen if start <= at < end]
 
-    assert wide_target > NARROW_BPS / 1e3 * 1.5, "the wide path lets the target grow"
-    assert max(targets(narrowed_at + 3.0, widened_at)) < NARROW_BPS / 1e3, \
-        "down below the narrow bottleneck within 3 s"
-    assert max(targets(widened_at, widened_at + 14.0)) > NARROW_BPS / 1e3 * 1.5, \
+    # x264 makes about two thirds of its target on this pattern, and the target may run up to
+    # twice what arrives: what the test can hold it to is a step, not a level.
+    narrow_targets = targets(narrowed_at + 3.0, widened_at)
+    assert max(narrow_targets) < wide_target / 2, "down within 3 s of the narrowing"
+    assert max(targets(widened_at, widened_at + 14.0)) > 1.5 * max(narrow_targets), \
         "back up once it widens"
+    # Without the step down, the 1.4 Mbit/s stream would queue in the 0.6 Mbit/s link and
+    # age by seconds; with it, the narrowing's queue drains and stays drained.
     settled = [age for at, _, age in seen if narrowed_at + 3.0 <= at < widened_at]
-    assert np.percentile(settled, 95) < ONE_WAY_S + 0.250, "the narrowing's queue drained"
+    assert np.percentile(settled, 95) < ONE_WAY_S + 0.200, np.percentile(settled, [50, 95])
