@@ -485,7 +485,11 @@ def markdown(result: dict, source: str = "bench/results/latest.json") -> str:
         lines.append("")
         lines.append(f"Long run, {_link_text(long)[0]} / {_link_text(long)[1]}, "
                      f"{long['seconds']:g} s: {_figures(h264)[0]} fps, age p95 by thirds "
-                     f"{_thirds(h264)} ms: {_verdict(long)}.")
+                     f"{_thirds(h264)} ms: {_verdict(long)}"
+                     + ("" if any(m.startswith(("backlog", "failed", "pending"))
+                                  for m in long["misses"])
+                        else f" (no growing backlog: the last third within {BACKLOG_MS:g} ms of "
+                             "the first)") + ".")
     return "\n".join(lines) + "\n"
 
 
