@@ -223,7 +223,7 @@ def run(args: argparse.Namespace) -> int:
             model = RobotModel(client.robot.get_state().tool_pose)
             view = None
             if not args.no_video:
-                view = StereoView(client.camera, model, out, args.calibration,
+                view = StereoView(client.camera, client.robot, model, out, args.calibration,
                                   on_frame=recorder and recorder.stereo)
                 view.start()
             status, results, traces = StatusLine(), [], []

@@ -179,8 +179,6 @@ class PegInHole:
         if ack.tool_pose is not None:
             self.trace.tool_time_s.append(now)
             self.trace.tool_position_m.append(ack.tool_pose.translation.copy())
-            # Measured at the ack (the station's clock), for the ball on each video frame.
-            self.model.observe(ack.apply_time_ns or ack.receive_time_ns, ack.tool_pose)
             if ack.status.name == "READY":  # at rest: the measured pose corrects the model
                 self.model.correct(ack.tool_pose)
 

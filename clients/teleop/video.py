@@ -23,7 +23,8 @@ from clients.ar import (
     save_identification,
 )
 from clients.ar.adapters import projections_from_header
-from clients.python.errors import UnavailableError
+from clients.python.errors import TelerobotRpcError, UnavailableError
+from clients.python.proxy_robot import ProxyRobotClient
 from clients.python.stereo_camera import StereoCameraClient
 from clients.python.values import StereoFrame
 from clients.python.video_meter import VideoMeter
@@ -34,6 +35,7 @@ from telerobot.v1 import stereo_camera_pb2 as sc_pb
 log = logging.getLogger(__name__)
 
 RESUME_AFTER_S = 0.5  # while the camera is away, try again this often
+POSE_PERIOD_S = 0.02  # the arm's measured poses, for the ball, at 50 Hz
 # Every frame shown, with where the ball went in each eye (pixels): the overlay can be checked
 # against the arm's true pose at the capture time.
 FRAMES_LOG = "stereo_frames.csv"
@@ -49,11 +51,44 @@ def reference_points() -> np.ndarray:
     return np.array([(a, b, c) for a in xs for b in ys for c in zs])
 
 
-class StereoView:
-    """Streams pairs, draws the ball where the RobotModel predicts the tool, records video."""
+class MeasuredPoses:
+    """The arm's measured tool poses, stamped by the station, into the RobotModel's history
+    (`observe`), whatever moves the arm: ProxyRobot.StreamState on a thread of its own, opened
+    again after a failure until stopped."""
 
-    def __init__(self, camera: StereoCameraClient, model: RobotModel, out: Path,
-                 calibration_path: Path, on_frame: Callable[[StereoFrame], Any] | None = None):
+    def __init__(self, robot: ProxyRobotClient, model: RobotModel, stop: threading.Event):
+        self._robot = robot
+        self._model = model
+        self._stop = stop
+        self._stream = None
+        self._thread = threading.Thread(target=self._run, name="measured-poses", daemon=True)
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def join(self) -> None:
+        if self._stream is not None:
+            self._stream.cancel()
+        self._thread.join(5)
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            try:
+                self._stream = self._robot.stream_state(POSE_PERIOD_S)
+                for state in self._stream:
+                    self._model.observe(state.sample_time_ns, state.tool_pose)
+            except TelerobotRpcError as error:
+                log.debug("measured poses paused: %s", error)
+            self._stop.wait(RESUME_AFTER_S)
+
+
+class StereoView:
+    """Streams pairs, draws the ball where the station measured the tool at each pair's capture
+    time, records video."""
+
+    def __init__(self, camera: StereoCameraClient, robot: ProxyRobotClient, model: RobotModel,
+                 out: Path, calibration_path: Path,
+                 on_frame: Callable[[StereoFrame], Any] | None = None):
         self._camera = camera
         self._on_frame = on_frame  # every pair as it came (make teleop --mcap records them)
         self._model = model
@@ -61,6 +96,7 @@ class StereoView:
         self._calibration_path = calibration_path
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, name="stereo-view", daemon=True)
+        self._poses = MeasuredPoses(robot, model, self._stop)
         self.recorder: VideoRecorder | None = None
         self.error: str | None = None
         self.identified_now = False
@@ -71,10 +107,12 @@ class StereoView:
         self._frames_log = (self._out / FRAMES_LOG).open("w", newline="")
         self._frames_csv = csv.writer(self._frames_log)
         self._frames_csv.writerow(FRAMES_LOG_COLUMNS)
+        self._poses.start()
         self._thread.start()
 
     def stop(self) -> None:
         self._stop.set()
+        self._poses.join()
         self._thread.join(10)
         if self.recorder is not None:
             self.recorder.close()

@@ -18,7 +18,7 @@ class _CameraThatRestarts:
         self.streams = 0
         self.resumed = threading.Event()
 
-    def stream_pairs(self, **_options):
+    def stream_pairs(self, *_encoding, **_options):
         self.streams += 1
         if self.streams == 1:
             raise UnavailableError(grpc.StatusCode.UNAVAILABLE, "Connection refused")
@@ -26,9 +26,21 @@ class _CameraThatRestarts:
         return iter(())  # up again; the test stops the view before any frame
 
 
+class _ArmAtRest:
+    """An arm whose state stream ends at once (nothing moves while the camera is away)."""
+
+    class _Ended(list):
+        def cancel(self) -> None:
+            pass
+
+    def stream_state(self, _period_s):
+        return self._Ended()
+
+
 def test_the_video_pauses_and_resumes_when_the_camera_restarts(tmp_path):
     camera = _CameraThatRestarts()
-    view = StereoView(camera, model=None, out=tmp_path, calibration_path=tmp_path / "c.json")
+    view = StereoView(camera, _ArmAtRest(), model=None, out=tmp_path,
+                      calibration_path=tmp_path / "c.json")
     view.start()
     wait_for(camera.resumed.is_set, what="a second stream, after the pause")
     view.stop()
