@@ -20,14 +20,14 @@ and releases control. The link runs in the orchestrator, which does little else 
 
 One result row, `network`, holds a row per run (`rows`) and the run it came from (`run`), so a
 run of this group alone merges it into an existing latest.json instead of replacing the whole
-run there (`merge`), and a run without it keeps the one there (`previous_row`).
+run there (`report.merge_row`), and a run without it keeps the one there
+(`report.previous_row`).
 `plot` draws the peak force against the round trip, a line per mode.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import json
 import time
 import zlib
 from collections.abc import Callable
@@ -304,29 +304,6 @@ def _partial(peg, duration_s: float, error: Exception) -> dict:
             "round_trip_p99_ms": float(np.percentile(trips, 99)) if trips else None,
             "commands": peg._commands, "acks": len(peg._acks),
             "error": f"{type(error).__name__}: {error}"}
-
-
-# -- latest.json --------------------------------------------------------------------------------
-
-def previous_row(latest: Path) -> dict | None:
-    """The network row of an existing latest.json, if it holds one (with its own `run`)."""
-    try:
-        row = json.loads(latest.read_text()).get(NAME)
-    except (OSError, ValueError):
-        return None
-    return row if isinstance(row, dict) and "run" in row else None
-
-
-def merge(latest: Path, row: dict) -> bool:
-    """Put `row` into an existing latest.json in place of its network row, leaving the rest
-    (another run's scenarios and metadata) as it was. False if there is no such file."""
-    try:
-        document = json.loads(latest.read_text())
-    except (OSError, ValueError):
-        return False
-    document[NAME] = row
-    latest.write_text(json.dumps(document, indent=2, default=str))
-    return True
 
 
 # -- the figure --------------------------------------------------------------------------------

@@ -343,6 +343,28 @@ def _soak_lines(r: dict) -> list[str]:
     return lines
 
 
+def previous_row(latest: Path, name: str) -> dict | None:
+    """Row `name` of an existing latest.json, if it holds one with its own `run` (the network
+    and video groups' rows, which may come from another run than the rest)."""
+    try:
+        row = json.loads(latest.read_text()).get(name)
+    except (OSError, ValueError):
+        return None
+    return row if isinstance(row, dict) and "run" in row else None
+
+
+def merge_row(latest: Path, name: str, row: dict) -> bool:
+    """Put `row` into an existing latest.json as row `name`, leaving the rest (another run's
+    scenarios and metadata) as it was. False if there is no such file."""
+    try:
+        document = json.loads(latest.read_text())
+    except (OSError, ValueError):
+        return False
+    document[name] = row
+    latest.write_text(json.dumps(document, indent=2, default=str))
+    return True
+
+
 def write_json(path: Path, results: dict[str, dict], ratios: dict, info: dict) -> None:
     document = {"time": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **info, **results,
                 "ratios": ratios}

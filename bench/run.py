@@ -980,11 +980,11 @@ class Bench:
             own[name] = row
         # The network and video groups alone: into the latest.json there, the rest kept.
         if own and set(self.plan.only) <= set(OWN_RUN_GROUPS) and latest.exists() and all(
-                [OWN_RUN_GROUPS[name].merge(latest, row) for name, row in own.items()]):
+                [report.merge_row(latest, name, row) for name, row in own.items()]):
             return [latest, *figures]
         written = dict(self.results)
-        for name, module in OWN_RUN_GROUPS.items():
-            previous = module.previous_row(latest) if name not in self.results else None
+        for name in OWN_RUN_GROUPS:
+            previous = report.previous_row(latest, name) if name not in self.results else None
             if previous is not None:  # a run without the group keeps the one there
                 written[name] = previous
         report.write_json(latest, written, ratios, info)

@@ -30,15 +30,14 @@ process's share of a core (bench/cpu.py): the camera (rendering and encoding), t
 
 One result row, `video`, holds a record per cell (`cells`), the long run (`long`), the goals,
 and the run it came from (`run`), so that a run of this group alone merges it into the
-latest.json already there (`merge`) and a run without it keeps the one there (`previous_row`),
-as the network group's row does. `table_rows` / `terminal_lines` / `markdown` are its tables
+latest.json already there (`report.merge_row`) and a run without it keeps the one there
+(`report.previous_row`), as the network group's row does. `table_rows` / `terminal_lines` / `markdown` are its tables
 (`python -m bench.readme` writes `markdown` into docs/bench_video.md) and `plot` its figure.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import json
 import os
 import time
 from dataclasses import dataclass
@@ -296,29 +295,6 @@ def measure(params: dict) -> dict:
                    receipts=params["receipts"], skip_s=params["skip_s"])
     result["cpu"] = window.stop()
     return result
-
-
-# -- latest.json ----------------------------------------------------------------------------------
-
-def previous_row(latest: Path) -> dict | None:
-    """The video row of an existing latest.json, if it holds one (with its own `run`)."""
-    try:
-        row = json.loads(latest.read_text()).get(NAME)
-    except (OSError, ValueError):
-        return None
-    return row if isinstance(row, dict) and "run" in row else None
-
-
-def merge(latest: Path, row: dict) -> bool:
-    """Put `row` into an existing latest.json in place of its video row, leaving the rest as
-    it was. False if there is no such file."""
-    try:
-        document = json.loads(latest.read_text())
-    except (OSError, ValueError):
-        return False
-    document[NAME] = row
-    latest.write_text(json.dumps(document, indent=2, default=str))
-    return True
 
 
 # -- text -----------------------------------------------------------------------------------------

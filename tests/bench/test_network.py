@@ -9,7 +9,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from bench import network, readme
+from bench import network, readme, report
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -100,16 +100,16 @@ def test_a_run_ended_by_an_error_reports_its_trace_up_to_it_and_the_error():
 
 def test_merge_replaces_only_the_network_row(tmp_path):
     latest = tmp_path / "latest.json"
-    assert not network.merge(latest, RESULT)  # nothing to merge into
+    assert not report.merge_row(latest, network.NAME, RESULT)  # nothing to merge into
     latest.write_text(json.dumps({"time": "earlier", "teleop_50": {"p50_ms": 1.0},
                                   "network": {"rows": [], "run": {"time": "old"}}}))
-    assert network.merge(latest, RESULT)
+    assert report.merge_row(latest, network.NAME, RESULT)
     document = json.loads(latest.read_text())
     assert document["time"] == "earlier" and document["teleop_50"] == {"p50_ms": 1.0}
     assert document["network"]["run"]["time"] == RESULT["run"]["time"]
-    assert network.previous_row(latest)["runs"] == 5
+    assert report.previous_row(latest, network.NAME)["runs"] == 5
     latest.write_text(json.dumps({"network": {"status": "failed"}}))  # no run of its own
-    assert network.previous_row(latest) is None
+    assert report.previous_row(latest, network.NAME) is None
 
 
 def test_the_terminal_table_has_a_line_per_run():

@@ -226,7 +226,7 @@ def test_a_video_run_alone_merges_its_row_and_a_run_without_it_keeps_it(tmp_path
     _bench(tmp_path, ("closed_loop",), {"closed_loop": {"p50_ms": 4.0}}).write()
     document = json.loads(latest.read_text())
     assert document["closed_loop"]["p50_ms"] == 4.0 and document["video"]["judged"] == 5
-    assert video.previous_row(latest)["passed"] == 4
+    assert report.previous_row(latest, video.NAME)["passed"] == 4
 
 
 def test_readme_writes_the_fragment_and_the_figure_and_leaves_readme_alone(tmp_path):
