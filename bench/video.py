@@ -31,8 +31,9 @@ process's share of a core (bench/cpu.py): the camera (rendering and encoding), t
 One result row, `video`, holds a record per cell (`cells`), the long run (`long`), the goals,
 and the run it came from (`run`), so that a run of this group alone merges it into the
 latest.json already there (`report.merge_row`) and a run without it keeps the one there
-(`report.previous_row`), as the network group's row does. `table_rows` / `terminal_lines` / `markdown` are its tables
-(`python -m bench.readme` writes `markdown` into docs/bench_video.md) and `plot` its figure.
+(`report.previous_row`), as the network group's row does. `table_rows` / `terminal_lines` /
+`markdown` are its tables (`python -m bench.readme` writes `markdown` into
+docs/bench_video.md) and `plot` its figure.
 """
 
 from __future__ import annotations
