@@ -18,8 +18,9 @@ sequence and the bytes received so far) tell it, one round trip late. From them 
   below that capacity (or none is known), near it by only NEAR_INCREASE_PER_S of the capacity
   a second, so that a long round trip, which shows an overshoot late, overshoots little; past
   FORGET_CAPACITY x the capacity with no queue the path has widened and the fast growth resumes.
-  Never above GROWTH_CAP x what was delivered: an encoder that needs less than its target does
-  not inflate it.
+  Above the start rate, never above GROWTH_CAP x what was delivered: an encoder that needs
+  less than its target does not inflate it (x264 makes about half its target at the lowest
+  rates, so below the start rate the target grows regardless).
 - **the window**: bytes sent and not yet reported when a frame is sent, at most the target
   rate times the path's round trip plus SLACK_S, and never less than a frame. A frame that
   would not fit is not encoded (the sender skips the tick: the frame rate falls, nothing
@@ -203,8 +204,9 @@ class StreamPacer:
             grown = self.target_bps + NEAR_INCREASE_PER_S * capacity * max(0.0, dt_s)
         else:
             grown = self.target_bps * (1.0 + INCREASE_PER_S * max(0.0, dt_s))
-        if delivery is not None:
-            grown = min(grown, max(self.target_bps, GROWTH_CAP * delivery))
+        if delivery is not None:  # up to the start rate, which is safe to come back to
+            grown = min(grown, max(self.target_bps, GROWTH_CAP * delivery,
+                                   self.limits.start_kbit * 1e3))
         self.target_bps = grown
 
     def _decrease(self, delivery: float) -> None:

@@ -16,7 +16,7 @@ from telerobot.v1 import stereo_camera_pb2 as pb
 from tests.conftest import start_service
 
 ONE_WAY_S = 0.025
-WIDE_BPS, NARROW_BPS = 4e6, 0.6e6
+WIDE_BPS, NARROW_BPS = 4e6, 1.0e6
 
 
 def _link(bandwidth_bps: float) -> LinkProfile:
@@ -62,12 +62,12 @@ def test_the_bitrate_steps_down_when_the_bottleneck_narrows_and_back_up_when_it_
         return [target for at, target, _ in seen if start <= at < end]
 
     # x264 makes about two thirds of its target on this pattern, and the target may run up to
-    # twice what arrives: what the test can hold it to is a step, not a level.
-    narrow_targets = targets(narrowed_at + 3.0, widened_at)
-    assert max(narrow_targets) < wide_target / 2, "down within 3 s of the narrowing"
-    assert max(targets(widened_at, widened_at + 14.0)) > 1.5 * max(narrow_targets), \
+    # twice what arrives: what the test can hold it to is a step in its level, not a value.
+    narrow_level = np.median(targets(narrowed_at + 3.0, widened_at))
+    assert narrow_level < wide_target / 2, "down within 3 s of the narrowing"
+    assert max(targets(widened_at, widened_at + 14.0)) > 1.5 * narrow_level, \
         "back up once it widens"
-    # Without the step down, the 1.4 Mbit/s stream would queue in the 0.6 Mbit/s link and
+    # Without the step down, the 1.4 Mbit/s stream would queue in the 1 Mbit/s link and
     # age by seconds; with it, the narrowing's queue drains and stays drained.
     settled = [age for at, _, age in seen if narrowed_at + 3.0 <= at < widened_at]
     assert np.percentile(settled, 95) < ONE_WAY_S + 0.200, np.percentile(settled, [50, 95])
