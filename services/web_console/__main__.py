@@ -16,7 +16,7 @@ from services.runtime.config import PLAINTEXT_ENV, configure_logging
 from services.runtime.process import ready_line, watch_parent
 from services.runtime.server import PlaintextRefused, check_plaintext
 from services.runtime.stacks import dump_stacks_on_signal
-from services.web_console.app import ConsoleApp, TransportBoundProtocol
+from services.web_console.app import ConsoleApp
 from services.web_console.bridge import Upstream
 from wire.addresses import address_for, env_name
 from wire.stereo import LOW_LATENCY_OPTIONS
@@ -86,8 +86,8 @@ async def _serve(args) -> int:
     upstream, auth = _channels(args)
     host, port = args.address.rsplit(":", 1)
     config = uvicorn.Config(ConsoleApp(upstream, auth), host=host.strip("[]"), port=int(port),
-                            http=TransportBoundProtocol, log_level="warning", access_log=False,
-                            lifespan="on", ws_max_size=1 << 16, timeout_graceful_shutdown=2)
+                            log_level="warning", access_log=False, lifespan="on",
+                            ws_max_size=1 << 16, timeout_graceful_shutdown=2)
     server = uvicorn.Server(config)
     watch_parent(lambda: setattr(server, "should_exit", True))
     serving = asyncio.ensure_future(server.serve())

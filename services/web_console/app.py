@@ -1,14 +1,12 @@
 """The console's ASGI application: the page and its assets, the Connect bridge, the
-Teleoperate and receipts WebSockets, and /healthz for the launcher."""
+Teleoperate WebSocket, and /healthz for the launcher."""
 
 from __future__ import annotations
 
 from pathlib import Path
 from urllib.parse import urlsplit
 
-from uvicorn.protocols.http.h11_impl import H11Protocol
-
-from services.web_console import receipts, teleoperate
+from services.web_console import teleoperate
 from services.web_console.bridge import ConnectBridge, Upstream
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
@@ -25,25 +23,6 @@ _SECURITY_HEADERS = [
     (b"x-content-type-options", b"nosniff"),
     (b"cache-control", b"no-cache"),
 ]
-
-# The WebSockets: Teleoperate, and the video's receipts (receipts.py says why not Connect).
-_SOCKETS = {teleoperate.PATH: teleoperate.serve, receipts.PATH: receipts.serve}
-
-
-class TransportBoundProtocol(H11Protocol):
-    """uvicorn's HTTP/1.1 protocol, holding nothing of a response beyond what the socket took.
-
-    A server stream's messages go to the browser as the bridge reads them (bridge.py reads one
-    message from the DecisionServer, sends it, then reads the next), and a send waits while the
-    connection's write buffer is paused. asyncio lets that buffer hold 64 KiB before it pauses
-    (seconds of low-bitrate video, minutes of arm states) for a browser or link that reads
-    slowly; here it pauses as soon as the kernel's socket buffer is full, so the next message
-    is read from the DecisionServer only once the client's transport has taken the last one.
-    """
-
-    def connection_made(self, transport) -> None:
-        super().connection_made(transport)
-        transport.set_write_buffer_limits(high=0)
 
 
 def _assets() -> dict[str, Path]:
@@ -65,8 +44,7 @@ def same_origin(scope) -> bool:
 
 
 class ConsoleApp:
-    """Routes: /telerobot.v1.* (Connect), /ws/teleoperate and /ws/receipts (WebSockets),
-    /healthz, assets."""
+    """Routes: /telerobot.v1.* (Connect), /ws/teleoperate (WebSocket), /healthz, assets."""
 
     def __init__(self, upstream: Upstream, auth: str):
         self.upstream = upstream
@@ -79,12 +57,11 @@ class ConsoleApp:
             return await self._lifespan(receive, send)
         path = scope["path"]
         if scope["type"] == "websocket":
-            serve = _SOCKETS.get(path)
-            if serve is None or not same_origin(scope):
+            if path != teleoperate.PATH or not same_origin(scope):
                 await receive()
                 await send({"type": "websocket.close", "code": teleoperate.CLOSE_POLICY})
                 return
-            return await serve(scope, receive, send, self.upstream)
+            return await teleoperate.serve(scope, receive, send, self.upstream)
         if path.startswith(CONTRACT_PREFIX):
             return await self.bridge(scope, receive, send)
         if scope["method"] not in ("GET", "HEAD"):
