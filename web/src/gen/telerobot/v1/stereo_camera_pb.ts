@@ -15,7 +15,7 @@ import type { Message } from "@bufbuild/protobuf";
  * Describes the file telerobot/v1/stereo_camera.proto.
  */
 export const file_telerobot_v1_stereo_camera: GenFile = /*@__PURE__*/
-  fileDesc("CiB0ZWxlcm9ib3QvdjEvc3RlcmVvX2NhbWVyYS5wcm90bxIMdGVsZXJvYm90LnYxIhYKFEdldFN0cmVhbUluZm9SZXF1ZXN0IkMKFUdldFN0cmVhbUluZm9SZXNwb25zZRIqCgZoZWFkZXIYASABKAsyGi50ZWxlcm9ib3QudjEuU3RlcmVvSGVhZGVyIsIBChJTdHJlYW1QYWlyc1JlcXVlc3QSLQoIZW5jb2RpbmcYASABKA4yGy50ZWxlcm9ib3QudjEuSW1hZ2VFbmNvZGluZxIUCgxqcGVnX3F1YWxpdHkYAiABKAUSDwoHbWF4X2ZwcxgDIAEoARIxCg10cmFuc2Zlcl9tb2RlGAQgASgOMhoudGVsZXJvYm90LnYxLlRyYW5zZmVyTW9kZRIQCgh3aWR0aF9weBgFIAEoBRIRCgloZWlnaHRfcHgYBiABKAUieAoTU3RyZWFtUGFpcnNSZXNwb25zZRIsCgZoZWFkZXIYASABKAsyGi50ZWxlcm9ib3QudjEuU3RlcmVvSGVhZGVySAASKAoEcGFpchgCIAEoCzIYLnRlbGVyb2JvdC52MS5TdGVyZW9QYWlySABCCQoHY29udGVudCJZChJHZXRTbmFwc2hvdFJlcXVlc3QSLQoIZW5jb2RpbmcYASABKA4yGy50ZWxlcm9ib3QudjEuSW1hZ2VFbmNvZGluZxIUCgxqcGVnX3F1YWxpdHkYAiABKAUiaQoTR2V0U25hcHNob3RSZXNwb25zZRIqCgZoZWFkZXIYASABKAsyGi50ZWxlcm9ib3QudjEuU3RlcmVvSGVhZGVyEiYKBHBhaXIYAiABKAsyGC50ZWxlcm9ib3QudjEuU3RlcmVvUGFpciKYAgoMU3RlcmVvSGVhZGVyEhAKCHdpZHRoX3B4GAEgASgFEhEKCWhlaWdodF9weBgCIAEoBRItCghlbmNvZGluZxgDIAEoDjIbLnRlbGVyb2JvdC52MS5JbWFnZUVuY29kaW5nEjEKDXRyYW5zZmVyX21vZGUYBCABKA4yGi50ZWxlcm9ib3QudjEuVHJhbnNmZXJNb2RlEi0KBGxlZnQYBSABKAsyHy50ZWxlcm9ib3QudjEuQ2FtZXJhQ2FsaWJyYXRpb24SLgoFcmlnaHQYBiABKAsyHy50ZWxlcm9ib3QudjEuQ2FtZXJhQ2FsaWJyYXRpb24SEgoKYmFzZWxpbmVfbRgHIAEoARIOCgZzb3VyY2UYCCABKAkioAEKEUNhbWVyYUNhbGlicmF0aW9uEg0KBWZ4X3B4GAEgASgBEg0KBWZ5X3B4GAIgASgBEg0KBWN4X3B4GAMgASgBEg0KBWN5X3B4GAQgASgBEhIKCnByb2plY3Rpb24YBSADKAESJwoLY2FtZXJhX3Bvc2UYBiABKAsyEi50ZWxlcm9ib3QudjEuUG9zZRISCgpkaXN0b3J0aW9uGAcgAygBIuMBCgpTdGVyZW9QYWlyEhAKCHNlcXVlbmNlGAEgASgDEjUKEWxlZnRfY2FwdHVyZV90aW1lGAIgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBI2ChJyaWdodF9jYXB0dXJlX3RpbWUYAyABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wEhIKCmxlZnRfaW1hZ2UYBCABKAwSEwoLcmlnaHRfaW1hZ2UYBSABKAwSKwoIZXllX3NrZXcYBiABKAsyGS5nb29nbGUucHJvdG9idWYuRHVyYXRpb24qfQoNSW1hZ2VFbmNvZGluZxIeChpJTUFHRV9FTkNPRElOR19VTlNQRUNJRklFRBAAEhsKF0lNQUdFX0VOQ09ESU5HX1JBV19SR0I4EAESFwoTSU1BR0VfRU5DT0RJTkdfSlBFRxACEhYKEklNQUdFX0VOQ09ESU5HX1BORxADKoUBCgxUcmFuc2Zlck1vZGUSHQoZVFJBTlNGRVJfTU9ERV9VTlNQRUNJRklFRBAAEioKJlRSQU5TRkVSX01PREVfU0lOR0xFX0JVRkZFUl9TRVJJQUxJWkVEEAESKgomVFJBTlNGRVJfTU9ERV9ET1VCTEVfQlVGRkVSX0NPTkNVUlJFTlQQAjKwAgoMU3RlcmVvQ2FtZXJhEmIKDUdldFN0cmVhbUluZm8SIi50ZWxlcm9ib3QudjEuR2V0U3RyZWFtSW5mb1JlcXVlc3QaIy50ZWxlcm9ib3QudjEuR2V0U3RyZWFtSW5mb1Jlc3BvbnNlIgjI8xgD2PMYARJeCgtTdHJlYW1QYWlycxIgLnRlbGVyb2JvdC52MS5TdHJlYW1QYWlyc1JlcXVlc3QaIS50ZWxlcm9ib3QudjEuU3RyZWFtUGFpcnNSZXNwb25zZSIIyPMYA9jzGAEwARJcCgtHZXRTbmFwc2hvdBIgLnRlbGVyb2JvdC52MS5HZXRTbmFwc2hvdFJlcXVlc3QaIS50ZWxlcm9ib3QudjEuR2V0U25hcHNob3RSZXNwb25zZSIIyPMYBNjzGAFiBnByb3RvMw", [file_google_protobuf_duration, file_google_protobuf_timestamp, file_telerobot_v1_options, file_telerobot_v1_types]);
+  fileDesc("CiB0ZWxlcm9ib3QvdjEvc3RlcmVvX2NhbWVyYS5wcm90bxIMdGVsZXJvYm90LnYxIhYKFEdldFN0cmVhbUluZm9SZXF1ZXN0IkMKFUdldFN0cmVhbUluZm9SZXNwb25zZRIqCgZoZWFkZXIYASABKAsyGi50ZWxlcm9ib3QudjEuU3RlcmVvSGVhZGVyIuwBChJTdHJlYW1QYWlyc1JlcXVlc3QSLQoIZW5jb2RpbmcYASABKA4yGy50ZWxlcm9ib3QudjEuSW1hZ2VFbmNvZGluZxIUCgxqcGVnX3F1YWxpdHkYAiABKAUSDwoHbWF4X2ZwcxgDIAEoARIxCg10cmFuc2Zlcl9tb2RlGAQgASgOMhoudGVsZXJvYm90LnYxLlRyYW5zZmVyTW9kZRIQCgh3aWR0aF9weBgFIAEoBRIRCgloZWlnaHRfcHgYBiABKAUSEAoIcmVjZWlwdHMYByABKAgSFgoObWF4X2tiaXRfcGVyX3MYCCABKAUiagoUUmVwb3J0UmVjZWlwdFJlcXVlc3QSEQoJc3RyZWFtX2lkGAEgASgJEhAKCHNlcXVlbmNlGAIgASgDEhYKDnJlY2VpdmVkX2J5dGVzGAMgASgDEhUKDXdhbnRfa2V5ZnJhbWUYBCABKAgiSAoVUmVwb3J0UmVjZWlwdFJlc3BvbnNlEhkKEXRhcmdldF9rYml0X3Blcl9zGAEgASgFEhQKDHdpbmRvd19ieXRlcxgCIAEoAyJ4ChNTdHJlYW1QYWlyc1Jlc3BvbnNlEiwKBmhlYWRlchgBIAEoCzIaLnRlbGVyb2JvdC52MS5TdGVyZW9IZWFkZXJIABIoCgRwYWlyGAIgASgLMhgudGVsZXJvYm90LnYxLlN0ZXJlb1BhaXJIAEIJCgdjb250ZW50IlkKEkdldFNuYXBzaG90UmVxdWVzdBItCghlbmNvZGluZxgBIAEoDjIbLnRlbGVyb2JvdC52MS5JbWFnZUVuY29kaW5nEhQKDGpwZWdfcXVhbGl0eRgCIAEoBSJpChNHZXRTbmFwc2hvdFJlc3BvbnNlEioKBmhlYWRlchgBIAEoCzIaLnRlbGVyb2JvdC52MS5TdGVyZW9IZWFkZXISJgoEcGFpchgCIAEoCzIYLnRlbGVyb2JvdC52MS5TdGVyZW9QYWlyIqsCCgxTdGVyZW9IZWFkZXISEAoId2lkdGhfcHgYASABKAUSEQoJaGVpZ2h0X3B4GAIgASgFEi0KCGVuY29kaW5nGAMgASgOMhsudGVsZXJvYm90LnYxLkltYWdlRW5jb2RpbmcSMQoNdHJhbnNmZXJfbW9kZRgEIAEoDjIaLnRlbGVyb2JvdC52MS5UcmFuc2Zlck1vZGUSLQoEbGVmdBgFIAEoCzIfLnRlbGVyb2JvdC52MS5DYW1lcmFDYWxpYnJhdGlvbhIuCgVyaWdodBgGIAEoCzIfLnRlbGVyb2JvdC52MS5DYW1lcmFDYWxpYnJhdGlvbhISCgpiYXNlbGluZV9tGAcgASgBEg4KBnNvdXJjZRgIIAEoCRIRCglzdHJlYW1faWQYCSABKAkioAEKEUNhbWVyYUNhbGlicmF0aW9uEg0KBWZ4X3B4GAEgASgBEg0KBWZ5X3B4GAIgASgBEg0KBWN4X3B4GAMgASgBEg0KBWN5X3B4GAQgASgBEhIKCnByb2plY3Rpb24YBSADKAESJwoLY2FtZXJhX3Bvc2UYBiABKAsyEi50ZWxlcm9ib3QudjEuUG9zZRISCgpkaXN0b3J0aW9uGAcgAygBIqUCCgpTdGVyZW9QYWlyEhAKCHNlcXVlbmNlGAEgASgDEjUKEWxlZnRfY2FwdHVyZV90aW1lGAIgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBI2ChJyaWdodF9jYXB0dXJlX3RpbWUYAyABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wEhIKCmxlZnRfaW1hZ2UYBCABKAwSEwoLcmlnaHRfaW1hZ2UYBSABKAwSKwoIZXllX3NrZXcYBiABKAsyGS5nb29nbGUucHJvdG9idWYuRHVyYXRpb24SEwoLdmlkZW9fZnJhbWUYByABKAwSEAoIa2V5ZnJhbWUYCCABKAgSGQoRdGFyZ2V0X2tiaXRfcGVyX3MYCSABKAUqlgEKDUltYWdlRW5jb2RpbmcSHgoaSU1BR0VfRU5DT0RJTkdfVU5TUEVDSUZJRUQQABIbChdJTUFHRV9FTkNPRElOR19SQVdfUkdCOBABEhcKE0lNQUdFX0VOQ09ESU5HX0pQRUcQAhIWChJJTUFHRV9FTkNPRElOR19QTkcQAxIXChNJTUFHRV9FTkNPRElOR19IMjY0EAQqhQEKDFRyYW5zZmVyTW9kZRIdChlUUkFOU0ZFUl9NT0RFX1VOU1BFQ0lGSUVEEAASKgomVFJBTlNGRVJfTU9ERV9TSU5HTEVfQlVGRkVSX1NFUklBTElaRUQQARIqCiZUUkFOU0ZFUl9NT0RFX0RPVUJMRV9CVUZGRVJfQ09OQ1VSUkVOVBACMpQDCgxTdGVyZW9DYW1lcmESYgoNR2V0U3RyZWFtSW5mbxIiLnRlbGVyb2JvdC52MS5HZXRTdHJlYW1JbmZvUmVxdWVzdBojLnRlbGVyb2JvdC52MS5HZXRTdHJlYW1JbmZvUmVzcG9uc2UiCMjzGAPY8xgBEl4KC1N0cmVhbVBhaXJzEiAudGVsZXJvYm90LnYxLlN0cmVhbVBhaXJzUmVxdWVzdBohLnRlbGVyb2JvdC52MS5TdHJlYW1QYWlyc1Jlc3BvbnNlIgjI8xgD2PMYATABEmIKDVJlcG9ydFJlY2VpcHQSIi50ZWxlcm9ib3QudjEuUmVwb3J0UmVjZWlwdFJlcXVlc3QaIy50ZWxlcm9ib3QudjEuUmVwb3J0UmVjZWlwdFJlc3BvbnNlIgjI8xgD2PMYARJcCgtHZXRTbmFwc2hvdBIgLnRlbGVyb2JvdC52MS5HZXRTbmFwc2hvdFJlcXVlc3QaIS50ZWxlcm9ib3QudjEuR2V0U25hcHNob3RSZXNwb25zZSIIyPMYBNjzGAFiBnByb3RvMw", [file_google_protobuf_duration, file_google_protobuf_timestamp, file_telerobot_v1_options, file_telerobot_v1_types]);
 
 /**
  * GetStreamInfoRequest asks for the default stream description.
@@ -100,6 +100,26 @@ export type StreamPairsRequest = Message<"telerobot.v1.StreamPairsRequest"> & {
    * @generated from field: int32 height_px = 6;
    */
   heightPx: number;
+
+  /**
+   * The client will call ReportReceipt for every pair it receives, with the header's
+   * stream_id. The sender then keeps no more in flight than the path's bandwidth-delay
+   * product (skipping capture ticks rather than queueing them), and an H.264 stream's bitrate
+   * follows what arrives. Without receipts the transport's flow control alone paces the stream
+   * (open the channel with a small receive window: wire.stereo.LOW_LATENCY_OPTIONS).
+   *
+   * @generated from field: bool receipts = 7;
+   */
+  receipts: boolean;
+
+  /**
+   * H.264: the highest bitrate the sender may use, in kbit/s; zero means the station's default
+   * ceiling (8000). With receipts the bitrate adapts below it; without, the stream uses it
+   * (zero: the start rate, 1500).
+   *
+   * @generated from field: int32 max_kbit_per_s = 8;
+   */
+  maxKbitPerS: number;
 };
 
 /**
@@ -108,6 +128,77 @@ export type StreamPairsRequest = Message<"telerobot.v1.StreamPairsRequest"> & {
  */
 export const StreamPairsRequestSchema: GenMessage<StreamPairsRequest> = /*@__PURE__*/
   messageDesc(file_telerobot_v1_stereo_camera, 2);
+
+/**
+ * ReportReceiptRequest is what a stream's client has received so far.
+ *
+ * @generated from message telerobot.v1.ReportReceiptRequest
+ */
+export type ReportReceiptRequest = Message<"telerobot.v1.ReportReceiptRequest"> & {
+  /**
+   * The stream's id, from its StereoHeader.
+   *
+   * @generated from field: string stream_id = 1;
+   */
+  streamId: string;
+
+  /**
+   * The sequence number of the newest pair received.
+   *
+   * @generated from field: int64 sequence = 2;
+   */
+  sequence: bigint;
+
+  /**
+   * All bytes of pair images and video frames received on the stream so far.
+   *
+   * @generated from field: int64 received_bytes = 3;
+   */
+  receivedBytes: bigint;
+
+  /**
+   * The client's decoder lost its reference (a gap or a decode error): the next H.264 frame
+   * is a key frame.
+   *
+   * @generated from field: bool want_keyframe = 4;
+   */
+  wantKeyframe: boolean;
+};
+
+/**
+ * Describes the message telerobot.v1.ReportReceiptRequest.
+ * Use `create(ReportReceiptRequestSchema)` to create a new message.
+ */
+export const ReportReceiptRequestSchema: GenMessage<ReportReceiptRequest> = /*@__PURE__*/
+  messageDesc(file_telerobot_v1_stereo_camera, 3);
+
+/**
+ * ReportReceiptResponse says how the sender paces the stream now.
+ *
+ * @generated from message telerobot.v1.ReportReceiptResponse
+ */
+export type ReportReceiptResponse = Message<"telerobot.v1.ReportReceiptResponse"> & {
+  /**
+   * The bitrate the sender aims at, in kbit/s (H.264; 0 for image encodings).
+   *
+   * @generated from field: int32 target_kbit_per_s = 1;
+   */
+  targetKbitPerS: number;
+
+  /**
+   * The bytes the sender lets be in flight (sent, not yet reported received).
+   *
+   * @generated from field: int64 window_bytes = 2;
+   */
+  windowBytes: bigint;
+};
+
+/**
+ * Describes the message telerobot.v1.ReportReceiptResponse.
+ * Use `create(ReportReceiptResponseSchema)` to create a new message.
+ */
+export const ReportReceiptResponseSchema: GenMessage<ReportReceiptResponse> = /*@__PURE__*/
+  messageDesc(file_telerobot_v1_stereo_camera, 4);
 
 /**
  * StreamPairsResponse is the header (first message only) or a pair (every later message).
@@ -144,7 +235,7 @@ export type StreamPairsResponse = Message<"telerobot.v1.StreamPairsResponse"> & 
  * Use `create(StreamPairsResponseSchema)` to create a new message.
  */
 export const StreamPairsResponseSchema: GenMessage<StreamPairsResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_stereo_camera, 3);
+  messageDesc(file_telerobot_v1_stereo_camera, 5);
 
 /**
  * GetSnapshotRequest asks for the newest pair.
@@ -172,7 +263,7 @@ export type GetSnapshotRequest = Message<"telerobot.v1.GetSnapshotRequest"> & {
  * Use `create(GetSnapshotRequestSchema)` to create a new message.
  */
 export const GetSnapshotRequestSchema: GenMessage<GetSnapshotRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_stereo_camera, 4);
+  messageDesc(file_telerobot_v1_stereo_camera, 6);
 
 /**
  * GetSnapshotResponse carries the newest pair and its header.
@@ -200,7 +291,7 @@ export type GetSnapshotResponse = Message<"telerobot.v1.GetSnapshotResponse"> & 
  * Use `create(GetSnapshotResponseSchema)` to create a new message.
  */
 export const GetSnapshotResponseSchema: GenMessage<GetSnapshotResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_stereo_camera, 5);
+  messageDesc(file_telerobot_v1_stereo_camera, 7);
 
 /**
  * StereoHeader describes every pair of a stream; it is sent once.
@@ -263,6 +354,13 @@ export type StereoHeader = Message<"telerobot.v1.StereoHeader"> & {
    * @generated from field: string source = 8;
    */
   source: string;
+
+  /**
+   * The stream's id, for ReportReceipt; empty in GetStreamInfo and GetSnapshot.
+   *
+   * @generated from field: string stream_id = 9;
+   */
+  streamId: string;
 };
 
 /**
@@ -270,7 +368,7 @@ export type StereoHeader = Message<"telerobot.v1.StereoHeader"> & {
  * Use `create(StereoHeaderSchema)` to create a new message.
  */
 export const StereoHeaderSchema: GenMessage<StereoHeader> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_stereo_camera, 6);
+  messageDesc(file_telerobot_v1_stereo_camera, 8);
 
 /**
  * CameraCalibration is one eye's pinhole model.
@@ -333,7 +431,7 @@ export type CameraCalibration = Message<"telerobot.v1.CameraCalibration"> & {
  * Use `create(CameraCalibrationSchema)` to create a new message.
  */
 export const CameraCalibrationSchema: GenMessage<CameraCalibration> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_stereo_camera, 7);
+  messageDesc(file_telerobot_v1_stereo_camera, 9);
 
 /**
  * StereoPair is one synchronized pair: both eyes come from the same capture tick.
@@ -383,6 +481,28 @@ export type StereoPair = Message<"telerobot.v1.StereoPair"> & {
    * @generated from field: google.protobuf.Duration eye_skew = 6;
    */
   eyeSkew?: Duration | undefined;
+
+  /**
+   * H.264 streams: one access unit (Annex B) of a picture with both eyes side by side, the
+   * left eye in the left half, width 2 * width_px; left_image and right_image are empty.
+   *
+   * @generated from field: bytes video_frame = 7;
+   */
+  videoFrame: Uint8Array;
+
+  /**
+   * H.264 streams: the frame is a key frame (a decoder may start at it).
+   *
+   * @generated from field: bool keyframe = 8;
+   */
+  keyframe: boolean;
+
+  /**
+   * H.264 streams: the bitrate the sender aimed at for this frame, in kbit/s.
+   *
+   * @generated from field: int32 target_kbit_per_s = 9;
+   */
+  targetKbitPerS: number;
 };
 
 /**
@@ -390,7 +510,7 @@ export type StereoPair = Message<"telerobot.v1.StereoPair"> & {
  * Use `create(StereoPairSchema)` to create a new message.
  */
 export const StereoPairSchema: GenMessage<StereoPair> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_stereo_camera, 8);
+  messageDesc(file_telerobot_v1_stereo_camera, 10);
 
 /**
  * ImageEncoding is how an image's bytes are encoded.
@@ -425,6 +545,15 @@ export enum ImageEncoding {
    * @generated from enum value: IMAGE_ENCODING_PNG = 3;
    */
   PNG = 3,
+
+  /**
+   * H.264 video (StreamPairs only): both eyes side by side in one picture per capture tick,
+   * in StereoPair.video_frame; low-latency (no B-frames, one frame per pair). Width and height
+   * must be even.
+   *
+   * @generated from enum value: IMAGE_ENCODING_H264 = 4;
+   */
+  H264 = 4,
 }
 
 /**
@@ -493,8 +622,9 @@ export const StereoCamera: GenService<{
   /**
    * StreamPairs sends the header first, exactly once, then pairs until cancelled.
    * Errors: INVALID_ARGUMENT for an unknown encoding or transfer mode, a size larger than the
-   * source's, a JPEG quality outside 1..100, or max_fps < 0; FAILED_PRECONDITION when the
-   * source cannot be opened (the message names the device).
+   * source's (or an odd size for H.264), a JPEG quality outside 1..100, max_fps < 0, or a
+   * max_kbit_per_s outside what the station encodes (the message names the range);
+   * FAILED_PRECONDITION when the source cannot be opened (the message names the device).
    * Lane: medium. Role: observer.
    *
    * @generated from rpc telerobot.v1.StereoCamera.StreamPairs
@@ -503,6 +633,22 @@ export const StereoCamera: GenService<{
     methodKind: "server_streaming";
     input: typeof StreamPairsRequestSchema;
     output: typeof StreamPairsResponseSchema;
+  },
+  /**
+   * ReportReceipt tells the sender of a stream what its client has received, so that it paces
+   * the stream to what the path delivers (StreamPairsRequest.receipts): frames in flight stay
+   * within the path's bandwidth-delay product and an H.264 stream's bitrate follows what
+   * arrives. A client sends one per pair it receives (they may overlap: send and forget).
+   * Errors: INVALID_ARGUMENT for an empty stream_id or a negative count; NOT_FOUND when no open
+   * stream has that id (it ended: stop reporting).
+   * Lane: medium. Role: observer.
+   *
+   * @generated from rpc telerobot.v1.StereoCamera.ReportReceipt
+   */
+  reportReceipt: {
+    methodKind: "unary";
+    input: typeof ReportReceiptRequestSchema;
+    output: typeof ReportReceiptResponseSchema;
   },
   /**
    * GetSnapshot returns the newest pair with its header.
