@@ -22,9 +22,10 @@ Clients take pairs through a ``StreamView``, in one of the paper's two schemes:
   passed). If it is the only client, the source captures only on its requests, as in the paper.
 
 What the server holds for a client is one pair: the one it is sending. What the transport
-holds is up to the client's HTTP/2 receive window; a client that reads slowly should open its
-channel with client.LOW_LATENCY_OPTIONS (about one pair in flight), or gRPC's default window
-growth lets megabytes of older pairs queue in the transport (see client.py).
+holds is up to the client's HTTP/2 receive window: a client that reports receipts is paced to
+its path by the servicer (pacing.py); one that does not should open its channel with
+client.LOW_LATENCY_OPTIONS (about one pair in flight), or gRPC's default window growth lets
+megabytes of older pairs queue in the transport (see client.py).
 
 Demand drives the thread. A source that can be triggered (pattern, sim) captures only while a
 double-buffer view is open or a fresh pair is wanted, and otherwise sleeps (no rendering for
