@@ -34,6 +34,10 @@ from telerobot.v1 import stereo_camera_pb2 as sc_pb
 
 log = logging.getLogger(__name__)
 
+# What the operator station decodes, draws and records: the task's control loop shares this
+# process and 2 cores with the station, and the full size at the camera's rate starved it.
+WIDTH_PX, HEIGHT_PX = 320, 240
+MAX_FPS = 10.0
 RESUME_AFTER_S = 0.5  # while the camera is away, try again this often
 POSE_PERIOD_S = 0.02  # the arm's measured poses, for the ball, at 50 Hz
 # Every frame shown, with where the ball went in each eye (pixels): the overlay can be checked
@@ -158,7 +162,9 @@ class StereoView:
         overlay = composer = None
         while not self._stop.is_set():
             try:
-                stream = self._camera.stream_pairs(sc_pb.IMAGE_ENCODING_H264, timeout=None)
+                stream = self._camera.stream_pairs(sc_pb.IMAGE_ENCODING_H264, width_px=WIDTH_PX,
+                                                   height_px=HEIGHT_PX, max_fps=MAX_FPS,
+                                                   timeout=None)
                 for frame in stream:
                     if self._stop.is_set():
                         stream.cancel()
