@@ -8,7 +8,7 @@ PROTOS := $(wildcard protos/telerobot/v1/*.proto)
 GEN_OUT ?= gen
 export MUJOCO_GL ?= egl
 
-.PHONY: install gen web lint test serve teleop bench certs clean
+.PHONY: install gen web lint docs test test-fast serve teleop bench certs clean
 
 install: $(VENV)/.installed node_modules/.installed web/node_modules/.installed
 
@@ -50,10 +50,20 @@ gen: $(VENV)/.installed
 
 lint: install
 	$(BUF) lint
-	$(PY) -m ruff check wire services clients tests bench
+	$(PY) -m ruff check domain wire services clients tests bench
 
-test: install /usr/bin/chromium
+# The docs site (mkdocs.yml, docs/) into site/; --strict fails on a broken link or a page
+# missing from the navigation.
+docs: $(VENV)/.installed
+	$(PY) -m mkdocs build --strict --quiet
+
+# Everything: the docs site, then every test (the end-to-end ones start real processes).
+test: install /usr/bin/chromium docs
 	$(PY) -m pytest $(PYTEST_ARGS)
+
+# Every test that starts no process (tests/conftest.py refuses one), in about a minute.
+test-fast: $(VENV)/.installed
+	$(PY) -m pytest -m "not e2e" $(PYTEST_ARGS)
 
 # The slave station: every service in its own process, until Ctrl-C.
 serve: $(VENV)/.installed
