@@ -50,7 +50,7 @@ gen: $(VENV)/.installed
 
 lint: install
 	$(BUF) lint
-	$(PY) -m ruff check domain wire services clients tests bench
+	$(PY) -m ruff check discovery domain wire services clients tests bench
 
 # The docs site (mkdocs.yml, docs/) into site/; --strict fails on a broken link or a page
 # missing from the navigation.

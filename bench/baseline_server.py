@@ -41,9 +41,9 @@ from bench import framing
 from services.common import convert
 from services.decision_server.arbitration import ControlMode
 from services.decision_server.backends import GrpcSlave
+from services.decision_server.core import DecisionCore
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import _END_OF_SESSION, DecisionServerServicer
-from services.decision_server.supervisor import DecisionCore
 from services.decision_server.teleop import TeleopSession
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.servicer import reading_to_proto

@@ -31,10 +31,10 @@ import numpy as np
 import pinocchio as pin
 
 from bench.stats import summary
+from domain.robot_model.ik import solve_ik
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.workspace import FIXTURE_CENTER_XY, TABLE_TOP_Z
 from services.common import convert
-from services.robot_model.ik import solve_ik
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.workspace import FIXTURE_CENTER_XY, TABLE_TOP_Z
 from telerobot.v1 import force_sensor_pb2 as fpb
 from telerobot.v1 import force_sensor_pb2_grpc, proxy_robot_pb2_grpc, types_pb2
 from telerobot.v1 import proxy_robot_pb2 as pb

@@ -26,8 +26,8 @@ from mcap_protobuf.decoder import DecoderFactory
 
 from clients.teleop import mcap_log
 from services.decision_server import recording_mcap
-from services.foxglove import channels as fox
 from telerobot.v1 import decision_server_pb2 as dpb
+from wire import foxglove as fox
 
 ACCEPTED = (dpb.COMMAND_OUTCOME_APPLIED, dpb.COMMAND_OUTCOME_MODIFIED)
 

@@ -47,7 +47,7 @@ from pathlib import Path
 import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.discovery.advertise import ADVERTISE_ENV, advertised
+from discovery.advertise import ADVERTISE_ENV, advertised
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
 from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
@@ -105,7 +105,7 @@ def main(argv: list[str] | None = None) -> int:
                                                    RestartPolicy.max_failures)),
                         help="a child that ends this many times within 60 s is given up on, "
                              "and the station stops (env TELEROBOT_MAX_FAILURES)")
-    # Discovery: operator stations on the network find the station (services/discovery).
+    # Discovery: operator stations on the network find the station (discovery).
     parser.add_argument("--advertise", dest="advertise", action="store_const", const="1",
                         default=os.environ.get(ADVERTISE_ENV) or "auto",
                         help=f"advertise the station over mDNS (_telerobot._tcp) even when its "

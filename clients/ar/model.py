@@ -294,11 +294,11 @@ class RobotModel:
 
 
 def puma_forward_kinematics(flange_to_tool=None) -> ForwardKinematics:
-    """q -> tool pose (4x4) of the simulated PUMA 560 (services.robot_model), with the default
+    """q -> tool pose (4x4) of the simulated PUMA 560 (domain.robot_model), with the default
     tool or `flange_to_tool` (4x4 or pin.SE3). Not thread-safe: one per thread."""
     import pinocchio as pin
 
-    from services.robot_model.kinematics import PumaKinematics
+    from domain.robot_model.kinematics import PumaKinematics
 
     kinematics = PumaKinematics()
     if flange_to_tool is not None:

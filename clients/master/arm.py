@@ -37,7 +37,7 @@ from clients.master.impedance import (
 )
 from clients.master.model import MasterModel
 from clients.master.sources import JointReading, JointSource, SimulatedHand
-from services.common.passivity import MasterPassivity
+from domain.passivity import MasterPassivity
 
 
 class JointStateEstimator:

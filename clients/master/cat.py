@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from services.common.geometry import scale_increment
+from domain.geometry import scale_increment
 
 
 class IncrementFrame(enum.Enum):
@@ -67,7 +67,7 @@ def hand_increment(reference: pin.SE3, hand: pin.SE3,
 def scale(delta_position: np.ndarray, delta_rotation: np.ndarray, translation_scale: float,
           rotation_scale: float) -> tuple[np.ndarray, np.ndarray]:
     """Eq. 2: ((X⁺ − X)·s, R_xyz(R_xyz⁻¹(ΔM)·s)), with separate scales for translation and
-    rotation (``services.common.geometry.scale_increment``). The Euler angles of a small ΔM
+    rotation (``domain.geometry.scale_increment``). The Euler angles of a small ΔM
     are far from their singularity (|αy| = π/2), which is why eq. 2 scales increments, not
     poses."""
     if not (translation_scale > 0 and rotation_scale > 0):

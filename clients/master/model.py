@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from services.robot_model.ik import IkResult, solve_ik
+from domain.robot_model.ik import IkResult, solve_ik
 
 HAND_FRAME = "hand"
 JOINT_NAMES = tuple(f"master_joint{i}" for i in range(1, 7))
@@ -143,7 +143,7 @@ class MasterModel:
     def solve_ik(self, target: pin.SE3, seed: np.ndarray, *, max_iterations: int = 50,
                  tolerance: float = 1e-7) -> IkResult:
         """Joint angles putting the hand at `target`, from `seed` (damped least squares within
-        the joint limits: ``services.robot_model.ik.solve_ik``)."""
+        the joint limits: ``domain.robot_model.ik.solve_ik``)."""
         return solve_ik(self, target, seed, frame=HAND_FRAME, max_iterations=max_iterations,
                         position_tolerance=tolerance, rotation_tolerance=tolerance)
 

@@ -49,7 +49,7 @@ import numpy as np
 import pinocchio as pin
 
 from clients.master.model import MasterModel
-from services.common.geometry import from_euler_xyz
+from domain.geometry import from_euler_xyz
 
 SCRIPT_FORMAT = "telerobot-master-script"
 SCRIPT_VERSION = 1

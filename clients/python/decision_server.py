@@ -63,7 +63,7 @@ from wire import convert
 from wire.tls import ChannelSecurity
 
 if TYPE_CHECKING:  # the master's side of TDPA; the client only reads its ledger
-    from services.common.passivity import MasterPassivity
+    from domain.passivity import MasterPassivity
 
 log = logging.getLogger(__name__)
 

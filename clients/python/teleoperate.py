@@ -60,7 +60,7 @@ from telerobot.v1 import decision_server_pb2 as pb
 from wire import convert
 
 if TYPE_CHECKING:  # the master's side of TDPA; the client only reads its ledger
-    from services.common.passivity import MasterPassivity
+    from domain.passivity import MasterPassivity
 
 log = logging.getLogger(__name__)
 
@@ -142,7 +142,7 @@ class _SessionState:
         self._error: TelerobotRpcError | None = None
         self._closing = False
         self._cancelled = False
-        # TDPA's master port (services.common.passivity.MasterPassivity), or None. Its ledger
+        # TDPA's master port (domain.passivity.MasterPassivity), or None. Its ledger
         # goes out with every command and heartbeat; the slave's, from the acks, comes in.
         self.passivity = None
 

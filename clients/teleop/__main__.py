@@ -37,7 +37,7 @@ from clients.teleop.mcap_log import RobotStateFeed, SessionRecorder
 from clients.teleop.stack import station_at
 from clients.teleop.task import PegInHole, Result, ready_the_arm
 from clients.teleop.video import StereoView
-from services.discovery import DiscoveryError, discovered_address
+from discovery import DiscoveryError, discovered_address
 from services.runtime.config import address_for
 
 MODES = ("feedback", "compliance")
@@ -175,7 +175,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--discover", nargs="?", const="", default=None, metavar="NAME",
                         help="find the slave station on the local network (zeroconf, "
                              "_telerobot._tcp) instead of --address; NAME picks one of several "
-                             "(python -m services.discovery list shows them)")
+                             "(python -m discovery list shows them)")
     parser.add_argument("--modes", nargs="+", choices=MODES, default=list(MODES))
     parser.add_argument("--out", type=Path, default=None,
                         help="artifacts folder (default runs/teleop-<time>)")

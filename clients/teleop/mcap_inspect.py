@@ -22,7 +22,7 @@ from google.protobuf.message import DecodeError
 from mcap.exceptions import McapError
 from mcap.reader import make_reader
 
-from services.foxglove.channels import FOXGLOVE_TOPICS, STEREO_VIDEO, TF, h264_is_keyframe
+from wire.foxglove import FOXGLOVE_TOPICS, STEREO_VIDEO, TF, h264_is_keyframe
 
 
 @dataclass
@@ -75,7 +75,7 @@ class FileSummary:
 
     @property
     def foxglove_topics(self) -> list[str]:
-        """Foxglove's channels (services.foxglove.channels) the file holds, in their order."""
+        """Foxglove's channels (wire.foxglove) the file holds, in their order."""
         present = {c.topic for c in self.channels}
         return [topic for topic in FOXGLOVE_TOPICS if topic in present]
 

@@ -21,7 +21,7 @@ monotonic per channel):
 - ``/robot/state``  RobotState, the arm's state samples (ProxyRobot's DATA_RECEIVED events as
   the DecisionServer forwards them, about 10 Hz); publish time: the sample time
 
-And the same session in Foxglove's own schemas (services.foxglove.channels), so Foxglove or
+And the same session in Foxglove's own schemas (wire.foxglove), so Foxglove or
 Lichtblick shows it in stock panels (docs/foxglove_layout.json):
 
 - ``/tf``  FrameTransforms, the arm's frames (base -> link1..link6 -> flange -> tool) from each
@@ -62,10 +62,10 @@ from mcap_protobuf.writer import Writer
 
 from clients.python.errors import TelerobotRpcError
 from clients.python.values import Ack, StereoFrame
-from services.foxglove import channels as fox
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
+from wire import foxglove as fox
 from wire.convert import time_ns
 
 log = logging.getLogger(__name__)

@@ -11,7 +11,7 @@ approach. Then:
   the force peaks before the operator can react, which is what the comparison shows. Under
   delay the slave pushes on for a whole round trip first; with `passivity` (TDPA, #15, on by
   default in this mode) the master arm and the DecisionServer keep the channel passive
-  (services.common.passivity), and the run reports the energies, the transparency, the drift
+  (domain.passivity), and the run reports the energies, the transparency, the drift
   and any oscillation at contact.
 - `compliance`: active compliance on the server. Once the peg is in the hole's mouth the
   operator holds still and the DecisionServer's force control pushes along the peg to
@@ -40,8 +40,8 @@ from clients.python.decision_server import DecisionClient
 from clients.python.teleoperate import LinkInterruptedError
 from clients.python.values import Ack
 from clients.teleop.artifacts import Trace
-from services.common.passivity import MasterPassivity
-from services.robot_model import workspace
+from domain.passivity import MasterPassivity
+from domain.robot_model import workspace
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
 from wire.pose import Pose

@@ -29,7 +29,7 @@ from clients.python.stereo_camera import StereoCameraClient
 from clients.python.values import StereoFrame
 from clients.python.video_meter import VideoMeter
 from clients.teleop.artifacts import VideoRecorder
-from services.robot_model import workspace
+from domain.robot_model import workspace
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 
 log = logging.getLogger(__name__)

@@ -17,10 +17,10 @@ import grpc
 
 from services.common.fanout import Subscription
 from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
+from services.decision_server.core import ControlChanged, DecisionCore
 from services.decision_server.dependencies import SERVING, DependencyWatch
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
-from services.decision_server.supervisor import ControlChanged, DecisionCore
 from services.runtime.config import address_for
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.metrics import ServiceMetrics

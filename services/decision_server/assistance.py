@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from services.common.geometry import scale_increment
+from domain.geometry import scale_increment
 from services.runtime.errors import InvalidArgument
 
 

@@ -12,15 +12,14 @@ from collections.abc import Callable, Iterator
 import grpc
 import numpy as np
 
+from domain.geometry import finite_vector
 from services.common import convert
 from services.common.fanout import Subscription
-from services.common.geometry import finite_vector
 from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
 from services.decision_server.arbitration import DEFAULT_LEASE_S, ControlMode, ControlView, Lease
 from services.decision_server.backends import forwarding_servicer
-from services.decision_server.dependencies import Dependency, DependencyChanged, DependencyWatch
-from services.decision_server.supervisor import (
+from services.decision_server.core import (
     AssistanceChanged,
     ControlChanged,
     DecisionCore,
@@ -28,6 +27,7 @@ from services.decision_server.supervisor import (
     ReplayProgress,
     RobotEventForwarded,
 )
+from services.decision_server.dependencies import Dependency, DependencyChanged, DependencyWatch
 from services.decision_server.teleop import (
     CommandResult,
     MasterIncrement,

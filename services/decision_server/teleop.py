@@ -24,14 +24,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pinocchio as pin
 
-from services.common.geometry import moved_by, rotation_angle
-from services.common.passivity import SlavePassivity
+from domain.geometry import moved_by, rotation_angle
+from domain.passivity import SlavePassivity
 from services.decision_server.arbitration import Lease
 from services.decision_server.assistance import Assistance, apply_assistance
 from services.runtime.errors import Aborted, FailedPrecondition, TelerobotError, Unavailable
 
 if TYPE_CHECKING:
-    from services.decision_server.supervisor import DecisionCore
+    from services.decision_server.core import DecisionCore
 
 log = logging.getLogger(__name__)
 
@@ -123,7 +123,7 @@ def merge_groups(increments: list[MasterIncrement]) -> list[list[MasterIncrement
 
 def compose(first: pin.SE3, then: pin.SE3, mapping: str) -> pin.SE3:
     """One increment with the effect of `first` followed by `then` (see
-    services.common.geometry.moved_by)."""
+    domain.geometry.moved_by)."""
     if mapping == "TOOL":
         return first * then
     return pin.SE3(then.rotation @ first.rotation, first.translation + then.translation)
@@ -183,7 +183,7 @@ class TeleopSession:
                  watchdog_s: float, resume_window_s: float = RESUME_WINDOW_S,
                  passivity: SlavePassivity | None = None):
         self.core = core
-        # TDPA's slave port (services.common.passivity), or None: increments applied as sent.
+        # TDPA's slave port (domain.passivity), or None: increments applied as sent.
         self.passivity = passivity
         self.session_id = uuid.uuid4().hex[:12]
         self.operator_id = operator_id

@@ -42,6 +42,8 @@ from collections.abc import Callable
 import numpy as np
 import pinocchio as pin
 
+from domain.robot_model import puma560
+from domain.robot_model.kinematics import PumaKinematics
 from services.common.fanout import Fanout
 from services.force_sensor.settings import SensorSettings, ThreadPriority
 from services.force_sensor.subscribers import (
@@ -52,8 +54,6 @@ from services.force_sensor.subscribers import (
     changed_enough,
 )
 from services.force_sensor.wrench_model import ContactWrench, Payload, contact_wrench
-from services.robot_model import puma560
-from services.robot_model.kinematics import PumaKinematics
 from services.runtime.errors import (
     FailedPrecondition,
     InvalidArgument,

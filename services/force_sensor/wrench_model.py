@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from services.common.geometry import cross3
+from domain.geometry import cross3
 
 GRAVITY_WORLD = np.array([0.0, 0.0, -9.81])  # m/s², as in the simulation
 

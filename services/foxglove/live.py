@@ -41,10 +41,10 @@ from collections.abc import Callable
 from foxglove import Channel, Context, Schema
 from mcap_protobuf.schema import build_file_descriptor_set
 
-from services.foxglove import channels as fox
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
+from wire import foxglove as fox
 
 log = logging.getLogger(__name__)
 

@@ -28,8 +28,12 @@ from collections.abc import Callable
 import numpy as np
 import pinocchio as pin
 
+from domain.geometry import finite_vector, moved_by, rotation_angle
+from domain.robot_model import puma560
+from domain.robot_model.ik import solve_ik
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.singularity import singularity_measures
 from services.common.fanout import Fanout
-from services.common.geometry import finite_vector, moved_by, rotation_angle
 from services.proxy_robot.segment_timing import SegmentTiming
 from services.proxy_robot.status import (
     MOTION_STATUSES,
@@ -40,10 +44,6 @@ from services.proxy_robot.status import (
     RobotStatus,
     StatusChanged,
 )
-from services.robot_model import puma560
-from services.robot_model.ik import solve_ik
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.singularity import singularity_measures
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.link import JOINT_COUNT, ArmLink, ArmSample

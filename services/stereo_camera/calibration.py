@@ -42,8 +42,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from domain.geometry import rotation_matrix
 from services.common import convert
-from services.common.geometry import rotation_matrix
 from services.runtime.errors import InvalidArgument
 from telerobot.v1 import stereo_camera_pb2, types_pb2
 

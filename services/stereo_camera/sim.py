@@ -34,7 +34,7 @@ import mujoco
 import mujoco.gl_context as mujoco_gl_context
 import numpy as np
 
-from services.robot_model.loader import load_mujoco_model, mujoco_ids
+from domain.robot_model.loader import load_mujoco_model, mujoco_ids
 from services.runtime.errors import FailedPrecondition, Unavailable
 from services.stereo_camera.calibration import mujoco_stereo
 from services.stereo_camera.source import EyeFrame, SourceGeometry

@@ -23,7 +23,7 @@ import time
 import mujoco
 import numpy as np
 
-from services.robot_model.loader import load_mujoco_model, mujoco_ids
+from domain.robot_model.loader import load_mujoco_model, mujoco_ids
 from services.runtime.errors import InvalidArgument
 from services.world.link import JOINT_COUNT, ArmSample, RawWrench
 from services.world.trajectory import JointReference

@@ -24,9 +24,9 @@ from clients.ar.adapters import projections_from_header
 from clients.ar.identification import frame_points, identify_affine, identify_stereo
 from clients.ar.model import RobotModel, puma_forward_kinematics
 from clients.ar.overlay import BallStyle, StereoOverlay
-from services.robot_model import workspace as ws
-from services.robot_model.loader import load_mujoco_model, mujoco_ids
-from services.robot_model.puma560 import HOME_Q
+from domain.robot_model import workspace as ws
+from domain.robot_model.loader import load_mujoco_model, mujoco_ids
+from domain.robot_model.puma560 import HOME_Q
 from services.stereo_camera.calibration import mujoco_eye
 from services.stereo_camera.encoding import ImageFormat
 from services.stereo_camera.servicer import header_proto

@@ -9,8 +9,8 @@ from google.protobuf import timestamp_pb2
 from bench import framing
 from bench.baseline_server import TELEOP_END, TeleopSessions
 from bench.teleop import init_request
+from services.decision_server.core import DecisionCore
 from services.decision_server.recordings import RecordingStore
-from services.decision_server.supervisor import DecisionCore
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import types_pb2
 from tests.fakes.clock import FakeClock

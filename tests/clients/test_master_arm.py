@@ -29,7 +29,7 @@ from clients.master import (
     scale,
     slave_wrench_to_master,
 )
-from services.common.geometry import euler_xyz, from_euler_xyz
+from domain.geometry import euler_xyz, from_euler_xyz
 
 
 @pytest.fixture(scope="module")
@@ -342,7 +342,7 @@ def test_tdpa_on_the_displayed_force_gives_the_hand_only_the_energy_the_slave_to
     """#15: the master port's controller. Pushing down against the slave's force puts energy
     in and is shown in full; backing off along it is shown only as far as the slave's port has
     taken energy in (from its acks)."""
-    from services.common.passivity import MasterPassivity
+    from domain.passivity import MasterPassivity
 
     start = model.hand_pose(model.home_q)
     passivity = MasterPassivity()

@@ -30,7 +30,7 @@ from clients.python import (
     UnavailableError,
 )
 from clients.python.errors import STATUS_DETAILS_KEY, from_rpc_error
-from services.robot_model.puma560 import HOME_Q
+from domain.robot_model.puma560 import HOME_Q
 from services.runtime.rpc import error_status
 from services.stereo_camera.pattern import read_tick
 from telerobot.v1 import decision_server_pb2 as pb

@@ -7,7 +7,7 @@ from collections import deque
 import numpy as np
 import pytest
 
-from services.common.passivity import (
+from domain.passivity import (
     EnergyLedger,
     MasterPassivity,
     SlavePassivity,

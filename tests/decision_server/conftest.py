@@ -14,16 +14,16 @@ import grpc
 import numpy as np
 import pytest
 
+from domain.robot_model.puma560 import HOME_Q
 from services.common import convert
-from services.decision_server import arbitration, force_control, recordings, supervisor
+from services.decision_server import arbitration, core, force_control, recordings
 from services.decision_server.__main__ import LANES
 from services.decision_server.arbitration import ControlMode, Lease
 from services.decision_server.assistance import Assistance, ForceControl
 from services.decision_server.backends import GrpcSlave
+from services.decision_server.core import DecisionCore
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
-from services.decision_server.supervisor import DecisionCore
-from services.robot_model.puma560 import HOME_Q
 from services.runtime.server import binding, create_server
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import (
@@ -52,7 +52,7 @@ def _in_process_only(request, monkeypatch) -> None:
     """Tests not marked e2e start no process, attach no world and read no system time in the
     core."""
     if not request.node.get_closest_marker("e2e"):
-        refuse_processes(monkeypatch, (supervisor, force_control, arbitration, recordings))
+        refuse_processes(monkeypatch, (core, force_control, arbitration, recordings))
 
 
 # The core alone, over a fake slave on a fake clock, with alice holding the lock.

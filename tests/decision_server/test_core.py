@@ -11,7 +11,7 @@ import pytest
 
 from services.decision_server.arbitration import ControlMode
 from services.decision_server.assistance import Assistance
-from services.decision_server.supervisor import (
+from services.decision_server.core import (
     AssistanceChanged,
     ControlChanged,
     DecisionCore,

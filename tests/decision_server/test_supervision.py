@@ -9,8 +9,8 @@ import grpc
 import numpy as np
 import pytest
 
+from domain.robot_model.workspace import TABLE_TOP_Z
 from services.common import convert
-from services.robot_model.workspace import TABLE_TOP_Z
 from services.runtime.lanes import Lane
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, options_pb2, proxy_robot_pb2, types_pb2

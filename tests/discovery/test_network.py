@@ -10,7 +10,7 @@ import signal
 
 import pytest
 
-from services.discovery.__main__ import ADVERTISED_LINE
+from discovery.__main__ import ADVERTISED_LINE
 from services.runtime.children import Child
 from tests.conftest import start_process, station_env
 from tests.netns import linked_namespaces, python_in_namespace, unavailable_reason
@@ -33,10 +33,10 @@ def hosts():
 
 @pytest.fixture
 def run():
-    """Factory: `python -m services.discovery <args>` in a namespace; stopped after."""
+    """Factory: `python -m discovery <args>` in a namespace; stopped after."""
     started: list[Child] = []
 
-    def start(namespace: str, *args: str, module: str = "services.discovery",
+    def start(namespace: str, *args: str, module: str = "discovery",
               env: dict[str, str] | None = None) -> Child:
         child = start_process(python_in_namespace(namespace, ["-m", module, *args]), env,
                               module.rsplit(".", 1)[-1])

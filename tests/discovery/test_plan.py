@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from services.discovery.advertise import STATION_NAME_ENV, plan
-from services.discovery.interfaces import host_addresses, listen_addresses
-from services.discovery.station import DiscoveryError
+from discovery.advertise import STATION_NAME_ENV, plan
+from discovery.interfaces import host_addresses, listen_addresses
+from discovery.station import DiscoveryError
 
 
 def test_an_address_is_itself_a_wildcard_is_every_address_of_its_family():

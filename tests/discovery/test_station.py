@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from services.discovery.station import (
+from discovery.station import (
     CONTRACT,
     SERVICE_TYPE,
     DiscoveryError,

@@ -223,12 +223,12 @@ def test_the_live_view_streams_the_arm_force_and_cameras_to_a_foxglove_client(st
     from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
     from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
 
-    from services.foxglove import channels as fx
+    from domain.robot_model.kinematics import PumaKinematics
     from services.foxglove.live import LIVE_TOPICS
-    from services.robot_model.kinematics import PumaKinematics
     from telerobot.v1 import force_sensor_pb2, force_sensor_pb2_grpc, types_pb2
     from tests.foxglove.test_channels import world_poses
     from tests.foxglove.ws_client import FoxgloveClient
+    from wire import foxglove as fx
 
     _, addresses = station
     # The arm's state streams once it is connected; the force, once the sensor reads.

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from services.robot_model.puma560 import HOME_Q, JOINT_LOWER, JOINT_UPPER
+from domain.robot_model.puma560 import HOME_Q, JOINT_LOWER, JOINT_UPPER
 from services.runtime.errors import Unavailable
 from services.world.link import JOINT_COUNT, ArmSample, checked_duration, checked_joint_target
 from services.world.shm_link import STALE_AFTER_S

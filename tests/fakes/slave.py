@@ -19,10 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from domain.robot_model.ik import solve_ik
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.puma560 import HOME_Q
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
-from services.robot_model.ik import solve_ik
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.puma560 import HOME_Q
 from services.runtime.errors import FailedPrecondition, OutOfRange, Unavailable
 from tests.fakes.clock import FakeClock
 

@@ -204,10 +204,10 @@ def test_the_service_process_reads_a_net_ft_when_configured(responder_factory, w
             sample = sensor.GetWrench(pb.GetWrenchRequest(), timeout=5).sample
         # The tool's weight is removed and the result is in tool axes about the tool point:
         # compare with the same conversion of the responder's numbers at the arm's pose.
+        from domain.robot_model import puma560
+        from domain.robot_model.kinematics import PumaKinematics
         from services.force_sensor.core import default_payload
         from services.force_sensor.wrench_model import contact_wrench
-        from services.robot_model import puma560
-        from services.robot_model.kinematics import PumaKinematics
         from services.world.shm_link import SharedMemoryArmLink
 
         arm = SharedMemoryArmLink(world.shm_name)

@@ -10,9 +10,9 @@ import grpc
 import numpy as np
 import pytest
 
+from domain.robot_model.puma560 import HOME_Q
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.servicer import ForceSensorServicer
-from services.robot_model.puma560 import HOME_Q
 from services.runtime.server import binding, create_server
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2 as pb

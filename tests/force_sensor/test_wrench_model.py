@@ -7,11 +7,11 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
+from domain.robot_model import puma560
+from domain.robot_model.ik import solve_ik
+from domain.robot_model.kinematics import PumaKinematics
 from services.force_sensor.core import default_payload
 from services.force_sensor.wrench_model import ContactWrench, contact_wrench
-from services.robot_model import puma560
-from services.robot_model.ik import solve_ik
-from services.robot_model.kinematics import PumaKinematics
 from services.world.sim import ArmSim
 
 TOOL_DOWN = np.diag([1.0, -1.0, -1.0])

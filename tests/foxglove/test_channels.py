@@ -1,4 +1,4 @@
-"""services.foxglove.channels: our messages as Foxglove's schemas, checked against real
+"""wire.foxglove: our messages as Foxglove's schemas, checked against real
 Pinocchio forward kinematics and the real MuJoCo cameras' calibration."""
 
 from __future__ import annotations
@@ -10,14 +10,14 @@ import pinocchio as pin
 import pytest
 from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
 
-from services.foxglove import channels as fx
-from services.robot_model import puma560 as p
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.loader import load_mujoco_model
+from domain.robot_model import puma560 as p
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.loader import load_mujoco_model
 from services.stereo_camera.calibration import mujoco_stereo
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 from wire import convert
+from wire import foxglove as fx
 
 T0 = 1_700_000_000_123_456_789
 

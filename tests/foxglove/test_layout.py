@@ -10,9 +10,9 @@ import re
 import pytest
 
 from clients.teleop import mcap_log
-from services.foxglove import channels as fox
 from telerobot.v1 import decision_server_pb2, stereo_camera_pb2, types_pb2
 from tests.conftest import REPO
+from wire import foxglove as fox
 
 LAYOUT = REPO / "docs" / "foxglove_layout.json"
 # Every topic a recording holds, with its message class.

@@ -15,7 +15,7 @@ import pytest
 from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
 from foxglove_schemas_protobuf.JointStates_pb2 import JointStates
 
-from services.foxglove import channels as fx
+from domain.robot_model.kinematics import PumaKinematics
 from services.foxglove.feeds import Feed
 from services.foxglove.live import (
     FEED_TOPICS,
@@ -26,7 +26,6 @@ from services.foxglove.live import (
     Demand,
     LiveChannels,
 )
-from services.robot_model.kinematics import PumaKinematics
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
@@ -34,6 +33,7 @@ from tests.conftest import wait_for
 from tests.foxglove.test_channels import T0, stereo_header, world_poses
 from tests.foxglove.ws_client import FoxgloveClient
 from wire import convert
+from wire import foxglove as fx
 
 
 class Changes:

@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 from foxglove_schemas_protobuf.CompressedVideo_pb2 import CompressedVideo
 
-from services.foxglove import channels as fx
 from services.foxglove import live
 from services.foxglove.feeds import station_feeds
 from services.foxglove.live import Demand, LiveChannels
@@ -22,6 +21,7 @@ from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from tests.conftest import wait_for
 from tests.foxglove.ws_client import FoxgloveClient
 from tests.stereo_camera.conftest import psnr, start_camera
+from wire import foxglove as fx
 
 W, H = 160, 120
 FPS = 10.0

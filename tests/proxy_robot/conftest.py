@@ -10,11 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from domain.robot_model.puma560 import HOME_Q
 from services.proxy_robot import core as core_module
 from services.proxy_robot import segment_timing as segment_timing_module
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.status import RobotStatus
-from services.robot_model.puma560 import HOME_Q
 from services.world.shm_link import SharedMemoryArmLink
 from tests.conftest import wait_for
 from tests.fakes.arm_link import FakeArm

@@ -11,6 +11,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
+from domain.robot_model.puma560 import HOME_Q
 from services.proxy_robot import core as core_module
 from services.proxy_robot.segment_timing import (
     INTERVAL_SMOOTHING,
@@ -18,7 +19,6 @@ from services.proxy_robot.segment_timing import (
     MAX_SEGMENT_S,
 )
 from services.proxy_robot.status import Moved, RobotErrorRaised, RobotStatus, StatusChanged
-from services.robot_model.puma560 import HOME_Q
 from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryEmergencyStop
 from tests.conftest import wait_for

@@ -5,8 +5,8 @@ from __future__ import annotations
 import mujoco
 import pytest
 
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.loader import MujocoIds, load_mujoco_model, mujoco_ids
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.loader import MujocoIds, load_mujoco_model, mujoco_ids
 
 
 @pytest.fixture(scope="session")

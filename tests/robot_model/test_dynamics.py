@@ -7,8 +7,8 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.loader import MujocoIds, load_mujoco_model
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.loader import MujocoIds, load_mujoco_model
 
 # Armstrong, Khatib & Burdick (1986) in Corke's mdl_puma560 (standard DH frames), typed in here
 # independently of the parameter module.

@@ -9,10 +9,10 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from services.robot_model.kinematics import JacobianFrame, PumaKinematics
-from services.robot_model.loader import MujocoIds
+from domain.robot_model.kinematics import JacobianFrame, PumaKinematics
+from domain.robot_model.loader import MujocoIds
 
-# Written out independently of services.robot_model.puma560 on purpose (Corke mdl_puma560,
+# Written out independently of domain.robot_model.puma560 on purpose (Corke mdl_puma560,
 # standard DH, base height 0.6718 m): rows are (d, a, alpha).
 DH_ROWS = (
     (0.6718, 0.0, math.pi / 2),

@@ -14,9 +14,9 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from services.robot_model.ik import IK_MAX_ITERATIONS, solve_ik
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.singularity import SINGULAR_REFUSE_SIGMA, singularity_measures
+from domain.robot_model.ik import IK_MAX_ITERATIONS, solve_ik
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.singularity import SINGULAR_REFUSE_SIGMA, singularity_measures
 
 NUM_TARGETS = 300
 SEED_OFFSET = 0.3  # rad per joint

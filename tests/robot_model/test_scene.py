@@ -7,12 +7,12 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from services.robot_model import mjcf
-from services.robot_model.ik import solve_ik
-from services.robot_model.kinematics import PumaKinematics
-from services.robot_model.loader import MujocoIds, load_mujoco_model, mujoco_ids
-from services.robot_model.model_files import ROBOT_XML_PATH
-from services.robot_model.singularity import singularity_measures
+from domain.robot_model import mjcf
+from domain.robot_model.ik import solve_ik
+from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.loader import MujocoIds, load_mujoco_model, mujoco_ids
+from domain.robot_model.model_files import ROBOT_XML_PATH
+from domain.robot_model.singularity import singularity_measures
 
 SIM_SECONDS = 10.0
 HOME_DRIFT_TOLERANCE = 1e-6  # rad, after 10 s of gravity compensation
@@ -23,7 +23,7 @@ ENVIRONMENT_BODIES = ("world", "table", "fixture")
 
 
 def test_generated_xml_is_up_to_date() -> None:
-    assert mjcf.stale_files() == [], "run: python -m services.robot_model.mjcf"
+    assert mjcf.stale_files() == [], "run: python -m domain.robot_model.mjcf"
 
 
 def test_all_named_elements_resolve(mj_model: mujoco.MjModel, ids: MujocoIds) -> None:

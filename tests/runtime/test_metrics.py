@@ -20,7 +20,7 @@ from prometheus_client.parser import text_string_to_metric_families
 
 from services.common.fanout import Fanout
 from services.decision_server.__main__ import _LeaseChanges
-from services.decision_server.supervisor import ControlChanged, DecisionEvent
+from services.decision_server.core import ControlChanged, DecisionEvent
 from services.runtime.errors import OutOfRange
 from services.runtime.lanes import Lane, LaneConfig
 from services.runtime.metrics import LATENCY_BUCKETS_S, ServiceMetrics

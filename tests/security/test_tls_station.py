@@ -333,8 +333,8 @@ def test_the_live_view_serves_wss_and_reads_the_station_as_an_observer(station, 
 
     from websockets.exceptions import InvalidHandshake
 
-    from services.foxglove import channels as fx
     from tests.foxglove.ws_client import FoxgloveClient
+    from wire import foxglove as fx
 
     context = ssl.create_default_context(cafile=str(pki / "ca.pem"))
     with FoxgloveClient(f"wss://{station['address']['foxglove']}", ssl=context) as client:

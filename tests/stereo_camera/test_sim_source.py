@@ -13,7 +13,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from services.robot_model import workspace as ws
+from domain.robot_model import workspace as ws
 from services.runtime.errors import Unavailable
 from services.stereo_camera.client import decode_pair
 from services.stereo_camera.config import add_source_arguments, source_from_args

@@ -27,9 +27,8 @@ from clients.teleop import mcap_inspect
 from clients.teleop import mcap_log as channels
 from clients.teleop.mcap_log import SessionRecorder
 from clients.teleop.stack import local_station
-from services.foxglove import channels as fox
+from domain.robot_model.kinematics import PumaKinematics
 from services.launcher import STATION
-from services.robot_model.kinematics import PumaKinematics
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
@@ -37,6 +36,7 @@ from tests.conftest import REPO
 from tests.foxglove.test_channels import stereo_header, world_poses
 from tests.world.conftest import unique_shm_name
 from wire import convert
+from wire import foxglove as fox
 
 T0 = 1_700_000_000_000_000_000  # a fixed wall-clock time, ns
 MS = 1_000_000

@@ -7,8 +7,8 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from services.robot_model.ik import solve_ik
-from services.robot_model.kinematics import PumaKinematics
+from domain.robot_model.ik import solve_ik
+from domain.robot_model.kinematics import PumaKinematics
 from services.runtime.errors import InvalidArgument
 from services.world.sim import MAX_JOINT_ACCEL_RAD_PER_S2, MAX_JOINT_SPEED_RAD_PER_S, ArmSim
 

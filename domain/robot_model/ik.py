@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from services.robot_model.kinematics import TOOL_FRAME, PumaKinematics
+from domain.robot_model.kinematics import TOOL_FRAME, PumaKinematics
 
 # Damping lambda^2 added to J J^T (Sugihara 2011): a floor that keeps steps finite at singularities
 # plus a part growing with the squared pose error, so far from the target the solver takes cautious

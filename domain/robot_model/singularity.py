@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from services.robot_model.kinematics import JacobianFrame, PumaKinematics
+from domain.robot_model.kinematics import JacobianFrame, PumaKinematics
 
 # Smallest tool-Jacobian singular value below which Cartesian motion should be refused (q5 within
 # about 2.3 deg of the wrist singularity), and below which it should be slowed down (about 10 deg).

@@ -11,15 +11,15 @@ Pure domain code (no transport). Modules, one job each:
 * ``singularity`` -- distance-to-singularity measures for Cartesian motion
 """
 
-from services.robot_model.ik import IkResult, solve_ik
-from services.robot_model.kinematics import TOOL_FRAME, JacobianFrame, PumaKinematics
-from services.robot_model.loader import (
+from domain.robot_model.ik import IkResult, solve_ik
+from domain.robot_model.kinematics import TOOL_FRAME, JacobianFrame, PumaKinematics
+from domain.robot_model.loader import (
     MujocoIds,
     load_mujoco_model,
     load_pinocchio_model,
     mujoco_ids,
 )
-from services.robot_model.singularity import SingularityMeasures, singularity_measures
+from domain.robot_model.singularity import SingularityMeasures, singularity_measures
 
 __all__ = [
     "TOOL_FRAME",

@@ -5,7 +5,7 @@
     address = discovered_address("lab-slave", 3.0)  # host:port, returned once it is heard
 
 A `Browser` keeps listening until closed and calls back on each station that appears,
-changes or leaves (`python -m services.discovery watch`). Browsing asks over IPv4 multicast
+changes or leaves (`python -m discovery watch`). Browsing asks over IPv4 multicast
 (224.0.0.251, UDP 5353) on every interface of this host, as advertisements are sent over IPv4.
 """
 
@@ -19,7 +19,7 @@ from collections.abc import Callable
 
 from zeroconf import InterfaceChoice, IPVersion, ServiceBrowser, ServiceStateChange, Zeroconf
 
-from services.discovery.station import (
+from discovery.station import (
     SERVICE_TYPE,
     Station,
     pick,

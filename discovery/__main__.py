@@ -1,15 +1,15 @@
-"""python -m services.discovery: find slave stations on the local network (`_telerobot._tcp`).
+"""python -m discovery: find slave stations on the local network (`_telerobot._tcp`).
 
-    python -m services.discovery list [--timeout 3]     # each station heard: name, addresses,
+    python -m discovery list [--timeout 3]     # each station heard: name, addresses,
                                                         #   TLS, contract; exit 1 if none
-    python -m services.discovery address [NAME]         # host:port of NAME's (or the only)
+    python -m discovery address [NAME]         # host:port of NAME's (or the only)
                                                         #   DecisionServer, for a client
-    python -m services.discovery watch                  # "+ station" / "- name" until Ctrl-C
-    python -m services.discovery advertise --address 10.0.0.2:50051 [--tls] [--token-port N]
+    python -m discovery watch                  # "+ station" / "- name" until Ctrl-C
+    python -m discovery advertise --address 10.0.0.2:50051 [--tls] [--token-port N]
                                                         # advertise a station started some
                                                         #   other way, until Ctrl-C
 
-`make serve` advertises the station itself (see services/discovery/advertise.py).
+`make serve` advertises the station itself (see discovery/advertise.py).
 """
 
 from __future__ import annotations
@@ -21,9 +21,9 @@ import signal
 import sys
 import threading
 
-from services.discovery.advertise import ADVERTISE_ENV, STATION_NAME_ENV, plan
-from services.discovery.browse import DEFAULT_TIMEOUT_S, Browser, browse, discovered_address
-from services.discovery.station import SERVICE_TYPE, DiscoveryError, Station
+from discovery.advertise import ADVERTISE_ENV, STATION_NAME_ENV, plan
+from discovery.browse import DEFAULT_TIMEOUT_S, Browser, browse, discovered_address
+from discovery.station import SERVICE_TYPE, DiscoveryError, Station
 from services.runtime.stacks import dump_stacks_on_signal
 
 # The line `advertise` prints once the advertisement is out, before the name it got.
@@ -31,7 +31,7 @@ ADVERTISED_LINE = "advertised as"
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m services.discovery", description=__doc__,
+    parser = argparse.ArgumentParser(prog="python -m discovery", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "WARNING"))
     commands = parser.add_subparsers(dest="command", required=True)
@@ -68,7 +68,7 @@ def main(argv: list[str] | None = None) -> int:
             return _watch()
         return _advertise(args)
     except DiscoveryError as exc:
-        print(f"python -m services.discovery: {exc}", file=sys.stderr)
+        print(f"python -m discovery: {exc}", file=sys.stderr)
         return 1
 
 

@@ -12,8 +12,8 @@ import enum
 import numpy as np
 import pinocchio as pin
 
-from services.robot_model import puma560 as p
-from services.robot_model.loader import load_pinocchio_model
+from domain.robot_model import puma560 as p
+from domain.robot_model.loader import load_pinocchio_model
 
 TOOL_FRAME = "tool_frame"  # frame added by PumaKinematics at flange * flange_T_tool
 

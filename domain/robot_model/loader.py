@@ -14,9 +14,9 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 
-from services.robot_model import puma560 as p
-from services.robot_model import workspace as ws
-from services.robot_model.model_files import ROBOT_XML_PATH, SCENE_XML_PATH
+from domain.robot_model import puma560 as p
+from domain.robot_model import workspace as ws
+from domain.robot_model.model_files import ROBOT_XML_PATH, SCENE_XML_PATH
 
 
 def load_mujoco_model(path: Path | str = SCENE_XML_PATH) -> mujoco.MjModel:

@@ -41,8 +41,8 @@ from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
 from foxglove_schemas_protobuf.Vector3_pb2 import Vector3
 from google.protobuf.timestamp_pb2 import Timestamp
 
-from services.robot_model import puma560 as p
-from services.robot_model.kinematics import PumaKinematics
+from domain.robot_model import puma560 as p
+from domain.robot_model.kinematics import PumaKinematics
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 

@@ -7,7 +7,7 @@ All lengths in metres.
 
 from __future__ import annotations
 
-from services.robot_model.puma560 import SHOULDER_OFFSET
+from domain.robot_model.puma560 import SHOULDER_OFFSET
 
 # Table: a solid block standing on the floor. Its top is low enough that the peg reaches it with
 # the tool pointing down (wrist centre 0.35 m high, 0.32 m below the shoulder).

@@ -29,8 +29,8 @@ from contextlib import contextmanager
 from zeroconf import Error as ZeroconfError
 from zeroconf import IPVersion, ServiceInfo, Zeroconf
 
-from services.discovery.interfaces import listen_addresses
-from services.discovery.station import (
+from discovery.interfaces import listen_addresses
+from discovery.station import (
     SERVICE_TYPE,
     DiscoveryError,
     check_station_name,

@@ -28,8 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from domain.passivity import SlavePassivity
 from services.common.fanout import Fanout
-from services.common.passivity import SlavePassivity
 from services.decision_server.arbitration import ControlView, Lease, LockManager
 from services.decision_server.assistance import Assistance
 from services.decision_server.cobegin import Barriers, SimulatedProcessor
@@ -264,7 +264,7 @@ class DecisionCore:
     def open_session(self, operator_id: str, lease_id: str, mapping: str | None,
                      watchdog_s: float, passivity: bool = False) -> TeleopSession:
         """A new Teleoperate session; with `passivity`, TDPA's slave port keeps the channel
-        passive (services.common.passivity)."""
+        passive (domain.passivity)."""
         lease = self.locks.require(lease_id)
         watchdog_s = watchdog_s or DEFAULT_WATCHDOG_S
         if not MIN_WATCHDOG_S <= watchdog_s <= MAX_WATCHDOG_S:
