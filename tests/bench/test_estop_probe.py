@@ -1,4 +1,4 @@
-"""bench/estop_probe.py measures what it says: each stop is seen by the server after it was
+"""bench/probes/estop.py measures what it says: each stop is seen by the server after it was
 sent and before it was answered, under a load the server really serves."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import re
 
 import pytest
 
-from bench import estop_probe
+from bench.probes import estop as estop_probe
 
 
 def test_the_interceptor_notes_only_stops():

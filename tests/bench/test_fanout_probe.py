@@ -1,4 +1,4 @@
-"""bench/fanout_probe.py measures what it says: both server kinds really fan the sampler's
+"""bench/probes/fanout.py measures what it says: both server kinds really fan the sampler's
 messages out, the operator gets every one, and each observer every tenth."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import re
 
 import pytest
 
-from bench import fanout_probe
+from bench.probes import fanout as fanout_probe
 
 pytestmark = pytest.mark.e2e  # servers, observers and the tenant are processes of their own
 

@@ -1,4 +1,4 @@
-"""bench/hop_probe.py measures what it says: the real move handler moves the fake arm, and each
+"""bench/probes/hop.py measures what it says: the real move handler takes each step, and each
 server kind answers real calls from a process of its own."""
 
 from __future__ import annotations
@@ -8,13 +8,14 @@ import re
 import numpy as np
 import pytest
 
-from bench import hop_probe
+from bench.probes import hop as hop_probe
+from bench.probes.arm import proxy_robot_servicer
 
 pytestmark = pytest.mark.e2e  # the round trips start server processes
 
 
 def test_the_handler_it_times_really_moves_the_arm():
-    servicer = hop_probe._servicer()
+    servicer = proxy_robot_servicer()
     first = servicer.MoveCartesianIncremental(hop_probe._request(1), None)
     second = servicer.MoveCartesianIncremental(hop_probe._request(-1), None)
     assert first.applied_fraction == 1.0

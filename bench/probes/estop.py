@@ -1,6 +1,6 @@
-"""python -m bench.estop_probe: how soon does a loaded Python gRPC server see a stop arrive? A
-probe, not a scenario (issue #12's limits, the estop_under_load_proxy and estop_ds_busywork
-rows): it prints figures, it judges nothing.
+"""python -m bench.probes.estop: how soon does a loaded Python gRPC server see a stop arrive
+(the estop_under_load_proxy and estop_ds_busywork rows)? It prints figures and judges nothing;
+what it showed: docs/probes.md.
 
 Every kind serves the ProxyRobot contract (its generated code, so each method has its own
 request slot in grpcio, as in the station): GetState for the load, on the low lane, and
@@ -9,17 +9,19 @@ early stop (services/runtime/rpc.py: in the interceptor, on gRPC's polling threa
 handler runs) and prints those times at the end: the figure is sent → seen, with no handler,
 arm or world in it. The GIL is handed over every 1 ms, as in the services. Each server runs
 in a process of its own; the load comes from one grpc.aio client in another, as
-bench/estop.py's does.
+bench/estop.py's does. `--tenant SHARE` runs a process computing SHARE of every millisecond
+beside the server (bench/probes/tenant.py; the world's share of a core is about 0.33).
 
 - ``bare-paced``: grpcio's sync server (a thread pool as large as the station's), a GetState
   that does nothing, and a load offering 1000 calls/s with at most 200 in flight: the rate
-  ProxyRobot served estop_under_load_proxy's load at (its `load_calls_per_s`, 800-1045);
+  ProxyRobot serves estop_under_load_proxy's load at;
 - ``bare-saturated``: the same server under estop_under_load_proxy's load itself: 200
   GetState calls in flight, each re-issued as soon as it returns, so the server is never idle
   however fast it answers;
 - ``aio-saturated``: the same on grpc.aio, the interceptor an async one;
-- ``aio-servicer``: ProxyRobot's own servicer (on the tests' fake arm, no monitor thread) on
-  grpc.aio, its sync handlers run in the server's migration thread pool, under the same load;
+- ``aio-servicer``: ProxyRobot's own servicer (on an arm at rest, bench/probes/arm.py, no
+  monitor thread) on grpc.aio, its sync handlers run in the server's migration thread pool,
+  under the same load;
 - ``stack-saturated``: ProxyRobot's servicer behind the station's server stack
   (services/runtime/server.py: lanes, interceptors, metrics), under the same load;
 - ``aio-stack``: the same stack on grpc.aio (`create_server(aio=True)`, ProxyRobot's
@@ -28,62 +30,6 @@ bench/estop.py's does.
   SimulatedProcessor (1 ms slices, one at a time in the process), at most 4 calls at once (the
   low lane's threads), 200 calls in flight each re-issued as it returns: the load of
   estop_ds_busywork.
-
-Seen on the 2-core VM, quiet, 2026-11-26 (sent → seen, p50 / p99 in ms; two or three runs
-of 100 stops each):
-
-| kind | GetState/s | stop seen |
-|---|---|---|
-| bare-paced | 1000 | 0.44-0.48 / 0.84-0.93 |
-| bare-saturated | 3017-3244 | 2.52-2.67 / **11.8-14.5** |
-| aio-saturated | 2767-4430 | 0.83-1.28 / **3.60-3.66** |
-| aio-servicer | 1770-2264 | 1.22-1.45 / **2.75-2.95** |
-| stack-saturated | 1364-1923 | 2.79-3.45 / 17.2-27.1 |
-| bare-busy | 119-121 | 1.64-1.79 / **7.20-8.31** |
-
-With ``--tenant 0.33`` a process computes a third of every millisecond beside the server (the
-world's share of a core in the station), 2026-11-26, session 27, one or two runs:
-
-| kind | GetState/s | stop seen |
-|---|---|---|
-| bare-saturated | 2228 | 2.25 / 12.2 |
-| aio-saturated | 3975 | 0.91 / 4.84 |
-| aio-servicer | 2231 | 1.20 / 2.55 |
-| stack-saturated | 1270-1336 | 3.71-3.82 / 16.3-16.4 |
-| aio-stack | 1459-1883 | 1.37-1.77 / **3.00-4.33** |
-
-(without the tenant, one run: aio-stack 1.22 / 2.83, stack-saturated 2.66 / 14.4.)
-
-(bare-busy's rate counts the calls that ran out of their 5 s deadline in the queue; the
-DecisionServer's load made 42/s with some DEADLINE_EXCEEDED. The processor is as busy in both: one
-1 ms slice at a time.) Two steps between bare and stack, one run each: ProxyRobot's servicer on
-the bare server 2015/s, p99 16.3; the stack without metrics 1529/s, p99 19.3.
-
-What it says:
-- A load that keeps grpcio's sync server busy (each call re-issued as it returns) delays a
-  stop's arrival by 12-15 ms at p99 even when every call does nothing: the calls' events queue
-  for the one polling thread, which takes the GIL for each, and the stop's event waits its
-  turn. The station's stack only adds to that. So **estop_under_load_proxy's 5 ms is below the
-  floor of grpcio's sync server under that load**. grpc.aio, under the same load and answering
-  more calls, sees the stop within 3.7 ms, and within 3.0 ms with ProxyRobot's own sync
-  servicer run in its migration thread pool: only grpc.aio comes near it.
-  The station's own stack on grpc.aio (``aio-stack``, services/runtime/aio_server.py) sees
-  it at p99 3.0-4.3 ms beside the world-sized tenant. The world then latches the hold at its
-  next 1 ms step: in the station, seen -> latched took p50 0.8-1.0 / p99 1.4-2.5 ms (bench
-  --only estop with the interceptor's times logged, two runs). So even on grpc.aio the sum is
-  at or over 5 ms at p99, before ProxyRobot's real GetState and the station's other
-  processes: in the station, aio, sent -> seen was p99 7.4 and 9.1 ms.
-- Under a computing load the stop reaches the interceptor, the earliest point a Python service
-  can act on it, over 5 ms late at p99 (7.2-8.3 ms): the GIL is handed between the computing
-  threads and gRPC's polling thread, 1 ms at a time. The DecisionServer must then forward the
-  stop to ProxyRobot, so **estop_ds_busywork's 5 ms is out of reach for a stop that enters a
-  busy Python process**. The emergency-stop band, a process of its own, is the door that can.
-
-Tried on the station and dropped (bench/README.md → Profiles): each call's wrapped handler
-kept by method instead of built on the polling thread for every call (two alternating A/B pairs
-of `--only estop`, 50 stops each: p99 29.7, 38.6 ms before, 35.7, 29.7 after); SCHED_FIFO for
-the emergency-stop band (p99 5.5 and 5.1 ms under load, against 4.5-7.4 without); nice -10 for
-every server's polling thread (worse: 51 and 57 ms).
 """
 
 from __future__ import annotations
@@ -99,7 +45,9 @@ from concurrent import futures
 import grpc
 import numpy as np
 
-from bench.fanout_probe import start_tenant
+from bench.probes.arm import proxy_robot_servicer
+from bench.probes.tenant import start_tenant
+from services.runtime.process import GIL_SWITCH_INTERVAL_S
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc
 
@@ -108,7 +56,6 @@ KINDS = ("bare-paced", "bare-saturated", "aio-saturated", "aio-servicer", "stack
 PACED = ("bare-paced",)
 STOP = "/telerobot.v1.ProxyRobot/EmergencyStop"
 LOW_LANE = (("telerobot-lane", "low"),)
-GIL_SWITCH_INTERVAL_S = 0.001  # as every service sets it
 POOL_SIZE = 600  # about the station's (services/runtime/server.py: lanes + streams + 16)
 BUSY_S = 0.02
 LANE_THREADS = 4  # the low lane's most
@@ -196,12 +143,11 @@ def serve(kind: str) -> None:
                 server = grpc.aio.server(interceptors=[_AioSeen(seen)])
                 proxy_robot_pb2_grpc.add_ProxyRobotServicer_to_server(_AioBare(), server)
             else:  # the sync servicer's handlers run in the server's migration thread pool
-                from bench.hop_probe import _servicer
-
                 server = grpc.aio.server(interceptors=[_AioSeen(seen)],
                                          migration_thread_pool=futures.ThreadPoolExecutor(
                                              max_workers=POOL_SIZE))
-                proxy_robot_pb2_grpc.add_ProxyRobotServicer_to_server(_servicer(), server)
+                proxy_robot_pb2_grpc.add_ProxyRobotServicer_to_server(proxy_robot_servicer(),
+                                                                      server)
             port = server.add_insecure_port("127.0.0.1:0")
             await server.start()
             print(port, flush=True)
@@ -212,12 +158,11 @@ def serve(kind: str) -> None:
         asyncio.run(main())
         return
     if kind in ("stack-saturated", "aio-stack"):
-        from bench.hop_probe import _servicer
         from services.runtime.metrics import ServiceMetrics
         from services.runtime.server import binding, create_server
 
         server, port = create_server(
-            "127.0.0.1:0", [binding(proxy_robot_pb2_grpc, "ProxyRobot", _servicer())],
+            "127.0.0.1:0", [binding(proxy_robot_pb2_grpc, "ProxyRobot", proxy_robot_servicer())],
             on_emergency_call=seen.stop_arrived, metrics=ServiceMetrics("probe"),
             aio=kind == "aio-stack")
     else:
@@ -282,7 +227,7 @@ def load(port: int, rate_hz: float) -> None:
 
 
 def stops(kind: str, trials: int, tenant_share: float = 0.0) -> str:
-    server = subprocess.Popen([sys.executable, "-m", "bench.estop_probe", "--serve", kind],
+    server = subprocess.Popen([sys.executable, "-m", "bench.probes.estop", "--serve", kind],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     world = start_tenant(tenant_share)
     loader = None
@@ -293,7 +238,7 @@ def stops(kind: str, trials: int, tenant_share: float = 0.0) -> str:
             sent_ns = [time.time_ns()]
             stop(pb.EmergencyStopRequest(reason="probe"), timeout=10.0)  # connected first
             loader = subprocess.Popen(
-                [sys.executable, "-m", "bench.estop_probe", "--load", "--port", str(port),
+                [sys.executable, "-m", "bench.probes.estop", "--load", "--port", str(port),
                  "--rate", str(FLOOD_RATE_HZ if kind in PACED else 0)],
                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
             if loader.stdout.readline().strip() != "ready":
@@ -331,7 +276,7 @@ def stops(kind: str, trials: int, tenant_share: float = 0.0) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m bench.estop_probe",
+    parser = argparse.ArgumentParser(prog="python -m bench.probes.estop",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--serve", choices=KINDS, help=argparse.SUPPRESS)
     parser.add_argument("--load", action="store_true", help=argparse.SUPPRESS)

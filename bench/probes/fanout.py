@@ -1,6 +1,6 @@
-"""python -m bench.fanout_probe: can a Python gRPC server stream 1 kHz to an operator while it
-streams 100 Hz to 16 or 32 observers? A probe, not a scenario (issue #12's limits, the
-observers_<n> rows): it prints figures, it judges nothing.
+"""python -m bench.probes.fanout: can a Python gRPC server stream 1 kHz to an operator while it
+streams 100 Hz to 16 or 32 observers (the observers_<n> rows)? It prints figures and judges
+nothing; what it showed: docs/probes.md.
 
 The server is bare: a sampler thread makes one message every 1 ms (a StreamWrenchResponse
 serialized once, carrying its time), and each stream sends it as bytes, nothing else. No
@@ -13,24 +13,10 @@ in a process of its own with the GIL handed over every 1 ms as in the services:
 
 The operator (decimation 1) is one client in this process; the observers (decimation 10, a
 thread and a connection each, as bench/force.py's) are in a process of their own. Latency is
-the operator's: received minus made. A tenant process stands in for the station's world: every
-1 ms it computes for `--tenant` of a millisecond (0.33 by default, the world's share of a core
-in the observers rows), on absolute deadlines as the world's loop does.
-
-Seen on the 2-core VM, quiet, 2026-11-26 (the operator's p99 in ms, two runs each; p50 stayed
-0.25-0.53, and 1.24 once for sync with 32):
-
-| observers | sync, tenant | aio, tenant | sync, no tenant | aio, no tenant |
-|---|---|---|---|---|
-| 0 | 0.43-0.50 | 0.68-0.86 | 0.45-0.46 | 0.53-0.56 |
-| 16 | 2.59-2.66 | 2.03-2.17 | 1.73-2.06 | 1.38-1.68 |
-| 32 | 4.83-4.87 | 3.40-3.60 | 2.87-3.48 | 2.53-2.60 |
-
-Every message reached the operator (1000 Hz) and every observer. So with the world beside it,
-even a server that does nothing but send bytes misses observers_16 and observers_32's p99 <= 2
-ms on this machine, the sync kind and grpc.aio alike; grpc.aio takes a quarter to a third off
-the tail, not enough. And the bench's figure is harder than this one: its latency also holds
-the sensor's 0-1 ms phase against the world's step (bench/force.py).
+the operator's: received minus made. A tenant process (bench/probes/tenant.py) stands in for
+the station's world: every 1 ms it computes for `--tenant` of a millisecond (0.33 by default,
+the world's share of a core in the observers rows), on absolute deadlines as the world's loop
+does.
 """
 
 from __future__ import annotations
@@ -48,11 +34,12 @@ import grpc
 import numpy as np
 from google.protobuf.timestamp_pb2 import Timestamp
 
+from bench.probes.tenant import start_tenant
+from services.runtime.process import GIL_SWITCH_INTERVAL_S
 from telerobot.v1 import force_sensor_pb2 as pb
 
 KINDS = ("sync", "aio")
 METHOD = "/telerobot.v1.ForceSensor/StreamWrench"
-GIL_SWITCH_INTERVAL_S = 0.001  # as every service sets it
 PERIOD_S = 0.001
 OBSERVER_DECIMATION = 10
 WARMUP_S = 0.5
@@ -125,31 +112,6 @@ class _AioFanout:
                 yield await inbox.get()
         finally:
             del self._queues[inbox]
-
-
-def tenant(share: float) -> None:
-    """Compute for `share` of every millisecond, until stdin closes (a daemon thread reads it)."""
-    done = threading.Event()
-    threading.Thread(target=lambda: (sys.stdin.read(), done.set()), daemon=True).start()
-    start = time.perf_counter()
-    tick = 0
-    while not done.is_set():
-        tick += 1
-        busy_until = time.perf_counter() + share * PERIOD_S
-        while time.perf_counter() < busy_until:
-            pass
-        delay = start + tick * PERIOD_S - time.perf_counter()
-        if delay > 0:
-            time.sleep(delay)
-
-
-def start_tenant(share: float) -> subprocess.Popen | None:
-    """A tenant process computing `share` of every millisecond (None for 0); it stops when its
-    stdin is closed."""
-    if share <= 0:
-        return None
-    return subprocess.Popen([sys.executable, "-m", "bench.fanout_probe", "--be-tenant",
-                             str(share)], stdin=subprocess.PIPE)
 
 
 def _handler(stream) -> grpc.GenericRpcHandler:
@@ -227,7 +189,7 @@ def observe(port: int, count: int) -> None:
 
 
 def operator(kind: str, observers: int, seconds: float, tenant_share: float) -> str:
-    server = subprocess.Popen([sys.executable, "-m", "bench.fanout_probe", "--serve", kind],
+    server = subprocess.Popen([sys.executable, "-m", "bench.probes.fanout", "--serve", kind],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     world = start_tenant(tenant_share)
     watchers = None
@@ -235,7 +197,7 @@ def operator(kind: str, observers: int, seconds: float, tenant_share: float) -> 
         port = int(server.stdout.readline())
         if observers:
             watchers = subprocess.Popen(
-                [sys.executable, "-m", "bench.fanout_probe", "--observe", str(observers),
+                [sys.executable, "-m", "bench.probes.fanout", "--observe", str(observers),
                  "--port", str(port)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
             if watchers.stdout.readline().strip() != "ready":
                 raise RuntimeError("the observers did not start")
@@ -273,12 +235,11 @@ def operator(kind: str, observers: int, seconds: float, tenant_share: float) -> 
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m bench.fanout_probe",
+    parser = argparse.ArgumentParser(prog="python -m bench.probes.fanout",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--serve", choices=KINDS, help=argparse.SUPPRESS)
     parser.add_argument("--observe", type=int, help=argparse.SUPPRESS)
     parser.add_argument("--port", type=int, help=argparse.SUPPRESS)
-    parser.add_argument("--be-tenant", type=float, help=argparse.SUPPRESS)
     parser.add_argument("--seconds", type=float, default=4.0)
     parser.add_argument("--tenant", type=float, default=0.33,
                         help="the world's share of a core beside the server (0: none)")
@@ -286,9 +247,6 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.serve:
         serve(args.serve)
-        return 0
-    if args.be_tenant is not None:
-        tenant(args.be_tenant)
         return 0
     if args.observe is not None:
         observe(args.port, args.observe)

@@ -1,6 +1,6 @@
-"""python -m bench.aio_probe: would grpc.aio make the Teleoperate stream faster? A probe, not a
-scenario: the same bidirectional echo served three ways, each in a process of its own, driven
-at 1 kHz (pipelined) by one grpc.aio client.
+"""python -m bench.probes.aio: would grpc.aio make the Teleoperate stream faster? It prints
+figures and judges nothing; what it showed: docs/probes.md. The same bidirectional echo served
+three ways, each in a process of its own, driven at 1 kHz (pipelined) by one grpc.aio client:
 
 - ``sync``: grpcio's sync server; the handler does the work and yields the ack;
 - ``aio-inline``: grpc.aio, the work done in the event loop;
@@ -11,12 +11,6 @@ at 1 kHz (pipelined) by one grpc.aio client.
 and three threads in the server burn the GIL 1 ms in every 10 (the DecisionServer's followers,
 watchdogs and grpcio threads), so the GIL is contended as in the real process. Every server
 hands the GIL over every 1 ms, as the services do.
-
-Seen on the 2-core VM, quiet, 2026-11-23 (ack round trip p50 / p99 at 1 kHz, in ms):
-sync 1.07 / 8.1, 1.20 / 7.2 and 1.18 / 3.8; aio-inline 1.24 / 6.2 and 1.00 / 4.0; aio-executor
-60 / 137, 93 / 227 and 229 / 401, with a growing backlog. So grpc.aio pays only when the work
-runs in the loop itself: each hand-over to a thread and back costs a GIL acquisition against
-busy threads, and at 1 kHz those add up to more than the budget.
 """
 
 from __future__ import annotations
@@ -34,11 +28,11 @@ from pathlib import Path
 import grpc
 import numpy as np
 
+from services.runtime.process import GIL_SWITCH_INTERVAL_S
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc as pb_grpc
 
 WORK_S = 0.0003
-GIL_SWITCH_INTERVAL_S = 0.001
 KINDS = ("sync", "aio-inline", "aio-executor")
 
 
@@ -136,7 +130,7 @@ async def drive(port: int, rate_hz: float, seconds: float) -> tuple[int, int, np
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m bench.aio_probe",
+    parser = argparse.ArgumentParser(prog="python -m bench.probes.aio",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--serve", choices=KINDS, help=argparse.SUPPRESS)
     parser.add_argument("--port-file", help=argparse.SUPPRESS)
@@ -149,7 +143,7 @@ def main(argv: list[str] | None = None) -> int:
     for kind in KINDS:
         with tempfile.TemporaryDirectory() as scratch:
             port_file = Path(scratch) / "port"
-            server = subprocess.Popen([sys.executable, "-m", "bench.aio_probe", "--serve", kind,
+            server = subprocess.Popen([sys.executable, "-m", "bench.probes.aio", "--serve", kind,
                                        "--port-file", str(port_file)])
             try:
                 while not port_file.exists() or not port_file.read_text():
