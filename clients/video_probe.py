@@ -16,10 +16,10 @@ import json
 import sys
 import time
 
-from clients.python.errors import TelerobotRpcError
 from clients.python.stereo_camera import StereoCameraClient
 from clients.python.video_meter import VideoMeter
 from telerobot.v1 import stereo_camera_pb2 as pb
+from wire.errors import TelerobotError
 from wire.stereo import LOW_LATENCY_OPTIONS
 
 ENCODINGS = {"h264": pb.IMAGE_ENCODING_H264, "jpeg": pb.IMAGE_ENCODING_JPEG}
@@ -66,7 +66,7 @@ def main(argv: list[str] | None = None) -> int:
         result = probe(args.address, args.seconds, encoding=args.encoding,
                        receipts=args.receipts, skip_s=args.skip_s, max_kbit_per_s=args.max_kbit,
                        width_px=args.width, height_px=args.height, max_fps=args.max_fps)
-    except TelerobotRpcError as error:
+    except TelerobotError as error:
         print(f"video_probe: {error}", file=sys.stderr)
         return 1
     print(json.dumps(result))

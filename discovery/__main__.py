@@ -24,7 +24,7 @@ import threading
 from discovery.advertise import ADVERTISE_ENV, STATION_NAME_ENV, plan
 from discovery.browse import DEFAULT_TIMEOUT_S, Browser, browse, discovered_address
 from discovery.station import SERVICE_TYPE, DiscoveryError, Station
-from services.runtime.stacks import dump_stacks_on_signal
+from wire.processes import dump_stacks_on_signal
 
 # The line `advertise` prints once the advertisement is out, before the name it got.
 ADVERTISED_LINE = "advertised as"

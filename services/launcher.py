@@ -50,16 +50,9 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from discovery.advertise import ADVERTISE_ENV, advertised
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
-from services.runtime.config import DEFAULT_GRACE_S, configure_logging, env_name
-from services.runtime.process import (
-    metrics_port_name,
-    parse_ready_line,
-    ready_line,
-    token_port_name,
-    watch_parent,
-)
+from services.runtime.config import DEFAULT_GRACE_S, configure_logging
+from services.runtime.process import metrics_port_name, token_port_name, watch_parent
 from services.runtime.restart import RestartPolicy, RestartTracker
-from services.runtime.stacks import dump_stacks_on_signal
 from services.runtime.supervisor_state import (
     GAVE_UP,
     RESTARTED_BECAUSE_ENV,
@@ -70,6 +63,8 @@ from services.runtime.supervisor_state import (
     write_state,
 )
 from services.runtime.tls import station_channel_security
+from wire.addresses import env_name
+from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
 
 log = logging.getLogger("launcher")

@@ -7,6 +7,7 @@ launcher and the clients read the same variables, so they always agree on where 
 
 from __future__ import annotations
 
+import ipaddress
 import os
 
 DEFAULT_HOST = "127.0.0.1"
@@ -35,3 +36,14 @@ def address_for(service: str) -> str:
         raise KeyError(f"unknown service {service!r}; known: {', '.join(DEFAULT_PORTS)}")
     default = f"{DEFAULT_HOST}:{DEFAULT_PORTS[service]}"
     return os.environ.get(env_name(service, "address"), default)
+
+
+def is_loopback(address: str) -> bool:
+    """Whether host:port names a loopback host (127.0.0.0/8, ::1, localhost)."""
+    host = address.rsplit(":", 1)[0].strip("[]")
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False  # a name, "0.0.0.0" parses; "" or a hostname may reach any interface

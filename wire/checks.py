@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wire.errors import InvalidArgument
+from wire.errors import InvalidArgumentError
 
 # How far from orthonormal a received rotation may be before it is refused rather than repaired.
 # Loose enough for matrices typed by hand or sent as 6-digit JSON; Gram-Schmidt fixes the rest.
@@ -12,14 +12,15 @@ ROTATION_TOLERANCE = 1e-3
 
 
 def finite_vector(values, length: int, what: str) -> np.ndarray:
-    """`values` as a float array of `length`; InvalidArgument for a wrong length, NaN or Inf."""
+    """`values` as a float array of `length`; InvalidArgumentError for a wrong length, NaN or
+    Inf."""
     array = np.asarray(list(values), dtype=float)
     if array.shape != (length,):
-        raise InvalidArgument(f"{what} needs {length} values, got {array.size}",
-                              reason="BAD_LENGTH")
+        raise InvalidArgumentError(f"{what} needs {length} values, got {array.size}",
+                                   reason="BAD_LENGTH")
     if not np.all(np.isfinite(array)):
-        raise InvalidArgument(f"{what} contains NaN or Inf: {array.tolist()}",
-                              reason="NOT_FINITE")
+        raise InvalidArgumentError(f"{what} contains NaN or Inf: {array.tolist()}",
+                                   reason="NOT_FINITE")
     return array
 
 
@@ -43,14 +44,14 @@ def gram_schmidt(matrix: np.ndarray) -> np.ndarray:
 def rotation_matrix(values, what: str) -> np.ndarray:
     """A 3x3 rotation from nine row-major values (none: identity), re-orthonormalized.
 
-    InvalidArgument when it is not within ROTATION_TOLERANCE of a rotation (det +1)."""
+    InvalidArgumentError when it is not within ROTATION_TOLERANCE of a rotation (det +1)."""
     values = list(values)
     if not values:
         return np.eye(3)
     matrix = finite_vector(values, 9, what).reshape(3, 3)
     error = np.abs(matrix.T @ matrix - np.eye(3)).max()
     if error > ROTATION_TOLERANCE or np.linalg.det(matrix) <= 0:
-        raise InvalidArgument(
+        raise InvalidArgumentError(
             f"{what} is not a rotation matrix (|MᵀM − I| = {error:.2g}, det = "
             f"{np.linalg.det(matrix):.3g}); send an orthonormal row-major 3x3 with det +1, "
             "or leave it empty for no rotation", reason="NOT_A_ROTATION")

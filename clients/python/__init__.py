@@ -9,7 +9,7 @@ One module per service plus the shared base:
 * ``teleoperate``    -- `TeleopSession` (resumes across a broken link), `AsyncTeleopSession`,
   `LinkInterruptedError`
 * ``base``           -- channels, metadata (lease, lane), timeouts, streams
-* ``errors``         -- `TelerobotRpcError` and one subclass per status code
+* ``errors``         -- `TelerobotError` and one subclass per status code
 * ``values``         -- the dataclasses and enums the calls return; poses are `Pose`
 
 The package needs only grpcio, protobuf, numpy, the generated ``telerobot.v1`` code and
@@ -18,23 +18,6 @@ The package needs only grpcio, protobuf, numpy, the generated ``telerobot.v1`` c
 
 from clients.python.base import DEFAULT_TIMEOUT_S, LANE_METADATA_KEY, LEASE_METADATA_KEY
 from clients.python.decision_server import AsyncDecisionClient, DecisionClient
-from clients.python.errors import (
-    AbortedError,
-    AlreadyExistsError,
-    DeadlineExceededError,
-    FailedPreconditionError,
-    InternalError,
-    InvalidArgumentError,
-    NotFoundError,
-    OutOfRangeError,
-    PermissionDeniedError,
-    ResourceExhaustedError,
-    RpcCancelledError,
-    TelerobotRpcError,
-    UnauthenticatedError,
-    UnavailableError,
-    UnimplementedError,
-)
 from clients.python.force_sensor import AsyncForceSensorClient, ForceSensorClient
 from clients.python.proxy_robot import AsyncProxyRobotClient, ProxyRobotClient
 from clients.python.stereo_camera import AsyncStereoCameraClient, StereoCameraClient
@@ -68,6 +51,23 @@ from clients.python.values import (
     WrenchBatch,
     WrenchSample,
 )
+from wire.errors import (
+    AbortedError,
+    AlreadyExistsError,
+    DeadlineExceededError,
+    FailedPreconditionError,
+    InternalError,
+    InvalidArgumentError,
+    NotFoundError,
+    OutOfRangeError,
+    PermissionDeniedError,
+    ResourceExhaustedError,
+    RpcCancelledError,
+    TelerobotError,
+    UnauthenticatedError,
+    UnavailableError,
+    UnimplementedError,
+)
 from wire.pose import Pose
 
 __all__ = [
@@ -77,7 +77,7 @@ __all__ = [
     "LinkInterruptedError", "ProxyRobotClient", "StereoCameraClient", "TeleopSession",
     "AbortedError", "AlreadyExistsError", "DeadlineExceededError", "FailedPreconditionError",
     "InternalError", "InvalidArgumentError", "NotFoundError", "OutOfRangeError",
-    "PermissionDeniedError", "ResourceExhaustedError", "RpcCancelledError", "TelerobotRpcError",
+    "PermissionDeniedError", "ResourceExhaustedError", "RpcCancelledError", "TelerobotError",
     "UnauthenticatedError",
     "UnavailableError", "UnimplementedError",
     "Ack", "ActionRun", "BusyWork", "CartesianIncrement", "Cobegin", "CommandOutcome",

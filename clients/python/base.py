@@ -23,7 +23,7 @@ Conventions:
 - ``lease``: a lease id (or a function returning the current one) sent as
   ``telerobot-lease-id`` metadata on every call, which is what commanding calls need on the
   DecisionServer's port. Reads ignore it; ProxyRobot and ForceSensor on their own ports too.
-- Failures raise `TelerobotRpcError` subclasses (see ``errors.py``), never ``grpc.RpcError``.
+- Failures raise `TelerobotError` subclasses (see ``errors.py``), never ``grpc.RpcError``.
 
 Reconnection is explicit. Channels are made with ``grpc.enable_retries = 0``: gRPC never
 resends a call on its own, not even one it believes never reached the server, so a motion
@@ -43,8 +43,9 @@ from typing import Any
 
 import grpc
 
-from clients.python.errors import UnavailableError, from_rpc_error
+from clients.python.errors import from_rpc_error
 from wire.addresses import address_for
+from wire.errors import UnavailableError
 from wire.metadata import LANE_METADATA_KEY, LANES, LEASE_METADATA_KEY
 from wire.tls import ChannelSecurity, open_channel
 
@@ -130,7 +131,7 @@ def _check_lane(lane: str) -> str:
 
 class Stream:
     """A server stream: iterate it for converted messages; ``cancel()`` or leave the ``with``
-    block to end it. Errors arrive as `TelerobotRpcError` from the iteration; a stream this
+    block to end it. Errors arrive as `TelerobotError` from the iteration; a stream this
     side cancelled just stops."""
 
     def __init__(self, call, convert: Callable[[Any], Any], method: str):
@@ -221,8 +222,7 @@ class SyncClient(_ClientCore):
             ready.result(timeout=timeout)
         except grpc.FutureTimeoutError:
             ready.cancel()
-            raise UnavailableError(grpc.StatusCode.UNAVAILABLE,
-                                   f"no connection to {self.address or 'the server'} within "
+            raise UnavailableError(f"no connection to {self.address or 'the server'} within "
                                    f"{timeout} s (client side)") from None
 
     def close(self) -> None:
@@ -338,8 +338,7 @@ class AsyncClient(_ClientCore):
         try:
             await asyncio.wait_for(self._channel.channel_ready(), timeout)
         except TimeoutError:
-            raise UnavailableError(grpc.StatusCode.UNAVAILABLE,
-                                   f"no connection to {self.address or 'the server'} within "
+            raise UnavailableError(f"no connection to {self.address or 'the server'} within "
                                    f"{timeout} s (client side)") from None
 
     async def close(self) -> None:

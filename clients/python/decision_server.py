@@ -29,9 +29,6 @@ from typing import TYPE_CHECKING, Any
 import grpc
 
 from clients.python.base import DEFAULT_TIMEOUT_S, AsyncClient, SyncClient
-from clients.python.errors import (
-    TelerobotRpcError,
-)
 from clients.python.force_sensor import AsyncForceSensorClient, ForceSensorClient
 from clients.python.proxy_robot import (
     AsyncProxyRobotClient,
@@ -60,6 +57,7 @@ from clients.python.values import (
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
 from wire import convert
+from wire.errors import TelerobotError
 from wire.tls import ChannelSecurity
 
 if TYPE_CHECKING:  # the master's side of TDPA; the client only reads its ledger
@@ -328,7 +326,7 @@ class DecisionClient(_DecisionMethods, SyncClient):
         if self.release_on_close and self._held is not None:
             try:
                 self.release_control(timeout=1.0)
-            except TelerobotRpcError as error:
+            except TelerobotError as error:
                 log.info("could not release the lease on close: %s", error)
         for facade in self._facades.values():
             facade.close()
@@ -378,7 +376,7 @@ class AsyncDecisionClient(_DecisionMethods, AsyncClient):
         if self.release_on_close and self._held is not None:
             try:
                 await self.release_control(timeout=1.0)
-            except TelerobotRpcError as error:
+            except TelerobotError as error:
                 log.info("could not release the lease on close: %s", error)
         for facade in self._facades.values():
             await facade.close()

@@ -48,16 +48,11 @@ import grpc
 import numpy as np
 
 from clients.python.base import run_in_thread
-from clients.python.errors import (
-    DeadlineExceededError,
-    TelerobotRpcError,
-    UnavailableError,
-    error_for_code,
-    from_rpc_error,
-)
+from clients.python.errors import from_rpc_error
 from clients.python.values import Ack, ReferenceFrame, enum_value, seconds
 from telerobot.v1 import decision_server_pb2 as pb
 from wire import convert
+from wire.errors import DeadlineExceededError, TelerobotError, UnavailableError, error_for_status
 
 if TYPE_CHECKING:  # the master's side of TDPA; the client only reads its ledger
     from domain.passivity import MasterPassivity
@@ -81,9 +76,9 @@ class LinkInterruptedError(UnavailableError):
     not sent (the arm holds). Client side; the session goes on once it resumes."""
 
     def __init__(self, message: str = "the link to the DecisionServer is down; the session is "
-                 "reconnecting and the arm holds", **kwargs):
-        super().__init__(grpc.StatusCode.UNAVAILABLE, message, reason="LINK_INTERRUPTED",
-                         method=TELEOPERATE_METHOD, **kwargs)
+                 "reconnecting and the arm holds", reason: str = "LINK_INTERRUPTED", *,
+                 method: str = TELEOPERATE_METHOD, **kwargs):
+        super().__init__(message, reason, method=method, **kwargs)
 
 
 def _command(sequence: int, delta_position, delta_rotation, clutch: bool) -> pb.MasterCommand:
@@ -122,10 +117,10 @@ def acks_in(reply: pb.TeleoperateResponse) -> list[pb.CommandAck]:
     return [reply.ack] if kind == "ack" else []
 
 
-def _again(error: TelerobotRpcError) -> TelerobotRpcError:
+def _again(error: TelerobotError) -> TelerobotError:
     """A fresh copy of a stored stream error, to raise once more."""
-    return error_for_code(error.code, error.message, reason=error.reason, domain=error.domain,
-                          method=error.method)
+    return error_for_status(error.status_name, error.message, error.reason,
+                            domain=error.domain, method=error.method)
 
 
 class _SessionState:
@@ -139,7 +134,7 @@ class _SessionState:
         self._received = 0  # acks received
         self._sequence = 0  # the last command sequence used
         self._latest_ack: Ack | None = None
-        self._error: TelerobotRpcError | None = None
+        self._error: TelerobotError | None = None
         self._closing = False
         self._cancelled = False
         # TDPA's master port (domain.passivity.MasterPassivity), or None. Its ledger
@@ -165,7 +160,7 @@ class _SessionState:
         return self._latest_ack
 
     @property
-    def error(self) -> TelerobotRpcError | None:
+    def error(self) -> TelerobotError | None:
         """The error the stream ended with, if it did."""
         return self._error
 
@@ -193,7 +188,6 @@ class _SessionState:
 
     def _ack_timeout(self, what: str, timeout: float | None) -> DeadlineExceededError:
         return DeadlineExceededError(
-            grpc.StatusCode.DEADLINE_EXCEEDED,
             f"no ack for {what} within {timeout} s (client side); the stream stays open",
             method=TELEOPERATE_METHOD)
 
@@ -243,7 +237,6 @@ class TeleopSession(_SessionState):
         if not self._ready_event.wait(ready_timeout):
             self._abandon()
             raise DeadlineExceededError(
-                grpc.StatusCode.DEADLINE_EXCEEDED,
                 f"the server sent no Ready within {ready_timeout} s (client side)",
                 method=TELEOPERATE_METHOD)
         if self.ready is None:
@@ -271,7 +264,7 @@ class TeleopSession(_SessionState):
             for waiter in waiters:
                 waiter.event.set()
 
-    def _drain(self, call) -> TelerobotRpcError | None:
+    def _drain(self, call) -> TelerobotError | None:
         """Reads `call` to its end: None when it ended cleanly, else its error."""
         try:
             for reply in call:
@@ -303,12 +296,12 @@ class TeleopSession(_SessionState):
             waiter.event.set()
         self._deliver(ack)
 
-    def _resumable(self, error: TelerobotRpcError) -> bool:
+    def _resumable(self, error: TelerobotError) -> bool:
         return (self._resume and self.ready is not None and not self._closing
                 and error.code == grpc.StatusCode.UNAVAILABLE)
 
     # -- resuming -------------------------------------------------------------------------------
-    def _reconnect(self, lost: TelerobotRpcError) -> bool:
+    def _reconnect(self, lost: TelerobotError) -> bool:
         """Re-open the session after `lost` broke its stream; False (the error stored) when it
         cannot be resumed."""
         with self._lock:
@@ -343,7 +336,6 @@ class TeleopSession(_SessionState):
         if self._closing:
             return False
         self._error = UnavailableError(
-            grpc.StatusCode.UNAVAILABLE,
             f"the link to the DecisionServer broke ({lost.message}) and did not come back "
             f"within the session's {window:.0f} s resume window", reason="LINK_LOST",
             method=TELEOPERATE_METHOD)
@@ -351,7 +343,7 @@ class TeleopSession(_SessionState):
         return False
 
     def _try_resume(self, init: pb.TeleoperateInit, wait_s: float
-                    ) -> TelerobotRpcError | None:
+                    ) -> TelerobotError | None:
         """One try: a new stream that resumes the session; None once it serves the session
         (the unacked commands queued on it), else why not."""
         requests: queue.SimpleQueue = queue.SimpleQueue()
@@ -375,8 +367,7 @@ class TeleopSession(_SessionState):
         except (grpc.RpcError, StopIteration) as error:
             requests.put(_END)
             if outcome["expired"] or not isinstance(error, grpc.RpcError):
-                return DeadlineExceededError(grpc.StatusCode.DEADLINE_EXCEEDED,
-                                             f"no Ready within {wait_s:.1f} s",
+                return DeadlineExceededError(f"no Ready within {wait_s:.1f} s",
                                              method=TELEOPERATE_METHOD)
             return from_rpc_error(error, TELEOPERATE_METHOD)
         finally:
@@ -384,8 +375,7 @@ class TeleopSession(_SessionState):
         if not outcome["ready"] or reply.WhichOneof("message") != "ready":
             requests.put(_END)
             call.cancel()
-            return DeadlineExceededError(grpc.StatusCode.DEADLINE_EXCEEDED,
-                                         "no Ready in time", method=TELEOPERATE_METHOD)
+            return DeadlineExceededError("no Ready in time", method=TELEOPERATE_METHOD)
         with self._lock:
             old, self._requests, self._call = self._requests, requests, call
             self.ready = reply.ready
@@ -572,7 +562,6 @@ class AsyncTeleopSession(_SessionState):
         except TimeoutError:
             await session._abandon()
             raise DeadlineExceededError(
-                grpc.StatusCode.DEADLINE_EXCEEDED,
                 f"the server sent no Ready within {ready_timeout} s (client side)",
                 method=TELEOPERATE_METHOD) from None
         if session.ready is None:

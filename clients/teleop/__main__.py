@@ -30,7 +30,6 @@ import numpy as np
 
 from clients.ar import RobotModel
 from clients.python.decision_server import DecisionClient
-from clients.python.errors import TelerobotRpcError
 from clients.teleop.artifacts import plot, write_summary
 from clients.teleop.dependencies import DependencyMonitor, as_json, describe
 from clients.teleop.mcap_log import RobotStateFeed, SessionRecorder
@@ -38,7 +37,8 @@ from clients.teleop.stack import station_at
 from clients.teleop.task import PegInHole, Result, ready_the_arm
 from clients.teleop.video import StereoView
 from discovery import DiscoveryError, discovered_address
-from services.runtime.config import address_for
+from wire.addresses import address_for
+from wire.errors import TelerobotError
 
 MODES = ("feedback", "compliance")
 DISCOVERY_TIMEOUT_S = 5.0
@@ -161,7 +161,7 @@ ADVICE = {
 }
 
 
-def explain(error: TelerobotRpcError) -> str:
+def explain(error: TelerobotError) -> str:
     advice = ADVICE.get(error.reason or "") or ADVICE.get(error.code.name, "The arm holds.")
     return f"teleop: the session ended: {error}\n{advice}"
 
@@ -199,7 +199,7 @@ def main(argv: list[str] | None = None) -> int:
     except DiscoveryError as error:
         print(f"teleop: {error}", file=sys.stderr)
         return 3
-    except TelerobotRpcError as error:
+    except TelerobotError as error:
         print("\n" + explain(error), file=sys.stderr)
         return 3
     except KeyboardInterrupt:

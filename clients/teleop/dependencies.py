@@ -11,8 +11,8 @@ from collections.abc import Callable
 from typing import Any
 
 from clients.python.decision_server import DecisionClient
-from clients.python.errors import TelerobotRpcError
 from clients.python.values import Dependency, DependencyState, enum_value
+from wire.errors import TelerobotError
 
 log = logging.getLogger(__name__)
 
@@ -66,7 +66,7 @@ class DependencyMonitor:
                     continue  # first seen, and well: nothing to tell
                 self.changes.append(dependency)
                 self._show(describe(dependency, _state_name(previous) if previous else None))
-        except TelerobotRpcError as error:
+        except TelerobotError as error:
             # The DecisionServer itself went away: the session's own calls say so too.
             self._show(f"[station] events stopped: {error}")
 
@@ -74,7 +74,7 @@ class DependencyMonitor:
         """Every dependency's state now ([] if the server cannot say)."""
         try:
             return self._client.get_dependencies()
-        except TelerobotRpcError as error:
+        except TelerobotError as error:
             log.warning("could not read the dependencies: %s", error)
             return []
 

@@ -60,13 +60,13 @@ from pathlib import Path
 
 from mcap_protobuf.writer import Writer
 
-from clients.python.errors import TelerobotRpcError
 from clients.python.values import Ack, StereoFrame
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 from wire import foxglove as fox
 from wire.convert import time_ns
+from wire.errors import TelerobotError
 
 log = logging.getLogger(__name__)
 
@@ -316,7 +316,7 @@ class RobotStateFeed:
                         and event.robot.WhichOneof("event") == "data_received"):
                     self._on_state(event.robot.data_received.state)
                     self.samples += 1
-        except TelerobotRpcError as error:  # (a stream cancelled by stop() just ends)
+        except TelerobotError as error:  # (a stream cancelled by stop() just ends)
             self.error = str(error)
             log.warning("MCAP: the arm's state samples stopped (%s)", error)
 

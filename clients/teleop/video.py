@@ -23,7 +23,6 @@ from clients.ar import (
     save_identification,
 )
 from clients.ar.adapters import projections_from_header
-from clients.python.errors import TelerobotRpcError, UnavailableError
 from clients.python.proxy_robot import ProxyRobotClient
 from clients.python.stereo_camera import StereoCameraClient
 from clients.python.values import StereoFrame
@@ -31,6 +30,7 @@ from clients.python.video_meter import VideoMeter
 from clients.teleop.artifacts import VideoRecorder
 from domain.robot_model import workspace
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
+from wire.errors import TelerobotError, UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -81,7 +81,7 @@ class MeasuredPoses:
                 self._stream = self._robot.stream_state(POSE_PERIOD_S)
                 for state in self._stream:
                     self._model.observe(state.sample_time_ns, state.tool_pose)
-            except TelerobotRpcError as error:
+            except TelerobotError as error:
                 log.debug("measured poses paused: %s", error)
             self._stop.wait(RESUME_AFTER_S)
 

@@ -21,13 +21,13 @@ from services.decision_server.core import ControlChanged, DecisionCore
 from services.decision_server.dependencies import SERVING, DependencyWatch
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
-from services.runtime.config import address_for
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
 from services.runtime.tls import station_channel_security
 from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
+from wire.addresses import address_for
 from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import open_channel
 

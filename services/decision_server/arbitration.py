@@ -8,7 +8,7 @@ blocks the arm for longer than one lease. No gRPC here.
 
 A lease belongs to the identity that took it. When the server authenticates its callers (TLS),
 the holder is the caller's identity (services.security.caller), not the request's operator_id,
-and a lease id presented by anyone else is refused with PermissionDenied; only an admin may
+and a lease id presented by anyone else is refused with PermissionDeniedError; only an admin may
 release another's lease. Without authentication (plaintext on loopback) the holder is the
 operator_id the client gives, as in the papers.
 
@@ -29,16 +29,16 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 from services.runtime.clock import SYSTEM_CLOCK, Clock
-from services.runtime.errors import (
-    Aborted,
-    DeadlineExceeded,
-    FailedPrecondition,
-    InvalidArgument,
-    NotFound,
-    PermissionDenied,
-)
 from services.security.caller import Caller, current_caller
 from services.security.roles import Role
+from wire.errors import (
+    AbortedError,
+    DeadlineExceededError,
+    FailedPreconditionError,
+    InvalidArgumentError,
+    NotFoundError,
+    PermissionDeniedError,
+)
 
 DEFAULT_LEASE_S = 10.0  # outlives a short cut: see teleop.RESUME_WINDOW_S
 MIN_LEASE_S, MAX_LEASE_S = 0.1, 60.0
@@ -104,17 +104,17 @@ class LockManager:
 
     def acquire(self, operator_id: str, mode: ControlMode, group: str = "", wait: bool = False,
                 wait_timeout_s: float | None = None, lease_s: float = DEFAULT_LEASE_S) -> Lease:
-        """Grant a lease now, or queue for one (wait=True), or fail with Aborted. An
+        """Grant a lease now, or queue for one (wait=True), or fail with AbortedError. An
         authenticated caller holds it as its identity, whatever `operator_id` says."""
         caller = current_caller()
         identity = caller.identity if caller is not None else None
         operator_id = identity or operator_id
         if not operator_id:
-            raise InvalidArgument("operator_id is required: say who you are",
-                                  reason="NO_OPERATOR")
+            raise InvalidArgumentError("operator_id is required: say who you are",
+                                       reason="NO_OPERATOR")
         if not MIN_LEASE_S <= lease_s <= MAX_LEASE_S:
-            raise InvalidArgument(f"lease must be {MIN_LEASE_S}..{MAX_LEASE_S} s",
-                                  reason="BAD_LEASE")
+            raise InvalidArgumentError(f"lease must be {MIN_LEASE_S}..{MAX_LEASE_S} s",
+                                       reason="BAD_LEASE")
         lease, waiter, holders = None, None, ""
         with self._lock:
             expired = self._expire()
@@ -132,8 +132,8 @@ class LockManager:
             return lease
         if waiter is None:
             self._notify(expired)
-            raise Aborted(f"control is held by {holders}; ask with wait=true to queue, or try "
-                          "later", reason="CONTROL_HELD")
+            raise AbortedError(f"control is held by {holders}; ask with wait=true to queue, or try "
+                               "later", reason="CONTROL_HELD")
         self._notify([*expired, f"{operator_id} waits for {mode.name} control"])
         if (self._clock.wait_until(waiter.ready, waiter.deadline)
                 and waiter.granted):
@@ -143,8 +143,8 @@ class LockManager:
                 return waiter.granted
             self._queue.remove(waiter)
         self._notify([f"{operator_id} gave up waiting"])
-        raise DeadlineExceeded(f"control did not come free in time; held by "
-                               f"{self.describe_holders()}", reason="WAIT_TIMEOUT")
+        raise DeadlineExceededError(f"control did not come free in time; held by "
+                                    f"{self.describe_holders()}", reason="WAIT_TIMEOUT")
 
     def renew(self, lease_id: str) -> Lease:
         with self._lock:
@@ -157,8 +157,8 @@ class LockManager:
         if refusal is not None:
             raise refusal
         if lease is None:
-            raise NotFound("no such lease (it expired or was released): acquire control "
-                           "again", reason="NO_LEASE")
+            raise NotFoundError("no such lease (it expired or was released): acquire control "
+                                "again", reason="NO_LEASE")
         return lease
 
     def release(self, lease_id: str) -> None:
@@ -174,11 +174,11 @@ class LockManager:
             raise refusal
         if lease is None:
             self._notify(expired)
-            raise NotFound("no such lease (it expired or was released)", reason="NO_LEASE")
+            raise NotFoundError("no such lease (it expired or was released)", reason="NO_LEASE")
         self._notify([*expired, f"{lease.operator_id} released control"])
 
     def require(self, lease_id: str | None) -> Lease:
-        """The caller's lease, renewed; FailedPrecondition naming who holds control if none."""
+        """The caller's lease, renewed; FailedPreconditionError naming who holds control if none."""
         with self._lock:
             expired = self._expire()
             lease = self._holders.get(lease_id or "")
@@ -192,7 +192,7 @@ class LockManager:
         if lease is not None:
             return lease
         hint = "send the lease id from AcquireControl in the telerobot-lease-id metadata key"
-        raise FailedPrecondition(
+        raise FailedPreconditionError(
             f"this call needs the control lock, held by {holders}; {hint}"
             if holders != "nobody" else f"this call needs the control lock: {hint}",
             reason="NO_CONTROL")
@@ -283,13 +283,13 @@ class LockManager:
 
 
 def _not_the_holder(lease: Lease | None, caller: Caller | None,
-                    admin_may: bool = False) -> PermissionDenied | None:
+                    admin_may: bool = False) -> PermissionDeniedError | None:
     """The refusal for an authenticated caller presenting another identity's lease; None when
     the caller may use it."""
     if (lease is None or caller is None or lease.identity is None
             or caller.identity == lease.identity or (admin_may and caller.role >= Role.ADMIN)):
         return None
-    return PermissionDenied(
+    return PermissionDeniedError(
         f"this lease belongs to {lease.identity!r}, not to {caller.identity!r}: acquire "
         "control as yourself" + (" (an admin may release it)" if admin_may else ""),
         reason="NOT_YOUR_LEASE")

@@ -22,7 +22,7 @@ import numpy as np
 import pinocchio as pin
 
 from domain.geometry import scale_increment
-from services.runtime.errors import InvalidArgument
+from wire.errors import InvalidArgumentError
 
 
 class ConstraintType(enum.Enum):
@@ -58,22 +58,22 @@ class Assistance:
 
     def validated(self) -> Assistance:
         if self.mapping not in ("BASE", "TOOL"):
-            raise InvalidArgument("mapping must be BASE or TOOL", reason="BAD_MAPPING")
+            raise InvalidArgumentError("mapping must be BASE or TOOL", reason="BAD_MAPPING")
         for name in ("translation_scale", "rotation_scale"):
             value = getattr(self, name)
             if not np.isfinite(value) or value <= 0:
-                raise InvalidArgument(f"{name} must be > 0", reason="BAD_SCALE")
+                raise InvalidArgumentError(f"{name} must be > 0", reason="BAD_SCALE")
         if self.constraint is not None:
             norm = np.linalg.norm(self.constraint.axis)
             if not np.isfinite(norm) or norm < 1e-9:
-                raise InvalidArgument("the constraint axis must be a non-zero vector",
-                                      reason="BAD_AXIS")
+                raise InvalidArgumentError("the constraint axis must be a non-zero vector",
+                                           reason="BAD_AXIS")
         if self.force_control is not None:
             gains = (self.force_control.translation_gain_m_per_n_s,
                      self.force_control.rotation_gain_rad_per_nm_s)
             if not all(np.isfinite(g) and g >= 0 for g in gains):
-                raise InvalidArgument("force-control gains must be finite and >= 0",
-                                      reason="BAD_GAIN")
+                raise InvalidArgumentError("force-control gains must be finite and >= 0",
+                                           reason="BAD_GAIN")
         return self
 
 

@@ -18,18 +18,18 @@ from grpc_status import rpc_status
 
 from services.common import convert
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
-from services.runtime.errors import (
-    DeadlineExceeded,
-    TelerobotError,
-    Unavailable,
-    error_for_status,
-)
 from telerobot.v1 import (
     force_sensor_pb2,
     force_sensor_pb2_grpc,
     proxy_robot_pb2,
     proxy_robot_pb2_grpc,
     types_pb2,
+)
+from wire.errors import (
+    DeadlineExceededError,
+    TelerobotError,
+    UnavailableError,
+    error_for_status,
 )
 from wire.metadata import LANE_METADATA_KEY, LEASE_METADATA_KEY
 from wire.tls import ChannelSecurity, open_channel
@@ -164,9 +164,9 @@ class GrpcSlave:
         try:
             reply = call(self.sensor.GetSensorConfig, force_sensor_pb2.GetSensorConfigRequest(),
                          timeout=timeout_s)
-        except DeadlineExceeded:
-            raise Unavailable(f"no answer within {timeout_s * 1e3:.0f} ms",
-                              reason="SENSOR_SILENT") from None
+        except DeadlineExceededError:
+            raise UnavailableError(f"no answer within {timeout_s * 1e3:.0f} ms",
+                                   reason="SENSOR_SILENT") from None
         return reply.config.reading
 
     def emergency_stop(self, reason: str) -> str:
@@ -366,7 +366,7 @@ class _WrenchStream:
                 if error.code() != grpc.StatusCode.CANCELLED:
                     raise domain_error(error) from None
                 return
-        raise Unavailable("the sensor's stream ended", reason="SENSOR_STREAM_ENDED")
+        raise UnavailableError("the sensor's stream ended", reason="SENSOR_STREAM_ENDED")
 
     def cancel(self) -> None:
         self._call.cancel()

@@ -16,7 +16,7 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from services.runtime.errors import DeadlineExceeded, InvalidArgument, NotFound
+from wire.errors import DeadlineExceededError, InvalidArgumentError, NotFoundError
 
 SLICE_S = 0.001
 MAX_ACTIONS = 64
@@ -42,11 +42,11 @@ class Barriers:
 
     def open(self, count: int, timeout_s: float) -> tuple[str, float]:
         if not 1 <= count <= MAX_ACTIONS:
-            raise InvalidArgument(f"action_count must be 1..{MAX_ACTIONS}", reason="BAD_COUNT")
+            raise InvalidArgumentError(f"action_count must be 1..{MAX_ACTIONS}", reason="BAD_COUNT")
         timeout_s = timeout_s or DEFAULT_BARRIER_TIMEOUT_S
         if not 0 < timeout_s <= MAX_BARRIER_TIMEOUT_S:
-            raise InvalidArgument(f"barrier_timeout must be 0..{MAX_BARRIER_TIMEOUT_S} s",
-                                  reason="BAD_TIMEOUT")
+            raise InvalidArgumentError(f"barrier_timeout must be 0..{MAX_BARRIER_TIMEOUT_S} s",
+                                       reason="BAD_TIMEOUT")
         barrier_id = uuid.uuid4().hex
         with self._lock:
             self._barriers[barrier_id] = _Barrier(count, time.monotonic() + timeout_s)
@@ -59,17 +59,17 @@ class Barriers:
         return barrier.arrived if barrier is not None else 0
 
     def arrive_and_wait(self, barrier_id: str) -> None:
-        """Block until every action of the batch has arrived; DeadlineExceeded for all of them
+        """Block until every action of the batch has arrived; DeadlineExceededError for all of them
         if one never does."""
         with self._lock:
             barrier = self._barriers.get(barrier_id)
         if barrier is None:
-            raise NotFound(f"no open cobegin '{barrier_id}'", reason="NO_COBEGIN")
+            raise NotFoundError(f"no open cobegin '{barrier_id}'", reason="NO_COBEGIN")
         with barrier.released:
             barrier.arrived += 1
             if barrier.arrived > barrier.expected:
-                raise InvalidArgument("more actions than the cobegin declared",
-                                      reason="TOO_MANY_ACTIONS")
+                raise InvalidArgumentError("more actions than the cobegin declared",
+                                           reason="TOO_MANY_ACTIONS")
             if barrier.arrived == barrier.expected:
                 barrier.released.notify_all()
             while barrier.arrived < barrier.expected and not barrier.failed:
@@ -84,8 +84,9 @@ class Barriers:
             with self._lock:
                 self._barriers.pop(barrier_id, None)
         if failed:
-            raise DeadlineExceeded(f"cobegin: only {barrier.arrived} of {barrier.expected} "
-                                   "actions arrived in time; none ran", reason="BARRIER_TIMEOUT")
+            raise DeadlineExceededError(f"cobegin: only {barrier.arrived} of {barrier.expected} "
+                                        "actions arrived in time; none ran",
+                                        reason="BARRIER_TIMEOUT")
 
 
 # The longest BusyWork action: Parma's workloads last milliseconds, and a longer one would
@@ -106,8 +107,8 @@ class SimulatedProcessor:
         """Compute for `duration_s` of processor time, or until `cancelled()`; returns (start,
         end) in time.time_ns()."""
         if not 0 <= duration_s <= MAX_BUSY_WORK_S:
-            raise InvalidArgument(f"busy_work.duration must be 0..{MAX_BUSY_WORK_S:.0f} s",
-                                  reason="BAD_DURATION")
+            raise InvalidArgumentError(f"busy_work.duration must be 0..{MAX_BUSY_WORK_S:.0f} s",
+                                       reason="BAD_DURATION")
         start_ns = 0
         remaining = duration_s
         while remaining > 0 and not cancelled():

@@ -45,13 +45,13 @@ from services.decision_server.slave import (
 )
 from services.decision_server.teleop import TeleopSession
 from services.runtime.clock import SYSTEM_CLOCK, Clock
-from services.runtime.errors import (
-    FailedPrecondition,
-    InvalidArgument,
-    NotFound,
-    PermissionDenied,
+from wire.errors import (
+    FailedPreconditionError,
+    InvalidArgumentError,
+    NotFoundError,
+    PermissionDeniedError,
     TelerobotError,
-    Unavailable,
+    UnavailableError,
 )
 
 log = logging.getLogger(__name__)
@@ -228,7 +228,7 @@ class DecisionCore:
             return None
         try:
             self._sensor_streamed = self.slave.sensor_is_reading(SENSOR_PROBE_S)
-        except Unavailable as error:
+        except UnavailableError as error:
             return f"the force sensor went silent ({error.message}); the arm holds"
         self._sensor_alive_until = now + SENSOR_ALIVE_S  # quiet but alive: ask again later
         return None
@@ -268,22 +268,22 @@ class DecisionCore:
         lease = self.locks.require(lease_id)
         watchdog_s = watchdog_s or DEFAULT_WATCHDOG_S
         if not MIN_WATCHDOG_S <= watchdog_s <= MAX_WATCHDOG_S:
-            raise InvalidArgument(f"watchdog_timeout must be {MIN_WATCHDOG_S * 1e3:.0f} ms.."
-                                  f"{MAX_WATCHDOG_S:.0f} s", reason="BAD_WATCHDOG")
+            raise InvalidArgumentError(f"watchdog_timeout must be {MIN_WATCHDOG_S * 1e3:.0f} ms.."
+                                       f"{MAX_WATCHDOG_S:.0f} s", reason="BAD_WATCHDOG")
         status = self.robot_state().status
         if status in LATCHED_STATUSES:
-            raise FailedPrecondition(f"the arm is {status}: Reset it first", reason=status)
+            raise FailedPreconditionError(f"the arm is {status}: Reset it first", reason=status)
         if status not in ("READY", "MOVING"):
-            raise FailedPrecondition(f"the arm is {status}: Connect and Initialize it first",
-                                     reason=status)
+            raise FailedPreconditionError(f"the arm is {status}: Connect and Initialize it first",
+                                          reason=status)
         # An authenticated holder drives as itself, whatever the session's init says.
         session = TeleopSession(self, lease.identity or operator_id or lease.operator_id, lease,
                                 mapping, watchdog_s,
                                 passivity=SlavePassivity() if passivity else None)
         with self._lock:
             if self._replay is not None:
-                raise FailedPrecondition("a replay is running: stop it first",
-                                         reason="REPLAYING")
+                raise FailedPreconditionError("a replay is running: stop it first",
+                                              reason="REPLAYING")
             self._sessions[session.session_id] = session
         return session.start()
 
@@ -293,16 +293,17 @@ class DecisionCore:
         with self._lock:
             session = self._sessions.get(session_id)
         if session is None:
-            raise NotFound(f"no session {session_id} to resume: it ended, or its resume window "
-                           "passed; open a new one", reason="NO_SESSION")
+            raise NotFoundError(
+                f"no session {session_id} to resume: it ended, or its resume window "
+                "passed; open a new one", reason="NO_SESSION")
         if lease_id != session.lease.lease_id:
-            raise PermissionDenied(f"session {session_id} belongs to another lease",
-                                   reason="NOT_YOUR_SESSION")
+            raise PermissionDeniedError(f"session {session_id} belongs to another lease",
+                                        reason="NOT_YOUR_SESSION")
         self.locks.require(lease_id)  # the lease still held, by this caller; renewed
         with self._lock:  # (start_replay looks for attached sessions under it too)
             if self._replay is not None:  # started while the session was detached
-                raise FailedPrecondition("a replay is running: stop it first",
-                                         reason="REPLAYING")
+                raise FailedPreconditionError("a replay is running: stop it first",
+                                              reason="REPLAYING")
             return session, session.resume()
 
     def forget_session(self, session_id: str) -> None:
@@ -332,9 +333,9 @@ class DecisionCore:
         with self._lock:
             latched, replaying = self.latched, self._replay is not None
         if latched:
-            raise FailedPrecondition(f"the arm is {latched}: Reset it first", reason=latched)
+            raise FailedPreconditionError(f"the arm is {latched}: Reset it first", reason=latched)
         if replaying:
-            raise FailedPrecondition("a replay is running: stop it first", reason="REPLAYING")
+            raise FailedPreconditionError("a replay is running: stop it first", reason="REPLAYING")
 
     # -- assistance, indexing, tool frame ---------------------------------------------------
 
@@ -355,7 +356,7 @@ class DecisionCore:
             # change of control would stop the loop just started, so look again now.
             try:
                 self.locks.require(lease.lease_id)
-            except FailedPrecondition:
+            except FailedPreconditionError:
                 self._switch_force_control_off()
                 raise
         self.emit(AssistanceChanged(assistance, lease.operator_id))
@@ -397,7 +398,7 @@ class DecisionCore:
 
     def emergency_stop(self, reason: str) -> str:
         """Stop the arm first, then replay and force control; returns the arm's status.
-        Never needs the lock. Raises Unavailable only when no path latched the stop, and even
+        Never needs the lock. Raises UnavailableError only when no path latched the stop, and even
         then stops what runs here."""
         try:
             status = self.slave.emergency_stop(reason)
@@ -434,18 +435,18 @@ class DecisionCore:
         self.locks.require(lease_id)
         speed = speed or 1.0
         if not MIN_REPLAY_SPEED <= speed <= MAX_REPLAY_SPEED:
-            raise InvalidArgument(f"speed must be {MIN_REPLAY_SPEED}..{MAX_REPLAY_SPEED}",
-                                  reason="BAD_SPEED")
+            raise InvalidArgumentError(f"speed must be {MIN_REPLAY_SPEED}..{MAX_REPLAY_SPEED}",
+                                       reason="BAD_SPEED")
         info, commands = self.recordings.load(name)
         with self._lock:
             if self._replay is not None:
-                raise FailedPrecondition("a replay is already running", reason="REPLAYING")
+                raise FailedPreconditionError("a replay is already running", reason="REPLAYING")
             if any(not session.detached for session in self._sessions.values()):
-                raise FailedPrecondition("an operator is teleoperating: end the session first",
-                                         reason="TELEOPERATING")
+                raise FailedPreconditionError("an operator is teleoperating: end the session first",
+                                              reason="TELEOPERATING")
             if self.latched:
-                raise FailedPrecondition(f"the arm is {self.latched}: Reset it first",
-                                         reason=self.latched)
+                raise FailedPreconditionError(f"the arm is {self.latched}: Reset it first",
+                                              reason=self.latched)
             replay = _Replay()
             replay.thread = threading.Thread(target=self._run_replay,
                                              args=(info, commands, speed, replay),
@@ -458,7 +459,7 @@ class DecisionCore:
         self.locks.require(lease_id)
         with self._lock:
             if self._replay is None:
-                raise FailedPrecondition("no replay is running", reason="NOT_REPLAYING")
+                raise FailedPreconditionError("no replay is running", reason="NOT_REPLAYING")
         return self._stop_replay("stopped by the lock holder")
 
     def _stop_replay(self, reason: str) -> int:

@@ -13,7 +13,7 @@ import pinocchio as pin
 from services.decision_server.assistance import ForceControl
 from services.decision_server.slave import Slave
 from services.runtime.clock import Clock
-from services.runtime.errors import TelerobotError, Unavailable
+from wire.errors import TelerobotError, UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -77,7 +77,7 @@ class ForceLoop:
         while not self._stop.is_set():
             try:
                 self._steps()
-            except Unavailable as error:  # the sensor stalled: subscribe again once it is back
+            except UnavailableError as error:  # the sensor stalled: subscribe again once it is back
                 log.warning("force control paused: %s", error.message)
                 self._clock.wait(self._stop, RETRY_S)
             except TelerobotError as error:
@@ -86,7 +86,7 @@ class ForceLoop:
                 return
 
     def _steps(self) -> None:
-        """Integrate per fresh sample until stopped; Unavailable when the stream ends."""
+        """Integrate per fresh sample until stopped; UnavailableError when the stream ends."""
         self._stream = self._slave.wrench_stream(DECIMATION)
         try:
             self._act_on(self._stream)
@@ -125,7 +125,7 @@ class ForceLoop:
                 return
             try:
                 self._slave.move_cartesian(delta_x, delta_m, "TOOL")
-            except Unavailable:
+            except UnavailableError:
                 raise
             except TelerobotError as error:
                 # A refusal ends the loop: the core stops it on a latch anyway, and a loop that

@@ -18,7 +18,7 @@ from pathlib import Path
 
 from services.decision_server import recording_mcap
 from services.decision_server.recordings import NAME_PATTERN, read_jsonl, read_mcap, write_jsonl
-from services.runtime.errors import TelerobotError
+from wire.errors import TelerobotError
 
 OTHER = {".jsonl": ".mcap", ".mcap": ".jsonl"}
 

@@ -31,10 +31,10 @@ from mcap_protobuf.writer import Writer
 
 from services.common.inbox import queued_now
 from services.runtime.clock import Clock
-from services.runtime.errors import FailedPrecondition, TelerobotError
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
 from wire import convert
+from wire.errors import FailedPreconditionError, TelerobotError
 
 log = logging.getLogger(__name__)
 
@@ -208,14 +208,14 @@ class McapRecorder:
 
     def finish(self) -> list:
         """Write what is queued, the metadata, and close; returns the recorded increments.
-        Raises FailedPrecondition (RECORDING_FAILED) when the writing failed."""
+        Raises FailedPreconditionError (RECORDING_FAILED) when the writing failed."""
         self._queue.put(("finish",))
         self._finishing.set()
         self._thread.join()
         if self.error is not None:
-            raise FailedPrecondition(f"the recording '{self.name}' stopped by itself: "
-                                     f"{self.error}; nothing was saved",
-                                     reason="RECORDING_FAILED")
+            raise FailedPreconditionError(f"the recording '{self.name}' stopped by itself: "
+                                          f"{self.error}; nothing was saved",
+                                          reason="RECORDING_FAILED")
         return self._commands
 
     # -- the writer thread ------------------------------------------------------------------
@@ -301,7 +301,7 @@ class McapContents:
 
 def read_summary(path: Path) -> dict[str, str]:
     """The "recording" metadata of a finished file (cheap: the summary only). Raises
-    FailedPrecondition (CORRUPT_RECORDING) when the file is truncated or not MCAP."""
+    FailedPreconditionError (CORRUPT_RECORDING) when the file is truncated or not MCAP."""
     try:
         with open(path, "rb") as stream:
             if stream.read(len(MAGIC)) != MAGIC:
@@ -323,7 +323,7 @@ def read_summary(path: Path) -> dict[str, str]:
 
 def read_commands(path: Path, recorded_command_type) -> McapContents:
     """Every increment, with the recording's name and start time. Reads the whole file,
-    checking its CRCs; FailedPrecondition (CORRUPT_RECORDING) when it is truncated, corrupt
+    checking its CRCs; FailedPreconditionError (CORRUPT_RECORDING) when it is truncated, corrupt
     or holds a malformed increment."""
     try:
         metadata = read_summary(path)
@@ -336,7 +336,7 @@ def read_commands(path: Path, recorded_command_type) -> McapContents:
                             topics=[INCREMENT], log_time_order=True)]
         return McapContents(metadata.get("name", path.stem),
                             int(metadata.get("create_time_ns", "0")), commands)
-    except FailedPrecondition:
+    except FailedPreconditionError:
         raise
     except Exception as error:  # noqa: BLE001 - whatever the parser says of a bad file
         raise _corrupt(path, error) from error
@@ -360,9 +360,9 @@ def _check_crcs(data: bytes) -> None:
         raise ValueError("the summary section's CRC does not match (corrupt)")
 
 
-def _corrupt(path: Path, error: Exception) -> FailedPrecondition:
+def _corrupt(path: Path, error: Exception) -> FailedPreconditionError:
     what = str(error) or type(error).__name__
     if isinstance(error, EndOfFile):
         what = "it ends early (truncated: the recording was not finished, or cut short)"
-    return FailedPrecondition(f"the recording file {path.name} cannot be read: {what}",
-                              reason="CORRUPT_RECORDING")
+    return FailedPreconditionError(f"the recording file {path.name} cannot be read: {what}",
+                                   reason="CORRUPT_RECORDING")

@@ -6,7 +6,8 @@ joint one (frame "JOINTS") with its Δθ; each with the tool target it led to (s
 checked against the original path). Or, when asked for, an MCAP file (<name>.mcap, see
 recording_mcap) holding the same increments and, beside them, the acks, robot state, wrench and
 events of the recording's time. A replay reads either. A file that cannot be read (truncated,
-corrupt) is FailedPrecondition (CORRUPT_RECORDING): the request was fine, the stored file is not.
+corrupt) is FailedPreconditionError (CORRUPT_RECORDING): the request was fine, the stored file is
+not.
 """
 
 from __future__ import annotations
@@ -23,7 +24,12 @@ import numpy as np
 from services.decision_server import recording_mcap
 from services.decision_server.recording_mcap import McapRecorder, Sources
 from services.runtime.clock import SYSTEM_CLOCK, Clock
-from services.runtime.errors import AlreadyExists, FailedPrecondition, InvalidArgument, NotFound
+from wire.errors import (
+    AlreadyExistsError,
+    FailedPreconditionError,
+    InvalidArgumentError,
+    NotFoundError,
+)
 
 NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]{1,64}")
 SUFFIXES = {"JSONL": ".jsonl", "MCAP": ".mcap"}
@@ -78,7 +84,7 @@ def write_jsonl(path: Path, name: str, create_time_ns: int, commands) -> None:
 
 
 def read_jsonl(path: Path) -> tuple[str, int, list[RecordedCommand]]:
-    """(name in the header, create time, increments); FailedPrecondition (CORRUPT_RECORDING)
+    """(name in the header, create time, increments); FailedPreconditionError (CORRUPT_RECORDING)
     for a file that is not one."""
     try:
         header, *lines = path.read_text().splitlines()
@@ -86,9 +92,9 @@ def read_jsonl(path: Path) -> tuple[str, int, list[RecordedCommand]]:
         commands = [RecordedCommand.from_json(line) for line in lines if line]
         return str(meta.get("name", path.stem)), int(meta["create_time_ns"]), commands
     except (ValueError, KeyError, TypeError, AttributeError) as error:
-        raise FailedPrecondition(f"the recording file {path.name} cannot be read: "
-                                 f"{type(error).__name__}: {error}",
-                                 reason="CORRUPT_RECORDING") from error
+        raise FailedPreconditionError(f"the recording file {path.name} cannot be read: "
+                                      f"{type(error).__name__}: {error}",
+                                      reason="CORRUPT_RECORDING") from error
 
 
 def read_mcap(path: Path) -> tuple[str, int, list[RecordedCommand]]:
@@ -127,8 +133,8 @@ class RecordingStore:
 
     def _path(self, name: str, format: str = "JSONL") -> Path:
         if not NAME_PATTERN.fullmatch(name or ""):
-            raise InvalidArgument("a recording name is 1 to 64 of A-Z a-z 0-9 _ -",
-                                  reason="BAD_NAME")
+            raise InvalidArgumentError("a recording name is 1 to 64 of A-Z a-z 0-9 _ -",
+                                       reason="BAD_NAME")
         return self.directory / f"{name}{SUFFIXES[format]}"
 
     def _existing(self, name: str) -> tuple[Path, str]:
@@ -136,21 +142,21 @@ class RecordingStore:
             path = self._path(name, format)
             if path.exists():
                 return path, format
-        raise NotFound(f"no recording named '{name}'", reason="NO_RECORDING")
+        raise NotFoundError(f"no recording named '{name}'", reason="NO_RECORDING")
 
     def start(self, name: str, format: str = "JSONL", sources: Sources | None = None
               ) -> RecordingInfo:
         """Start recording; MCAP recordings also sample `sources` (the arm's state, wrench)."""
         if format not in SUFFIXES:
-            raise InvalidArgument(f"unknown recording format {format!r}", reason="BAD_FORMAT")
+            raise InvalidArgumentError(f"unknown recording format {format!r}", reason="BAD_FORMAT")
         path = self._path(name, format)
         with self._lock:
             if self._active is not None:
-                raise FailedPrecondition(f"already recording '{self._active.name}': stop it "
-                                         "first", reason="RECORDING")
+                raise FailedPreconditionError(f"already recording '{self._active.name}': stop it "
+                                              "first", reason="RECORDING")
             if any(self._path(name, other).exists() for other in SUFFIXES):
-                raise AlreadyExists(f"a recording named '{name}' exists: delete it or pick "
-                                    "another name", reason="NAME_TAKEN")
+                raise AlreadyExistsError(f"a recording named '{name}' exists: delete it or pick "
+                                         "another name", reason="NAME_TAKEN")
             self._failure = None
             active = _Active(name, format, self._clock.time_ns(), self._clock.monotonic(), [])
             if format == "MCAP":
@@ -160,8 +166,8 @@ class RecordingStore:
                         self._clock, sources or Sources(), self.event_to_message,
                         lambda why, active=active: self._died(active, why))
                 except OSError as error:
-                    raise FailedPrecondition(f"cannot write the recording: {error}",
-                                             reason="RECORDING_FAILED") from error
+                    raise FailedPreconditionError(f"cannot write the recording: {error}",
+                                                  reason="RECORDING_FAILED") from error
             self._active = active
         return RecordingInfo(name, active.create_time_ns, 0.0, 0, format)
 
@@ -225,10 +231,11 @@ class RecordingStore:
             if active is None:
                 failure, self._failure = self._failure, None
                 if failure is not None:
-                    raise FailedPrecondition(f"the recording '{failure[0]}' stopped by itself: "
-                                             f"{failure[1]}; nothing was saved",
-                                             reason="RECORDING_FAILED")
-                raise FailedPrecondition("not recording", reason="NOT_RECORDING")
+                    raise FailedPreconditionError(
+                        f"the recording '{failure[0]}' stopped by itself: "
+                        f"{failure[1]}; nothing was saved",
+                        reason="RECORDING_FAILED")
+                raise FailedPreconditionError("not recording", reason="NOT_RECORDING")
             self._active = None
         path = self._path(active.name, active.format)
         try:
@@ -240,8 +247,8 @@ class RecordingStore:
                 active.recorder.path.replace(path)
         except OSError as error:  # a full disk at the last write: nothing half-written stays
             path.with_name(path.name + ".partial").unlink(missing_ok=True)
-            raise FailedPrecondition(f"the recording '{active.name}' could not be saved: "
-                                     f"{error}", reason="RECORDING_FAILED") from error
+            raise FailedPreconditionError(f"the recording '{active.name}' could not be saved: "
+                                          f"{error}", reason="RECORDING_FAILED") from error
         return self._info(active.name, active.create_time_ns, commands, active.format)
 
     def load(self, name: str) -> tuple[RecordingInfo, list[RecordedCommand]]:
@@ -258,7 +265,7 @@ class RecordingStore:
             meta = recording_mcap.read_summary(path)
             return RecordingInfo(name, int(meta["create_time_ns"]), float(meta["duration_s"]),
                                  int(meta["command_count"]), format)
-        except FailedPrecondition as error:
+        except FailedPreconditionError as error:
             return RecordingInfo(name, 0, 0.0, 0, format, error.message)
         except (KeyError, ValueError) as error:
             return RecordingInfo(name, 0, 0.0, 0, format, f"bad metadata: {error}")
@@ -270,7 +277,7 @@ class RecordingStore:
         for name in names:
             try:
                 infos.append(self.info(name))
-            except (NotFound, InvalidArgument):
+            except (NotFoundError, InvalidArgumentError):
                 continue  # deleted meanwhile, or a stray file whose name is not one of ours
         return infos
 

@@ -37,7 +37,6 @@ from services.decision_server.teleop import (
 )
 from services.proxy_robot.servicer import frame_from_proto
 from services.runtime.clock import Clock
-from services.runtime.errors import Aborted, InvalidArgument, TelerobotError
 from services.runtime.lanes import Lane, current_lane
 from services.runtime.rpc import LANE_TO_PROTO
 from telerobot.v1 import (
@@ -53,6 +52,7 @@ from telerobot.v1 import (
     stereo_camera_pb2_grpc,
     types_pb2,
 )
+from wire.errors import AbortedError, InvalidArgumentError, TelerobotError
 from wire.metadata import LEASE_METADATA_KEY
 
 STREAM_POLL_S = 0.1
@@ -105,7 +105,7 @@ def _axes(selection: pb.AxisSelection) -> np.ndarray:
 def assistance_from_proto(config: pb.AssistanceConfig) -> assist.Assistance:
     mapping = "TOOL" if config.mapping == types_pb2.REFERENCE_FRAME_TOOL else "BASE"
     if config.mapping == types_pb2.REFERENCE_FRAME_WRIST:
-        raise InvalidArgument("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
+        raise InvalidArgumentError("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
     floating = None
     if config.floating_tool_frame.enabled:
         floating = convert.vector3_from_proto(config.floating_tool_frame.point_m, "point_m")
@@ -169,7 +169,7 @@ def recording_format(value: int) -> str:
     if value == pb.RECORDING_FORMAT_UNSPECIFIED:
         return "JSONL"
     if value not in pb.RecordingFormat.values():
-        raise InvalidArgument(f"unknown recording format {value}", reason="BAD_FORMAT")
+        raise InvalidArgumentError(f"unknown recording format {value}", reason="BAD_FORMAT")
     return pb.RecordingFormat.Name(value).removeprefix("RECORDING_FORMAT_")
 
 
@@ -304,8 +304,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
     def Teleoperate(self, request_iterator, context):
         first = next(request_iterator, None)
         if first is None or first.WhichOneof("message") != "init":
-            raise InvalidArgument("the first Teleoperate message must be an init",
-                                  reason="NO_INIT")
+            raise InvalidArgumentError("the first Teleoperate message must be an init",
+                                       reason="NO_INIT")
         session, stream = self._session_for(first.init)
         # Only the operator's `end` ends the session; a stream that ends without one (a cut, a
         # lost connection, a half-close alone: gRPC may report a dead connection as a clean
@@ -345,8 +345,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         except TelerobotError as error:
             reason, resumable = error.message, error.reason == "STREAM_BROKEN"
             if error.reason == "NO_CONTROL":
-                raise Aborted(f"control was lost mid-stream: {error.message}",
-                              reason="CONTROL_LOST") from None
+                raise AbortedError(f"control was lost mid-stream: {error.message}",
+                                   reason="CONTROL_LOST") from None
             raise
         finally:
             session.end(stream, reason, resumable)
@@ -359,7 +359,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if init.mapping:
             mapping = frame_from_proto(init.mapping)
             if mapping == "WRIST":
-                raise InvalidArgument("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
+                raise InvalidArgumentError("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
         session = self._core.open_session(init.operator_id, init.lease_id, mapping,
                                           convert.seconds(init.watchdog_timeout),
                                           passivity=init.passivity == pb.PASSIVITY_TDPA)
@@ -375,11 +375,11 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if kind in ("heartbeat", "end"):
             return request, None
         if kind != "command":
-            raise InvalidArgument("only commands, heartbeats and an end may follow the init",
-                                  reason="BAD_MESSAGE")
+            raise InvalidArgumentError("only commands, heartbeats and an end may follow the init",
+                                       reason="BAD_MESSAGE")
         command = request.command
         if command.sequence < 0:
-            raise InvalidArgument("sequence must be ≥ 0", reason="BAD_SEQUENCE")
+            raise InvalidArgumentError("sequence must be ≥ 0", reason="BAD_SEQUENCE")
         received_ns = self._core.clock.time_ns()
         on_command_age = self.on_command_age
         if on_command_age is not None and command.HasField("send_time"):
@@ -454,8 +454,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
 
     def AcquireControl(self, request, context):
         if not request.mode:
-            raise InvalidArgument("mode must be CONTROL_MODE_EXCLUSIVE or "
-                                  "CONTROL_MODE_COLLABORATIVE", reason="BAD_MODE")
+            raise InvalidArgumentError("mode must be CONTROL_MODE_EXCLUSIVE or "
+                                       "CONTROL_MODE_COLLABORATIVE", reason="BAD_MODE")
         mode = ControlMode[pb.ControlMode.Name(request.mode).removeprefix("CONTROL_MODE_")]
         wait_s = convert.seconds(request.wait_timeout) or context.time_remaining()
         lease = self._core.locks.acquire(
@@ -513,8 +513,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         lane = current_lane() or Lane.MEDIUM
         kind = request.WhichOneof("action")
         if kind is None:
-            raise InvalidArgument("set one action: busy_work, move_joints or move_cartesian",
-                                  reason="NO_ACTION")
+            raise InvalidArgumentError("set one action: busy_work, move_joints or move_cartesian",
+                                       reason="NO_ACTION")
         move = _move_from_proto(self._core, lease_id(context), kind, getattr(request, kind))
         if kind != "busy_work":
             self._core.locks.require(lease_id(context))  # before waiting at a barrier
@@ -578,8 +578,8 @@ def _master_energy_in(message: pb.MasterCommand | pb.Heartbeat) -> float | None:
     energy = message.master_energy
     values = (energy.energy_in_j, energy.energy_out_j, energy.dissipated_j)
     if not all(math.isfinite(v) and v >= 0.0 for v in values):
-        raise InvalidArgument("master_energy must hold finite energies ≥ 0 J",
-                              reason="BAD_ENERGY")
+        raise InvalidArgumentError("master_energy must hold finite energies ≥ 0 J",
+                                   reason="BAD_ENERGY")
     return energy.energy_in_j
 
 

@@ -28,7 +28,7 @@ from domain.geometry import moved_by, rotation_angle
 from domain.passivity import SlavePassivity
 from services.decision_server.arbitration import Lease
 from services.decision_server.assistance import Assistance, apply_assistance
-from services.runtime.errors import Aborted, FailedPrecondition, TelerobotError, Unavailable
+from wire.errors import AbortedError, FailedPreconditionError, TelerobotError, UnavailableError
 
 if TYPE_CHECKING:
     from services.decision_server.core import DecisionCore
@@ -235,7 +235,8 @@ class TeleopSession:
             self._heard(master_energy_in_j)
             now = self._clock.time_ns()
             self._touch()
-            self.core.locks.require(self.lease.lease_id)  # renews it; FailedPrecondition if lost
+            # Renews the lease; FailedPreconditionError if it is lost.
+            self.core.locks.require(self.lease.lease_id)
             return CommandResult("HEARTBEAT", "", now, now)
 
     def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
@@ -275,7 +276,7 @@ class TeleopSession:
 
     def _require_stream(self, stream: int) -> None:
         if stream != self.stream:
-            raise Aborted("another stream resumed this session", reason="SUPERSEDED")
+            raise AbortedError("another stream resumed this session", reason="SUPERSEDED")
 
     def _process(self, increments: list[MasterIncrement], stream: int
                  ) -> Iterator[tuple[list[MasterIncrement], list[CommandResult]]]:
@@ -283,7 +284,7 @@ class TeleopSession:
         if not increments:
             return
         self._touch()
-        self.core.locks.require(self.lease.lease_id)  # FailedPrecondition ends the stream
+        self.core.locks.require(self.lease.lease_id)  # FailedPreconditionError ends the stream
         assistance, indexing, latched = self.core.snapshot()
         sensor_lost = self._sensor_check()
         for group in merge_groups(increments):
@@ -341,13 +342,13 @@ class TeleopSession:
             if self._detached_at is not None or stream != self.stream:
                 # The stream broke while this batch ran: the arm holds, and the rest of the
                 # batch counts as never received (the master resends it after resuming).
-                raise Aborted("the session's stream broke", reason="STREAM_BROKEN")
+                raise AbortedError("the session's stream broke", reason="STREAM_BROKEN")
             try:
                 if self._closed.is_set():
-                    raise FailedPrecondition("the session has ended", reason="SESSION_ENDED")
+                    raise FailedPreconditionError("the session has ended", reason="SESSION_ENDED")
                 result = self.core.slave.move_cartesian(total.translation, total.rotation,
                                                         mapping)
-            except Unavailable:
+            except UnavailableError:
                 raise  # the arm is unreachable: the stream ends, it is not one refused command
             except TelerobotError as error:
                 now = self._clock.time_ns()
@@ -398,7 +399,7 @@ class TeleopSession:
         has not noticed yet, which is then superseded). Returns the new stream's number."""
         with self._lock:
             if self._closed.is_set():
-                raise FailedPrecondition("the session has ended", reason="SESSION_ENDED")
+                raise FailedPreconditionError("the session has ended", reason="SESSION_ENDED")
             self.stream += 1
             self._detached_at = None
             stream = self.stream

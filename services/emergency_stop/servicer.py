@@ -9,11 +9,11 @@ from collections.abc import Callable
 from services.common import convert
 from services.proxy_robot.servicer import status_to_proto
 from services.proxy_robot.status import RobotStatus
-from services.runtime.config import address_for, env_name
-from services.runtime.errors import Unavailable, Unimplemented
 from services.world.link import EmergencyStopLink
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc
+from wire.addresses import address_for, env_name
+from wire.errors import UnavailableError, UnimplementedError
 
 log = logging.getLogger(__name__)
 
@@ -33,7 +33,7 @@ class EmergencyStopServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
         with self._lock:
             try:
                 self._link = self._link or self._open_link()
-            except Unavailable as error:
+            except UnavailableError as error:
                 log.warning("no arm to stop yet (%s); trying again on the first stop",
                             error.message)
 
@@ -41,7 +41,7 @@ class EmergencyStopServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
         with self._lock:
             try:
                 stop_time_ns = self._stop()
-            except Unavailable:
+            except UnavailableError:
                 self._drop_link()
                 stop_time_ns = self._stop()  # once more, on a fresh link; else the caller hears
         log.warning("emergency stop latched at the hardware: %s", request.reason or "no reason")
@@ -55,7 +55,7 @@ class EmergencyStopServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
         with self._lock:
             try:
                 self._stop()
-            except Unavailable:
+            except UnavailableError:
                 pass
 
     def _stop(self) -> int:
@@ -75,7 +75,7 @@ class EmergencyStopServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
 
 def _refuse(method: str):
     def refuse(self, request, context):
-        raise Unimplemented(
+        raise UnimplementedError(
             f"this is the emergency-stop band: it serves only EmergencyStop. Call {method} on "
             f"ProxyRobot ({env_name('proxy_robot', 'address')}, here {address_for('proxy_robot')})",
             reason="EMERGENCY_STOP_ONLY")

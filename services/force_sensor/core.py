@@ -54,14 +54,14 @@ from services.force_sensor.subscribers import (
     changed_enough,
 )
 from services.force_sensor.wrench_model import ContactWrench, Payload, contact_wrench
-from services.runtime.errors import (
-    FailedPrecondition,
-    InvalidArgument,
-    ResourceExhausted,
-    Unavailable,
-)
 from services.world.link import ArmLink, WrenchLink
 from services.world.realtime import RealtimeLoop
+from wire.errors import (
+    FailedPreconditionError,
+    InvalidArgumentError,
+    ResourceExhaustedError,
+    UnavailableError,
+)
 
 log = logging.getLogger(__name__)
 
@@ -158,7 +158,7 @@ class ForceSensorCore:
     # -- reading ----------------------------------------------------------------------------
 
     def start_reading(self) -> SensorSettings:
-        """Open the links if needed and start sampling. Unavailable if the sensor is down."""
+        """Open the links if needed and start sampling. UnavailableError if the sensor is down."""
         with self._lock:
             if self.reading:
                 return self._settings
@@ -178,28 +178,29 @@ class ForceSensorCore:
 
     def latest(self) -> WrenchReading:
         if self._failure:
-            raise Unavailable(f"the sensor stopped: {self._failure}; StartReading again",
-                              reason="SENSOR_DOWN")
+            raise UnavailableError(f"the sensor stopped: {self._failure}; StartReading again",
+                                   reason="SENSOR_DOWN")
         if self._latest is None:
-            raise FailedPrecondition("no sample yet: call StartReading first",
-                                     reason="NOT_READING")
+            raise FailedPreconditionError("no sample yet: call StartReading first",
+                                          reason="NOT_READING")
         return self._latest
 
     def tare(self, duration_s: float) -> tuple[ContactWrench, int]:
         """Average the contact wrench over duration_s (0: the next sample) and subtract it from
         now on. Returns (bias, samples averaged)."""
         if not 0 <= duration_s <= MAX_TARE_S:
-            raise InvalidArgument(f"tare duration must be 0..{MAX_TARE_S} s", reason="BAD_TARE")
+            raise InvalidArgumentError(
+                f"tare duration must be 0..{MAX_TARE_S} s", reason="BAD_TARE")
         if not self.reading:
-            raise FailedPrecondition("the sensor is not reading: call StartReading first",
-                                     reason="NOT_READING")
+            raise FailedPreconditionError("the sensor is not reading: call StartReading first",
+                                          reason="NOT_READING")
         samples: list[ContactWrench] = []
         deadline = time.monotonic() + duration_s
         with self._unbiased.subscribe(capacity=10_000) as unbiased:
             while not samples or time.monotonic() < deadline:
                 sample = unbiased.get(0.5)
                 if sample is None:
-                    raise Unavailable("no samples arrived while taring", reason="SENSOR_DOWN")
+                    raise UnavailableError("no samples arrived while taring", reason="SENSOR_DOWN")
                 samples.append(sample)
         bias = ContactWrench(np.mean([s.force_n for s in samples], axis=0),
                              np.mean([s.torque_nm for s in samples], axis=0))
@@ -209,8 +210,8 @@ class ForceSensorCore:
 
     def subscribe(self, options: StreamOptions) -> WrenchSubscription:
         if self.readings.subscriber_count >= MAX_SUBSCRIBERS:
-            raise ResourceExhausted(f"{MAX_SUBSCRIBERS} subscribers already; retry later",
-                                    reason="TOO_MANY_SUBSCRIBERS")
+            raise ResourceExhaustedError(f"{MAX_SUBSCRIBERS} subscribers already; retry later",
+                                         reason="TOO_MANY_SUBSCRIBERS")
         return self.readings.subscribe(options)
 
     def close(self) -> None:
@@ -242,7 +243,7 @@ class ForceSensorCore:
         self._apply_priority()
         try:
             loop.run(stop)
-        except Unavailable as exc:
+        except UnavailableError as exc:
             self._failure = exc.message
             log.error("sampling stopped: %s", exc.message)
         log.info("sampling loop: %s", loop.stats().describe())
@@ -261,7 +262,7 @@ class ForceSensorCore:
     def _step(self) -> None:
         try:
             reading = self._sample_once()
-        except Unavailable as error:
+        except UnavailableError as error:
             if error.reason != _STALLED:
                 raise  # gone for good: the loop ends and the failure is reported
             now = time.monotonic()

@@ -9,8 +9,8 @@ in network byte order:
 
 UDP may lose or reorder packets: a record older than the newest one is dropped (counted as
 reordered) and a gap in rdt_sequence is counted as lost. A sensor that stops sending makes
-read_wrench() raise Unavailable after `stale_after_s` instead of handing out an old reading, and
-nothing here blocks longer than that. Implements services.world.link.WrenchLink.
+read_wrench() raise UnavailableError after `stale_after_s` instead of handing out an old reading,
+and nothing here blocks longer than that. Implements services.world.link.WrenchLink.
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from services.runtime.errors import Unavailable
 from services.world.link import RawWrench
+from wire.errors import UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -100,22 +100,22 @@ class RdtWrenchLink:
         self._thread.start()
         if not self._first.wait(connect_timeout_s):
             self.close()
-            raise Unavailable(f"no RDT data from the Net F/T at {self.address} within "
-                              f"{connect_timeout_s:.1f} s: check its address and power",
-                              reason="SENSOR_SILENT")
+            raise UnavailableError(f"no RDT data from the Net F/T at {self.address} within "
+                                   f"{connect_timeout_s:.1f} s: check its address and power",
+                                   reason="SENSOR_SILENT")
 
     def read_wrench(self) -> RawWrench:
         if self._closed.is_set():
-            raise Unavailable("the RDT link is closed: open a new one", reason="LINK_CLOSED")
+            raise UnavailableError("the RDT link is closed: open a new one", reason="LINK_CLOSED")
         with self._lock:
             latest, status, last_ns = self._latest, self._status, self._last_receive_ns
         silent_ns = time.monotonic_ns() - last_ns
         if silent_ns > self._stale_after_ns:
-            raise Unavailable(f"the Net F/T at {self.address} has sent nothing for "
-                              f"{silent_ns / 1e6:.0f} ms", reason="SENSOR_SILENT")
+            raise UnavailableError(f"the Net F/T at {self.address} has sent nothing for "
+                                   f"{silent_ns / 1e6:.0f} ms", reason="SENSOR_SILENT")
         if status & STATUS_ERROR_BIT:
-            raise Unavailable(f"the Net F/T at {self.address} reports status 0x{status:08x}; "
-                              "see its status page", reason="SENSOR_FAULT")
+            raise UnavailableError(f"the Net F/T at {self.address} reports status 0x{status:08x}; "
+                                   "see its status page", reason="SENSOR_FAULT")
         return latest
 
     def close(self) -> None:

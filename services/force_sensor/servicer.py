@@ -16,9 +16,9 @@ from services.common import convert
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.settings import ThreadPriority
 from services.force_sensor.subscribers import StreamOptions, WrenchBatch, WrenchReading
-from services.runtime.errors import InvalidArgument, Unavailable
 from telerobot.v1 import force_sensor_pb2 as pb
 from telerobot.v1 import force_sensor_pb2_grpc, types_pb2
+from wire.errors import InvalidArgumentError, UnavailableError
 
 STREAM_POLL_S = 0.1  # how often an idle stream checks that its client is still there
 _MASK_PATHS = {"period", "threshold_force_n", "threshold_torque_nm", "thread_priority",
@@ -96,8 +96,8 @@ class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
         paths = set(request.update_mask.paths) or _MASK_PATHS
         unknown = paths - _MASK_PATHS
         if unknown:
-            raise InvalidArgument(f"unknown update_mask paths {sorted(unknown)}; use "
-                                  f"{sorted(_MASK_PATHS)}", reason="BAD_MASK")
+            raise InvalidArgumentError(f"unknown update_mask paths {sorted(unknown)}; use "
+                                       f"{sorted(_MASK_PATHS)}", reason="BAD_MASK")
         config, changes = request.config, {}
         if "period" in paths and config.HasField("period"):
             changes["period_s"] = convert.seconds(config.period)
@@ -106,8 +106,8 @@ class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
                 changes[name] = getattr(config, name)
         if "thread_priority" in paths and config.thread_priority:
             if config.thread_priority not in pb.SensorThreadPriority.values():
-                raise InvalidArgument(f"unknown thread_priority {config.thread_priority}",
-                                      reason="BAD_PRIORITY")
+                raise InvalidArgumentError(f"unknown thread_priority {config.thread_priority}",
+                                           reason="BAD_PRIORITY")
             changes["thread_priority"] = priority_from_proto(config.thread_priority)
         tool_frame = None
         if "flange_to_tool" in paths and config.HasField("flange_to_tool"):
@@ -131,8 +131,8 @@ class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
                 batch = subscription.get(STREAM_POLL_S)
                 if batch is None:
                     if self._core.failure:
-                        raise Unavailable(f"the sensor stopped: {self._core.failure}; "
-                                          "StartReading again, then resubscribe",
-                                          reason="SENSOR_DOWN")
+                        raise UnavailableError(f"the sensor stopped: {self._core.failure}; "
+                                               "StartReading again, then resubscribe",
+                                               reason="SENSOR_DOWN")
                     continue
                 yield stream_message(batch, subscription.dropped)

@@ -6,7 +6,7 @@ import enum
 import math
 from dataclasses import dataclass
 
-from services.runtime.errors import InvalidArgument
+from wire.errors import InvalidArgumentError
 
 # The simulated sensor updates at the servo rate, so sampling faster only repeats samples.
 MIN_PERIOD_S = 0.001
@@ -34,16 +34,16 @@ class SensorSettings:
     thread_priority: ThreadPriority = ThreadPriority.NORMAL
 
     def validated(self) -> SensorSettings:
-        """self, or InvalidArgument naming the first bad field."""
+        """self, or InvalidArgumentError naming the first bad field."""
         if not math.isfinite(self.period_s) or not MIN_PERIOD_S <= self.period_s <= MAX_PERIOD_S:
-            raise InvalidArgument(
+            raise InvalidArgumentError(
                 f"period {self.period_s * 1e3:.3f} ms is outside the sensor's range "
                 f"{MIN_PERIOD_S * 1e3:.0f} ms .. {MAX_PERIOD_S * 1e3:.0f} ms", reason="BAD_PERIOD")
         for name in ("threshold_force_n", "threshold_torque_nm"):
             value = getattr(self, name)
             if not math.isfinite(value) or value < 0:
-                raise InvalidArgument(f"{name} must be a finite number >= 0, got {value}",
-                                      reason="BAD_THRESHOLD")
+                raise InvalidArgumentError(f"{name} must be a finite number >= 0, got {value}",
+                                           reason="BAD_THRESHOLD")
         return self
 
 

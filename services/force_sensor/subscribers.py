@@ -24,7 +24,7 @@ import numpy as np
 
 from services.common.fanout import Fanout
 from services.force_sensor.settings import exceeds
-from services.runtime.errors import InvalidArgument
+from wire.errors import InvalidArgumentError
 
 DEFAULT_QUEUE_CAPACITY = 64
 MAX_BATCH_SIZE = 1000
@@ -63,18 +63,18 @@ class StreamOptions:
     @classmethod
     def from_request(cls, decimation: int, threshold_force_n: float, threshold_torque_nm: float,
                      batch_size: int, queue_capacity: int) -> StreamOptions:
-        """Options from a request's fields, zeros meaning defaults; InvalidArgument if bad."""
+        """Options from a request's fields, zeros meaning defaults; InvalidArgumentError if bad."""
         for name, value, limit in (("decimation", decimation, None),
                                    ("batch_size", batch_size, MAX_BATCH_SIZE),
                                    ("queue_capacity", queue_capacity, MAX_QUEUE_CAPACITY)):
             if value < 0 or (limit is not None and value > limit):
-                raise InvalidArgument(f"{name} must be 0..{limit or 'any'}, got {value}",
-                                      reason="BAD_STREAM_OPTION")
+                raise InvalidArgumentError(f"{name} must be 0..{limit or 'any'}, got {value}",
+                                           reason="BAD_STREAM_OPTION")
         for name, value in (("threshold_force_n", threshold_force_n),
                             ("threshold_torque_nm", threshold_torque_nm)):
             if not np.isfinite(value) or value < 0:
-                raise InvalidArgument(f"{name} must be a finite number >= 0, got {value}",
-                                      reason="BAD_STREAM_OPTION")
+                raise InvalidArgumentError(f"{name} must be a finite number >= 0, got {value}",
+                                           reason="BAD_STREAM_OPTION")
         return cls(decimation or 1, threshold_force_n, threshold_torque_nm, batch_size or 1,
                    queue_capacity or DEFAULT_QUEUE_CAPACITY)
 

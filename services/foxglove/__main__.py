@@ -28,11 +28,10 @@ from foxglove import Context, StatusLevel
 from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
 from services.foxglove.live import Demand, LiveChannels
 from services.runtime.config import configure_logging
-from services.runtime.process import ready_line, watch_parent
-from services.runtime.server import is_loopback
-from services.runtime.stacks import dump_stacks_on_signal
+from services.runtime.process import watch_parent
 from services.runtime.tls import station_channel_security
-from wire.addresses import address_for, env_name
+from wire.addresses import address_for, env_name, is_loopback
+from wire.processes import dump_stacks_on_signal, ready_line
 from wire.tls import TLS_DIR_ENV, open_channel
 
 log = logging.getLogger("foxglove")

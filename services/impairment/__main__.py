@@ -20,8 +20,7 @@ import threading
 
 from services.impairment.link import LinkProfile
 from services.impairment.proxy import CUT_MODES, ImpairmentProxy
-from services.runtime.process import ready_line
-from services.runtime.stacks import dump_stacks_on_signal
+from wire.processes import dump_stacks_on_signal, ready_line
 
 _DURATION_UNITS = {"us": 1e-6, "ms": 1e-3, "s": 1.0}
 _BANDWIDTH_UNITS = {"bit": 1.0, "kbit": 1e3, "mbit": 1e6, "gbit": 1e9}

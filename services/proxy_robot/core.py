@@ -45,8 +45,13 @@ from services.proxy_robot.status import (
     StatusChanged,
 )
 from services.runtime.clock import SYSTEM_CLOCK, Clock
-from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.link import JOINT_COUNT, ArmLink, ArmSample
+from wire.errors import (
+    FailedPreconditionError,
+    InvalidArgumentError,
+    OutOfRangeError,
+    UnavailableError,
+)
 
 log = logging.getLogger(__name__)
 
@@ -138,7 +143,7 @@ class ProxyRobotCore:
     # -- life cycle -------------------------------------------------------------------------
 
     def connect(self, reason: str = "hardware link open") -> RobotStatus:
-        """Open the hardware link. Unavailable when it does not answer."""
+        """Open the hardware link. UnavailableError when it does not answer."""
         with self._lock:
             if self._status != RobotStatus.NOT_CONNECTED:
                 return self._status
@@ -157,7 +162,7 @@ class ProxyRobotCore:
     def reattach(self, previous_end: str) -> RobotStatus:
         """After a restart: open the link to the arm the previous process drove, without
         moving it (its target is where the hardware holds it), and say why motion needs a new
-        Initialize. Unavailable when the hardware does not answer."""
+        Initialize. UnavailableError when the hardware does not answer."""
         return self.connect(
             f"restarted by the station's supervisor: the previous ProxyRobot {previous_end}; "
             "the arm held where it was. Initialize to move again")
@@ -166,7 +171,7 @@ class ProxyRobotCore:
         """CONNECTED -> INITIALIZING -> READY: hold where the arm is and accept motion."""
         with self._lock:
             if self._status != RobotStatus.CONNECTED:
-                raise FailedPrecondition(
+                raise FailedPreconditionError(
                     f"Initialize needs CONNECTED, the arm is {self._status.name}: "
                     + ("Connect first" if self._status == RobotStatus.NOT_CONNECTED
                        else "Reset first" if self._status in (RobotStatus.ESTOPPED,
@@ -186,7 +191,7 @@ class ProxyRobotCore:
             if link is not None:
                 try:
                     self._hold_at(link.read_arm().joint_positions_rad)
-                except Unavailable:
+                except UnavailableError:
                     pass  # nothing to hold: the hardware is already gone
         self._drop_link("disconnected")
         return self.status[0]
@@ -212,14 +217,14 @@ class ProxyRobotCore:
 
     def _require_link(self) -> ArmLink:
         if self._link is None:
-            raise FailedPrecondition("the arm is NOT_CONNECTED: call Connect first",
-                                     reason="NOT_CONNECTED")
+            raise FailedPreconditionError("the arm is NOT_CONNECTED: call Connect first",
+                                          reason="NOT_CONNECTED")
         return self._link
 
     # -- state ------------------------------------------------------------------------------
 
     def snapshot(self) -> RobotSnapshot:
-        """The latest state sample. FailedPrecondition when not connected."""
+        """The latest state sample. FailedPreconditionError when not connected."""
         with self._lock:
             self._require_link()
             return self._latest
@@ -233,11 +238,12 @@ class ProxyRobotCore:
     def set_tool_frame(self, flange_to_tool: pin.SE3) -> pin.SE3:
         with self._lock:
             if self._status == RobotStatus.MOVING:
-                raise FailedPrecondition("the arm is MOVING: set the tool frame once it is READY",
-                                         reason="MOVING")
+                raise FailedPreconditionError(
+                    "the arm is MOVING: set the tool frame once it is READY",
+                    reason="MOVING")
             offset = float(np.linalg.norm(flange_to_tool.translation))
             if offset > TOOL_OFFSET_LIMIT_M:
-                raise InvalidArgument(
+                raise InvalidArgumentError(
                     f"the tool point is {offset:.3f} m from the flange; at most "
                     f"{TOOL_OFFSET_LIMIT_M} m", reason="TOOL_TOO_LONG")
             self._tool_frame = pin.SE3(flange_to_tool)
@@ -250,7 +256,7 @@ class ProxyRobotCore:
         delta = finite_vector(delta_rad, JOINT_COUNT, "delta_joint_positions_rad")
         largest = int(np.argmax(np.abs(delta)))
         if abs(delta[largest]) > MAX_JOINT_INCREMENT_RAD:
-            raise OutOfRange(
+            raise OutOfRangeError(
                 f"joint {largest + 1} increment {np.degrees(delta[largest]):.1f} deg exceeds the "
                 f"cap of {np.degrees(MAX_JOINT_INCREMENT_RAD):.1f} deg per command; split it",
                 reason="INCREMENT_CAP")
@@ -267,13 +273,13 @@ class ProxyRobotCore:
         Returns (new joint target, its tool pose, applied fraction in (0, 1])."""
         delta_x = finite_vector(delta_position_m, 3, "delta_position_m")
         if np.linalg.norm(delta_x) > MAX_TRANSLATION_INCREMENT_M:
-            raise OutOfRange(
+            raise OutOfRangeError(
                 f"translation increment {np.linalg.norm(delta_x) * 1e3:.1f} mm exceeds the cap "
                 f"of {MAX_TRANSLATION_INCREMENT_M * 1e3:.0f} mm per command; split it",
                 reason="INCREMENT_CAP")
         angle = rotation_angle(delta_rotation)
         if angle > MAX_ROTATION_INCREMENT_RAD:
-            raise OutOfRange(
+            raise OutOfRangeError(
                 f"rotation increment {np.degrees(angle):.1f} deg exceeds the cap of "
                 f"{np.degrees(MAX_ROTATION_INCREMENT_RAD):.0f} deg per command; split it",
                 reason="INCREMENT_CAP")
@@ -287,7 +293,7 @@ class ProxyRobotCore:
                 q_goal = self._solve(goal, q_base, first_try=fraction == 1.0)
                 if q_goal is not None:
                     return self._command(q_goal), self._tool_pose(q_goal), fraction
-            raise OutOfRange(
+            raise OutOfRangeError(
                 "the move is too near a singularity (the wrist, elbow or shoulder aligned): "
                 "move in joint space away from it first", reason="SINGULARITY")
 
@@ -298,12 +304,12 @@ class ProxyRobotCore:
         if frame == "WRIST":
             flange = self._move_kinematics.flange_pose(q)
             return flange * delta * self._tool_frame
-        raise InvalidArgument(f"unknown frame {frame!r}: use BASE, WRIST or TOOL",
-                              reason="BAD_FRAME")
+        raise InvalidArgumentError(f"unknown frame {frame!r}: use BASE, WRIST or TOOL",
+                                   reason="BAD_FRAME")
 
     def _solve(self, tool_goal: pin.SE3, q_seed: np.ndarray, first_try: bool) -> np.ndarray | None:
         """Joint target for a tool pose; None when the step is too big (near a singularity);
-        OutOfRange when the pose is unreachable or past the joint limits."""
+        OutOfRangeError when the pose is unreachable or past the joint limits."""
         flange_goal = tool_goal * self._tool_frame.inverse()
         result = solve_ik(self._move_kinematics, flange_goal, q_seed, frame=puma560.FLANGE_SITE)
         if not result.success:
@@ -311,10 +317,10 @@ class ProxyRobotCore:
                 return None
             at_limit = self._joints_at_limit(result.q)
             if at_limit:
-                raise OutOfRange(
+                raise OutOfRangeError(
                     f"the target needs joint {at_limit[0] + 1} past its limit "
                     f"({self._limit_text(at_limit[0])})", reason="JOINT_LIMIT")
-            raise OutOfRange(
+            raise OutOfRangeError(
                 f"the target is outside the reachable workspace (IK stopped "
                 f"{result.position_error * 1e3:.1f} mm / {np.degrees(result.rotation_error):.1f} "
                 "deg away)", reason="WORKSPACE")
@@ -342,12 +348,13 @@ class ProxyRobotCore:
         outside = np.flatnonzero((target < lower) | (target > upper))
         if outside.size:
             joint = int(outside[0])
-            raise OutOfRange(
+            raise OutOfRangeError(
                 f"joint {joint + 1} target {np.degrees(target[joint]):.1f} deg is past its limit "
                 f"({self._limit_text(joint)})", reason="JOINT_LIMIT")
 
     def _motion_base(self) -> np.ndarray:
-        """The joint target to add increments to; FailedPrecondition unless motion is allowed."""
+        """The joint target to add increments to; FailedPreconditionError unless motion is
+        allowed."""
         with self._lock:
             if self._status not in MOTION_STATUSES:
                 hint = {
@@ -357,8 +364,8 @@ class ProxyRobotCore:
                     RobotStatus.ESTOPPED: "an emergency stop is latched; Reset it first",
                     RobotStatus.FAULT: f"the arm is in FAULT ({self._reason}); Reset first",
                 }[self._status]
-                raise FailedPrecondition(f"the arm is {self._status.name}: {hint}",
-                                         reason=self._status.name)
+                raise FailedPreconditionError(f"the arm is {self._status.name}: {hint}",
+                                              reason=self._status.name)
             return self._target_q.copy()
 
     def _command(self, target: np.ndarray) -> np.ndarray:
@@ -439,8 +446,8 @@ class ProxyRobotCore:
         deadline_ns = clock.monotonic_ns() + round(RELEASE_TIMEOUT_S * 1e9)
         while link.read_arm().hold_latched:
             if clock.monotonic_ns() > deadline_ns:
-                raise Unavailable("the hardware did not release its hold; check it and Reset "
-                                  "again", reason="HOLD_STUCK")
+                raise UnavailableError("the hardware did not release its hold; check it and Reset "
+                                       "again", reason="HOLD_STUCK")
             clock.sleep(RELEASE_POLL_S)
 
     # -- monitor ----------------------------------------------------------------------------
@@ -470,7 +477,7 @@ class ProxyRobotCore:
             return False
         try:
             sample, snapshot = self._sample(link, self._monitor_kinematics)
-        except Unavailable as exc:
+        except UnavailableError as exc:
             self._emit(RobotErrorRaised("LINK_LOST", str(exc)))
             self._drop_link(f"hardware link lost: {exc}")
             return False

@@ -14,9 +14,9 @@ from services.proxy_robot.status import (
     RobotStatus,
     StatusChanged,
 )
-from services.runtime.errors import FailedPrecondition, InvalidArgument, Unavailable
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
+from wire.errors import FailedPreconditionError, InvalidArgumentError, UnavailableError
 
 _FRAMES = {
     types_pb2.REFERENCE_FRAME_BASE: "BASE",
@@ -89,8 +89,8 @@ def event_to_proto(event) -> pb.StreamRobotEventsResponse:
 
 def frame_from_proto(frame: int) -> str:
     if frame not in _FRAMES:
-        raise InvalidArgument("set frame to REFERENCE_FRAME_BASE, REFERENCE_FRAME_WRIST or "
-                              "REFERENCE_FRAME_TOOL", reason="BAD_FRAME")
+        raise InvalidArgumentError("set frame to REFERENCE_FRAME_BASE, REFERENCE_FRAME_WRIST or "
+                                   "REFERENCE_FRAME_TOOL", reason="BAD_FRAME")
     return _FRAMES[frame]
 
 
@@ -145,15 +145,16 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
     def StreamState(self, request, context):
         period_s = convert.seconds(request.period)
         if period_s < 0:
-            raise InvalidArgument("period must not be negative", reason="BAD_PERIOD")
-        self._core.snapshot()  # FailedPrecondition when not connected
+            raise InvalidArgumentError("period must not be negative", reason="BAD_PERIOD")
+        self._core.snapshot()  # FailedPreconditionError when not connected
         subscription = PeriodicSubscription(self._core.states, STATE_QUEUE, int(period_s * 1e9))
         with self._core.states.attach(subscription) as states:
             while context.is_active():
                 snapshot = states.get(STREAM_POLL_S)
                 if snapshot is None:
                     if self._core.status[0] == RobotStatus.NOT_CONNECTED:
-                        raise Unavailable("the hardware link dropped: Connect, then resubscribe")
+                        raise UnavailableError(
+                            "the hardware link dropped: Connect, then resubscribe")
                     continue
                 yield pb.StreamStateResponse(state=snapshot_to_proto(snapshot))
 
@@ -162,8 +163,8 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
             _EVENT_KINDS.values())
         data_period_s = convert.seconds(request.data_received_period)
         if data_period_s < 0:
-            raise InvalidArgument("data_received_period must not be negative",
-                                  reason="BAD_PERIOD")
+            raise InvalidArgumentError("data_received_period must not be negative",
+                                       reason="BAD_PERIOD")
         data_period_s = data_period_s or DEFAULT_DATA_RECEIVED_PERIOD_S
         next_data = time.monotonic()
         with self._core.events.subscribe(256) as events:
@@ -185,7 +186,7 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
     def _data_received(self) -> pb.StreamRobotEventsResponse | None:
         try:
             snapshot = self._core.snapshot()
-        except FailedPrecondition:
+        except FailedPreconditionError:
             return None  # not connected: no data arrives
         return pb.StreamRobotEventsResponse(
             event_time=convert.timestamp(time.time_ns()),

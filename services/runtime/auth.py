@@ -21,7 +21,7 @@ from services.runtime.lanes import Lane, declared_lane
 from services.security.caller import Caller
 from services.security.pki import CertificateError, identity_of
 from services.security.roles import Role, check_role, declared_role, required_role
-from wire.errors import TelerobotError, Unauthenticated
+from wire.errors import TelerobotError, UnauthenticatedError
 
 if TYPE_CHECKING:
     from services.security.audit import AuditLog
@@ -41,8 +41,8 @@ class CallSecurity:
 
     def admit(self, method: str, context: grpc.ServicerContext) -> Caller | None:
         """The authenticated caller, allowed to call `method`; None for an open method
-        (Health). Raises Unauthenticated or PermissionDenied; an audited method's refusal is
-        recorded (with the identity, when it is known)."""
+        (Health). Raises UnauthenticatedError or PermissionDeniedError; an audited method's refusal
+        is recorded (with the identity, when it is known)."""
         if required_role(method, self.inner_port) is None:
             return None
         caller = None
@@ -61,11 +61,11 @@ class CallSecurity:
             try:
                 identity = identity_of(certificate[0])
             except CertificateError as exc:
-                raise Unauthenticated(str(exc), "CERTIFICATE_WITHOUT_ROLE") from None
+                raise UnauthenticatedError(str(exc), "CERTIFICATE_WITHOUT_ROLE") from None
             return Caller(identity.name, identity.role)
         token = bearer_token(context.invocation_metadata())
         if token is None or self.tokens is None:
-            raise Unauthenticated(
+            raise UnauthenticatedError(
                 "no client certificate and no bearer token: present a certificate from the "
                 "station's CA, or a token (authorization: Bearer ...) on the token port",
                 "NO_CREDENTIALS")
@@ -80,7 +80,7 @@ class CallSecurity:
             return False
         try:
             self.tokens.verify(token)
-        except Unauthenticated:
+        except UnauthenticatedError:
             return False
         return True
 

@@ -32,8 +32,13 @@ import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 
-from services.runtime.process import PARENT_PID_ENV, parse_ready_line
-from services.runtime.stacks import STACKS_LINE, STACKS_SIGNAL, runs_a_service
+from wire.processes import (
+    PARENT_PID_ENV,
+    STACKS_LINE,
+    STACKS_SIGNAL,
+    parse_ready_line,
+    runs_a_service,
+)
 
 log = logging.getLogger(__name__)
 
@@ -267,7 +272,7 @@ def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = Non
     line) is called on the reading thread for every line, on_exit(child) once the child ended.
     stop_grace_s: how long Child.stop() waits after its signal before SIGKILL, by default.
     A child that runs one of this project's services (`-m services.<name>`) is asked for its
-    threads' stacks before it is killed (services.runtime.stacks), and the log shows them.
+    threads' stacks before it is killed (wire.processes), and the log shows them.
     """
     full_env = {**os.environ, "PYTHONUNBUFFERED": "1", **(env or {})}
     if watch_parent:

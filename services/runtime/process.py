@@ -23,7 +23,6 @@ from grpc_health.v1 import health_pb2
 from prometheus_client import disable_created_metrics
 
 from services.runtime.config import METRICS_OFF, base_parser, configure_logging
-from services.runtime.errors import TelerobotError
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import (
     PlaintextRefused,
@@ -31,31 +30,19 @@ from services.runtime.server import (
     ServiceBinding,
     check_plaintext,
     create_server,
-    is_loopback,
 )
-from services.runtime.stacks import dump_stacks_on_signal
 from services.security.audit import audit_log_for
 from services.security.tokens import TokenStore, tokens_file
+from wire.addresses import is_loopback
+from wire.errors import TelerobotError
+from wire.processes import PARENT_PID_ENV, dump_stacks_on_signal, ready_line
 
 log = logging.getLogger(__name__)
 
-# What a process prints on stdout once it is SERVING, with the address it actually bound (so a
-# service started on port 0 tells its supervisor where it listens):
-#     TELEROBOT_READY <name> <host:port>
-# The supervisor (services.runtime.children) waits for it.
-READY_LINE_PREFIX = "TELEROBOT_READY"
-# Set by a supervisor to its pid: the process then stops cleanly when that parent goes away,
-# even if the parent was killed without a chance to stop it (no orphans).
-PARENT_PID_ENV = "TELEROBOT_PARENT_PID"
-_PARENT_POLL_S = 0.25
 # A thread woken by the network waits for the GIL at most this long behind a busy one (Python's
 # default is 5 ms, longer than a whole command budget). Every call crosses several threads.
 GIL_SWITCH_INTERVAL_S = 0.001
-
-
-def ready_line(name: str, address: str) -> str:
-    """The line a process prints once `name` serves on `address` (host:port)."""
-    return f"{READY_LINE_PREFIX} {name} {address}"
+_PARENT_POLL_S = 0.25  # how often a process checks that its parent (PARENT_PID_ENV) lives
 
 
 def token_port_name(service: str) -> str:
@@ -66,14 +53,6 @@ def token_port_name(service: str) -> str:
 def metrics_port_name(service: str) -> str:
     """The name on the ready line of a service's Prometheus /metrics port."""
     return f"{service}_metrics"
-
-
-def parse_ready_line(line: str) -> tuple[str, str] | None:
-    """(name, host:port) from a ready line; None for any other line."""
-    fields = line.split()
-    if len(fields) != 3 or fields[0] != READY_LINE_PREFIX:
-        return None
-    return fields[1], fields[2]
 
 
 class Service(Protocol):

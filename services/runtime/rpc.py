@@ -40,7 +40,6 @@ from google.rpc import code_pb2, error_details_pb2, status_pb2
 from grpc_status import rpc_status
 
 from services.runtime.auth import CallSecurity
-from services.runtime.errors import TelerobotError
 from services.runtime.lanes import (  # noqa: F401 - LANE_TO_PROTO re-exported
     LANE_TO_PROTO,
     Lane,
@@ -52,6 +51,7 @@ from services.runtime.lanes import (  # noqa: F401 - LANE_TO_PROTO re-exported
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.validation import check_request
 from services.security.caller import Caller, acting_as
+from wire.errors import TelerobotError
 from wire.metadata import LANE_METADATA_KEY
 
 log = logging.getLogger(__name__)
@@ -73,7 +73,8 @@ def abort(context: grpc.ServicerContext, code: grpc.StatusCode, message: str, re
 
 def abort_with_error(context: grpc.ServicerContext, error: TelerobotError):
     """End the call with the status code that matches a domain error."""
-    abort(context, grpc.StatusCode[error.status_name], error.message, error.reason)
+    abort(context, grpc.StatusCode[error.status_name], error.message,
+          error.reason or error.status_name)
 
 
 class LaneInterceptor(grpc.ServerInterceptor):

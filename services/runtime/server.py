@@ -13,7 +13,6 @@ Security (see the README's Security section):
 
 from __future__ import annotations
 
-import ipaddress
 import logging
 from collections.abc import Callable, Sequence
 from concurrent import futures
@@ -32,6 +31,7 @@ from services.runtime.lanes import Lane, LaneConfig, LaneExecutor
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.rpc import LaneInterceptor
 from services.runtime.tls import server_credentials
+from wire.addresses import is_loopback
 from wire.tls import KEEPALIVE_INTERVAL_MS, KEEPALIVE_TIMEOUT_MS
 
 if TYPE_CHECKING:
@@ -248,17 +248,6 @@ def check_plaintext(address: str, tls: bool, allow_plaintext_network: bool) -> N
             "--tls-dir), listen on 127.0.0.1, or pass --allow-plaintext-network")
     log.warning("PLAINTEXT beyond loopback on %s: no authentication, no encryption. Anyone "
                 "who reaches this port can command the arm.", address)
-
-
-def is_loopback(address: str) -> bool:
-    """Whether host:port names a loopback host (127.0.0.0/8, ::1, localhost)."""
-    host = address.rsplit(":", 1)[0].strip("[]")
-    if host == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False  # a name, "0.0.0.0" parses; "" or a hostname may reach any interface
 
 
 def _bind(server: grpc.Server, address: str, credentials) -> int:

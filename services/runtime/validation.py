@@ -17,8 +17,8 @@ from __future__ import annotations
 from google.protobuf.descriptor import FieldDescriptor
 from google.protobuf.message import Message
 
-from services.runtime.errors import InvalidArgument
 from telerobot.v1 import options_pb2
+from wire.errors import InvalidArgumentError
 
 DEFAULT_MAX_STRING_LENGTH = 256
 DURATION_MAX_SECONDS = 315_576_000_000  # google/protobuf/duration.proto: ±10,000 years
@@ -30,7 +30,7 @@ _MESSAGE = FieldDescriptor.TYPE_MESSAGE
 
 
 def check_request(message: Message, *, cut_long_strings: bool = False) -> None:
-    """Raise InvalidArgument for the first unknown enum value, over-long string or
+    """Raise InvalidArgumentError for the first unknown enum value, over-long string or
     out-of-range Duration or Timestamp in `message`, at any depth. With `cut_long_strings`,
     an over-long string is cut to its bound in place instead."""
     _check(message, "", cut_long_strings)
@@ -54,7 +54,7 @@ def _check(message: Message, prefix: str, cut_long_strings: bool) -> None:
                 continue
             for item in values:
                 if len(item) > limit:
-                    raise InvalidArgument(
+                    raise InvalidArgumentError(
                         f"{path} has {len(item)} characters; it takes at most {limit}",
                         reason="STRING_TOO_LONG")
         elif field.type == _MESSAGE and not field.message_type.GetOptions().map_entry:
@@ -68,7 +68,7 @@ def _check_time(type_name: str, value: Message, path: str) -> None:
     if type_name == "google.protobuf.Duration":
         seconds, nanos = value.seconds, value.nanos
         if abs(seconds) > DURATION_MAX_SECONDS or abs(nanos) > NANOS_MAX or seconds * nanos < 0:
-            raise InvalidArgument(
+            raise InvalidArgumentError(
                 f"{path} is not a valid Duration ({seconds} s, {nanos} ns): at most "
                 f"{DURATION_MAX_SECONDS} s, nanos under 1e9 with the sign of the seconds",
                 reason="BAD_DURATION")
@@ -76,9 +76,10 @@ def _check_time(type_name: str, value: Message, path: str) -> None:
         seconds, nanos = value.seconds, value.nanos
         if not TIMESTAMP_SECONDS[0] <= seconds <= TIMESTAMP_SECONDS[1] or not (
                 0 <= nanos <= NANOS_MAX):
-            raise InvalidArgument(f"{path} is not a valid Timestamp ({seconds} s, {nanos} ns): "
-                                  "years 1 to 9999, nanos 0 to 999999999",
-                                  reason="BAD_TIMESTAMP")
+            raise InvalidArgumentError(
+                f"{path} is not a valid Timestamp ({seconds} s, {nanos} ns): "
+                "years 1 to 9999, nanos 0 to 999999999",
+                reason="BAD_TIMESTAMP")
 
 
 def _check_enum(field: FieldDescriptor, value: int, path: str) -> None:
@@ -86,8 +87,8 @@ def _check_enum(field: FieldDescriptor, value: int, path: str) -> None:
     if value in enum.values_by_number:
         return
     names = ", ".join(v.name for v in enum.values if v.number != 0)
-    raise InvalidArgument(f"{path} = {value} is not a {enum.name} value; use one of {names}",
-                          reason="UNKNOWN_ENUM_VALUE")
+    raise InvalidArgumentError(f"{path} = {value} is not a {enum.name} value; use one of {names}",
+                               reason="UNKNOWN_ENUM_VALUE")
 
 
 def _is_repeated(field: FieldDescriptor) -> bool:

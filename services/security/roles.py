@@ -14,7 +14,7 @@ import enum
 import functools
 
 from telerobot.v1 import options_pb2
-from wire.errors import PermissionDenied
+from wire.errors import PermissionDeniedError
 from wire.options import method_options
 
 
@@ -73,6 +73,6 @@ def check_role(role: Role, method_path: str, inner_port: bool) -> None:
     if needed is not None and role < needed:
         where = " on the station's inner port (call the DecisionServer)" if (
             inner_port and needed is Role.STATION) else ""
-        raise PermissionDenied(
+        raise PermissionDeniedError(
             f"{method_path} needs the {needed.label} role{where}; this identity is "
             f"{role.label}", "ROLE_TOO_LOW")

@@ -35,7 +35,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from services.security.roles import Role
-from wire.errors import FailedPrecondition, InvalidArgument, TelerobotError, Unauthenticated
+from wire.errors import (
+    FailedPreconditionError,
+    InvalidArgumentError,
+    TelerobotError,
+    UnauthenticatedError,
+)
 
 DEFAULT_TOKENS_FILE = "var/tokens.json"
 TOKENS_FILE_ENV = "TELEROBOT_TOKENS_FILE"
@@ -118,14 +123,14 @@ def iso_utc(unix_s: float) -> str:
 def check_identity(identity: str) -> None:
     """InvalidArgument unless `identity` is 1-64 printable characters without spaces."""
     if not isinstance(identity, str) or not identity:
-        raise InvalidArgument("the identity is empty; give a name such as --identity alice",
-                              "BAD_IDENTITY")
+        raise InvalidArgumentError("the identity is empty; give a name such as --identity alice",
+                                   "BAD_IDENTITY")
     if len(identity) > MAX_IDENTITY_CHARS:
-        raise InvalidArgument(f"the identity is {len(identity)} characters long; use at most "
-                              f"{MAX_IDENTITY_CHARS}", "BAD_IDENTITY")
+        raise InvalidArgumentError(f"the identity is {len(identity)} characters long; use at most "
+                                   f"{MAX_IDENTITY_CHARS}", "BAD_IDENTITY")
     if any(ch.isspace() or unicodedata.category(ch).startswith("C") for ch in identity):
-        raise InvalidArgument(f"the identity {identity!r} has spaces or control characters; "
-                              "use a single word such as alice or ops-script", "BAD_IDENTITY")
+        raise InvalidArgumentError(f"the identity {identity!r} has spaces or control characters; "
+                                   "use a single word such as alice or ops-script", "BAD_IDENTITY")
 
 
 class TokenStore:
@@ -147,8 +152,9 @@ class TokenStore:
         check_identity(identity)
         role = Role(role)
         if not (isinstance(ttl_s, int | float) and math.isfinite(ttl_s) and ttl_s > 0):
-            raise InvalidArgument(f"the lifetime {ttl_s!r} s is not positive; give one such as "
-                                  "30m, 8h or 7d", "BAD_TTL")
+            raise InvalidArgumentError(
+                f"the lifetime {ttl_s!r} s is not positive; give one such as "
+                "30m, 8h or 7d", "BAD_TTL")
         token = TOKEN_PREFIX + secrets.token_urlsafe(32)
         digest = _digest(token)
         now = self._clock()
@@ -172,10 +178,10 @@ class TokenStore:
         return sorted((s.entry for s in stored), key=lambda entry: entry.created_at)
 
     def verify(self, token: str) -> TokenGrant:
-        """Who `token` speaks for; Unauthenticated if it is malformed, unknown, revoked or
+        """Who `token` speaks for; UnauthenticatedError if it is malformed, unknown, revoked or
         expired."""
         if not isinstance(token, str) or not _TOKEN_SHAPE.fullmatch(token):
-            raise Unauthenticated(
+            raise UnauthenticatedError(
                 "no valid bearer token: send metadata 'authorization: Bearer trb_...' with a "
                 f"token from `{_CLI} issue`", "BAD_TOKEN")
         digest = _digest(token)
@@ -183,12 +189,12 @@ class TokenStore:
         # The lookup is by hash, which a caller cannot steer toward a stored one, so its timing
         # tells nothing; the final comparison is constant-time all the same.
         if stored is None or not hmac.compare_digest(stored.digest, digest):
-            raise Unauthenticated(
+            raise UnauthenticatedError(
                 "no valid bearer token: this token is unknown or was revoked; ask an admin "
                 f"for a new one (`{_CLI} issue`)", "BAD_TOKEN")
         entry = stored.entry
         if self._clock() >= entry.expires_at:
-            raise Unauthenticated(
+            raise UnauthenticatedError(
                 f"the token for {entry.identity} expired at {iso_utc(entry.expires_at)}; issue "
                 f"a new one with {_CLI} issue --identity {entry.identity} --role "
                 f"{entry.role.label} --ttl 8h", "TOKEN_EXPIRED")
@@ -209,7 +215,7 @@ class TokenStore:
     def _load_for_verify(self) -> _Snapshot:
         try:
             signature, stored = self._read_strict()
-        except FailedPrecondition as error:
+        except FailedPreconditionError as error:
             # Fail closed: a broken file admits nobody. Keep its signature so the error is
             # logged once per change, not on every call.
             _log.error("%s; every bearer token is refused until it is fixed", error.message)
@@ -217,7 +223,7 @@ class TokenStore:
         return _Snapshot(signature, {s.digest: s for s in stored})
 
     def _read_strict(self) -> tuple[tuple[int, int, int] | None, list[_Stored]]:
-        """The file's signature and tokens; FailedPrecondition if it is not a tokens file."""
+        """The file's signature and tokens; FailedPreconditionError if it is not a tokens file."""
         try:
             with open(self._path, "rb") as file:
                 signature = _signature_of(os.fstat(file.fileno()))  # of exactly what is read
@@ -225,7 +231,7 @@ class TokenStore:
         except FileNotFoundError:
             return None, []
         except OSError as error:  # unreadable (permissions): refuse, never crash the call
-            raise FailedPrecondition(
+            raise FailedPreconditionError(
                 f"the tokens file {self._path} cannot be read ({error}); give this process "
                 "read access to it", "TOKENS_FILE_INVALID") from None
         try:
@@ -234,7 +240,7 @@ class TokenStore:
                 raise ValueError(f"not format {FORMAT!r} version {VERSION}")
             stored = [_parse(item) for item in document["tokens"]]
         except (ValueError, KeyError, TypeError, AttributeError) as error:
-            raise FailedPrecondition(
+            raise FailedPreconditionError(
                 f"the tokens file {self._path} cannot be read ({error}); restore it or remove "
                 "it and issue the tokens again", "TOKENS_FILE_INVALID") from None
         return signature, stored
@@ -353,7 +359,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "issue":
             try:
                 token = store.issue(args.identity, args.role, args.ttl)
-            except InvalidArgument as error:
+            except InvalidArgumentError as error:
                 parser.error(error.message)  # exits 2, like any other bad argument
             print(token)  # alone on stdout, so a script can capture it
             print(f"issued token {token_id_of(token)} for {args.identity} ({args.role.label}), "

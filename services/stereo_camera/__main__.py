@@ -28,13 +28,13 @@ import logging
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from services.runtime.errors import TelerobotError
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
 from services.stereo_camera.capture import CaptureHub
 from services.stereo_camera.config import SourceSetup, add_source_arguments, source_from_args
 from services.stereo_camera.servicer import StereoCameraServicer
 from telerobot.v1 import stereo_camera_pb2_grpc
+from wire.errors import TelerobotError
 
 log = logging.getLogger(__name__)
 

@@ -44,8 +44,8 @@ import numpy as np
 
 from domain.geometry import rotation_matrix
 from services.common import convert
-from services.runtime.errors import InvalidArgument
 from telerobot.v1 import stereo_camera_pb2, types_pb2
+from wire.errors import InvalidArgumentError
 
 if TYPE_CHECKING:
     import mujoco
@@ -188,8 +188,8 @@ def load_calibration(path: Path | str, width_px: int, height_px: int) -> StereoC
         raise ValueError(f"cannot read the calibration file {path}: {exc}") from None
     try:
         return parse_calibration(document, width_px, height_px)
-    except (InvalidArgument, ValueError, TypeError, KeyError) as exc:
-        detail = exc.message if isinstance(exc, InvalidArgument) else str(exc)
+    except (InvalidArgumentError, ValueError, TypeError, KeyError) as exc:
+        detail = exc.message if isinstance(exc, InvalidArgumentError) else str(exc)
         raise ValueError(f"the calibration file {path} is not valid: {detail}") from None
 
 

@@ -33,8 +33,8 @@ nobody). A live source (device, recording) is grabbed continuously while any vie
 its frames never go stale in the driver's queue, and is released after IDLE_RELEASE_S with no
 view. Ticks never come faster than the source's rate (SourceGeometry.rate_hz).
 
-Failures: an error from the source (FailedPrecondition on open, Unavailable on grab) is handed
-to every client waiting since before it, and the thread retries no sooner than RETRY_AFTER_S
+Failures: an error from the source (FailedPreconditionError on open, UnavailableError on grab) is
+handed to every client waiting since before it, and the thread retries no sooner than RETRY_AFTER_S
 later, only if a client still wants pairs. Nothing here knows about gRPC.
 """
 
@@ -48,7 +48,6 @@ import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
-from services.runtime.errors import TelerobotError, Unavailable
 from services.stereo_camera.source import (
     LEFT,
     RIGHT,
@@ -57,6 +56,7 @@ from services.stereo_camera.source import (
     StereoFrame,
     StereoSource,
 )
+from wire.errors import TelerobotError, UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -120,7 +120,7 @@ class CaptureHub:
         self._thread.start()
 
     def close(self) -> None:
-        """Stop the capture thread and release the source; waiting clients get Unavailable."""
+        """Stop the capture thread and release the source; waiting clients get UnavailableError."""
         with self._cond:
             self._stopping = True
             thread = self._thread
@@ -149,7 +149,7 @@ class CaptureHub:
 
     def geometry(self, timeout_s: float) -> SourceGeometry:
         """The source's size, calibration and rate; opens it if that is the only way to know.
-        FailedPrecondition when it cannot be opened."""
+        FailedPreconditionError when it cannot be opened."""
         since = time.monotonic_ns()
         with self._cond:
             self._open_requests += 1
@@ -160,8 +160,8 @@ class CaptureHub:
             with self._cond:
                 self._open_requests -= 1
         if geometry is None:
-            raise Unavailable(f"the camera source did not open within {timeout_s:.0f} s",
-                              reason="SOURCE_TIMEOUT")
+            raise UnavailableError(f"the camera source did not open within {timeout_s:.0f} s",
+                                   reason="SOURCE_TIMEOUT")
         return geometry
 
     @contextlib.contextmanager
@@ -191,7 +191,7 @@ class CaptureHub:
 
     def _wait(self, ready: Callable[[], object], since_ns: int, timeout_s: float):
         """ready()'s value once it is not None; None after timeout_s. Raises the source's
-        error if one happened at or after since_ns, Unavailable once the hub stops."""
+        error if one happened at or after since_ns, UnavailableError once the hub stops."""
         deadline = time.monotonic() + timeout_s
         with self._cond:
             while True:
@@ -199,8 +199,8 @@ class CaptureHub:
                 if value is not None:
                     return value
                 if self._stopping or self._closed or self._thread is None:
-                    raise Unavailable("the camera service is not running (starting or "
-                                      "stopping); retry", reason="SHUTTING_DOWN")
+                    raise UnavailableError("the camera service is not running (starting or "
+                                           "stopping); retry", reason="SHUTTING_DOWN")
                 if self._failure_since(since_ns):
                     raise _copy(self._failure[0])
                 remaining = deadline - time.monotonic()
@@ -329,7 +329,7 @@ class CaptureHub:
             return
         except Exception as exc:
             log.exception("the camera source failed")
-            self._fail(Unavailable(f"the camera source failed: {exc}", reason="SOURCE_FAILED"))
+            self._fail(UnavailableError(f"the camera source failed: {exc}", reason="SOURCE_FAILED"))
             return
         if pair is None:
             return  # the eyes disagreed on the tick: no pair this time (a sequence gap)

@@ -12,7 +12,6 @@ import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from services.runtime.config import env_name
 from services.stereo_camera.pattern import PatternSource
 from services.stereo_camera.sim import (
     DEFAULT_MULTISAMPLES,
@@ -24,6 +23,7 @@ from services.stereo_camera.sim import (
 from services.stereo_camera.source import StereoSource
 from services.stereo_camera.video import DEVICE, FILE, VideoSource
 from services.world.shm_layout import add_shm_name_argument
+from wire.addresses import env_name
 
 SERVICE = "stereo_camera"
 SOURCES = ("sim", "pattern", "device", "file")

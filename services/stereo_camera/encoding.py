@@ -18,9 +18,9 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from services.runtime.errors import InvalidArgument
 from services.stereo_camera.source import SourceGeometry, StereoFrame
 from telerobot.v1 import stereo_camera_pb2 as pb
+from wire.errors import InvalidArgumentError
 from wire.stereo import decode_image as decode_image  # re-exported: the client side
 
 DEFAULT_JPEG_QUALITY = 90
@@ -69,18 +69,19 @@ class StreamSettings:
         return self.encoding in VIDEO_ENCODINGS
 
     def image_format(self, geometry: SourceGeometry) -> ImageFormat:
-        """The client's image format; InvalidArgument for a size past the source's, or odd
+        """The client's image format; InvalidArgumentError for a size past the source's, or odd
         for H.264. A source of odd size streams H.264 a pixel smaller."""
         width = self.width_px or geometry.width_px - geometry.width_px % 2 * self.video
         height = self.height_px or geometry.height_px - geometry.height_px % 2 * self.video
         if width > geometry.width_px or height > geometry.height_px:
-            raise InvalidArgument(
+            raise InvalidArgumentError(
                 f"{width}x{height} is larger than the source's {geometry.width_px}x"
                 f"{geometry.height_px}: ask for at most that (0 means the source's size)",
                 reason="SIZE_TOO_LARGE")
         if self.video and (width % 2 or height % 2):
-            raise InvalidArgument(f"H.264 needs an even width and height, not {width}x{height}",
-                                  reason="ODD_SIZE")
+            raise InvalidArgumentError(
+                f"H.264 needs an even width and height, not {width}x{height}",
+                reason="ODD_SIZE")
         return ImageFormat(width, height, self.encoding, self.jpeg_quality)
 
 
@@ -89,20 +90,20 @@ def _check_encoding(encoding: int, default: int, quality: int, video: bool = Fal
     if encoding == pb.IMAGE_ENCODING_UNSPECIFIED:
         encoding = default
     if encoding in VIDEO_ENCODINGS and not video:
-        raise InvalidArgument(
+        raise InvalidArgumentError(
             "IMAGE_ENCODING_H264 is for StreamPairs: a snapshot is one picture; use "
             "IMAGE_ENCODING_PNG, IMAGE_ENCODING_JPEG or IMAGE_ENCODING_RAW_RGB8",
             reason="BAD_ENCODING")
     if encoding not in ENCODINGS and encoding not in VIDEO_ENCODINGS:
-        raise InvalidArgument(
+        raise InvalidArgumentError(
             f"unknown image encoding {encoding}: use IMAGE_ENCODING_H264, IMAGE_ENCODING_JPEG, "
             "IMAGE_ENCODING_PNG or IMAGE_ENCODING_RAW_RGB8", reason="BAD_ENCODING")
     if encoding == pb.IMAGE_ENCODING_JPEG:
         if quality == 0:
             quality = DEFAULT_JPEG_QUALITY
         if not 1 <= quality <= 100:
-            raise InvalidArgument(f"jpeg_quality {quality} is outside 1..100 (0 means "
-                                  f"{DEFAULT_JPEG_QUALITY})", reason="BAD_JPEG_QUALITY")
+            raise InvalidArgumentError(f"jpeg_quality {quality} is outside 1..100 (0 means "
+                                       f"{DEFAULT_JPEG_QUALITY})", reason="BAD_JPEG_QUALITY")
     else:
         quality = DEFAULT_JPEG_QUALITY  # ignored for other encodings, as the proto says
     return encoding, quality
@@ -114,23 +115,23 @@ def stream_settings(request: pb.StreamPairsRequest) -> StreamSettings:
                                         request.jpeg_quality, video=True)
     max_kbit = request.max_kbit_per_s or DEFAULT_MAX_KBIT_PER_S
     if not MIN_KBIT_PER_S <= max_kbit <= MAX_KBIT_PER_S:
-        raise InvalidArgument(
+        raise InvalidArgumentError(
             f"max_kbit_per_s {request.max_kbit_per_s} is outside what the station encodes: "
             f"{MIN_KBIT_PER_S}..{MAX_KBIT_PER_S} kbit/s (0 means {DEFAULT_MAX_KBIT_PER_S})",
             reason="BAD_BITRATE")
     mode = request.transfer_mode or pb.TRANSFER_MODE_DOUBLE_BUFFER_CONCURRENT
     if mode not in TRANSFER_MODES:
-        raise InvalidArgument(
+        raise InvalidArgumentError(
             f"unknown transfer mode {mode}: use TRANSFER_MODE_SINGLE_BUFFER_SERIALIZED or "
             "TRANSFER_MODE_DOUBLE_BUFFER_CONCURRENT", reason="BAD_TRANSFER_MODE")
     max_fps = request.max_fps
     if not math.isfinite(max_fps) or max_fps < 0:
-        raise InvalidArgument(f"max_fps must be a positive rate, or 0 for the source's rate; "
-                              f"got {max_fps}", reason="BAD_MAX_FPS")
+        raise InvalidArgumentError(f"max_fps must be a positive rate, or 0 for the source's rate; "
+                                   f"got {max_fps}", reason="BAD_MAX_FPS")
     if request.width_px < 0 or request.height_px < 0:
-        raise InvalidArgument(f"width_px and height_px must not be negative, got "
-                              f"{request.width_px}x{request.height_px} (0 means the source's)",
-                              reason="BAD_SIZE")
+        raise InvalidArgumentError(f"width_px and height_px must not be negative, got "
+                                   f"{request.width_px}x{request.height_px} (0 means the source's)",
+                                   reason="BAD_SIZE")
     return StreamSettings(encoding, quality, max_fps, mode, request.width_px, request.height_px,
                           request.receipts, max_kbit, bool(request.max_kbit_per_s))
 
@@ -163,7 +164,7 @@ def encode_image(image: np.ndarray, encoding: int, jpeg_quality: int = DEFAULT_J
     elif encoding == pb.IMAGE_ENCODING_PNG:
         ok, data = cv2.imencode(".png", bgr, [cv2.IMWRITE_PNG_COMPRESSION, PNG_COMPRESSION])
     else:
-        raise InvalidArgument(f"unknown image encoding {encoding}", reason="BAD_ENCODING")
+        raise InvalidArgumentError(f"unknown image encoding {encoding}", reason="BAD_ENCODING")
     if not ok:
         raise RuntimeError(f"OpenCV could not encode a {image.shape} image as {encoding}")
     return data.tobytes()

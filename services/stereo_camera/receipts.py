@@ -14,8 +14,8 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 
-from services.runtime.errors import InvalidArgument, NotFound
 from services.stereo_camera.pacing import RateLimits, StreamPacer
+from wire.errors import InvalidArgumentError, NotFoundError
 
 
 class PacedStream:
@@ -85,18 +85,19 @@ class PacedStreams:
 
     def report(self, stream_id: str, sequence: int, received_bytes: int,
                want_keyframe: bool) -> tuple[int, int]:
-        """Routes a receipt; InvalidArgument for a malformed one, NotFound for no such stream."""
+        """Routes a receipt; InvalidArgumentError for a malformed one, NotFoundError for no such
+        stream."""
         if not stream_id:
-            raise InvalidArgument("stream_id is empty: send the id from the stream's header",
-                                  reason="NO_STREAM_ID")
+            raise InvalidArgumentError("stream_id is empty: send the id from the stream's header",
+                                       reason="NO_STREAM_ID")
         if sequence < 0 or received_bytes < 0:
-            raise InvalidArgument(f"sequence and received_bytes must not be negative, got "
-                                  f"{sequence} and {received_bytes}", reason="BAD_RECEIPT")
+            raise InvalidArgumentError(f"sequence and received_bytes must not be negative, got "
+                                       f"{sequence} and {received_bytes}", reason="BAD_RECEIPT")
         with self._lock:
             stream = self._streams.get(stream_id)
         if stream is None:
-            raise NotFound(f"no open stream has id {stream_id!r}: it ended; stop reporting",
-                           reason="NO_SUCH_STREAM")
+            raise NotFoundError(f"no open stream has id {stream_id!r}: it ended; stop reporting",
+                                reason="NO_SUCH_STREAM")
         return stream.report(sequence, received_bytes, want_keyframe)
 
     def __len__(self) -> int:

@@ -21,7 +21,6 @@ import time
 from google.protobuf.duration_pb2 import Duration
 
 from services.common import convert
-from services.runtime.errors import DeadlineExceeded
 from services.stereo_camera.capture import CaptureHub
 from services.stereo_camera.encoding import (
     DEFAULT_JPEG_QUALITY,
@@ -42,6 +41,7 @@ from services.stereo_camera.receipts import PacedStream, PacedStreams
 from services.stereo_camera.source import SourceGeometry, StereoFrame
 from telerobot.v1 import stereo_camera_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2_grpc
+from wire.errors import DeadlineExceededError
 
 log = logging.getLogger(__name__)
 
@@ -132,7 +132,7 @@ class StereoCameraServicer(stereo_camera_pb2_grpc.StereoCameraServicer):
             header=header_proto(geometry, image_format, DEFAULT_TRANSFER_MODE))
 
     def StreamPairs(self, request, context):
-        settings = stream_settings(request)  # InvalidArgument before touching the source
+        settings = stream_settings(request)  # InvalidArgumentError before touching the source
         geometry = self._hub.geometry(OPEN_TIMEOUT_S)
         image_format = settings.image_format(geometry)
         single = settings.transfer_mode == pb.TRANSFER_MODE_SINGLE_BUFFER_SERIALIZED
@@ -200,9 +200,9 @@ class StereoCameraServicer(stereo_camera_pb2_grpc.StereoCameraServicer):
             timeout_s = min(timeout_s, max(0.0, remaining))
         frame = self._hub.snapshot(timeout_s)
         if frame is None:
-            raise DeadlineExceeded(f"no pair came from {geometry.description} within "
-                                   f"{timeout_s:.1f} s: the source is slow or stuck",
-                                   reason="NO_PAIR")
+            raise DeadlineExceededError(f"no pair came from {geometry.description} within "
+                                        f"{timeout_s:.1f} s: the source is slow or stuck",
+                                        reason="NO_PAIR")
         left, right = self._cache.encoded(frame, image_format)
         return pb.GetSnapshotResponse(
             header=header_proto(geometry, image_format, settings.transfer_mode),

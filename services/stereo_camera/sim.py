@@ -35,11 +35,11 @@ import mujoco.gl_context as mujoco_gl_context
 import numpy as np
 
 from domain.robot_model.loader import load_mujoco_model, mujoco_ids
-from services.runtime.errors import FailedPrecondition, Unavailable
 from services.stereo_camera.calibration import mujoco_stereo
 from services.stereo_camera.source import EyeFrame, SourceGeometry
 from services.world.link import JOINT_COUNT
 from services.world.shm_link import SharedMemoryArmLink
+from wire.errors import FailedPreconditionError, UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -78,7 +78,7 @@ def gl_backend_problem() -> str | None:
 class SimSource:
     """The scene's stereo cameras at the joint positions `joints()` returns (rad, 6 values).
 
-    `joints` may raise Unavailable (the world is not running); the pair is then not rendered
+    `joints` may raise UnavailableError (the world is not running); the pair is then not rendered
     and the error reaches the clients. Not live: a tick is rendered when one is wanted.
     """
 
@@ -114,8 +114,8 @@ class SimSource:
         if self._renderer is None:
             problem = gl_backend_problem()
             if problem:
-                raise FailedPrecondition(f"cannot render the sim cameras: {problem}",
-                                         reason="RENDERER_UNAVAILABLE")
+                raise FailedPreconditionError(f"cannot render the sim cameras: {problem}",
+                                              reason="RENDERER_UNAVAILABLE")
             global_ = self._model.vis.global_
             global_.offwidth = max(int(global_.offwidth), self.geometry.width_px)
             global_.offheight = max(int(global_.offheight), self.geometry.height_px)
@@ -126,7 +126,7 @@ class SimSource:
                 self._renderer = mujoco.Renderer(self._model, self.geometry.height_px,
                                                  self.geometry.width_px)
             except Exception as exc:  # mujoco.FatalError, GL errors: no usable context
-                raise FailedPrecondition(
+                raise FailedPreconditionError(
                     f"cannot create an offscreen OpenGL context for the sim cameras: {exc}. "
                     "Set MUJOCO_GL=egl (or osmesa) before the process starts",
                     reason="RENDERER_UNAVAILABLE") from None
@@ -136,12 +136,12 @@ class SimSource:
     def grab(self, tick: int) -> tuple[EyeFrame, EyeFrame]:
         renderer = self._renderer
         if renderer is None:
-            raise Unavailable("the sim cameras are not open", reason="SOURCE_CLOSED")
+            raise UnavailableError("the sim cameras are not open", reason="SOURCE_CLOSED")
         q = np.asarray(self._joints(), dtype=float)
         state_time_ns = time.time_ns()
         if q.shape != (JOINT_COUNT,) or not np.isfinite(q).all():
-            raise Unavailable(f"the world sent joint positions that cannot be rendered: {q!r}",
-                              reason="BAD_JOINT_STATE")
+            raise UnavailableError(f"the world sent joint positions that cannot be rendered: {q!r}",
+                                   reason="BAD_JOINT_STATE")
         self._data.qpos[self._ids.qpos] = q
         mujoco.mj_kinematics(self._model, self._data)
         mujoco.mj_camlight(self._model, self._data)
@@ -160,7 +160,7 @@ class SimSource:
 class WorldJoints:
     """Joint positions of the simulated arm, read from the world process's shared memory.
 
-    Attaches on first use and again after the world restarts; Unavailable (naming what to do)
+    Attaches on first use and again after the world restarts; UnavailableError (naming what to do)
     while no world is running. Read-only use of SharedMemoryArmLink: it never commands.
     """
 
@@ -172,10 +172,10 @@ class WorldJoints:
     def __call__(self) -> np.ndarray:
         with self._lock:
             if self._link is None:
-                self._link = SharedMemoryArmLink(self._shm_name)  # Unavailable: no world
+                self._link = SharedMemoryArmLink(self._shm_name)  # UnavailableError: no world
             try:
                 return self._link.read_arm().joint_positions_rad
-            except Unavailable:
+            except UnavailableError:
                 self._link.close()
                 self._link: SharedMemoryArmLink | None = None
                 raise

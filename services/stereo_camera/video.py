@@ -12,8 +12,8 @@ eye's tick is its own frame number (for a file, the frame index), and a pair is 
 the two agree (source.PairAssembler); a side-by-side source is one grab, so zero skew.
 
 Calibration comes from a JSON file (calibration.py); without one it is unknown (zeros).
-Opening fails with FailedPrecondition naming the device or file; a camera that stops
-delivering frames gives Unavailable, and the next stream opens it again.
+Opening fails with FailedPreconditionError naming the device or file; a camera that stops
+delivering frames gives UnavailableError, and the next stream opens it again.
 """
 
 from __future__ import annotations
@@ -26,9 +26,9 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from services.runtime.errors import FailedPrecondition, Unavailable
 from services.stereo_camera.calibration import load_calibration, unknown_calibration
 from services.stereo_camera.source import LEFT, RIGHT, EyeFrame, SourceGeometry
+from wire.errors import FailedPreconditionError, UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -81,12 +81,12 @@ class VideoSource:
         try:
             eyes = (LEFT, RIGHT)[:len(self.names)]
             sizes = [self._open_one(name, eye) for name, eye in zip(self.names, eyes, strict=True)]
-        except FailedPrecondition:
+        except FailedPreconditionError:
             self.close()
             raise
         if len(set(sizes)) > 1:
             self.close()
-            raise FailedPrecondition(
+            raise FailedPreconditionError(
                 f"the left camera {self.names[0]} gives {sizes[0][0]}x{sizes[0][1]} images and "
                 f"the right camera {self.names[1]} {sizes[1][0]}x{sizes[1][1]}: a stereo pair "
                 "needs one size", reason="CAMERA_SIZE_MISMATCH")
@@ -98,7 +98,7 @@ class VideoSource:
                 calibration = load_calibration(self._calibration_path, width, height)
             except ValueError as exc:
                 self.close()
-                raise FailedPrecondition(str(exc), reason="BAD_CALIBRATION") from None
+                raise FailedPreconditionError(str(exc), reason="BAD_CALIBRATION") from None
         else:
             calibration = unknown_calibration(width, height)
         self._geometry = SourceGeometry(width, height, calibration, self._rate_hz(),
@@ -108,8 +108,8 @@ class VideoSource:
 
     def grab(self, tick: int) -> tuple[EyeFrame, EyeFrame]:
         if not self._captures:
-            raise Unavailable(f"the {self.kind} source {self.description} is not open",
-                              reason="SOURCE_CLOSED")
+            raise UnavailableError(f"the {self.kind} source {self.description} is not open",
+                                   reason="SOURCE_CLOSED")
         times = self._grab_all()
         if times is None and self.kind == FILE and self.loop:
             for capture in self._captures:
@@ -118,8 +118,8 @@ class VideoSource:
         if times is None:
             self.close()
             what = "ended" if self.kind == FILE else "stopped delivering frames"
-            raise Unavailable(f"the {self.kind} source {self.description} {what}",
-                              reason="SOURCE_ENDED" if self.kind == FILE else "CAMERA_STOPPED")
+            raise UnavailableError(f"the {self.kind} source {self.description} {what}",
+                                   reason="SOURCE_ENDED" if self.kind == FILE else "CAMERA_STOPPED")
         images = [self._retrieve(index) for index in range(len(self._captures))]
         ticks = [self._eye_tick(index) for index in range(len(self._captures))]
         if self.side_by_side:
@@ -141,15 +141,15 @@ class VideoSource:
     def _open_one(self, name: str, eye: str) -> tuple[int, int]:
         what = "side-by-side camera" if self.side_by_side else f"{eye} camera"
         if self.kind == FILE and not os.path.isfile(name):
-            raise FailedPrecondition(f"cannot open the {what} file {name}: no such file",
-                                     reason="CAMERA_UNAVAILABLE")
+            raise FailedPreconditionError(f"cannot open the {what} file {name}: no such file",
+                                          reason="CAMERA_UNAVAILABLE")
         capture = cv2.VideoCapture(_capture_target(name))
         if not capture.isOpened():
             capture.release()
             hint = ("check that it is plugged in and that no other program holds it"
                     if self.kind == DEVICE else "check its container and codec")
-            raise FailedPrecondition(f"cannot open the {what} {self.kind} {name}: {hint}",
-                                     reason="CAMERA_UNAVAILABLE")
+            raise FailedPreconditionError(f"cannot open the {what} {self.kind} {name}: {hint}",
+                                          reason="CAMERA_UNAVAILABLE")
         self._captures.append(capture)
         width, height = self._requested_size
         if self.kind == DEVICE:
@@ -161,8 +161,9 @@ class VideoSource:
                 capture.set(cv2.CAP_PROP_FPS, self._fps)
         ok, frame = capture.read()  # the size a frame really has
         if not ok or frame is None:
-            raise FailedPrecondition(f"the {what} {self.kind} {name} opened but gives no frames",
-                                     reason="CAMERA_UNAVAILABLE")
+            raise FailedPreconditionError(
+                f"the {what} {self.kind} {name} opened but gives no frames",
+                reason="CAMERA_UNAVAILABLE")
         if self.kind == FILE:
             capture.set(cv2.CAP_PROP_POS_FRAMES, 0)
         return frame.shape[1], frame.shape[0]
@@ -191,8 +192,9 @@ class VideoSource:
         if not ok or frame is None or frame.shape[:2] != (height, width):
             name = self.names[index]
             self.close()
-            raise Unavailable(f"the {self.kind} {name} delivered a frame that cannot be decoded "
-                              "or changed size", reason="CAMERA_STOPPED")
+            raise UnavailableError(
+                f"the {self.kind} {name} delivered a frame that cannot be decoded "
+                "or changed size", reason="CAMERA_STOPPED")
         if frame.ndim == 2:
             return cv2.cvtColor(frame, cv2.COLOR_GRAY2RGB)
         return cv2.cvtColor(frame, cv2.COLOR_BGR2RGB)

@@ -13,12 +13,12 @@ import grpc
 import uvicorn
 
 from services.runtime.config import PLAINTEXT_ENV, configure_logging
-from services.runtime.process import ready_line, watch_parent
+from services.runtime.process import watch_parent
 from services.runtime.server import PlaintextRefused, check_plaintext
-from services.runtime.stacks import dump_stacks_on_signal
 from services.web_console.app import ConsoleApp
 from services.web_console.bridge import Upstream
 from wire.addresses import address_for, env_name
+from wire.processes import dump_stacks_on_signal, ready_line
 from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import KEEPALIVE_OPTIONS, TLS_DIR_ENV
 

@@ -10,10 +10,10 @@ import argparse
 import os
 import signal
 
-from services.runtime.config import env_name
 from services.runtime.process import run_service
 from services.world.service import PHYSICS_THREAD_FIFO_PRIORITY, WorldService
 from services.world.shm_layout import add_shm_name_argument
+from wire.addresses import env_name
 
 # The physics thread must get the GIL back soon after its sleep ends, even if a gRPC thread is
 # running Python code: 0.5 ms instead of CPython's default 5 ms bounds that wait.

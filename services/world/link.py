@@ -2,7 +2,7 @@
 
 The simulated world implements it over shared memory (`shm_link.py`); a real robot controller or
 a real F/T sensor driver implements the same protocols. Nothing here knows about MuJoCo or gRPC.
-Errors: implementations raise services.runtime.errors.Unavailable when the hardware does not
+Errors: implementations raise wire.errors.UnavailableError when the hardware does not
 answer (process gone, heartbeat stale, link closed).
 """
 
@@ -13,7 +13,7 @@ from typing import Protocol
 
 import numpy as np
 
-from services.runtime.errors import InvalidArgument, OutOfRange
+from wire.errors import InvalidArgumentError, OutOfRangeError
 
 JOINT_COUNT = 6
 # Targets may lie this far past a joint limit (the measured position of an arm pushed against
@@ -23,18 +23,18 @@ LIMIT_TOLERANCE_RAD = 0.02
 
 def checked_joint_target(joint_positions_rad, lower: np.ndarray,
                          upper: np.ndarray) -> np.ndarray:
-    """A joint target (6,) in rad, as every ArmLink takes it: InvalidArgument on a wrong shape
-    or NaN; OutOfRange past a joint limit by more than LIMIT_TOLERANCE_RAD."""
+    """A joint target (6,) in rad, as every ArmLink takes it: InvalidArgumentError on a wrong shape
+    or NaN; OutOfRangeError past a joint limit by more than LIMIT_TOLERANCE_RAD."""
     target = np.asarray(joint_positions_rad, dtype=float)
     if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
-        raise InvalidArgument(
+        raise InvalidArgumentError(
             f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}",
             reason="BAD_TARGET")
     outside = np.flatnonzero((target < lower - LIMIT_TOLERANCE_RAD)
                              | (target > upper + LIMIT_TOLERANCE_RAD))
     if outside.size:
         joint = int(outside[0])
-        raise OutOfRange(
+        raise OutOfRangeError(
             f"joint {joint + 1} target {np.degrees(target[joint]):.1f} deg is past its limit "
             f"({np.degrees(lower[joint]):.0f}..{np.degrees(upper[joint]):.0f} deg)",
             reason="JOINT_LIMIT")
@@ -42,12 +42,12 @@ def checked_joint_target(joint_positions_rad, lower: np.ndarray,
 
 
 def checked_duration(duration_s) -> float:
-    """A target's segment duration (s), as every ArmLink takes it: InvalidArgument unless a
+    """A target's segment duration (s), as every ArmLink takes it: InvalidArgumentError unless a
     finite number >= 0 (the servo clips a long one to its own cap)."""
     duration = float(duration_s)
     if not np.isfinite(duration) or duration < 0.0:
-        raise InvalidArgument(f"a target's segment duration must be finite and >= 0 s, got "
-                              f"{duration_s!r}", reason="BAD_DURATION")
+        raise InvalidArgumentError(f"a target's segment duration must be finite and >= 0 s, got "
+                                   f"{duration_s!r}", reason="BAD_DURATION")
     return duration
 
 

@@ -23,9 +23,9 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from services.runtime.errors import DeadlineExceeded
 from services.world.realtime import LoopStats
 from services.world.shm_link import SharedMemoryArmLink
+from wire.errors import DeadlineExceededError
 
 DEFAULT_SAMPLES = 5000
 DEFAULT_ROUND_TRIPS = 300
@@ -60,7 +60,7 @@ def measure_link_latency(shm_name: str | None = None, samples: int = DEFAULT_SAM
                          round_trips: int = DEFAULT_ROUND_TRIPS) -> LinkLatency:
     """Time the link against the running world named ``shm_name`` (default: the environment's).
 
-    Unavailable when no world is running. Leaves the arm where it was.
+    UnavailableError when no world is running. Leaves the arm where it was.
     """
     link = SharedMemoryArmLink(shm_name)
     clock = time.perf_counter_ns
@@ -80,8 +80,8 @@ def measure_link_latency(shm_name: str | None = None, samples: int = DEFAULT_SAM
             link.write_target(target)
             while not link.commands_applied():
                 if clock() - start > ROUND_TRIP_TIMEOUT_S * 1e9:
-                    raise DeadlineExceeded("the world did not apply a command within "
-                                           f"{ROUND_TRIP_TIMEOUT_S} s")
+                    raise DeadlineExceededError("the world did not apply a command within "
+                                                f"{ROUND_TRIP_TIMEOUT_S} s")
             trips.append(clock() - start)
         return LinkLatency(Latency.of(reads), Latency.of(writes), Latency.of(trips),
                            link.read_loop_stats())

@@ -25,11 +25,11 @@ from collections.abc import Callable, Sequence
 
 import mujoco
 
-from services.runtime.errors import InvalidArgument
 from services.runtime.server import ServiceBinding
 from services.world.realtime import LoopStats, RealtimeLoop
 from services.world.shm_link import Command, WorldPublisher
 from services.world.sim import ArmSim
+from wire.errors import InvalidArgumentError
 
 log = logging.getLogger(__name__)
 
@@ -157,7 +157,7 @@ class WorldService:
         else:
             try:
                 sim.set_target(command.target, command.duration_s)
-            except InvalidArgument as exc:  # the driver checks too; never trust shared memory
+            except InvalidArgumentError as exc:  # the driver checks too; never trust shared memory
                 log.warning("ignored a bad target: %s", exc)
 
     def _report_stats(self) -> None:

@@ -6,7 +6,7 @@ were issued, and unlinks the segment on close.
 
 Driver side: ``SharedMemoryArmLink`` (ArmLink), ``SharedMemoryWrenchLink`` (WrenchLink) and
 ``SharedMemoryEmergencyStop`` (EmergencyStopLink: the stop button wired past the driver). They
-raise Unavailable when the world is not running, has shut down, or has not stepped for
+raise UnavailableError when the world is not running, has shut down, or has not stepped for
 ``stale_after_s``. One driver process commands a world at a time (the command record has a
 single writer); within that process the links are thread-safe.
 
@@ -26,7 +26,6 @@ from multiprocessing import shared_memory
 import numpy as np
 
 from services.runtime.clock import SYSTEM_CLOCK, Clock
-from services.runtime.errors import AlreadyExists, Unavailable
 from services.world.link import (
     ArmSample,
     RawWrench,
@@ -52,6 +51,7 @@ from services.world.shm_layout import (
     segment_name,
     unlink_segment,
 )
+from wire.errors import AlreadyExistsError, UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -193,7 +193,7 @@ def _create_or_replace(name: str) -> shared_memory.SharedMemory:
     owner = _live_owner(old)
     if owner is not None:
         old.close()
-        raise AlreadyExists(
+        raise AlreadyExistsError(
             f"a world (pid {owner}) is already running on shared memory {name!r}: stop it, or "
             f"give this one another name with TELEROBOT_WORLD_SHM", reason="WORLD_RUNNING")
     log.warning("replacing the stale shared memory %r left by a world that did not shut down",
@@ -232,30 +232,30 @@ class _WorldConnection:
         try:
             shm = attach_untracked(self.name)
         except FileNotFoundError:
-            raise Unavailable(
+            raise UnavailableError(
                 f"no world is running: shared memory {self.name!r} does not exist. Start it "
                 "with `python -m services.world` (TELEROBOT_WORLD_SHM names the segment)",
                 reason="WORLD_NOT_RUNNING") from None
         if shm.size < SEGMENT_SIZE:
             shm.close()
-            raise Unavailable(f"shared memory {self.name!r} is {shm.size} bytes, not a world "
-                              f"segment ({SEGMENT_SIZE}): check TELEROBOT_WORLD_SHM",
-                              reason="WORLD_SEGMENT_INVALID")
+            raise UnavailableError(f"shared memory {self.name!r} is {shm.size} bytes, not a world "
+                                   f"segment ({SEGMENT_SIZE}): check TELEROBOT_WORLD_SHM",
+                                   reason="WORLD_SEGMENT_INVALID")
         self.segment: WorldSegment | None = WorldSegment(shm)
         problem = self.segment.layout_problem()
         try:
             if problem:
-                raise Unavailable(f"shared memory {self.name!r} is not usable: {problem}",
-                                  reason="WORLD_SEGMENT_INVALID")
+                raise UnavailableError(f"shared memory {self.name!r} is not usable: {problem}",
+                                       reason="WORLD_SEGMENT_INVALID")
             self.check_alive(self.segment.heartbeat_ns)
-        except Unavailable:
+        except UnavailableError:
             self.close()
             raise
 
     def require(self) -> WorldSegment:
         if self.segment is None:
-            raise Unavailable("the hardware link is closed: open a new one",
-                              reason="LINK_CLOSED")
+            raise UnavailableError("the hardware link is closed: open a new one",
+                                   reason="LINK_CLOSED")
         return self.segment
 
     def check_alive(self, heartbeat_ns: int) -> None:
@@ -263,15 +263,15 @@ class _WorldConnection:
         segment = self.require()
         status = segment.status
         if status == STATUS_CLOSED:
-            raise Unavailable(
+            raise UnavailableError(
                 f"the world (pid {segment.world_pid}) has shut down; restart it and reconnect",
                 reason="WORLD_STOPPED")
         if status != STATUS_RUNNING:
-            raise Unavailable(f"the world (pid {segment.world_pid}) is starting; try again",
-                              reason="WORLD_STARTING")
+            raise UnavailableError(f"the world (pid {segment.world_pid}) is starting; try again",
+                                   reason="WORLD_STARTING")
         age_ns = self._clock.monotonic_ns() - heartbeat_ns
         if age_ns > self._stale_after_ns:
-            raise Unavailable(
+            raise UnavailableError(
                 f"the world (pid {segment.world_pid}) has not stepped for {age_ns / 1e6:.0f} ms "
                 f"(limit {self._stale_after_ns / 1e6:.0f} ms): it is stopped, stuck or gone",
                 reason="WORLD_STALE")
@@ -282,7 +282,7 @@ class _WorldConnection:
         try:
             record = segment.state.read(TORN_READ_TIMEOUT_S)[0]
         except TornRead:
-            raise Unavailable(
+            raise UnavailableError(
                 f"the world (pid {segment.world_pid}) stopped in the middle of publishing a "
                 "sample: it is stuck or gone", reason="WORLD_STALE") from None
         self.check_alive(int(record["heartbeat_ns"]))
@@ -297,7 +297,7 @@ class _WorldConnection:
 class SharedMemoryArmLink:
     """ArmLink to the simulated arm through the world's shared memory.
 
-    Unavailable on open and on every call when the world is not running, has shut down or has
+    UnavailableError on open and on every call when the world is not running, has shut down or has
     not stepped for ``stale_after_s`` (s) by ``clock``, which must be the one that stamps the
     world's heartbeat. Thread-safe.
     """
@@ -332,7 +332,7 @@ class SharedMemoryArmLink:
     # -- ArmLink ----------------------------------------------------------------------------
 
     def read_arm(self) -> ArmSample:
-        """The latest servo sample. Unavailable when the world is gone or stale."""
+        """The latest servo sample. UnavailableError when the world is gone or stale."""
         with self._state_lock:
             record = self._connection.read_state()
         return ArmSample(
@@ -348,8 +348,8 @@ class SharedMemoryArmLink:
     def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
         """Make the servo track a new joint target (6,) in rad, reached along a straight
         joint-space segment of `duration_s`; the world ignores it while a hold is latched.
-        InvalidArgument on a wrong shape or NaN; OutOfRange past a joint limit (by more than
-        LIMIT_TOLERANCE_RAD; the world clips onto the limit)."""
+        InvalidArgumentError on a wrong shape or NaN; OutOfRangeError past a joint limit (by more
+        than LIMIT_TOLERANCE_RAD; the world clips onto the limit)."""
         target = checked_joint_target(joint_positions_rad, self.joint_lower, self.joint_upper)
         self._issue(_TARGET, target, checked_duration(duration_s))
 
@@ -422,7 +422,7 @@ class SharedMemoryEmergencyStop:
         self._last_request_ns = 0
 
     def stop(self) -> int:
-        """Latch a controlled stop. Unavailable when the world is gone or stale (the stop
+        """Latch a controlled stop. UnavailableError when the world is gone or stale (the stop
         could not be delivered)."""
         with self._lock:
             connection = self._connection
@@ -443,7 +443,7 @@ class SharedMemoryEmergencyStop:
 class SharedMemoryWrenchLink:
     """WrenchLink to the simulated wrist force/torque sensor through the world's shared memory.
 
-    Unavailable on open and on every read when the world is not running, has shut down or has
+    UnavailableError on open and on every read when the world is not running, has shut down or has
     not stepped for ``stale_after_s`` (s). Thread-safe.
     """
 
@@ -452,7 +452,8 @@ class SharedMemoryWrenchLink:
         self._connection = _WorldConnection(name, stale_after_s, SYSTEM_CLOCK)
 
     def read_wrench(self) -> RawWrench:
-        """The latest sensor sample (N, N*m, sensor frame). Unavailable when the world is gone."""
+        """The latest sensor sample (N, N*m, sensor frame). UnavailableError when the world is
+        gone."""
         with self._lock:
             record = self._connection.read_state()
         return RawWrench(

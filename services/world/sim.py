@@ -24,9 +24,9 @@ import mujoco
 import numpy as np
 
 from domain.robot_model.loader import load_mujoco_model, mujoco_ids
-from services.runtime.errors import InvalidArgument
 from services.world.link import JOINT_COUNT, ArmSample, RawWrench
 from services.world.trajectory import JointReference
+from wire.errors import InvalidArgumentError
 
 MAX_JOINT_SPEED_RAD_PER_S = 1.0  # every joint; the reference never moves faster
 GOAL_SMOOTHING_S = 0.005  # absorbs jitter in streamed targets (see trajectory.py)
@@ -143,11 +143,11 @@ class ArmSim:
     def set_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> bool:
         """Track a new joint target (rad), clipped into the joint limits, reached along a
         straight joint-space segment of `duration_s` (trajectory.SegmentedGoal). Returns False
-        (and changes nothing) while a hold is latched. InvalidArgument on a wrong shape or
+        (and changes nothing) while a hold is latched. InvalidArgumentError on a wrong shape or
         NaN."""
         target = np.asarray(joint_positions_rad, dtype=float)
         if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
-            raise InvalidArgument(
+            raise InvalidArgumentError(
                 f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}")
         if self.hold_latched:
             return False

@@ -26,7 +26,7 @@ from clients.python import (
     RobotState,
     RobotStatus,
     StereoCameraClient,
-    TelerobotRpcError,
+    TelerobotError,
     UnavailableError,
 )
 from clients.python.errors import STATUS_DETAILS_KEY, from_rpc_error
@@ -74,14 +74,14 @@ def test_errors_carry_code_message_and_error_info_reason():
     error = from_rpc_error(FakeRpcError(
         grpc.StatusCode.OUT_OF_RANGE, "joint 2 past its limit",
         ((STATUS_DETAILS_KEY, status.SerializeToString()),)), "/telerobot.v1.ProxyRobot/X")
-    assert isinstance(error, OutOfRangeError) and isinstance(error, TelerobotRpcError)
+    assert isinstance(error, OutOfRangeError) and isinstance(error, TelerobotError)
     assert (error.code, error.message, error.reason, error.domain) == (
         grpc.StatusCode.OUT_OF_RANGE, "joint 2 past its limit", "JOINT_LIMIT", "telerobot.v1")
     assert "OUT_OF_RANGE [JOINT_LIMIT] in /telerobot.v1.ProxyRobot/X" in str(error)
     copy = pickle.loads(pickle.dumps(error))
     assert type(copy) is OutOfRangeError and copy.reason == "JOINT_LIMIT"
     bare = from_rpc_error(FakeRpcError(grpc.StatusCode.DATA_LOSS, "lost"))
-    assert type(bare) is TelerobotRpcError and bare.reason is None
+    assert type(bare) is TelerobotError and bare.reason is None
 
 
 def test_a_dead_server_fails_at_once_without_retries():

@@ -17,10 +17,10 @@ from services.decision_server.core import (
     DecisionCore,
 )
 from services.decision_server.teleop import WatchdogHold
-from services.runtime.errors import FailedPrecondition, OutOfRange
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Rig
 from tests.fakes.slave import FakeSlave
+from wire.errors import FailedPreconditionError, OutOfRangeError
 
 SERVO_PERIOD_S = 0.001
 
@@ -68,9 +68,9 @@ def test_a_stop_through_another_door_stops_force_control_within_one_state_sample
     assert rig.core.force_loop is None
     assert moves_in(rig, 50, loops=0) == 0
     commands = len(rig.slave.commands)
-    with pytest.raises(FailedPrecondition, match="ESTOPPED"):
+    with pytest.raises(FailedPreconditionError, match="ESTOPPED"):
         rig.core.open_session("alice", rig.lease.lease_id, None, 0.1)
-    with pytest.raises(FailedPrecondition, match="ESTOPPED"):
+    with pytest.raises(FailedPreconditionError, match="ESTOPPED"):
         rig.core.move_cartesian(rig.lease.lease_id, np.zeros(3), np.eye(3), "BASE")
     assert len(rig.slave.commands) == commands  # refused here, not by the arm
     # Reset clears it, and force control, still configured, resumes.
@@ -153,7 +153,7 @@ def test_a_refused_step_switches_force_control_off_and_says_so(rig, monkeypatch)
     wait_for(lambda: rig.slave.subscribers() == 1, what="the force loop to subscribe")
 
     def refuse(*args):
-        raise OutOfRange("past the workspace", reason="WORKSPACE")
+        raise OutOfRangeError("past the workspace", reason="WORKSPACE")
 
     monkeypatch.setattr(rig.slave, "move_cartesian", refuse)
     rig.slave.step(SERVO_PERIOD_S, 20)
@@ -198,7 +198,7 @@ def test_direct_moves_are_recorded_and_refused_while_latched(rig):
 
     rig.core.emergency_stop("test")
     commands = len(rig.slave.commands)
-    with pytest.raises(FailedPrecondition, match="ESTOPPED"):
+    with pytest.raises(FailedPreconditionError, match="ESTOPPED"):
         rig.core.move_joints(lease, np.array([0.05, 0, 0, 0, 0, 0]))
     assert len(rig.slave.commands) == commands  # refused here, not by the arm
 

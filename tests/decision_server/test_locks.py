@@ -15,15 +15,15 @@ from services.decision_server.arbitration import (
     ControlView,
     LockManager,
 )
-from services.runtime.errors import (
-    Aborted,
-    DeadlineExceeded,
-    FailedPrecondition,
-    NotFound,
-    TelerobotError,
-)
 from tests.conftest import wait_for
 from tests.fakes.clock import FakeClock
+from wire.errors import (
+    AbortedError,
+    DeadlineExceededError,
+    FailedPreconditionError,
+    NotFoundError,
+    TelerobotError,
+)
 
 EXCLUSIVE, COLLABORATIVE = ControlMode.EXCLUSIVE, ControlMode.COLLABORATIVE
 TICK_S = 2.0 ** -20  # exact on the float grid near 1000 s: t0 + 5 - TICK + TICK == t0 + 5
@@ -105,7 +105,7 @@ def test_two_operators_racing_have_exactly_one_winner(locks):
         start.wait(HANG_GUARD_S)
         try:
             winners.append(locks.acquire(name, EXCLUSIVE))
-        except Aborted as error:
+        except AbortedError as error:
             losers.append(error.message)
 
     threads = [threading.Thread(target=race, args=(f"op{i}",)) for i in range(8)]
@@ -121,9 +121,9 @@ def test_collaborative_control_is_shared_by_one_group(locks):
     a = locks.acquire("ann", COLLABORATIVE, "surgery")
     b = locks.acquire("bob", COLLABORATIVE, "surgery")
     assert set(holders(locks)) == {"ann", "bob"}
-    with pytest.raises(Aborted, match="COLLABORATIVE, group 'surgery'"):
+    with pytest.raises(AbortedError, match="COLLABORATIVE, group 'surgery'"):
         locks.acquire("cat", COLLABORATIVE, "other-group")
-    with pytest.raises(Aborted):
+    with pytest.raises(AbortedError):
         locks.acquire("dan", EXCLUSIVE)
     assert locks.require(a.lease_id) and locks.require(b.lease_id)
 
@@ -135,7 +135,7 @@ def test_waiters_are_served_in_order(locks, changes):
     third = Acquirer(locks, "third")
     wait_until_queued(locks, ["second", "third"])
     # A newcomer may not overtake the queue, even one that could share control with the holder.
-    with pytest.raises(Aborted, match="'first' \\(COLLABORATIVE, group 'g'\\)"):
+    with pytest.raises(AbortedError, match="'first' \\(COLLABORATIVE, group 'g'\\)"):
         locks.acquire("newcomer", COLLABORATIVE, "g")
 
     locks.release(first.lease_id)
@@ -159,7 +159,7 @@ def test_a_wait_times_out_at_its_deadline(locks, clock, changes):
 
     clock.advance(2.0 + TICK_S)
     error = waiter.result()
-    assert isinstance(error, DeadlineExceeded) and "'holder'" in error.message
+    assert isinstance(error, DeadlineExceededError) and "'holder'" in error.message
     assert queued(locks) == [] and holders(locks) == ["holder"]
     assert told(changes, "waiter gave up waiting").waiters == ()
 
@@ -197,7 +197,7 @@ def test_a_lease_expires_just_after_its_deadline_not_before(locks, clock, change
     assert [h.operator_id for h in view.holders] == ["next"] and view.waiters == ()
     assert waiter.result().lease_id == view.holders[0].lease_id
     assert [h.operator_id for h in told(changes, "sleepy's lease expired").holders] == ["next"]
-    with pytest.raises(FailedPrecondition, match="held by 'next'"):
+    with pytest.raises(FailedPreconditionError, match="held by 'next'"):
         locks.require(sleepy.lease_id)
 
 
@@ -208,7 +208,7 @@ def test_use_renews_the_lease(locks, clock):
         assert locks.require(lease.lease_id).expires_at == clock.monotonic() + 1.0
     assert holders(locks) == ["busy"]  # 4.5 s on a 1 s lease
     clock.advance(1.0 + TICK_S)  # silent for longer than one lease
-    with pytest.raises(FailedPrecondition, match="needs the control lock: send the lease id"):
+    with pytest.raises(FailedPreconditionError, match="needs the control lock: send the lease id"):
         locks.require(lease.lease_id)
     assert holders(locks) == []
 
@@ -224,12 +224,12 @@ def test_renew_moves_the_deadline(locks, clock, changes):
     clock.advance(TICK_S)
     assert holders(locks) == []
     told(changes, "op's lease expired")
-    with pytest.raises(NotFound, match="acquire control again"):
+    with pytest.raises(NotFoundError, match="acquire control again"):
         locks.renew(lease.lease_id)
 
 
 def test_require_without_a_lease_explains(locks):
-    with pytest.raises(FailedPrecondition, match="telerobot-lease-id"):
+    with pytest.raises(FailedPreconditionError, match="telerobot-lease-id"):
         locks.require(None)
 
 

@@ -19,11 +19,11 @@ from mcap_protobuf.decoder import DecoderFactory
 from services.decision_server import recording_convert, recording_mcap
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import event_to_proto
-from services.runtime.errors import FailedPrecondition
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, types_pb2
 from tests.conftest import BUF, wait_for
 from tests.decision_server.conftest import Operator
+from wire.errors import FailedPreconditionError
 
 
 def _rotation_z(angle: float) -> np.ndarray:
@@ -118,13 +118,13 @@ def test_a_truncated_or_corrupt_mcap_file_is_refused_clearly(rig, tmp_path):
     cuts["flipped"] = bytes(flipped)
     for name, content in cuts.items():
         (tmp_path / f"{name}.mcap").write_bytes(content)
-        with pytest.raises(FailedPrecondition, match=f"{name}.mcap cannot be read") as error:
+        with pytest.raises(FailedPreconditionError, match=f"{name}.mcap cannot be read") as error:
             rig.core.start_replay(rig.lease.lease_id, name, 1.0)
         assert error.value.reason == "CORRUPT_RECORDING"
     listed = {i.name: i for i in rig.core.recordings.list()}
     assert "truncated" in listed["half"].error and listed["whole"].error == ""
     (tmp_path / "bad.jsonl").write_text('{"name": "bad"}\n{"offset_s": 0}\n')
-    with pytest.raises(FailedPrecondition, match="bad.jsonl cannot be read"):
+    with pytest.raises(FailedPreconditionError, match="bad.jsonl cannot be read"):
         rig.core.start_replay(rig.lease.lease_id, "bad", 1.0)
 
 
@@ -158,10 +158,10 @@ def test_a_recording_whose_file_cannot_be_written_stops_and_commands_go_on(rig, 
     moves = rig.moves()
     rig.core.move_cartesian(lease, np.array([0.0, 0.0, 0.0005]), np.eye(3), "BASE")
     assert rig.moves() == moves + 1
-    with pytest.raises(FailedPrecondition, match="No space left on device") as error:
+    with pytest.raises(FailedPreconditionError, match="No space left on device") as error:
         rig.core.recordings.stop()
     assert error.value.reason == "RECORDING_FAILED"
-    with pytest.raises(FailedPrecondition, match="not recording"):
+    with pytest.raises(FailedPreconditionError, match="not recording"):
         rig.core.recordings.stop()
     assert not (tmp_path / "full.mcap").exists()
     assert not (tmp_path / "full.mcap.partial").exists()  # the partial file is gone

@@ -15,8 +15,8 @@ from services.decision_server.teleop import (
     MasterIncrement,
     TeleopSessionChanged,
 )
-from services.runtime.errors import Aborted, NotFound, PermissionDenied
 from tests.conftest import wait_for
+from wire.errors import AbortedError, NotFoundError, PermissionDeniedError
 
 UP = np.array([0.0, 0.0, 0.001])
 
@@ -94,7 +94,7 @@ def test_a_broken_stream_holds_the_arm_and_the_same_lease_resumes_the_session(ri
 def test_a_resume_supersedes_a_stream_whose_break_went_unnoticed(rig, session):
     old = session.stream
     _, new = rig.core.resume_session(session.session_id, rig.lease.lease_id)
-    with pytest.raises(Aborted) as refused:
+    with pytest.raises(AbortedError) as refused:
         session.commands(commands(rig, 1), old)
     assert refused.value.reason == "SUPERSEDED"
     session.end(old, "the old stream broke at last", resumable=True)  # changes nothing now
@@ -105,9 +105,9 @@ def test_a_resume_supersedes_a_stream_whose_break_went_unnoticed(rig, session):
 
 def test_only_the_sessions_lease_may_resume_it(rig, session):
     session.end(session.stream, "the stream broke", resumable=True)
-    with pytest.raises(NotFound):
+    with pytest.raises(NotFoundError):
         rig.core.resume_session("nosuchsession", rig.lease.lease_id)
-    with pytest.raises(PermissionDenied):
+    with pytest.raises(PermissionDeniedError):
         rig.core.resume_session(session.session_id, "someone-elses-lease")
 
 
@@ -120,7 +120,7 @@ def test_a_session_not_resumed_within_its_window_ends(rig, session):
     assert not session.closed
     rig.clock.advance(0.02)
     wait_for(lambda: session.closed, what="the session to end")
-    with pytest.raises(NotFound):
+    with pytest.raises(NotFoundError):
         rig.core.resume_session(session.session_id, rig.lease.lease_id)
     assert [e.state for e in session_events(events)] == ["DETACHED", "CLOSED"]
     assert holds(rig) == 1  # held once, when the stream broke
@@ -129,7 +129,7 @@ def test_a_session_not_resumed_within_its_window_ends(rig, session):
 def test_the_operators_own_close_ends_the_session_for_good(rig, session):
     session.end(session.stream, "the stream ended", resumable=False)
     assert session.closed
-    with pytest.raises(NotFound):
+    with pytest.raises(NotFoundError):
         rig.core.resume_session(session.session_id, rig.lease.lease_id)
 
 
@@ -146,7 +146,7 @@ def test_a_lapsed_lease_ends_its_detached_session(rig):
     session.end(session.stream, "the stream broke", resumable=True)
     rig.clock.advance(0.6)  # the lease reaper, on the same clock, sees it lapse
     wait_for(lambda: session.closed, what="the session to end with its lease")
-    with pytest.raises(NotFound):
+    with pytest.raises(NotFoundError):
         rig.core.resume_session(session.session_id, lease.lease_id)
 
 
@@ -169,7 +169,7 @@ def test_a_break_mid_batch_keeps_what_moved_and_leaves_the_rest_unreceived(rig, 
     def serve():  # 1 moves, 2 is a clutch (nothing to move), 3 would move: three groups
         try:
             session.commands(commands(rig, 1, 2, 3, clutch=(2,)), stream)
-        except Aborted as error:
+        except AbortedError as error:
             outcome.append(error)
 
     server = threading.Thread(target=serve)

@@ -9,11 +9,11 @@ import pytest
 
 from services.common import convert
 from services.decision_server.teleop import CommandResult
-from services.runtime.errors import FailedPrecondition
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
+from wire.errors import FailedPreconditionError
 
 
 def test_acks_carry_the_outcome_pose_status_and_a_fresh_wrench(fake_station):
@@ -102,7 +102,7 @@ class _Session:
     def commands(self, increments, stream):
         self.runs += 1
         if self.runs == self.fail_on_run:
-            raise FailedPrecondition("control was lost", reason="NO_CONTROL")
+            raise FailedPreconditionError("control was lost", reason="NO_CONTROL")
         return [CommandResult("APPLIED", "", 1, 2) for _ in increments]
 
     def heartbeat(self, stream, master_energy_in_j=None):
@@ -125,7 +125,7 @@ def test_a_batch_taken_together_is_one_acks_message_and_what_ran_before_an_error
     single = list(servicer._answers(_Session(), 1, batch, grouped=False))
     assert [r.ack.sequence for r in single] == [1, 2, 0, 4]
     answered = []
-    with pytest.raises(FailedPrecondition):  # the second run of commands fails
+    with pytest.raises(FailedPreconditionError):  # the second run of commands fails
         for reply in servicer._answers(_Session(fail_on_run=2), 1, batch, grouped=True):
             answered.append([a.sequence for a in reply.acks.acks])
     assert answered == [[1, 2, 0]]  # done before the error: still answered

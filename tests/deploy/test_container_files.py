@@ -57,6 +57,12 @@ def slave() -> dict:
     return compose()["services"]["slave"]
 
 
+def station_code() -> str:
+    """The Python source of every package the image copies."""
+    return "\n".join(p.read_text() for top in ("services", "wire", "domain", "discovery")
+                     for p in (REPO / top).rglob("*.py"))
+
+
 def test_the_image_is_python_311_slim_with_egl_for_offscreen_rendering():
     assert arguments("FROM") == ["python:3.11-slim"]
     (install,) = [r for r in arguments("RUN") if "apt-get install" in r]
@@ -74,6 +80,15 @@ def test_what_the_image_copies_exists_and_keys_stay_out():
         assert (REPO / source).exists(), source  # the build context is the repository root
     assert "pyproject.toml" in sources and "services" in sources
     assert not any(s in ("var", ".", "var/pki") for s in sources)  # no private keys baked in
+    # Every package of this project the station imports is in the image.
+    imported = set(re.findall(r"^\s*(?:from|import) (\w+)", station_code(), re.MULTILINE))
+    ours = {p.parent.name for p in REPO.glob("*/__init__.py")}
+    assert imported & ours <= set(sources), (imported & ours) - set(sources)
+
+
+def test_the_image_installs_the_stations_dependencies():
+    (install,) = [r for r in arguments("RUN") if r.startswith("pip install")]
+    assert "[station,console]" in install  # `pip install .` alone is the Python client only
 
 
 def test_the_entrypoint_is_the_launcher():
@@ -103,8 +118,7 @@ def test_compose_moves_the_published_services_onto_the_containers_own_name():
 
 
 def test_every_setting_compose_and_the_image_make_is_one_the_code_reads():
-    code = "\n".join(p.read_text() for top in ("services", "wire")
-                     for p in (REPO / top).rglob("*.py"))
+    code = station_code()
     read = set(re.findall(r"TELEROBOT_[A-Z_]+", code))
     read |= {env_name(name, "address") for name in DEFAULT_PORTS}  # built by env_name
     settings = {k for k in (*slave()["environment"], *env_settings()) if k.startswith("TELEROBOT")}

@@ -15,7 +15,7 @@ import time
 from google.protobuf.json_format import MessageToDict
 
 from clients.python import DecisionClient
-from services.runtime.process import ready_line
+from wire.processes import ready_line
 
 DESCENT_M = 0.02
 POLL_S = 0.02

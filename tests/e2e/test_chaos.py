@@ -31,7 +31,7 @@ from clients.python import (
     DecisionClient,
     FailedPreconditionError,
     RobotStatus,
-    TelerobotRpcError,
+    TelerobotError,
 )
 from tests.conftest import restarted, service_pid, start_station, station_env, wait_for
 
@@ -132,7 +132,7 @@ class Operator:
                             tick += 1
                             self.stop.wait(COMMAND_PERIOD_S)
                         station.stop_recording()
-            except TelerobotRpcError as error:
+            except TelerobotError as error:
                 self.errors.append((error.code.name, str(error)))
                 self.stop.wait(0.1)
 

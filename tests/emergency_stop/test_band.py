@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 
 from clients.python import ProxyRobotClient
-from clients.python.errors import UnimplementedError
 from clients.python.values import RobotStatus
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
 from tests.conftest import start_service, wait_for
 from tests.world.conftest import unique_shm_name
+from wire.errors import UnimplementedError
 
 
 @pytest.fixture

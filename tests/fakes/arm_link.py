@@ -22,11 +22,11 @@ Like the simulation (services/world/sim.py, shm_link.py):
   next step latches a hold after the driver's commands; `emergency_stop_link()` is that band's
   EmergencyStopLink;
 - `inject_fault()` makes the next step report a fault and latch a hold, as a diverged simulation;
-- targets are checked (InvalidArgument, OutOfRange past a limit by more than the tolerance) and
-  clipped onto the joint limits;
+- targets are checked (InvalidArgumentError, OutOfRangeError past a limit by more than the
+  tolerance) and clipped onto the joint limits;
 - samples carry the servo step as `sequence` and the wall time of that step as `sample_time_ns`;
-- links raise Unavailable when the arm is shut down (`shut_down()`), when it has not stepped for
-  `stale_after_s` (`freeze()`: a hung or killed world), or once closed.
+- links raise UnavailableError when the arm is shut down (`shut_down()`), when it has not stepped
+  for `stale_after_s` (`freeze()`: a hung or killed world), or once closed.
 
 Every command the drivers issue is kept in `commands`, oldest first, for the tests to inspect.
 """
@@ -40,11 +40,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from domain.robot_model.puma560 import HOME_Q, JOINT_LOWER, JOINT_UPPER
-from services.runtime.errors import Unavailable
 from services.world.link import JOINT_COUNT, ArmSample, checked_duration, checked_joint_target
 from services.world.shm_link import STALE_AFTER_S
 from services.world.trajectory import SegmentedGoal
 from tests.fakes.clock import FakeClock
+from wire.errors import UnavailableError
 
 SERVO_PERIOD_S = 0.001  # the world's servo rate
 TIME_CONSTANT_S = 0.03
@@ -96,7 +96,8 @@ class FakeArm:
     # -- the hardware's side, for tests -------------------------------------------------------
 
     def open_link(self) -> FakeArmLink:
-        """A driver's link (the ProxyRobotCore's link factory). Unavailable when no arm runs."""
+        """A driver's link (the ProxyRobotCore's link factory). UnavailableError when no arm
+        runs."""
         return FakeArmLink(self)
 
     def emergency_stop_link(self) -> FakeEmergencyStopLink:
@@ -117,13 +118,13 @@ class FakeArm:
 
     def freeze(self) -> None:
         """The servo stops stepping (a hung or killed world): links see the last sample until
-        it is `stale_after_s` old, then Unavailable."""
+        it is `stale_after_s` old, then UnavailableError."""
         with self._lock:
             self._catch_up()
             self._frozen = True
 
     def shut_down(self) -> None:
-        """The world shuts down in order: every link is Unavailable from now on."""
+        """The world shuts down in order: every link is UnavailableError from now on."""
         with self._lock:
             self._catch_up()
             self._shut_down = True
@@ -161,8 +162,8 @@ class FakeArm:
     def check_open(self) -> None:
         with self._lock:
             if self._shut_down:
-                raise Unavailable("no world is running: the fake arm was shut down",
-                                  reason="WORLD_NOT_RUNNING")
+                raise UnavailableError("no world is running: the fake arm was shut down",
+                                       reason="WORLD_NOT_RUNNING")
             self._catch_up()
             self._check_alive()
 
@@ -170,13 +171,13 @@ class FakeArm:
 
     def _check_alive(self) -> None:
         if self._shut_down:
-            raise Unavailable("the world (fake) has shut down; restart it and reconnect",
-                              reason="WORLD_STOPPED")
+            raise UnavailableError("the world (fake) has shut down; restart it and reconnect",
+                                   reason="WORLD_STOPPED")
         age_ns = self.clock.monotonic_ns() - self._step_ns(self._steps)
         if age_ns > self._stale_after_ns:
-            raise Unavailable(f"the world (fake) has not stepped for {age_ns / 1e6:.0f} ms "
-                              f"(limit {self._stale_after_ns / 1e6:.0f} ms): it is stopped, "
-                              "stuck or gone", reason="WORLD_STALE")
+            raise UnavailableError(f"the world (fake) has not stepped for {age_ns / 1e6:.0f} ms "
+                                   f"(limit {self._stale_after_ns / 1e6:.0f} ms): it is stopped, "
+                                   "stuck or gone", reason="WORLD_STALE")
 
     def _step_ns(self, step: int) -> int:
         return self._start_ns + step * self._period_ns
@@ -231,7 +232,7 @@ class FakeArm:
 
 
 class FakeArmLink:
-    """ArmLink to a FakeArm. Unavailable once closed, or when the arm is gone or stale."""
+    """ArmLink to a FakeArm. UnavailableError once closed, or when the arm is gone or stale."""
 
     def __init__(self, arm: FakeArm):
         arm.check_open()
@@ -240,8 +241,8 @@ class FakeArmLink:
 
     def _require(self) -> FakeArm:
         if self.closed:
-            raise Unavailable("the hardware link is closed: open a new one",
-                              reason="LINK_CLOSED")
+            raise UnavailableError("the hardware link is closed: open a new one",
+                                   reason="LINK_CLOSED")
         return self._arm
 
     def read_arm(self) -> ArmSample:
@@ -272,7 +273,7 @@ class FakeEmergencyStopLink:
 
     def stop(self) -> int:
         if self.closed:
-            raise Unavailable("the emergency-stop link is closed", reason="LINK_CLOSED")
+            raise UnavailableError("the emergency-stop link is closed", reason="LINK_CLOSED")
         return self._arm.request_stop()
 
     def close(self) -> None:

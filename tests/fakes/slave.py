@@ -23,8 +23,8 @@ from domain.robot_model.ik import solve_ik
 from domain.robot_model.kinematics import PumaKinematics
 from domain.robot_model.puma560 import HOME_Q
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
-from services.runtime.errors import FailedPrecondition, OutOfRange, Unavailable
 from tests.fakes.clock import FakeClock
+from wire.errors import FailedPreconditionError, OutOfRangeError, UnavailableError
 
 LAG_TIME_CONSTANT_S = 0.02
 ARRIVED_RAD = 1e-6
@@ -70,7 +70,7 @@ class _Subscription:
                 yield sample
                 handled_previous = True
             if not self._cancelled:  # ended by end_wrench_streams(), not by its reader
-                raise Unavailable("the sensor's stream ended", reason="SENSOR_STREAM_ENDED")
+                raise UnavailableError("the sensor's stream ended", reason="SENSOR_STREAM_ENDED")
         finally:
             self.cancel()
 
@@ -168,7 +168,7 @@ class FakeSlave:
     def move_cartesian(self, delta_position, delta_rotation, frame: str) -> MoveResult:
         self._check_reachable()
         if np.linalg.norm(delta_position) > MAX_TRANSLATION_INCREMENT_M:
-            raise OutOfRange("the increment is over its cap of 0.05 m", reason="INCREMENT_CAP")
+            raise OutOfRangeError("the increment is over its cap of 0.05 m", reason="INCREMENT_CAP")
         with self._lock:
             self._check_can_move()
             target = self.kinematics.tool_pose(self.q_target)
@@ -181,7 +181,7 @@ class FakeSlave:
                 desired = target * increment
             solution = solve_ik(self.kinematics, desired, self.q_target)
             if not solution.success:
-                raise OutOfRange("the pose is out of reach", reason="UNREACHABLE")
+                raise OutOfRangeError("the pose is out of reach", reason="UNREACHABLE")
             self.q_target = solution.q
             self.status = "MOVING"
             self.commands.append(Command("cartesian", (frame, np.array(delta_position))))
@@ -191,7 +191,8 @@ class FakeSlave:
         self._check_reachable()
         deltas = np.asarray(delta_joints_rad, float)
         if np.max(np.abs(deltas)) > MAX_JOINT_INCREMENT_RAD:
-            raise OutOfRange("the increment is over its cap of 0.5 rad", reason="INCREMENT_CAP")
+            raise OutOfRangeError(
+                "the increment is over its cap of 0.5 rad", reason="INCREMENT_CAP")
         with self._lock:
             self._check_can_move()
             self.q_target = self.q_target + deltas
@@ -208,8 +209,8 @@ class FakeSlave:
     def sensor_is_reading(self, timeout_s: float) -> bool:
         self._check_reachable()
         if self.sensor_hung:
-            raise Unavailable(f"no answer within {timeout_s * 1e3:.0f} ms",
-                              reason="SENSOR_SILENT")
+            raise UnavailableError(f"no answer within {timeout_s * 1e3:.0f} ms",
+                                   reason="SENSOR_SILENT")
         return self.sensor_reading
 
     def emergency_stop(self, reason: str) -> str:
@@ -275,12 +276,12 @@ class FakeSlave:
 
     def _check_reachable(self) -> None:
         if not self.reachable:
-            raise Unavailable("the slave station does not answer", reason="UNREACHABLE")
+            raise UnavailableError("the slave station does not answer", reason="UNREACHABLE")
 
     def _check_can_move(self) -> None:
         if self.status in ("ESTOPPED", "FAULT"):
-            raise FailedPrecondition(f"the arm is {self.status}: Reset it first",
-                                     reason=self.status)
+            raise FailedPreconditionError(f"the arm is {self.status}: Reset it first",
+                                          reason=self.status)
 
     def _state(self) -> SlaveState:
         return SlaveState(self.kinematics.tool_pose(self.q), self.status, self.clock.time_ns(),

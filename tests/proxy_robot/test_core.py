@@ -19,10 +19,15 @@ from services.proxy_robot.segment_timing import (
     MAX_SEGMENT_S,
 )
 from services.proxy_robot.status import Moved, RobotErrorRaised, RobotStatus, StatusChanged
-from services.runtime.errors import FailedPrecondition, InvalidArgument, OutOfRange, Unavailable
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryEmergencyStop
 from tests.conftest import wait_for
 from tests.fakes.arm_link import HOLD, TARGET, FakeArmLink
+from wire.errors import (
+    FailedPreconditionError,
+    InvalidArgumentError,
+    OutOfRangeError,
+    UnavailableError,
+)
 
 S = RobotStatus
 
@@ -49,7 +54,7 @@ def statuses(events) -> list[tuple[RobotStatus, RobotStatus]]:
 def test_full_status_cycle_with_an_event_for_every_change(rig, core):
     events = core.events.subscribe(256)
     assert core.status[0] == S.NOT_CONNECTED
-    with pytest.raises(FailedPrecondition, match="Connect first"):
+    with pytest.raises(FailedPreconditionError, match="Connect first"):
         core.snapshot()
     assert core.connect() == S.CONNECTED
     assert core.initialize() == S.READY
@@ -100,13 +105,13 @@ def test_reset_from_estop_without_initialize_returns_to_connected(core):
     core.connect()
     core.emergency_stop("before init")
     assert core.reset() == S.CONNECTED
-    with pytest.raises(FailedPrecondition, match="Initialize first"):
+    with pytest.raises(FailedPreconditionError, match="Initialize first"):
         core.move_joints([0.01, 0, 0, 0, 0, 0])
 
 
 def test_connect_without_a_world_is_unavailable(rig, core):
     rig.arm.shut_down()
-    with pytest.raises(Unavailable, match="no world is running"):
+    with pytest.raises(UnavailableError, match="no world is running"):
         core.connect()
     assert core.status[0] == S.NOT_CONNECTED
 
@@ -115,17 +120,17 @@ def test_connect_to_a_latched_arm_is_estopped(rig, core):
     rig.arm.latch_stop()
     rig.run(0.002)
     assert core.connect() == S.ESTOPPED
-    with pytest.raises(FailedPrecondition, match="Reset first"):
+    with pytest.raises(FailedPreconditionError, match="Reset first"):
         core.initialize()
     assert core.reset() == S.CONNECTED
     assert not rig.arm.state().hold_latched
 
 
 def test_moves_while_not_ready_are_failed_precondition(core):
-    with pytest.raises(FailedPrecondition, match="Connect and Initialize first"):
+    with pytest.raises(FailedPreconditionError, match="Connect and Initialize first"):
         core.move_joints([0.01, 0, 0, 0, 0, 0])
     core.connect()
-    with pytest.raises(FailedPrecondition, match="Initialize first"):
+    with pytest.raises(FailedPreconditionError, match="Initialize first"):
         core.move_cartesian([0, 0, 0.01], np.eye(3), "BASE")
 
 
@@ -182,7 +187,7 @@ def test_a_50_hz_command_stream_is_spread_over_the_servo_rate(rig, ready):
 def test_joint_limit_is_out_of_range_and_keeps_the_target(rig, ready):
     # Joint 5 starts at -45 deg, limit -100 deg: the second -28.6 deg step would pass it.
     target, _ = ready.move_joints([0, 0, 0, 0, -0.5, 0])
-    with pytest.raises(OutOfRange, match=r"joint 5 target -102.\d deg is past its limit"):
+    with pytest.raises(OutOfRangeError, match=r"joint 5 target -102.\d deg is past its limit"):
         ready.move_joints([0, 0, 0, 0, -0.5, 0])
     rig.run_until_status(S.READY)
     np.testing.assert_allclose(rig.arm.state().joint_targets_rad, target, atol=1e-12)
@@ -192,18 +197,19 @@ def test_bad_input_moves_nothing(rig, ready):
     position_before = ready.snapshot().joint_positions_rad
     commands_before = len(rig.arm.commands)
     bad_calls = [
-        (InvalidArgument, "NaN", lambda: ready.move_joints([np.nan, 0, 0, 0, 0, 0])),
-        (InvalidArgument, "NaN or Inf",
+        (InvalidArgumentError, "NaN", lambda: ready.move_joints([np.nan, 0, 0, 0, 0, 0])),
+        (InvalidArgumentError, "NaN or Inf",
          lambda: ready.move_cartesian([np.inf, 0, 0], np.eye(3), "TOOL")),
-        (InvalidArgument, "needs 6 values", lambda: ready.move_joints([0.1, 0.1])),
-        (InvalidArgument, "needs 3 values",
+        (InvalidArgumentError, "needs 6 values", lambda: ready.move_joints([0.1, 0.1])),
+        (InvalidArgumentError, "needs 3 values",
          lambda: ready.move_cartesian([0.1], np.eye(3), "TOOL")),
-        (InvalidArgument, "unknown frame",
+        (InvalidArgumentError, "unknown frame",
          lambda: ready.move_cartesian([0, 0, 0.01], np.eye(3), "CAMERA")),
-        (OutOfRange, "cap of 28.6 deg", lambda: ready.move_joints([0.6, 0, 0, 0, 0, 0])),
-        (OutOfRange, "cap of 50 mm",
+        (OutOfRangeError, "cap of 28.6 deg", lambda: ready.move_joints([0.6, 0, 0, 0, 0, 0])),
+        (OutOfRangeError, "cap of 50 mm",
          lambda: ready.move_cartesian([0.06, 0, 0], np.eye(3), "BASE")),
-        (OutOfRange, "cap of 15 deg", lambda: ready.move_cartesian([0, 0, 0], rot_z(0.3), "BASE")),
+        (OutOfRangeError, "cap of 15 deg",
+         lambda: ready.move_cartesian([0, 0, 0], rot_z(0.3), "BASE")),
     ]
     for error, message, call in bad_calls:
         with pytest.raises(error, match=message):
@@ -264,7 +270,7 @@ def test_wrist_mapping_moves_the_flange_and_the_tool_follows(rig, ready):
 
 def test_pushing_out_of_reach_is_refused_and_never_jumps(rig, ready):
     previous = ready.snapshot().joint_positions_rad
-    with pytest.raises(OutOfRange, match="workspace|singularity|past its limit"):
+    with pytest.raises(OutOfRangeError, match="workspace|singularity|past its limit"):
         for _ in range(60):
             target, _, _ = ready.move_cartesian([0.05, 0, 0.0], np.eye(3), "BASE")
             assert np.max(np.abs(target - previous)) <= core_module.MAX_IK_JOINT_STEP_RAD
@@ -280,13 +286,13 @@ def test_near_the_wrist_singularity_cartesian_moves_are_refused(rig, ready):
     rig.run_until_status(S.READY)
     # Turning a little about the tool y axis is joint 5 alone: toward q5 = 0 it goes deeper
     # into the singular region and is refused; away from it, it steers out and is allowed.
-    with pytest.raises(OutOfRange, match="singularity"):
+    with pytest.raises(OutOfRangeError, match="singularity"):
         ready.move_cartesian([0, 0, 0], pin.utils.rotate("y", -0.01), "TOOL")
     target, _, fraction = ready.move_cartesian([0, 0, 0], pin.utils.rotate("y", 0.01), "TOOL")
     assert fraction == 1.0 and target[4] < before[4]
     before, _ = ready.move_joints(before - target)  # back
     # Turning about the tool x axis here needs joints 4 and 6 to flip by about 1.5 rad.
-    with pytest.raises(OutOfRange, match="singularity"):
+    with pytest.raises(OutOfRangeError, match="singularity"):
         ready.move_cartesian([0, 0, 0], pin.utils.rotate("x", 0.05), "TOOL")
     # Turning about the tool axis is joint 6 alone: allowed, and it does not jump.
     target, _, fraction = ready.move_cartesian([0, 0, 0], rot_z(0.1), "TOOL")
@@ -302,10 +308,10 @@ def test_tool_frame_is_used_for_tool_poses(rig, ready):
     snapshot = ready.snapshot()
     np.testing.assert_allclose(snapshot.tool_pose.translation,
                                (snapshot.flange_pose * tool_frame).translation, atol=1e-12)
-    with pytest.raises(InvalidArgument, match="at most 1.0 m"):
+    with pytest.raises(InvalidArgumentError, match="at most 1.0 m"):
         ready.set_tool_frame(pin.SE3(np.eye(3), np.array([0, 0, 1.5])))
     ready.move_joints([0.05, 0, 0, 0, 0, 0])
-    with pytest.raises(FailedPrecondition, match="MOVING"):
+    with pytest.raises(FailedPreconditionError, match="MOVING"):
         ready.set_tool_frame(pin.SE3.Identity())
 
 
@@ -320,9 +326,9 @@ def test_emergency_stop_latches_until_reset_and_reset_does_not_move(rig, ready):
     assert status == S.ESTOPPED and stop_time_ns == rig.clock.time_ns()
     assert rig.arm.commands[-1].kind == HOLD  # at the hardware, not only in the status
     assert "operator pressed stop" in ready.status[1]
-    with pytest.raises(FailedPrecondition, match="emergency stop is latched"):
+    with pytest.raises(FailedPreconditionError, match="emergency stop is latched"):
         ready.move_joints([0.01, 0, 0, 0, 0, 0])
-    with pytest.raises(FailedPrecondition, match="Reset first"):
+    with pytest.raises(FailedPreconditionError, match="Reset first"):
         ready.initialize()
     rig.run(0.3)
     halted = ready.snapshot()
@@ -349,7 +355,7 @@ def test_a_stop_latched_by_the_band_shows_as_estopped_at_the_next_sample(rig, re
     elapsed = rig.run_until_status(S.ESTOPPED)
     assert elapsed <= core_module.STATE_PERIOD_S  # seen in the next state sample
     assert "at the hardware" in ready.status[1]
-    with pytest.raises(FailedPrecondition, match="emergency stop is latched"):
+    with pytest.raises(FailedPreconditionError, match="emergency stop is latched"):
         ready.move_joints([0.01, 0, 0, 0, 0, 0])
     assert ready.reset() == S.READY
     assert not rig.arm.state().hold_latched
@@ -363,7 +369,7 @@ def test_reset_gives_up_on_a_hold_the_hardware_does_not_release(rig, ready, monk
     assert rig.arm.state().hold_latched
     monkeypatch.setattr(FakeArmLink, "release_hold", lambda self: None)  # a stuck relay
     started_ns = rig.clock.monotonic_ns()
-    with pytest.raises(Unavailable, match="did not release"):
+    with pytest.raises(UnavailableError, match="did not release"):
         ready.reset()
     waited_s = (rig.clock.monotonic_ns() - started_ns) * 1e-9
     assert waited_s == pytest.approx(core_module.RELEASE_TIMEOUT_S, abs=1e-3)
@@ -411,7 +417,7 @@ def test_a_hardware_fault_is_reported_and_reset_clears_it(rig, ready):
     rig.run_until_status(S.FAULT)
     errors = [e.payload for e in drain(events) if isinstance(e.payload, RobotErrorRaised)]
     assert [(e.reason, e.message) for e in errors] == [("HARDWARE_FAULT", "simulation diverged")]
-    with pytest.raises(FailedPrecondition, match="FAULT"):
+    with pytest.raises(FailedPreconditionError, match="FAULT"):
         ready.move_joints([0.01, 0, 0, 0, 0, 0])
     assert ready.reset() == S.READY
     assert rig.arm.state().fault == ""
@@ -426,9 +432,9 @@ def test_link_loss_drops_to_not_connected_with_an_error_event(rig, ready):
     errors = [e.payload.reason for e in drain(events) if isinstance(e.payload, RobotErrorRaised)]
     assert errors[-1] == "LINK_LOST"
     assert errors == ["LINK_LOST"]
-    with pytest.raises(FailedPrecondition, match="Connect first"):
+    with pytest.raises(FailedPreconditionError, match="Connect first"):
         ready.snapshot()
-    with pytest.raises(Unavailable):
+    with pytest.raises(UnavailableError):
         ready.connect()
 
 

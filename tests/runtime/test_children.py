@@ -14,10 +14,16 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.runtime import children
 from services.runtime.children import ChildFailed
-from services.runtime.process import PARENT_PID_ENV, parse_ready_line, ready_line
-from services.runtime.stacks import STACKS_LINE, STACKS_SIGNAL, runs_a_service
 from tests.conftest import REPO
 from tests.world.conftest import unique_shm_name
+from wire.processes import (
+    PARENT_PID_ENV,
+    STACKS_LINE,
+    STACKS_SIGNAL,
+    parse_ready_line,
+    ready_line,
+    runs_a_service,
+)
 
 
 def _serving(address: str) -> bool:
@@ -144,7 +150,7 @@ def test_stop_all_stops_the_willing_and_kills_the_stubborn(started):
 # A service-like child that ignores SIGTERM, stuck in a function whose name its stacks show.
 _HUNG_SERVICE = (
     "import signal, threading\n"
-    "from services.runtime.stacks import dump_stacks_on_signal\n"
+    "from wire.processes import dump_stacks_on_signal\n"
     "dump_stacks_on_signal()\n"
     "signal.signal(signal.SIGTERM, signal.SIG_IGN)\n"
     "def stuck_in_here():\n"

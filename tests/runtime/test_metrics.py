@@ -21,10 +21,9 @@ from prometheus_client.parser import text_string_to_metric_families
 from services.common.fanout import Fanout
 from services.decision_server.__main__ import _LeaseChanges
 from services.decision_server.core import ControlChanged, DecisionEvent
-from services.runtime.errors import OutOfRange
 from services.runtime.lanes import Lane, LaneConfig
 from services.runtime.metrics import LATENCY_BUCKETS_S, ServiceMetrics
-from services.runtime.process import metrics_port_name, parse_ready_line
+from services.runtime.process import metrics_port_name
 from services.runtime.server import binding, create_server
 from services.world.service import WorldService
 from telerobot.v1 import (
@@ -34,6 +33,8 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
 )
 from tests.conftest import wait_for
+from wire.errors import OutOfRangeError
+from wire.processes import parse_ready_line
 
 GET_STATUS = "/telerobot.v1.ProxyRobot/GetStatus"
 MOVE = "/telerobot.v1.ProxyRobot/MoveJointsIncremental"
@@ -55,7 +56,7 @@ class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
         return proxy_robot_pb2.GetStatusResponse(reason="fine")
 
     def MoveJointsIncremental(self, request, context):
-        raise OutOfRange("joint 2 would pass its limit", reason="JOINT_LIMIT")
+        raise OutOfRangeError("joint 2 would pass its limit", reason="JOINT_LIMIT")
 
     def EmergencyStop(self, request, context):
         raise RuntimeError("a bug in the handler")  # grpcio answers UNKNOWN

@@ -14,7 +14,6 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from grpc_reflection.v1alpha import reflection_pb2, reflection_pb2_grpc
 from grpc_status import rpc_status
 
-from services.runtime.errors import InvalidArgument, OutOfRange
 from services.runtime.lanes import Lane, LaneConfig, current_lane
 from services.runtime.rpc import declared_lane
 from services.runtime.server import binding, create_server
@@ -25,6 +24,7 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
 )
 from tests.conftest import wait_for
+from wire.errors import InvalidArgumentError, OutOfRangeError
 
 LANES = {
     Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=1, queue_capacity=2),
@@ -52,8 +52,8 @@ class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
 
     def MoveJointsIncremental(self, request, context):
         if len(request.delta_joint_positions_rad) != 6:
-            raise InvalidArgument("send six joint increments", reason="BAD_LENGTH")
-        raise OutOfRange("joint 2 would pass its limit of 225 deg", reason="JOINT_LIMIT")
+            raise InvalidArgumentError("send six joint increments", reason="BAD_LENGTH")
+        raise OutOfRangeError("joint 2 would pass its limit of 225 deg", reason="JOINT_LIMIT")
 
     def StreamRobotEvents(self, request, context):
         ended = threading.Event()

@@ -4,11 +4,9 @@ from __future__ import annotations
 
 import threading
 
-import grpc
-
-from clients.python.errors import UnavailableError
 from clients.teleop.video import StereoView
 from tests.conftest import wait_for
+from wire.errors import UnavailableError
 
 
 class _CameraThatRestarts:
@@ -21,7 +19,7 @@ class _CameraThatRestarts:
     def stream_pairs(self, *_encoding, **_options):
         self.streams += 1
         if self.streams == 1:
-            raise UnavailableError(grpc.StatusCode.UNAVAILABLE, "Connection refused")
+            raise UnavailableError("Connection refused")
         self.resumed.set()
         return iter(())  # up again; the test stops the view before any frame
 

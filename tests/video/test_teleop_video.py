@@ -15,7 +15,6 @@ import threading
 import numpy as np
 import pytest
 
-from clients.python.errors import FailedPreconditionError
 from clients.python.proxy_robot import ProxyRobotClient
 from clients.python.stereo_camera import StereoCameraClient
 from clients.teleop.stack import local_station
@@ -24,6 +23,7 @@ from services.impairment.link import LinkProfile
 from services.launcher import STATION
 from tests.conftest import REPO
 from tests.world.conftest import unique_shm_name
+from wire.errors import FailedPreconditionError
 
 pytestmark = pytest.mark.e2e
 

@@ -12,7 +12,7 @@ from wire.checks import (
     gram_schmidt,
     rotation_matrix,
 )
-from wire.errors import InvalidArgument
+from wire.errors import InvalidArgumentError
 
 
 def rotation_z(angle: float) -> np.ndarray:
@@ -32,7 +32,7 @@ def test_finite_vector_takes_any_iterable_of_the_right_length():
     ([1.0, 2.0, -np.inf], "NOT_FINITE"),
 ])
 def test_finite_vector_refuses_with_a_reason_naming_the_value(values, reason):
-    with pytest.raises(InvalidArgument) as error:
+    with pytest.raises(InvalidArgumentError) as error:
         finite_vector(values, 3, "delta_position_m")
     assert error.value.reason == reason and "delta_position_m" in error.value.message
     assert error.value.status_name == "INVALID_ARGUMENT"
@@ -58,16 +58,16 @@ def test_a_rotation_is_kept_and_a_nearly_orthonormal_one_repaired():
     np.eye(3) + 2 * ROTATION_TOLERANCE,  # just past the tolerance
 ])
 def test_what_is_not_a_rotation_is_refused(matrix):
-    with pytest.raises(InvalidArgument) as error:
+    with pytest.raises(InvalidArgumentError) as error:
         rotation_matrix(matrix.reshape(9), "delta_rotation")
     assert error.value.reason == "NOT_A_ROTATION" and "delta_rotation" in error.value.message
 
 
 def test_a_rotation_needs_nine_finite_values():
-    with pytest.raises(InvalidArgument) as error:
+    with pytest.raises(InvalidArgumentError) as error:
         rotation_matrix([1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "r")
     assert error.value.reason == "BAD_LENGTH"
-    with pytest.raises(InvalidArgument) as error:
+    with pytest.raises(InvalidArgumentError) as error:
         rotation_matrix([np.nan] * 9, "r")
     assert error.value.reason == "NOT_FINITE"
 

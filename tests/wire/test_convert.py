@@ -11,7 +11,7 @@ from google.protobuf.timestamp_pb2 import Timestamp
 
 from telerobot.v1 import types_pb2
 from wire import convert
-from wire.errors import InvalidArgument
+from wire.errors import InvalidArgumentError
 from wire.pose import Pose
 
 
@@ -44,7 +44,7 @@ def test_vectors_round_trip_and_are_checked_when_they_come_in():
     with pytest.raises(ValueError):
         convert.vector3_to_proto([1.0, 2.0])
     bad = types_pb2.Vector3(x=float("nan"))
-    with pytest.raises(InvalidArgument) as error:
+    with pytest.raises(InvalidArgumentError) as error:
         convert.vector3_from_proto(bad, "force_n")
     assert error.value.reason == "NOT_FINITE" and "force_n" in error.value.message
     assert np.isnan(convert.vector3_value(bad)[0])  # as sent
@@ -63,7 +63,7 @@ def test_rotations_are_row_major_and_empty_is_the_identity():
 
 def test_a_bad_rotation_is_refused_coming_in_but_read_as_sent_from_a_peer():
     message = convert.rotation_to_proto(2 * np.eye(3))
-    with pytest.raises(InvalidArgument) as error:
+    with pytest.raises(InvalidArgumentError) as error:
         convert.rotation_from_proto(message, "delta_rotation")
     assert error.value.reason == "NOT_A_ROTATION"
     np.testing.assert_array_equal(convert.rotation_value(message), 2 * np.eye(3))
@@ -81,10 +81,10 @@ def test_poses_go_out_from_anything_with_rotation_and_translation():
 
 def test_an_incoming_pose_names_the_bad_field():
     message = types_pb2.Pose(position_m=types_pb2.Vector3(y=float("inf")))
-    with pytest.raises(InvalidArgument, match=r"flange_to_tool\.position_m"):
+    with pytest.raises(InvalidArgumentError, match=r"flange_to_tool\.position_m"):
         convert.pose_from_proto(message, "flange_to_tool")
     message = types_pb2.Pose(rotation=convert.rotation_to_proto(-np.eye(3)))
-    with pytest.raises(InvalidArgument, match=r"flange_to_tool\.rotation"):
+    with pytest.raises(InvalidArgumentError, match=r"flange_to_tool\.rotation"):
         convert.pose_from_proto(message, "flange_to_tool")
     assert convert.pose_value(types_pb2.Pose()).isclose(Pose.identity(), atol=0)
 

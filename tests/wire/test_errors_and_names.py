@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from services.runtime import errors as runtime_errors
-from services.runtime.config import address_for as runtime_address_for
+import clients.python
 from services.runtime.lanes import Lane
 from wire import errors
 from wire.addresses import DEFAULT_HOST, DEFAULT_PORTS, address_for, env_name
@@ -14,18 +13,19 @@ from wire.metadata import LANE_METADATA_KEY, LANES, LEASE_METADATA_KEY
 STATUS_CLASSES = errors.TelerobotError.__subclasses__()
 
 
-def test_the_runtime_errors_are_the_wire_errors():
-    assert runtime_errors.TelerobotError is errors.TelerobotError
-    assert runtime_errors.InvalidArgument is errors.InvalidArgument
-    assert runtime_errors.error_for_status is errors.error_for_status
+def test_the_clients_raise_the_errors_the_services_raise():
+    assert clients.python.TelerobotError is errors.TelerobotError
+    for cls in STATUS_CLASSES:
+        assert getattr(clients.python, cls.__name__) is cls
 
 
 @pytest.mark.parametrize("cls", STATUS_CLASSES, ids=lambda cls: cls.__name__)
 def test_error_for_status_gives_the_class_of_each_status(cls):
     error = errors.error_for_status(cls.status_name, "try again", "SOME_REASON")
     assert type(error) is cls and error.message == "try again"
-    assert error.reason == "SOME_REASON" and str(error) == "try again"
-    assert errors.error_for_status(cls.status_name, "m").reason == cls.status_name
+    assert error.reason == "SOME_REASON"
+    assert str(error) == f"{cls.status_name} [SOME_REASON]: try again"
+    assert errors.error_for_status(cls.status_name, "m").reason is None
 
 
 def test_status_names_are_unique_and_an_unknown_one_is_kept():
@@ -46,7 +46,7 @@ def test_addresses_default_to_loopback_and_follow_the_environment(monkeypatch):
     monkeypatch.delenv("TELEROBOT_FORCE_SENSOR_ADDRESS", raising=False)
     assert address_for("force_sensor") == f"{DEFAULT_HOST}:{DEFAULT_PORTS['force_sensor']}"
     monkeypatch.setenv("TELEROBOT_FORCE_SENSOR_ADDRESS", "10.0.0.2:6000")
-    assert address_for("force_sensor") == runtime_address_for("force_sensor") == "10.0.0.2:6000"
+    assert address_for("force_sensor") == "10.0.0.2:6000"
     with pytest.raises(KeyError, match="known: world"):
         address_for("nonsense")
     assert len(set(DEFAULT_PORTS.values())) == len(DEFAULT_PORTS)

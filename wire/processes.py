@@ -1,0 +1,56 @@
+"""How a process of this project and whoever started it talk: ready lines, the parent's pid,
+and stack dumps on a signal. Any program can start the station this way
+(`python -m services.launcher`), in any language.
+
+- Once SERVING, a process prints one line on stdout per port, with the address it actually
+  bound (so a process started on port 0 tells its parent where it listens):
+  `TELEROBOT_READY <name> <host:port>`.
+- A parent sets PARENT_PID_ENV to its own pid; the process then stops cleanly when that parent
+  goes away, even if the parent was killed without a chance to stop it (no orphans).
+- Every process writes all its threads' stacks to stderr on STACKS_SIGNAL and runs on
+  (`kill -QUIT <pid>`; Ctrl-\\ in a terminal). faulthandler does it in C, so it answers even
+  when no Python code can run, as in a hang. A supervisor sends it before it kills a process
+  that did not stop (services.runtime.children), so the log says where it was stuck.
+"""
+
+from __future__ import annotations
+
+import faulthandler
+import signal
+import sys
+from collections.abc import Sequence
+
+READY_LINE_PREFIX = "TELEROBOT_READY"
+PARENT_PID_ENV = "TELEROBOT_PARENT_PID"
+
+
+def ready_line(name: str, address: str) -> str:
+    """The line a process prints once `name` serves on `address` (host:port)."""
+    return f"{READY_LINE_PREFIX} {name} {address}"
+
+
+def parse_ready_line(line: str) -> tuple[str, str] | None:
+    """(name, host:port) from a ready line; None for any other line."""
+    fields = line.split()
+    if len(fields) != 3 or fields[0] != READY_LINE_PREFIX:
+        return None
+    return fields[1], fields[2]
+
+
+STACKS_SIGNAL = signal.SIGQUIT
+# In the header of each thread's stack in such a dump.
+STACKS_LINE = "(most recent call first)"
+
+
+def dump_stacks_on_signal() -> None:
+    """Call once, early in a service's main(). The dump goes to the process's own stderr (file
+    descriptor 2), also when sys.stderr has been replaced, as a test's capture does."""
+    faulthandler.register(STACKS_SIGNAL, file=sys.__stderr__, all_threads=True)
+
+
+def runs_a_service(args: Sequence[str]) -> bool:
+    """Whether `python <args>` runs one of this project's processes, `-m services.<name>`
+    (a service, the launcher, the live view...), each of which calls dump_stacks_on_signal();
+    not a tool deeper down such as `-m services.security.pki`."""
+    return (len(args) >= 2 and args[0] == "-m" and args[1].startswith("services.")
+            and args[1].count(".") == 1)
