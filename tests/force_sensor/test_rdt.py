@@ -19,8 +19,8 @@ from services.force_sensor.rdt import (
     REQUEST,
     RdtWrenchLink,
 )
-from services.runtime.errors import Unavailable
 from tests.conftest import start_service, wait_for
+from wire.errors import UnavailableError
 
 COUNTS = 1_000_000
 
@@ -137,11 +137,11 @@ def test_a_silent_sensor_is_unavailable_quickly_and_nothing_hangs(responder_fact
         link.read_wrench()
         responder.silent.set()
 
-        def silence_reported() -> tuple[Unavailable, float] | None:
+        def silence_reported() -> tuple[UnavailableError, float] | None:
             started = time.monotonic()
             try:
                 link.read_wrench()
-            except Unavailable as error:
+            except UnavailableError as error:
                 return error, time.monotonic() - started
             return None
 
@@ -159,7 +159,7 @@ def test_no_sensor_at_all_fails_at_open():
         mute.bind(("127.0.0.1", 0))
         port = mute.getsockname()[1]
         started = time.monotonic()
-        with pytest.raises(Unavailable,
+        with pytest.raises(UnavailableError,
                            match=f"no RDT data from the Net F/T at 127.0.0.1:{port}"):
             RdtWrenchLink("127.0.0.1", port, connect_timeout_s=0.3)
         assert time.monotonic() - started < 1.0
@@ -169,7 +169,7 @@ def test_a_sensor_reporting_an_error_status_is_unavailable(responder_factory):
     responder = responder_factory(status=0x8000_0001)
     link = RdtWrenchLink("127.0.0.1", responder.port)
     try:
-        with pytest.raises(Unavailable, match="status 0x80000001"):
+        with pytest.raises(UnavailableError, match="status 0x80000001"):
             link.read_wrench()
     finally:
         link.close()

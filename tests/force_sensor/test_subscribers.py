@@ -8,7 +8,7 @@ import pytest
 from services.common.fanout import Fanout
 from services.force_sensor.settings import SensorSettings, exceeds
 from services.force_sensor.subscribers import StreamOptions, WrenchReading, WrenchSubscription
-from services.runtime.errors import InvalidArgument
+from wire.errors import InvalidArgumentError
 
 
 def reading(sequence: int, fz: float = 0.0, tz: float = 0.0) -> WrenchReading:
@@ -100,7 +100,7 @@ def test_each_batch_reports_how_long_it_waited_for_its_stream():
          queue_capacity=0),
 ])
 def test_bad_stream_options_are_invalid(fields):
-    with pytest.raises(InvalidArgument):
+    with pytest.raises(InvalidArgumentError):
         StreamOptions.from_request(**fields)
 
 
@@ -115,5 +115,5 @@ def test_zeros_mean_defaults():
     SensorSettings(threshold_torque_nm=-0.1),
 ])
 def test_bad_settings_are_invalid(settings):
-    with pytest.raises(InvalidArgument):
+    with pytest.raises(InvalidArgumentError):
         settings.validated()

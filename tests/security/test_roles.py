@@ -11,7 +11,7 @@ from telerobot.v1 import (  # noqa: F401 - registers the services in the descrip
     proxy_robot_pb2,
     stereo_camera_pb2,
 )
-from wire.errors import PermissionDenied
+from wire.errors import PermissionDeniedError
 
 SERVICES = ["DecisionServer", "ProxyRobot", "ForceSensor", "StereoCamera"]
 
@@ -50,7 +50,7 @@ def test_inner_ports_take_commands_only_from_the_station_and_admins():
     assert required_role(move, inner_port=True) is Role.STATION
     check_role(Role.STATION, move, inner_port=True)
     check_role(Role.ADMIN, move, inner_port=True)
-    with pytest.raises(PermissionDenied, match="needs the station role.*DecisionServer"):
+    with pytest.raises(PermissionDeniedError, match="needs the station role.*DecisionServer"):
         check_role(Role.OPERATOR, move, inner_port=True)
     # Reads and stops stay open to observers on every port.
     check_role(Role.OBSERVER, "/telerobot.v1.ProxyRobot/GetState", inner_port=True)
@@ -58,9 +58,9 @@ def test_inner_ports_take_commands_only_from_the_station_and_admins():
     # An admin-level RPC: the DecisionServer checked the admin at its door and forwards it as
     # itself; operators still cannot call it there.
     check_role(Role.STATION, "/telerobot.v1.ProxyRobot/SetToolFrame", inner_port=True)
-    with pytest.raises(PermissionDenied, match="needs the station role"):
+    with pytest.raises(PermissionDeniedError, match="needs the station role"):
         check_role(Role.OPERATOR, "/telerobot.v1.ProxyRobot/SetToolFrame", inner_port=True)
-    with pytest.raises(PermissionDenied, match="needs the admin role"):
+    with pytest.raises(PermissionDeniedError, match="needs the admin role"):
         check_role(Role.STATION, "/telerobot.v1.ProxyRobot/SetToolFrame", inner_port=False)
 
 

@@ -18,7 +18,7 @@ from services.security import tokens
 from services.security.roles import Role
 from services.security.tokens import TokenStore, parse_ttl, token_id_of
 from tests.conftest import REPO
-from wire.errors import FailedPrecondition, InvalidArgument, Unauthenticated
+from wire.errors import FailedPreconditionError, InvalidArgumentError, UnauthenticatedError
 
 START = 1_700_000_000.0
 
@@ -83,7 +83,7 @@ def test_an_expired_token_is_refused_with_how_to_get_a_new_one(store, clock):
     clock.now += 59.9
     store.verify(token)
     clock.now += 0.1
-    with pytest.raises(Unauthenticated) as raised:
+    with pytest.raises(UnauthenticatedError) as raised:
         store.verify(token)
     assert raised.value.reason == "TOKEN_EXPIRED"
     assert "alice expired at 2023-11-14T22:14:20+00:00" in raised.value.message
@@ -95,7 +95,7 @@ def test_revoke_by_identity_removes_all_its_tokens(store):
     bob = store.issue("bob", Role.OPERATOR, 60)
     assert store.revoke("alice") == 2
     for token in alice:
-        with pytest.raises(Unauthenticated, match="revoked") as raised:
+        with pytest.raises(UnauthenticatedError, match="revoked") as raised:
             store.verify(token)
         assert raised.value.reason == "BAD_TOKEN"
     assert store.verify(bob).identity == "bob"
@@ -105,7 +105,7 @@ def test_revoke_by_identity_removes_all_its_tokens(store):
 def test_revoke_by_token_id_removes_only_that_token(store):
     kept, revoked = store.issue("alice", Role.OPERATOR, 60), store.issue("alice", Role.OPERATOR, 60)
     assert store.revoke(token_id_of(revoked)) == 1
-    with pytest.raises(Unauthenticated):
+    with pytest.raises(UnauthenticatedError):
         store.verify(revoked)
     assert store.verify(kept).identity == "alice"
 
@@ -115,7 +115,7 @@ def test_a_running_store_sees_another_stores_changes(path, clock):
     token = admin.issue("alice", Role.OPERATOR, 60)
     assert server.verify(token).identity == "alice"  # loaded and cached
     admin.revoke("alice")
-    with pytest.raises(Unauthenticated):
+    with pytest.raises(UnauthenticatedError):
         server.verify(token)
     again = admin.issue("alice", Role.OPERATOR, 60)
     assert server.verify(again).identity == "alice"
@@ -138,7 +138,7 @@ def test_the_command_line_issues_lists_and_revokes_for_a_running_store(path):
 
     revoked = run_cli("revoke", token_id_of(token), "--file", str(path))
     assert revoked.returncode == 0, revoked.stderr
-    with pytest.raises(Unauthenticated):
+    with pytest.raises(UnauthenticatedError):
         server.verify(token)
     assert run_cli("revoke", "ops-script", "--file", str(path)).returncode == 1  # none left
 
@@ -163,14 +163,14 @@ def test_the_command_line_reads_the_file_from_the_environment(path, monkeypatch,
 ])
 def test_bad_tokens_are_refused(store, token):
     store.issue("alice", Role.OPERATOR, 60)
-    with pytest.raises(Unauthenticated) as raised:
+    with pytest.raises(UnauthenticatedError) as raised:
         store.verify(token)
     assert raised.value.reason == "BAD_TOKEN"
     assert "no valid bearer token" in raised.value.message
 
 
 def test_no_file_means_no_tokens(path):
-    with pytest.raises(Unauthenticated) as raised:
+    with pytest.raises(UnauthenticatedError) as raised:
         TokenStore(path).verify("trb_" + "A" * 43)
     assert raised.value.reason == "BAD_TOKEN"
     assert TokenStore(path).entries() == []
@@ -180,10 +180,10 @@ def test_no_file_means_no_tokens(path):
 def test_a_broken_file_admits_nobody_and_is_not_overwritten(store, path, caplog):
     token = store.issue("alice", Role.OPERATOR, 60)
     path.write_text("{not json")
-    with pytest.raises(Unauthenticated):
+    with pytest.raises(UnauthenticatedError):
         store.verify(token)
     assert "every bearer token is refused" in caplog.text
-    with pytest.raises(FailedPrecondition) as raised:
+    with pytest.raises(FailedPreconditionError) as raised:
         store.issue("bob", Role.OPERATOR, 60)
     assert raised.value.reason == "TOKENS_FILE_INVALID"
     assert path.read_text() == "{not json"
@@ -201,7 +201,7 @@ def test_a_broken_file_admits_nobody_and_is_not_overwritten(store, path, caplog)
     ("alice", math.inf),
 ])
 def test_issue_refuses_bad_input(store, path, identity, ttl_s):
-    with pytest.raises(InvalidArgument):
+    with pytest.raises(InvalidArgumentError):
         store.issue(identity, Role.OPERATOR, ttl_s)
     assert not path.exists()
 
@@ -297,7 +297,7 @@ def test_an_unreadable_file_admits_nobody(store, path):
     token = store.issue("alice", Role.OPERATOR, 60)
     path.unlink()
     path.mkdir()  # opening it fails even for root, as an unreadable file would for others
-    with pytest.raises(Unauthenticated):
+    with pytest.raises(UnauthenticatedError):
         store.verify(token)
-    with pytest.raises(FailedPrecondition):
+    with pytest.raises(FailedPreconditionError):
         store.entries()

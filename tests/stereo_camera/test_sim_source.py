@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 
 from domain.robot_model import workspace as ws
-from services.runtime.errors import Unavailable
 from services.stereo_camera.client import decode_pair
 from services.stereo_camera.config import add_source_arguments, source_from_args
 from services.stereo_camera.sim import SimSource, WorldJoints, home_joints
 from telerobot.v1 import stereo_camera_pb2 as pb
 from tests.stereo_camera.conftest import error_code, psnr, start_camera
+from wire.errors import UnavailableError
 
 W, H = 160, 120
 # On the top face of the fixture (blue), beside the hole.
@@ -133,7 +133,7 @@ def test_streams_carry_sim_pairs_in_both_modes(rig):
 
 def test_without_a_world_pairs_are_unavailable_saying_so(serve):
     joints = WorldJoints(f"telerobot_test_absent_{uuid.uuid4().hex[:8]}")
-    with pytest.raises(Unavailable, match="no world is running"):
+    with pytest.raises(UnavailableError, match="no world is running"):
         joints()
     camera = serve(SimSource(joints, 64, 48))
     code, details = error_code(lambda: camera.snapshot())

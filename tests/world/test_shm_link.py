@@ -11,7 +11,6 @@ import time
 import numpy as np
 import pytest
 
-from services.runtime.errors import AlreadyExists, InvalidArgument, OutOfRange, Unavailable
 from services.world.realtime import LoopStats
 from services.world.shm_layout import STATUS_RUNNING, WorldSegment, attach_untracked
 from services.world.shm_link import (
@@ -24,6 +23,7 @@ from services.world.shm_link import (
 from services.world.sim import ArmSim
 from tests.fakes.clock import FakeClock
 from tests.world.conftest import segment_exists, unique_shm_name
+from wire.errors import AlreadyExistsError, InvalidArgumentError, OutOfRangeError, UnavailableError
 
 PERIOD_S = 0.001
 
@@ -134,7 +134,7 @@ def test_a_target_carries_the_segment_to_reach_it_over(publisher, link) -> None:
     link.write_target(target)  # at once
     assert publisher.poll_commands()[0].duration_s == 0.0
     for bad in (-0.01, float("nan"), float("inf")):
-        with pytest.raises(InvalidArgument, match="segment duration"):
+        with pytest.raises(InvalidArgumentError, match="segment duration"):
             link.write_target(target, bad)
     assert publisher.poll_commands() == []  # nothing half-written
 
@@ -173,7 +173,7 @@ def test_an_emergency_stop_into_a_stale_world_is_unavailable(paused_publisher, c
         clock.advance(0.04)
         button.stop()  # within the limit: delivered
         clock.advance(0.02)  # no publish meanwhile: the world is stuck
-        with pytest.raises(Unavailable, match="has not stepped"):
+        with pytest.raises(UnavailableError, match="has not stepped"):
             button.stop()  # not delivered, and the caller is told so
         paused_publisher.publish(sim.arm_sample(), sim.wrench_sample())
         button.stop()
@@ -219,20 +219,20 @@ def test_a_torn_target_from_a_dead_driver_is_never_applied(publisher, link, sim)
 
 @pytest.mark.parametrize("bad", [np.zeros(5), np.array([0, 0, np.nan, 0, 0, 0])])
 def test_malformed_targets_are_refused(link, bad) -> None:
-    with pytest.raises(InvalidArgument):
+    with pytest.raises(InvalidArgumentError):
         link.write_target(bad)
 
 
 def test_targets_past_a_joint_limit_are_refused(link) -> None:
     target = link.read_arm().joint_positions_rad
     target[2] = link.joint_lower[2] - 0.1
-    with pytest.raises(OutOfRange, match="joint 3"):
+    with pytest.raises(OutOfRangeError, match="joint 3"):
         link.write_target(target)
 
 
 def test_a_world_that_has_not_published_yet_is_starting(sim: ArmSim) -> None:
     world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
-    with pytest.raises(Unavailable, match="starting"):
+    with pytest.raises(UnavailableError, match="starting"):
         SharedMemoryArmLink(world.name)
     world.publish(sim.arm_sample(), sim.wrench_sample())
     SharedMemoryArmLink(world.name).close()
@@ -240,9 +240,9 @@ def test_a_world_that_has_not_published_yet_is_starting(sim: ArmSim) -> None:
 
 
 def test_opening_with_no_world_is_unavailable() -> None:
-    with pytest.raises(Unavailable, match="no world is running"):
+    with pytest.raises(UnavailableError, match="no world is running"):
         SharedMemoryArmLink(unique_shm_name())
-    with pytest.raises(Unavailable, match="no world is running"):
+    with pytest.raises(UnavailableError, match="no world is running"):
         SharedMemoryWrenchLink(unique_shm_name())
 
 
@@ -252,11 +252,11 @@ def test_a_world_that_stops_stepping_is_unavailable(paused_publisher, clock,
     clock.advance(0.04)
     link.read_arm()  # within the limit: alive
     clock.advance(0.02)  # no publish meanwhile: the world is stuck
-    with pytest.raises(Unavailable, match="has not stepped"):
+    with pytest.raises(UnavailableError, match="has not stepped"):
         link.read_arm()
-    with pytest.raises(Unavailable, match="has not stepped"):
+    with pytest.raises(UnavailableError, match="has not stepped"):
         link.hold()
-    with pytest.raises(Unavailable, match="has not stepped"):
+    with pytest.raises(UnavailableError, match="has not stepped"):
         SharedMemoryArmLink(paused_publisher.name, stale_after_s=0.05, clock=clock)
     paused_publisher.publish(sim.arm_sample(), sim.wrench_sample())
     link.read_arm()  # it is back
@@ -269,17 +269,17 @@ def test_a_closed_world_is_unavailable_and_its_segment_gone(sim: ArmSim) -> None
     link = SharedMemoryArmLink(world.name)
     world.close()
     assert not segment_exists(world.name)
-    with pytest.raises(Unavailable, match="shut down"):
+    with pytest.raises(UnavailableError, match="shut down"):
         link.read_arm()
-    with pytest.raises(Unavailable, match="shut down"):
+    with pytest.raises(UnavailableError, match="shut down"):
         link.write_target(np.zeros(6))
     link.close()
-    with pytest.raises(Unavailable, match="closed"):
+    with pytest.raises(UnavailableError, match="closed"):
         link.read_arm()
 
 
 def test_a_second_world_on_a_live_segment_is_refused(publisher, sim: ArmSim) -> None:
-    with pytest.raises(AlreadyExists, match=f"pid {os.getpid()}"):
+    with pytest.raises(AlreadyExistsError, match=f"pid {os.getpid()}"):
         WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, publisher.name)
     SharedMemoryArmLink(publisher.name).close()  # the first is untouched
 

@@ -9,8 +9,8 @@ import pytest
 
 from domain.robot_model.ik import solve_ik
 from domain.robot_model.kinematics import PumaKinematics
-from services.runtime.errors import InvalidArgument
 from services.world.sim import MAX_JOINT_ACCEL_RAD_PER_S2, MAX_JOINT_SPEED_RAD_PER_S, ArmSim
+from wire.errors import InvalidArgumentError
 
 TRACKING_TOLERANCE_RAD = 1e-3  # steady state, after settling
 SPEED_TOLERANCE = 0.05  # the joints may exceed the reference's cap by 5 % while following it
@@ -93,7 +93,7 @@ def test_targets_are_clipped_into_the_joint_limits(sim: ArmSim) -> None:
 @pytest.mark.parametrize("bad", [np.zeros(5), np.full(6, np.nan), np.full(6, np.inf)])
 def test_malformed_targets_are_refused(sim: ArmSim, bad: np.ndarray) -> None:
     before = sim.target
-    with pytest.raises(InvalidArgument):
+    with pytest.raises(InvalidArgumentError):
         sim.set_target(bad)
     np.testing.assert_array_equal(sim.target, before)
 

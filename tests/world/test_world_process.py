@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.runtime.errors import Unavailable
 from services.world.link import ArmSample
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryArmLink, SharedMemoryWrenchLink
 from tests.conftest import REPO, wait_for
 from tests.world.conftest import World, segment_exists
+from wire.errors import UnavailableError
 
 pytestmark = pytest.mark.e2e
 
@@ -43,11 +43,11 @@ def steps_later(link: SharedMemoryArmLink, steps: int) -> ArmSample:
                        f"{steps} more world steps")
 
 
-def unavailable(link: SharedMemoryArmLink) -> Unavailable | None:
+def unavailable(link: SharedMemoryArmLink) -> UnavailableError | None:
     """Why the link cannot read the arm, or None while it can."""
     try:
         link.read_arm()
-    except Unavailable as error:
+    except UnavailableError as error:
         return error
     return None
 
@@ -160,10 +160,10 @@ def test_a_signal_stops_the_world_and_removes_its_segment(world_factory, signum)
     # output shows them.)
     assert world.running.stop(signum, grace_s=STOP_LIMIT_S) == 0, world.output()
     assert not segment_exists(world.shm_name)
-    with pytest.raises(Unavailable, match="shut down"):
+    with pytest.raises(UnavailableError, match="shut down"):
         link.read_arm()
     link.close()
-    with pytest.raises(Unavailable, match="no world is running"):
+    with pytest.raises(UnavailableError, match="no world is running"):
         SharedMemoryArmLink(world.shm_name)
     assert "loop stats at shutdown" in world.output()
 
