@@ -49,11 +49,12 @@ from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.servicer import reading_to_proto
 from services.force_sensor.subscribers import StreamOptions
 from services.proxy_robot.core import ProxyRobotCore
-from services.runtime.errors import InvalidArgument, TelerobotError
-from services.runtime.process import GIL_SWITCH_INTERVAL_S, ready_line, watch_parent
+from services.runtime.process import GIL_SWITCH_INTERVAL_S, watch_parent
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2, types_pb2
+from wire.errors import InvalidArgumentError, TelerobotError
+from wire.processes import ready_line
 
 log = logging.getLogger("baseline")
 POLL_S = 0.1  # how often idle loops look at the stop flag
@@ -249,8 +250,8 @@ class TeleopSessions:
         def acks() -> list[bytes]:
             entry = self._sessions.get(identity)
             if entry is None:
-                raise InvalidArgument("a Teleoperate stream starts with an init",
-                                      reason="NO_INIT")
+                raise InvalidArgumentError("a Teleoperate stream starts with an init",
+                                           reason="NO_INIT")
             session, _, grouped = entry
             received = [self.servicer._received(request) for request in requests]
             return [answer.SerializeToString()
