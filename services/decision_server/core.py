@@ -36,6 +36,7 @@ from services.decision_server.cobegin import Barriers, SimulatedProcessor
 from services.decision_server.force_control import ForceLoop
 from services.decision_server.recording_mcap import Sources
 from services.decision_server.recordings import RecordingInfo, RecordingStore
+from services.decision_server.sessions import OperatorSession
 from services.decision_server.slave import (
     LATCHED_STATUSES,
     MoveResult,
@@ -43,7 +44,6 @@ from services.decision_server.slave import (
     SlaveState,
     SlaveWrench,
 )
-from services.decision_server.teleop import TeleopSession
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from wire.errors import (
     FailedPreconditionError,
@@ -142,7 +142,7 @@ class DecisionCore:
         # The arm's latest status, from state samples and from the answers of stop and reset;
         # an older sample never overrides a newer answer.
         self._state: SlaveState | None = None
-        self._sessions: dict[str, TeleopSession] = {}
+        self._sessions: dict[str, OperatorSession] = {}
         self._replay: _Replay | None = None
         self.barriers = Barriers()
         self.processor = SimulatedProcessor()
@@ -262,7 +262,7 @@ class DecisionCore:
     # -- teleoperation ----------------------------------------------------------------------
 
     def open_session(self, operator_id: str, lease_id: str, mapping: str | None,
-                     watchdog_s: float, passivity: bool = False) -> TeleopSession:
+                     watchdog_s: float, passivity: bool = False) -> OperatorSession:
         """A new Teleoperate session; with `passivity`, TDPA's slave port keeps the channel
         passive (domain.passivity)."""
         lease = self.locks.require(lease_id)
@@ -277,7 +277,7 @@ class DecisionCore:
             raise FailedPreconditionError(f"the arm is {status}: Connect and Initialize it first",
                                           reason=status)
         # An authenticated holder drives as itself, whatever the session's init says.
-        session = TeleopSession(self, lease.identity or operator_id or lease.operator_id, lease,
+        session = OperatorSession(self, lease.identity or operator_id or lease.operator_id, lease,
                                 mapping, watchdog_s,
                                 passivity=SlavePassivity() if passivity else None)
         with self._lock:
@@ -287,8 +287,8 @@ class DecisionCore:
             self._sessions[session.session_id] = session
         return session.start()
 
-    def resume_session(self, session_id: str, lease_id: str) -> tuple[TeleopSession, int]:
-        """A broken session (see services.decision_server.teleop), taken over by a new stream
+    def resume_session(self, session_id: str, lease_id: str) -> tuple[OperatorSession, int]:
+        """A broken session (see services.decision_server.sessions), taken over by a new stream
         of the same lease: the session and the new stream's number."""
         with self._lock:
             session = self._sessions.get(session_id)
@@ -305,6 +305,15 @@ class DecisionCore:
                 raise FailedPreconditionError("a replay is running: stop it first",
                                               reason="REPLAYING")
             return session, session.resume()
+
+    def require_lease(self, lease_id: str) -> Lease:
+        """The lease, renewed; FailedPreconditionError if it is no longer held."""
+        return self.locks.require(lease_id)
+
+    def record_increment(self, mapping: str, translation: np.ndarray, rotation: np.ndarray,
+                         target_translation: np.ndarray) -> None:
+        """Add an applied increment to the recording in progress, if any."""
+        self.recordings.add(mapping, translation, rotation, target_translation)
 
     def forget_session(self, session_id: str) -> None:
         with self._lock:

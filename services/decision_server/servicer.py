@@ -28,11 +28,11 @@ from services.decision_server.core import (
     RobotEventForwarded,
 )
 from services.decision_server.dependencies import Dependency, DependencyChanged, DependencyWatch
-from services.decision_server.teleop import (
+from services.decision_server.sessions import (
     CommandResult,
     MasterIncrement,
-    TeleopSession,
-    TeleopSessionChanged,
+    OperatorSession,
+    SessionChanged,
     WatchdogHold,
 )
 from services.proxy_robot.servicer import frame_from_proto
@@ -210,7 +210,7 @@ def event_to_proto(event, clock: Clock) -> pb.StreamEventsResponse:
         message.replay_progress.CopyFrom(pb.ReplayProgressEvent(
             name=payload.name, commands_replayed=payload.replayed, command_count=payload.total,
             state=pb.ReplayState.Value(f"REPLAY_STATE_{payload.state}"), detail=payload.detail))
-    elif isinstance(payload, TeleopSessionChanged):
+    elif isinstance(payload, SessionChanged):
         counts = payload.counts
         message.teleop_session.CopyFrom(pb.TeleopSessionEvent(
             session_id=payload.session_id, operator_id=payload.operator_id,
@@ -276,7 +276,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         self.on_command_age: Callable[[float], None] | None = None
 
     def _ack(self, sequence: int, send_time, result: CommandResult,
-             session: TeleopSession | None = None) -> pb.TeleoperateResponse:
+             session: OperatorSession | None = None) -> pb.TeleoperateResponse:
         ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
                             receive_time=convert.timestamp(result.receive_time_ns),
                             apply_time=convert.timestamp(result.apply_time_ns),
@@ -309,7 +309,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         session, stream = self._session_for(first.init)
         # Only the operator's `end` ends the session; a stream that ends without one (a cut, a
         # lost connection, a half-close alone: gRPC may report a dead connection as a clean
-        # end) leaves it to be resumed, the arm held (services.decision_server.teleop).
+        # end) leaves it to be resumed, the arm held (services.decision_server.sessions).
         reason, resumable = "the stream broke", True
         ended = threading.Event()
         try:
@@ -351,7 +351,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         finally:
             session.end(stream, reason, resumable)
 
-    def _session_for(self, init: pb.TeleoperateInit) -> tuple[TeleopSession, int]:
+    def _session_for(self, init: pb.TeleoperateInit) -> tuple[OperatorSession, int]:
         """The session an Init opens or resumes, and the stream's number in it."""
         if init.resume_session_id:
             return self._core.resume_session(init.resume_session_id, init.lease_id)
@@ -390,7 +390,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             command.clutch_engaged, received_ns, command.sequence,
             _master_energy_in(command))
 
-    def _answers(self, session: TeleopSession, stream: int, batch, grouped: bool
+    def _answers(self, session: OperatorSession, stream: int, batch, grouped: bool
                  ) -> Iterator[pb.TeleoperateResponse]:
         """What messages that arrived together are answered with, in order: an ack each, or
         (`grouped`, TeleoperateInit.grouped_acks) all their acks in one message; then
@@ -414,7 +414,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if ended:
             yield _END_OF_SESSION
 
-    def _serve_batch(self, session: TeleopSession, stream: int, batch
+    def _serve_batch(self, session: OperatorSession, stream: int, batch
                      ) -> Iterator[pb.TeleoperateResponse]:
         """Acks, in order, for messages that arrived together: the commands between heartbeats
         go to the session together (it may merge them into one move)."""

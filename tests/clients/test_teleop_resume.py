@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from clients.python import DecisionClient, LinkInterruptedError, NotFoundError, UnavailableError
-from services.decision_server.teleop import TeleopSessionChanged
+from services.decision_server.sessions import SessionChanged
 from services.impairment import ImpairmentProxy
 from tests.conftest import wait_for
 
@@ -35,10 +35,10 @@ def applied_z(slave) -> float:
     return sum(float(c.detail[1][2]) for c in slave.commands if c.kind == "cartesian")
 
 
-def closed_event(subscription) -> TeleopSessionChanged:
+def closed_event(subscription) -> SessionChanged:
     while True:
         event = wait_for(lambda: subscription.get(0), what="a session event")
-        if isinstance(event.payload, TeleopSessionChanged) and event.payload.state == "CLOSED":
+        if isinstance(event.payload, SessionChanged) and event.payload.state == "CLOSED":
             return event.payload
 
 

@@ -16,7 +16,7 @@ from services.decision_server.core import (
     ControlChanged,
     DecisionCore,
 )
-from services.decision_server.teleop import WatchdogHold
+from services.decision_server.sessions import WatchdogHold
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Rig
 from tests.fakes.slave import FakeSlave
@@ -261,7 +261,7 @@ def test_the_watchdog_holds_the_arm_exactly_at_its_timeout(rig):
 # -- a backlog of commands: one move -------------------------------------------------------------
 
 def _increments(rig: Rig, steps, clutch=()):
-    from services.decision_server.teleop import MasterIncrement
+    from services.decision_server.sessions import MasterIncrement
 
     return [MasterIncrement(np.asarray(dx, float), rotation, i in clutch, rig.clock.time_ns())
             for i, (dx, rotation) in enumerate(steps)]

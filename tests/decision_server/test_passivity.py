@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from services.common import convert
-from services.decision_server.teleop import MasterIncrement
+from services.decision_server.sessions import MasterIncrement
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
 

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from services.decision_server.arbitration import ControlMode
-from services.decision_server.teleop import (
+from services.decision_server.sessions import (
     RESULTS_KEPT,
     MasterIncrement,
-    TeleopSessionChanged,
+    SessionChanged,
 )
 from tests.conftest import wait_for
 from wire.errors import AbortedError, NotFoundError, PermissionDeniedError
@@ -34,10 +34,10 @@ def holds(rig) -> int:
     return sum(c.kind == "hold" for c in rig.slave.commands)
 
 
-def session_events(subscription) -> list[TeleopSessionChanged]:
+def session_events(subscription) -> list[SessionChanged]:
     seen = []
     while (event := subscription.get(0)) is not None:
-        if isinstance(event.payload, TeleopSessionChanged):
+        if isinstance(event.payload, SessionChanged):
             seen.append(event.payload)
     return seen
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from services.common import convert
-from services.decision_server.teleop import CommandResult
+from services.decision_server.sessions import CommandResult
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
@@ -90,7 +90,7 @@ def test_grouped_acks_answer_every_command_in_order_in_acks_messages(fake_statio
 
 
 class _Session:
-    """A TeleopSession's two calls _serve_batch makes: each run of commands gets APPLIED,
+    """A OperatorSession's two calls _serve_batch makes: each run of commands gets APPLIED,
     until `fail_on_run`, which raises as a lost lease would."""
 
     passivity = None

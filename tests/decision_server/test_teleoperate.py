@@ -13,7 +13,7 @@ import pinocchio as pin
 import pytest
 
 from services.common import convert
-from services.decision_server.teleop import WatchdogHold
+from services.decision_server.sessions import WatchdogHold
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2, types_pb2
 from tests.conftest import start_process, wait_for

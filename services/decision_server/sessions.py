@@ -1,5 +1,5 @@
-"""Teleoperation sessions: one operator's stream of master increments, the watchdog behind
-them, and what lets a session outlive its stream (#14). No transport code.
+"""Operator sessions: one operator's stream of master increments, the watchdog behind them,
+and what lets a session outlive its stream. No transport code.
 
 A session is served by one stream at a time. When that stream breaks (a cut link: anything but
 the operator's own close), the arm holds and the session waits, *detached*, for up to
@@ -19,7 +19,7 @@ import uuid
 from collections import OrderedDict
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 import pinocchio as pin
@@ -28,10 +28,9 @@ from domain.geometry import moved_by, rotation_angle
 from domain.passivity import SlavePassivity
 from services.decision_server.arbitration import Lease
 from services.decision_server.assistance import Assistance, apply_assistance
+from services.decision_server.slave import Slave, SlaveWrench
+from services.runtime.clock import Clock
 from wire.errors import AbortedError, FailedPreconditionError, TelerobotError, UnavailableError
-
-if TYPE_CHECKING:
-    from services.decision_server.core import DecisionCore
 
 log = logging.getLogger(__name__)
 
@@ -62,12 +61,41 @@ class SessionCounts:
 
 
 @dataclass(frozen=True)
-class TeleopSessionChanged:
+class SessionChanged:
     session_id: str
     operator_id: str
     state: str  # OPENED, DETACHED, RESUMED, CLOSED
     reason: str
     counts: SessionCounts
+
+
+class SessionHost(Protocol):
+    """What a session needs of the DecisionServer's core (DecisionCore is the one)."""
+
+    clock: Clock
+    slave: Slave
+
+    def emit(self, payload) -> None:
+        """Publish an event to the watchers."""
+
+    def require_lease(self, lease_id: str) -> Lease:
+        """The lease, renewed; FailedPreconditionError if it is no longer held."""
+
+    def snapshot(self) -> tuple[Assistance, bool, str | None]:
+        """(assistance, indexing engaged, the latched stop or None), read together."""
+
+    def sensor_lost(self) -> str | None:
+        """Why the force sensor is lost, or None."""
+
+    def wrench(self) -> SlaveWrench | None:
+        """The latest wrench, or None."""
+
+    def record_increment(self, mapping: str, translation: np.ndarray, rotation: np.ndarray,
+                         target_translation: np.ndarray) -> None:
+        """Add an applied increment to the recording in progress, if any."""
+
+    def forget_session(self, session_id: str) -> None:
+        """The session ended: stop routing resumes to it."""
 
 
 # -- commands ---------------------------------------------------------------------------------
@@ -171,7 +199,7 @@ class _Resends:
         return SessionCounts(self.processed, self.applied, self.answered, self.last_sequence)
 
 
-class TeleopSession:
+class OperatorSession:
     """One operator's Teleoperate session: increments in, the watchdog behind them.
 
     Threads: one stream at a time calls `commands`/`heartbeat` (`_serving` keeps a superseded
@@ -179,7 +207,7 @@ class TeleopSession:
     `close` share `_lock`; `close` waits for a move in flight (`_moving`), so its hold is the
     last word. `stream` numbers the streams: each resume supersedes the one before."""
 
-    def __init__(self, core: DecisionCore, operator_id: str, lease: Lease, mapping: str | None,
+    def __init__(self, core: SessionHost, operator_id: str, lease: Lease, mapping: str | None,
                  watchdog_s: float, resume_window_s: float = RESUME_WINDOW_S,
                  passivity: SlavePassivity | None = None):
         self.core = core
@@ -207,7 +235,7 @@ class TeleopSession:
         self._watchdog = threading.Thread(target=self._watch, name=f"watchdog-{self.session_id}",
                                           daemon=True)
 
-    def start(self) -> TeleopSession:
+    def start(self) -> OperatorSession:
         self._watchdog.start()
         self.core.emit(self._changed("OPENED", f"watchdog {self.watchdog_s * 1e3:.0f} ms"))
         return self
@@ -236,7 +264,7 @@ class TeleopSession:
             now = self._clock.time_ns()
             self._touch()
             # Renews the lease; FailedPreconditionError if it is lost.
-            self.core.locks.require(self.lease.lease_id)
+            self.core.require_lease(self.lease.lease_id)
             return CommandResult("HEARTBEAT", "", now, now)
 
     def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
@@ -284,7 +312,7 @@ class TeleopSession:
         if not increments:
             return
         self._touch()
-        self.core.locks.require(self.lease.lease_id)  # FailedPreconditionError ends the stream
+        self.core.require_lease(self.lease.lease_id)  # FailedPreconditionError ends the stream
         assistance, indexing, latched = self.core.snapshot()
         sensor_lost = self._sensor_check()
         for group in merge_groups(increments):
@@ -356,8 +384,8 @@ class TeleopSession:
                         for i in group]
         applied = self._clock.time_ns()
         self._target = result.target_tool_pose
-        self.core.recordings.add(mapping, total.translation, total.rotation,
-                                 result.target_tool_pose.translation)
+        self.core.record_increment(mapping, total.translation, total.rotation,
+                                   result.target_tool_pose.translation)
         reduced = result.applied_fraction < 1.0
         detail = f"reduced to {result.applied_fraction:.2f} near a singularity" if reduced else ""
         return [CommandResult("MODIFIED" if modified or reduced else "APPLIED", detail,
@@ -422,8 +450,8 @@ class TeleopSession:
         self.core.forget_session(self.session_id)
         self.core.emit(self._changed("CLOSED", reason))
 
-    def _changed(self, state: str, reason: str) -> TeleopSessionChanged:
-        return TeleopSessionChanged(self.session_id, self.operator_id, state, reason,
+    def _changed(self, state: str, reason: str) -> SessionChanged:
+        return SessionChanged(self.session_id, self.operator_id, state, reason,
                                     self._resends.counts())
 
     def _touch(self) -> None:
