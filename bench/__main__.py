@@ -17,7 +17,8 @@ import argparse
 import os
 from pathlib import Path
 
-from bench.run import GROUPS, RESULTS_DIR, Plan, run
+from bench.plan import GROUPS, Plan
+from bench.run import RESULTS_DIR, run
 
 
 def main(argv: list[str] | None = None) -> int:

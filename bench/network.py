@@ -34,7 +34,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from services.impairment import ImpairmentProxy, LinkProfile
+from services.impairment import LinkProfile
 
 NAME = "network"
 MODES = ("feedback", "compliance")
@@ -132,85 +132,7 @@ def home_position() -> list[float]:
     return [float(v) for v in kinematics.tool_pose(kinematics.home_q).translation]
 
 
-# -- the orchestrator's side -------------------------------------------------------------------
-
-def run(bench) -> None:
-    """The network group: a step per run, one result row (bench is run.Bench)."""
-    from bench.procs import ChildFailed
-
-    plan, started = bench.plan, time.monotonic()
-    specs = row_specs(plan.quick)
-    try:
-        with bench._decision_server(bench.station) as address:
-            home = home_position()
-            rows = [_run_row(bench, address, spec, home) for spec in specs]
-    except ChildFailed as error:
-        bench.progress.step("network: starting the DecisionServer")
-        return bench._fail([NAME], error)
-    result = {
-        "rows": rows, "round_trips_ms": sorted({spec.round_trip_ms for spec in specs}),
-        "jitter_fraction": JITTER_FRACTION, "campus_rtt_ms": CAMPUS_RTT_MS,
-        "cut": {"s": CUT_S, "at_s": CUT_AT_S, "mode": CUT_MODE, "round_trip_ms": CAMPUS_RTT_MS},
-        "papers": PAPERS, "elapsed_s": round(time.monotonic() - started, 1),
-        "succeeded": sum(1 for row in rows if row["success"]), "runs": len(rows),
-        # No latency of its own for the other groups' columns.
-        "rate_hz": None, "delivered_hz": None, "p50_ms": None, "p99_ms": None,
-        # The world loop over every run (each row has its own), not just since the last.
-        "world_loop": {key: sum((row.get("world_loop") or {}).get(key) or 0 for row in rows)
-                       for key in ("steps", "overruns", "dropped_steps")}}
-    bench._record(NAME, result)
-
-
-def _run_row(bench, address: str, spec: RowSpec, home: list[float]) -> dict:
-    cut = f", a {spec.cut_s:g} s {CUT_MODE} cut {CUT_AT_S:g} s into the task" if spec.cut_s else ""
-    times = f", {spec.repeats} runs (the median kept)" if spec.repeats > 1 else ""
-    bench.progress.step(f"network {spec.name}: peg-in-hole ({spec.mode}), round trip "
-                        f"{spec.round_trip_ms:g} ms ± {100 * JITTER_FRACTION:g} %{cut}{times}")
-    up, down = link_profiles(spec.round_trip_ms, spec.seed)
-    events: list[str] = []  # the proxy's lines: connections, cuts
-    runs, cut_at = [], None
-    with ImpairmentProxy("127.0.0.1:0", address, up=up, down=down,
-                         report=events.append) as proxy:
-        for _ in range(spec.repeats):
-            outcome, cut_at = _run_once(bench, proxy, spec, home)
-            runs.append(outcome)
-        stats = dataclasses.asdict(proxy.stats)
-    row = {"name": spec.name, "mode": spec.mode, "passivity": spec.passivity,
-           "round_trip_ms": spec.round_trip_ms,
-           "one_way_delay_ms": up.delay_s * 1e3, "jitter_ms": up.jitter_s * 1e3,
-           "seed": spec.seed, "cut_s": spec.cut_s,
-           "cut": {"at_s": CUT_AT_S, "mode": CUT_MODE, "happened": cut_at is not None}
-           if spec.cut_s else None,
-           **_blank(), **median_run(runs), "proxy": stats,
-           "world_loop": bench._loop_since_mark(),
-           "link_events": [line for line in events if "cut" in line or "back" in line
-                           or "reset" in line or "held" in line]}
-    bench.progress.done(row_text(row))
-    return row
-
-
-def _run_once(bench, proxy, spec: RowSpec, home: list[float]) -> tuple[dict, float | None]:
-    """One run of the task through `proxy` in a worker: (its outcome, when the cut began)."""
-    from bench.procs import ChildFailed
-    from bench.run import _reason
-
-    child = bench.procs.start_worker(NAME, {"address": proxy.address, "mode": spec.mode,
-                                            "home": home, "passivity": spec.passivity},
-                                     name=f"network_{spec.mode}")
-    cut_at = None
-    try:
-        if spec.cut_s:
-            bench.procs.wait_worker_ready(child, ROW_TIMEOUT_S)  # the task has started
-            time.sleep(CUT_AT_S)
-            if child.process.poll() is None:
-                cut_at = time.monotonic()
-                proxy.cut(spec.cut_s, CUT_MODE)
-        return bench.procs.finish_worker(child, ROW_TIMEOUT_S), cut_at
-    except ChildFailed as error:
-        if child.process.poll() is None:
-            bench.procs.stop(child)
-        return {"success": False, "error": _reason(error)}, cut_at
-
+# -- a row from its runs (bench/groups/network.py makes the runs) -------------------------------
 
 def median_run(runs: list[dict]) -> dict:
     """The run with the median peak force of `runs` (all of it, so its figures belong
@@ -228,13 +150,6 @@ def median_run(runs: list[dict]) -> dict:
         middle["error"] = middle.get("error") or failed[0].get("error") or \
             f"{len(failed)} of {len(runs)} runs failed"
     return middle
-
-
-def _blank() -> dict:
-    return {"success": False, "error": None, "duration_s": None, "depth_m": None,
-            "peak_force_n": None, "final_force_n": None, "round_trip_p50_ms": None,
-            "round_trip_p99_ms": None, "commands": None, "acks": None, "drift_m": None,
-            "transparency_rms_n": None, "oscillation_swings": None, "energy": None}
 
 
 def row_text(row: dict) -> str:

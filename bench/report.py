@@ -14,11 +14,7 @@ from importlib import metadata
 from pathlib import Path
 
 from bench.goals import CPU_KEY, SUBSCRIBER_CPU_KEY, is_baseline, verdict_text
-from bench.network import NAME as NETWORK
-from bench.network import terminal_lines as network_lines
 from bench.stats import ratio
-from bench.video import NAME as VIDEO
-from bench.video import terminal_lines as video_lines
 
 # What the papers report for the same path, for the table's last column.
 PAPERS = {
@@ -195,9 +191,11 @@ def fmt(value, digits: int = 2) -> str:
     return str(value)
 
 
-def table(results: dict[str, dict]) -> str:
+def table(results: dict[str, dict], tables: dict[str, list[str]] | None = None) -> str:
     """The results (judged: goals.add_goals) as a fixed-width table, each row with its goal
-    and PASS/FAIL; then the project/baseline ratios and the details."""
+    and PASS/FAIL; then the project/baseline ratios and the details, among them `tables`:
+    the lines of the rows that have a table of their own (the network and video groups'),
+    by row."""
     columns = ("scenario", "transport", "offered Hz", "deliv. Hz", "p50 ms", "p99 ms",
                "max ms", "dropped", "world ovr %", "goal", "result", "papers")
     rows = []
@@ -235,7 +233,7 @@ def table(results: dict[str, dict]) -> str:
     for key, title in titles.items():
         if sections[key]:
             lines += ["", title, *sections[key]]
-    extras = _extras(results)
+    extras = _extras(results, tables or {})
     if extras:
         lines += ["", *extras]
     return "\n".join(lines)
@@ -253,7 +251,7 @@ def _short_transport(text: str) -> str:
     return text.split(" ", 1)[0] if text else ""
 
 
-def _extras(results: dict[str, dict]) -> list[str]:
+def _extras(results: dict[str, dict], tables: dict[str, list[str]]) -> list[str]:
     lines = []
     for name, r in results.items():
         if r.get("recordings"):  # an interleaved row: every on leg's
@@ -288,10 +286,8 @@ def _extras(results: dict[str, dict]) -> list[str]:
                          f"{since.get('steps')} ({fmt(since.get('overrun_pct'), 2)} %)")
         elif name == "soak":
             lines += _soak_lines(r)
-        elif name == NETWORK and "rows" in r:
-            lines += network_lines(r)
-        elif name == VIDEO and "cells" in r:
-            lines += video_lines(r)
+        elif name in tables:
+            lines += tables[name]
         elif name == "closed_loop":
             lines.append(f"  {name}: = call ack p50 {fmt(r.get('ack_p50_ms'), 2)} ms; "
                          f"send->contact sample p50 {fmt(r.get('motion_p50_ms'), 1)} ms; "

@@ -216,7 +216,7 @@ def test_a_teleop_recording_counts_merged_moves_in_commands(tmp_path):
 
 
 def test_the_pairs_are_three_quick_and_five_full_each_leg_the_quick_length():
-    from bench.run import Plan
+    from bench.plan import Plan
 
     quick, full = Plan(quick=True), Plan(quick=False)
     assert (quick.overhead_pairs, full.overhead_pairs) == (3, 5)
@@ -229,7 +229,9 @@ def test_when_the_teleop_streams_fail_their_recording_twin_is_a_failed_row_too()
     with, and it must show as failed, not vanish from the table."""
     from types import SimpleNamespace
 
-    from bench.run import Bench, Plan
+    from bench.groups import decision
+    from bench.plan import Plan
+    from bench.run import Bench
     from services.runtime.children import ChildFailed
 
     def worker_fails(*args, **kwargs):
@@ -239,9 +241,9 @@ def test_when_the_teleop_streams_fail_their_recording_twin_is_a_failed_row_too()
     bench.plan, bench.results = Plan(quick=True, only=("decision",)), {}
     bench.progress = SimpleNamespace(step=lambda *a: None, done=lambda *a: None)
     bench.driver = SimpleNamespace(arm_ready=lambda: None)
-    bench._pid = lambda name: None
-    bench._rate_worker = worker_fails
-    bench._teleop("127.0.0.1:1")
+    bench.pid = lambda name: None
+    bench.rate_worker = worker_fails
+    decision._teleop(bench, "127.0.0.1:1")
     for name in ("teleop_50", "teleop_1000", "teleop_1000_lockstep", "teleop_1000_mcap"):
         assert bench.results[name]["status"] == "failed", name
     assert "decision_server exited" in bench.results["teleop_1000_mcap"]["reason"]

@@ -161,7 +161,8 @@ def test_plot_writes_a_png_even_with_failed_and_missing_runs(tmp_path):
 
 
 def _bench(tmp_path, only, results):
-    from bench.run import Bench, Plan
+    from bench.plan import Plan
+    from bench.run import Bench
 
     bench = Bench.__new__(Bench)  # no station: only what write() reads
     bench.plan, bench.out_dir, bench.shm = Plan(quick=True, only=only), tmp_path, "shm"

@@ -8,7 +8,7 @@ import json
 import pytest
 
 from bench import goals, readme, soak
-from bench.run import DEFAULT_GROUPS, GROUPS, Plan
+from bench.plan import DEFAULT_GROUPS, GROUPS, Plan
 from telerobot.v1 import decision_server_pb2 as dpb
 
 

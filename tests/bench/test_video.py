@@ -9,7 +9,8 @@ import json
 import pytest
 
 from bench import readme, report, video
-from bench.run import DEFAULT_GROUPS, GROUPS, Plan
+from bench.plan import DEFAULT_GROUPS, GROUPS, Plan
+from bench.run import report_text
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -149,7 +150,7 @@ def test_the_terminal_lines_and_the_bench_report_show_the_cells_and_the_cpu():
     assert len([line for line in lines if line.startswith("    ")]) == 1 + 5 + 5
     assert any("183ms_2mbit_long: machine 95 %; stereo_camera 70, world 33, probe 12" in line
                for line in lines)
-    text = report.table({"video": {**RESULT, "goal": "no goal", "pass": None}})
+    text = report_text({"video": {**RESULT, "goal": "no goal", "pass": None}})
     assert "video: the stereo stream across the impairment link" in text
 
 

@@ -1,0 +1,157 @@
+"""The decision group: the operator's path through the DecisionServer. Teleoperate streamed
+at each command rate (bench/teleop.py in a worker), lockstep as a diagnostic, recorded in MCAP,
+over TLS and over pyzmq; with --profile, py-spy on it (bench/profile.py); then the emergency
+stop through it, idle and under its intended load."""
+
+from __future__ import annotations
+
+import sys
+
+from bench.groups.estop import add_load, under_load
+from bench.plan import Plan
+from bench.procs import ChildFailed
+from bench.session import Session
+from bench.station import OPERATOR_IDENTITY, Station
+
+
+def steps(plan: Plan) -> int:
+    return 7 + plan.profile
+
+
+def run(bench: Session) -> None:
+    """Through the DecisionServer, the operator's one address: teleop_<rate> (master
+    commands streamed on Teleoperate, pipelined; teleop_1000_lockstep the same sent
+    lockstep, a diagnostic; teleop_1000_mcap teleop_1000 recorded in MCAP, in pairs
+    interleaved with it), then
+    teleop_1000_tls through a DecisionServer of the TLS station, teleop_1000_zmq (the same
+    DecisionCore over pyzmq) with the DecisionServer stopped, so nothing else follows
+    ProxyRobot's streams meanwhile; then, through a fresh DecisionServer, the emergency
+    stop idle and under its intended load (200 RunAction BusyWork on the low lane)."""
+    teleop = [f"teleop_{rate}" for rate in bench.plan.command_rates]
+    bench.with_decision_server(teleop + ["teleop_1000_lockstep", "teleop_1000_mcap"],
+                               lambda address: _teleop(bench, address))
+    bench.tls_twin("teleop_1000", lambda tls: _teleop_tls(bench, tls))
+    if bench.plan.profile:
+        bench.with_decision_server(["profile"],
+                                   lambda address: _profile(bench, address))
+    _teleop_baseline(bench)
+    bench.with_decision_server(["estop_ds_idle", "estop_ds_busywork"],
+                               lambda address: _estop_ds(bench, address))
+
+
+def _teleop(bench: Session, address: str) -> None:
+    plan = bench.plan
+    name = "teleop_1000_lockstep"
+    bench.progress.step(f"{name} (diagnostic): Teleoperate at 1 kHz offered, each command "
+                        f"waited for (the old way), {plan.command_s:.0f} s")
+    try:
+        result = bench.rate_worker("command", "teleop", address, [1000])["1000"]
+        result["diagnostic"] = "lockstep: each command waits for the previous one's ack"
+        bench.record(name, result)
+        bench.progress.done(bench.headline(name))
+    except ChildFailed as error:
+        bench.fail([name], error)
+    names = [f"teleop_{rate}" for rate in plan.command_rates]
+    bench.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate, commands streamed "
+                        f"at the offered rate (pipelined), {plan.command_s:.0f} s each")
+    server = {"server_pid": bench.pid("decision_server")}  # its CPU per command
+    try:
+        results = bench.rate_worker("teleop", "grpc", address, plan.command_rates, server)
+    except ChildFailed as error:  # the recording's twin has nothing to compare with
+        return bench.fail([*names, "teleop_1000_mcap"], error)
+    for rate in plan.command_rates:
+        bench.record(f"teleop_{rate}", results[str(rate)])
+    lockstep = bench.results.get(name, {})
+    if "teleop_1000" in bench.results and lockstep.get("delivered_hz") is not None:
+        bench.results["teleop_1000"].update(lockstep_delivered_hz=lockstep["delivered_hz"],
+                                            lockstep_p99_ms=lockstep["p99_ms"])
+    bench.progress.done("; ".join(f"{r}: {bench.headline(f'teleop_{r}')}"
+                                  for r in plan.command_rates))
+    # The same DecisionServer, right after. teleop_1000 moved +y: each on leg goes back
+    # (-y), each off leg after it out again, so the arm swings about where it was.
+    leg = {"duration_s": plan.overhead_teleop_leg_s, **server}
+    bench.mcap_twin("teleop_1000", "the DecisionServer recording the session in MCAP",
+                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+                        "first_sign": 1.0, **leg})["1000"],
+                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+                        "first_sign": -1.0, **leg,
+                        "record_dir": str(bench.procs.scratch / "recordings")})["1000"])
+
+
+def _teleop_tls(bench: Session, tls: Station) -> dict:
+    """teleop_1000 through a DecisionServer of the TLS station (which presents its own
+    certificate to ProxyRobot), the worker presenting an operator's."""
+    with bench.decision_server(tls) as address:
+        return bench.rate_worker("teleop", "grpc", address, [1000],
+                                 tls.client_params(OPERATOR_IDENTITY))["1000"]
+
+
+def _teleop_baseline(bench: Session) -> None:
+    """teleop_1000_zmq: the DecisionServer's DecisionCore and GrpcSlave (to this station's
+    ProxyRobot and ForceSensor) behind pyzmq DEALER/ROUTER, streamed the same way."""
+    plan = bench.plan
+    name = "teleop_1000_zmq"
+    bench.progress.step(f"{name}: the same DecisionCore over pyzmq DEALER/ROUTER, "
+                        f"pipelined at 1 kHz, {plan.command_s:.0f} s")
+    server = bench.procs.start("baseline_teleop", [
+        "-m", "bench.baseline_server", "--transport", "zmq-teleop",
+        "--proxy-robot-address", bench.station.address["proxy_robot"],
+        "--force-sensor-address", bench.station.address["force_sensor"]])
+    try:
+        address = server.wait_ready("baseline_teleop", timeout_s=60.0)
+        result = bench.rate_worker("teleop", "zmq", address, [1000])["1000"]
+    except ChildFailed as error:
+        return bench.fail([name], error)
+    finally:
+        bench.procs.stop(server)
+    bench.record(name, result)
+    bench.progress.done(bench.headline(name))
+
+
+def _estop_ds(bench: Session, address: str) -> None:
+    plan = bench.plan
+    params = {"address": address, "shm": bench.shm, "trials": plan.estop_trials,
+              "decision_server": True}
+    timeout = 60 + plan.estop_trials * 3
+    bench.progress.step("estop_ds_idle: EmergencyStop through the DecisionServer, idle")
+    try:
+        result = bench.worker("estop", {**params, "label": "ds idle"}, timeout)
+        bench.record("estop_ds_idle", result)
+        bench.progress.done(bench.headline("estop_ds_idle"))
+    except ChildFailed as error:
+        bench.fail(["estop_ds_idle"], error)
+    bench.progress.step(f"estop_ds_busywork: the same with {plan.load_concurrency} "
+                        "concurrent RunAction BusyWork (20 ms each) on the low lane")
+    try:
+        result, load = under_load(bench, {
+            "address": address, "target": "decision_server",
+            "concurrency": plan.load_concurrency, "max_s": timeout + 30},
+            lambda: bench.worker("estop", {**params, "label": "ds busywork"}, timeout))
+    except ChildFailed as error:
+        return bench.fail(["estop_ds_busywork"], error)
+    add_load(result, load, "200 concurrent DecisionServer.RunAction BusyWork (20 ms), "
+             "telerobot-lane: low", bench.results.get("estop_ds_idle", {}))
+    bench.record("estop_ds_busywork", result)
+    bench.progress.done(bench.headline("estop_ds_busywork")
+                        + f" (load {load['calls_per_s']:.0f} calls/s)")
+
+
+def _profile(bench: Session, address: str) -> None:
+    """Teleoperate at 1 kHz again, with py-spy on the DecisionServer and ProxyRobot."""
+    from bench.profile import Recording
+
+    seconds = bench.plan.command_s + 1
+    bench.progress.step(f"profile: Teleoperate at 1 kHz for {seconds:.0f} s with py-spy on "
+                        "decision_server and proxy_robot")
+    pids = {child.name: child.pid for child in bench.procs.children
+            if child.name in ("decision_server", "proxy_robot")
+            and child.process.poll() is None}
+    recording = Recording(pids, seconds, bench.out_dir)
+    try:
+        bench.rate_worker("teleop", "grpc", address, [1000])
+    except ChildFailed as error:
+        bench.progress.note(f"profile run failed: {error}")
+    summaries = recording.finish()
+    bench.progress.done(f"raw stacks in {', '.join(str(p) for p in recording.paths.values())}")
+    for name, text in summaries.items():
+        print(f"\n== {name}, Teleoperate at 1 kHz: {text}", file=sys.stderr)
