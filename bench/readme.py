@@ -1,23 +1,22 @@
-"""python -m bench.readme: README.md's Performance table, generated from bench/results/latest.json.
+"""python -m bench.readme: the Performance page's tables, generated from bench/results/latest.json.
 
-Rewrites what lies between the markers BEGIN and END in README.md (`make bench` runs it after
-the bench), so the table always shows one run as it was measured: each scenario with its
+Rewrites what lies between the markers BEGIN and END in docs/performance.md (`make bench` runs it
+after the bench), so the table always shows one run as it was measured: each scenario with its
 figures, its goal and PASS/FAIL (as the run judged it, goals.py), the baselines of the same
 name from the same run, and the machine. Nothing outside the markers is touched.
 
-The soak (issue #16) has a block of its own, between SOAK_BEGIN and SOAK_END: written when the
-results hold a `soak` row. The table is written when they hold other scenarios than the soak,
-the network experiment and the world loop, so a soak's results (`--only soak`) leave the table
-as it was, and a `make bench` leaves the soak's block.
+The soak has a block of its own, between SOAK_BEGIN and SOAK_END: written when the results
+hold a `soak` row. The table is written when they hold other scenarios than the soak, the
+network experiment and the world loop, so a soak's results (`--only soak`) leave the table as it
+was, and a `make bench` leaves the soak's block.
 
-The network experiment (issue #14, bench/network.py) has one too, between NETWORK_BEGIN and
-NETWORK_END, with its plot (peak force against the round trip) drawn again from the same rows
-into docs/ (--network-plot), so the README's figure is the table's run.
+The network experiment (bench/network.py) has one too, between NETWORK_BEGIN and NETWORK_END,
+with its plot (peak force against the round trip) drawn again from the same rows into docs/
+(--network-plot), so the page's figure is the table's run.
 
-The video rows (issue #27, bench/video.py) are not in README.md: a `video` row is written as a
-Markdown fragment of its own, docs/bench_video.md (--video-table; a docs page includes it), and
-its figure docs/bench_video.png (--video-plot). Results that hold nothing else leave README.md
-as it was.
+The video rows (bench/video.py) are a Markdown page of their own, docs/bench_video.md
+(--video-table), with its figure docs/bench_video.png (--video-plot). Results that hold nothing
+else leave the Performance page as it was.
 """
 
 from __future__ import annotations
@@ -32,7 +31,7 @@ from bench.stats import ratio
 
 REPO = Path(__file__).resolve().parent.parent
 RESULTS = REPO / "bench" / "results" / "latest.json"
-README = REPO / "README.md"
+PAGE = REPO / "docs" / "performance.md"
 BEGIN = "<!-- bench:table:begin -->"
 END = "<!-- bench:table:end -->"
 SOAK_BEGIN = "<!-- bench:soak:begin -->"
@@ -46,7 +45,7 @@ VIDEO_PLOT = REPO / "docs" / "bench_video.png"
 # Rows with a block or a file of their own, not rows of the Performance table.
 _OWN_BLOCKS = (SOAK, network.NAME, video.NAME)
 
-# What each scenario measures, for a reader of the README (first match wins, as in goals.py).
+# What each scenario measures, for a reader of the page (first match wins, as in goals.py).
 WHAT = (
     ("command_*", "ProxyRobot unary call → target at the servo, lockstep"),
     ("teleop_1000_lockstep", "diagnostic: `teleop_1000` sent lockstep (wait for each ack)"),
@@ -162,7 +161,7 @@ def _cpu_text(cpu: dict) -> str:
             + (f"; {each} of a core" if each else ""))
 
 
-# An interleaved row's medians (report.interleaved) as the README shows them, in this order.
+# An interleaved row's medians (report.interleaved) as the page shows them, in this order.
 _OVERHEAD_LABELS = {"delivered": "delivered", "p50": "p50", "server_cpu": "CPU/command",
                     "subscriber_cpu": "subscriber CPU/sample"}
 
@@ -409,7 +408,7 @@ def rewrite(text: str, block: str, begin: str = BEGIN, end: str = END) -> str:
     ValueError if the markers are missing or out of order."""
     start, stop = text.find(begin), text.find(end)
     if start < 0 or stop < start:
-        raise ValueError(f"README needs {begin} ... {end} around the generated block")
+        raise ValueError(f"the page needs {begin} ... {end} around the generated block")
     return f"{text[:start + len(begin)]}\n{block}\n{text[stop:]}"
 
 
@@ -417,11 +416,12 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.readme",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--results", default=str(RESULTS), help="the bench's latest.json")
-    parser.add_argument("--readme", default=str(README), help="the file to rewrite")
+    parser.add_argument("--page", "--readme", dest="page", default=str(PAGE),
+                        help="the Markdown page to rewrite between its markers")
     parser.add_argument("--network-plot", default=str(NETWORK_PLOT),
-                        help="where the network block's figure is drawn (README links to it)")
+                        help="where the network block's figure is drawn (the page links to it)")
     parser.add_argument("--video-table", default=str(VIDEO_TABLE),
-                        help="where the video rows' Markdown fragment is written")
+                        help="where the video rows' Markdown page is written")
     parser.add_argument("--video-plot", default=str(VIDEO_PLOT),
                         help="where the video rows' figure is drawn")
     args = parser.parse_args(argv)
@@ -435,26 +435,26 @@ def main(argv: list[str] | None = None) -> int:
         print(f"wrote the video rows' table {table_path} and drew {figure} from {args.results}")
     if not (has_table(document) or has_soak(document) or has_network(document)):
         if has_video(document):
-            return 0  # README.md has no video block: left as it was
-        print(f"{args.results} holds no scenario for README: nothing rewritten")
+            return 0  # the page has no video block: left as it was
+        print(f"{args.results} holds no scenario for the Performance page: nothing rewritten")
         return 1
-    readme = Path(args.readme)
-    text = readme.read_text()
+    page = Path(args.page)
+    text = page.read_text()
     if has_table(document):
         text = rewrite(text, table(document))
-        print(f"rewrote the Performance table in {readme} from {args.results}")
+        print(f"rewrote the Performance table in {page} from {args.results}")
     if has_soak(document):
         text = rewrite(text, soak_block(document, _shown(Path(args.results))), SOAK_BEGIN,
                        SOAK_END)
-        print(f"rewrote the soak's block in {readme} from {args.results}")
+        print(f"rewrote the soak's block in {page} from {args.results}")
     if has_network(document):
         row = scenarios(document)[network.NAME]
         figure = network.plot(row, Path(args.network_plot))
         text = rewrite(text, network_block(document, _shown(Path(args.results)),
-                                           _relative(figure, readme.parent)),
+                                           _relative(figure, page.parent)),
                        NETWORK_BEGIN, NETWORK_END)
-        print(f"rewrote the network block in {readme} and drew {figure} from {args.results}")
-    readme.write_text(text)
+        print(f"rewrote the network block in {page} and drew {figure} from {args.results}")
+    page.write_text(text)
     return 0
 
 
@@ -465,7 +465,7 @@ def _relative(path: Path, base: Path) -> str:
 
 
 def _shown(path: Path) -> str:
-    """A results path as README shows it: from the repository's root when it is inside."""
+    """A results path as the page shows it: from the repository's root when it is inside."""
     path = path.resolve()
     return str(path.relative_to(REPO)) if path.is_relative_to(REPO) else str(path)
 

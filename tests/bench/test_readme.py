@@ -1,5 +1,5 @@
-"""bench.readme: the README's Performance table from a small latest.json, and the rewrite
-between the markers."""
+"""bench.readme: the Performance page's table from a small latest.json, and the rewrite
+between the markers of docs/performance.md."""
 
 from __future__ import annotations
 
@@ -92,3 +92,24 @@ def test_an_observers_row_says_where_the_cpu_went_while_it_was_measured(document
     baselines = _rows(readme.table(document))["observers_32"][7]
     assert baselines == ("while measured: the machine 95 % busy; force sensor 60 %, "
                          "operator 44 %, world 34 %, observers 24 % of a core")
+
+
+def test_the_tables_go_to_the_performance_page_between_its_markers():
+    assert readme.PAGE == readme.REPO / "docs" / "performance.md"
+    text = readme.PAGE.read_text()
+    for begin, end in ((readme.BEGIN, readme.END), (readme.SOAK_BEGIN, readme.SOAK_END),
+                       (readme.NETWORK_BEGIN, readme.NETWORK_END)):
+        assert -1 < text.find(begin) < text.find(end)
+    assert readme.BEGIN not in (readme.REPO / "README.md").read_text()
+
+
+def test_main_rewrites_the_page_it_is_given(tmp_path, document):
+    results = tmp_path / "latest.json"
+    results.write_text(json.dumps(document))
+    page = tmp_path / "performance.md"
+    page.write_text(f"# Performance\n\n{readme.BEGIN}\nold table\n{readme.END}\nafter\n")
+    for option in ("--page", "--readme"):  # --readme: another name of the same option
+        assert readme.main(["--results", str(results), option, str(page)]) == 0
+        text = page.read_text()
+        assert "old table" not in text and "| `teleop_1000` |" in text
+        assert text.startswith("# Performance\n") and text.endswith("\nafter\n")
