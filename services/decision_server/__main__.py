@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -25,6 +25,7 @@ from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
+from services.runtime.service import HealthReporter, Service
 from services.runtime.tls import station_channel_security
 from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
 from wire.addresses import address_for
@@ -40,7 +41,7 @@ LANES = {**DEFAULT_LANES,
 
 
 @dataclass
-class DecisionService:
+class DecisionService(Service):
     args: argparse.Namespace
     lanes: dict = field(default_factory=lambda: LANES)
     operator_door = True  # the one port that takes operators' commands (see services.runtime)
@@ -73,15 +74,15 @@ class DecisionService:
                   for module, name, servicer in make_facades(self.core, slave.robot,
                                                              slave.sensor, stereo))]
 
-    def attach_health(self, set_status: Callable[[str, bool], None]) -> None:
-        """Report each dependency in this server's health, as it is now and as it changes."""
-        self.dependencies.subscribe(
-            lambda change: set_status(DEPENDENCY_HEALTH_PREFIX + change.dependency.name,
-                                      change.dependency.state == SERVING), current=True)
-
-    def attach_metrics(self, metrics: ServiceMetrics) -> None:
-        """Count the events streams' drops and lag, every lease change, and the commands' ages
+    def configure(self, health: HealthReporter, metrics: ServiceMetrics | None) -> None:
+        """Report each dependency in this server's health, as it is now and as it changes;
+        count the events streams' drops and lag, every lease change, and the commands' ages
         on the process's /metrics."""
+        self.dependencies.subscribe(
+            lambda change: health(DEPENDENCY_HEALTH_PREFIX + change.dependency.name,
+                                  change.dependency.state == SERVING), current=True)
+        if metrics is None:
+            return
         self.core.events.on_dropped = lambda: metrics.dropped("decision_events")
         self.core.events.on_lag = lambda lag_s: metrics.stream_lagged("decision_events", lag_s)
         self._servicer.on_command_age = metrics.command_aged

@@ -28,7 +28,7 @@ def build(args: argparse.Namespace) -> CoreService:
     servicer = EmergencyStopServicer(lambda: SharedMemoryEmergencyStop(args.shm_name))
     servicer.open()
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", servicer)], servicer.close,
-                       on_emergency_call=servicer.stop_now)
+                       emergency_latch=servicer.stop_now)
 
 
 # Threads inherit their creator's nice value, so setting it first gives every thread of this

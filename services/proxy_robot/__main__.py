@@ -36,7 +36,7 @@ def build(args: argparse.Namespace) -> CoreService:
     # Restarted by the launcher after a crash: take the arm back where it is held, at once.
     because = os.environ.get(RESTARTED_BECAUSE_ENV)
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],
-                       core.close, on_emergency_call=core.hold_now,
+                       core.close, emergency_latch=core.hold_now,
                        on_start=(lambda: core.reattach(because)) if because else None,
                        fanouts={"robot_states": core.states, "robot_events": core.events},
                        aio_server=args.aio_server)

@@ -8,16 +8,17 @@ from dataclasses import dataclass, field
 from services.common.fanout import Fanout
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import ServiceBinding
+from services.runtime.service import HealthReporter, Service
 
 
 @dataclass
-class CoreService:
+class CoreService(Service):
     """What run_service needs from a service whose domain object starts on demand (on Connect,
     on StartReading) and has one `close()` that releases its hardware."""
 
     served: Sequence[ServiceBinding]
     release: Callable[[], None]
-    on_emergency_call: Callable[[], None] | None = None  # see services.runtime.process.Service
+    emergency_latch: Callable[[], None] | None = None  # Service.on_emergency_call
     # Usually nothing: the domain opens its hardware when a client asks, as the papers'
     # components do. A restarted ProxyRobot reattaches to the arm it left.
     on_start: Callable[[], None] | None = None
@@ -27,7 +28,9 @@ class CoreService:
     # does not queue behind a flood of other calls' events.
     aio_server: bool = False
 
-    def attach_metrics(self, metrics: ServiceMetrics) -> None:
+    def configure(self, health: HealthReporter, metrics: ServiceMetrics | None) -> None:
+        if metrics is None:
+            return
         for name, fanout in self.fanouts.items():
             fanout.on_dropped = lambda name=name: metrics.dropped(name)
             fanout.on_lag = lambda lag_s, name=name: metrics.stream_lagged(name, lag_s)
@@ -38,6 +41,10 @@ class CoreService:
     def start(self) -> None:
         if self.on_start is not None:
             self.on_start()
+
+    def on_emergency_call(self) -> None:
+        if self.emergency_latch is not None:
+            self.emergency_latch()
 
     def close(self) -> None:
         self.release()

@@ -17,7 +17,6 @@ import sys
 import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Protocol
 
 from grpc_health.v1 import health_pb2
 from prometheus_client import disable_created_metrics
@@ -27,10 +26,10 @@ from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import (
     PlaintextRefused,
     ServerSecurity,
-    ServiceBinding,
     check_plaintext,
     create_server,
 )
+from services.runtime.service import Service
 from services.security.audit import audit_log_for
 from services.security.tokens import TokenStore, tokens_file
 from wire.addresses import is_loopback
@@ -53,30 +52,6 @@ def token_port_name(service: str) -> str:
 def metrics_port_name(service: str) -> str:
     """The name on the ready line of a service's Prometheus /metrics port."""
     return f"{service}_metrics"
-
-
-class Service(Protocol):
-    """What a service process provides to the runtime."""
-
-    def bindings(self) -> Sequence[ServiceBinding]:
-        """Servicers to register on the server."""
-
-    def start(self) -> None:
-        """Become ready to serve (open hardware, start threads). Raise to abort start-up."""
-
-    def close(self) -> None:
-        """Release everything start() took. Called once, after the server stopped."""
-
-    # Optional: `lanes` (a dict of LaneConfig) sizes the service's lanes,
-    # `on_emergency_call()` latches its stop the moment an EmergencyStop call arrives (on gRPC's
-    # polling thread or the aio server's loop: it must not block), `aio_server = True` serves
-    # on grpc.aio (services/runtime/aio_server.py), `operator_door = True` marks the DecisionServer,
-    # the one port that takes operators' commands (the others are the station's inner ports),
-    # and `attach_health(set_status)`, called once the server exists (before start()), gives
-    # the service `set_status(service_name, serving)` to report health entries of its own
-    # (the DecisionServer's `telerobot.v1.DecisionServer/<dependency>`), from any thread;
-    # `attach_metrics(metrics)`, called once with the process's ServiceMetrics when metrics
-    # are on (before start()), lets a service count events of its own (event(), dropped()).
 
 
 def run_service(
@@ -112,16 +87,14 @@ def run_service(
         disable_created_metrics()  # no *_created series beside every counter (the process's)
         metrics = ServiceMetrics(name)
     service = build(args)
-    security = server_security(args, name, inner_port=not getattr(service, "operator_door",
-                                                                     False))
+    security = server_security(args, name, inner_port=not service.operator_door)
     try:
         server, port = create_server(
             args.address, service.bindings(), client_lane_limit=args.client_lane_limit,
-            lanes=getattr(service, "lanes", None),  # a service may size its own lanes
-            on_emergency_call=getattr(service, "on_emergency_call", None),  # stop on arrival
+            lanes=service.lanes, on_emergency_call=service.on_emergency_call,
             security=security, allow_plaintext_network=args.allow_plaintext_network,
             metrics=metrics,
-            aio=getattr(service, "aio_server", False),  # calls arrive on an event loop
+            aio=service.aio_server,
         )
     except (PlaintextRefused, OSError, ValueError) as error:  # a port, or TLS files, refused
         log.error("not starting: %s", error)
@@ -138,14 +111,9 @@ def run_service(
             server.stop(0)
             service.close()
             return 2
-    attach_metrics = getattr(service, "attach_metrics", None)
-    if attach_metrics is not None and metrics is not None:
-        attach_metrics(metrics)
-    attach_health = getattr(service, "attach_health", None)
-    if attach_health is not None:
-        attach_health(lambda service_name, serving: server.health.set(
-            service_name, health_pb2.HealthCheckResponse.SERVING if serving
-            else health_pb2.HealthCheckResponse.NOT_SERVING))
+    service.configure(lambda service_name, serving: server.health.set(
+        service_name, health_pb2.HealthCheckResponse.SERVING if serving
+        else health_pb2.HealthCheckResponse.NOT_SERVING), metrics)
     server.start()
     try:
         service.start()

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
+from services.runtime.service import Service
 from services.stereo_camera.capture import CaptureHub
 from services.stereo_camera.config import SourceSetup, add_source_arguments, source_from_args
 from services.stereo_camera.servicer import StereoCameraServicer
@@ -40,7 +41,7 @@ log = logging.getLogger(__name__)
 
 
 @dataclass
-class StereoCameraService:
+class StereoCameraService(Service):
     setup: SourceSetup
 
     def __post_init__(self) -> None:

@@ -25,7 +25,9 @@ from collections.abc import Callable, Sequence
 
 import mujoco
 
+from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import ServiceBinding
+from services.runtime.service import HealthReporter, Service
 from services.world.realtime import LoopStats, RealtimeLoop
 from services.world.shm_link import Command, WorldPublisher
 from services.world.sim import ArmSim
@@ -46,7 +48,7 @@ RT_PERIOD_PATH = "/proc/sys/kernel/sched_rt_period_us"
 _NOT_SET = object()
 
 
-class WorldService:
+class WorldService(Service):
     """The simulated hardware. ``start()`` returns once the loop has stepped; ``failed`` is set
     when the physics thread died (the process should then exit non-zero)."""
 
@@ -73,8 +75,10 @@ class WorldService:
     def bindings(self) -> Sequence[ServiceBinding]:
         return []
 
-    def attach_metrics(self, metrics) -> None:
+    def configure(self, health: HealthReporter, metrics: ServiceMetrics | None) -> None:
         """The 1 kHz loop's counters on the process's /metrics, read at scrape time."""
+        if metrics is None:
+            return
 
         def stat(name: str, scale: float = 1.0) -> Callable[[], float]:
             return lambda: getattr(self.loop.stats() if self.loop else LoopStats(), name) * scale

@@ -327,7 +327,7 @@ def test_stream_lags_and_command_ages_are_histograms(station):
 def test_the_grafana_dashboard_asks_only_for_metrics_a_service_serves(station):
     dashboard = json.loads((Path(__file__).parents[2] / "docs/grafana_dashboard.json")
                            .read_text())
-    WorldService.attach_metrics(SimpleNamespace(loop=None), station.metrics)
+    WorldService.configure(SimpleNamespace(loop=None), lambda *_: None, station.metrics)
     url = f"http://127.0.0.1:{station.metrics_port}/metrics"
     with urllib.request.urlopen(url, timeout=5) as reply:
         families = {family.name for family in text_string_to_metric_families(reply.read()
