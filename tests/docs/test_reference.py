@@ -22,6 +22,20 @@ def _generator():
     return module
 
 
+def _import_the_commands() -> None:
+    """Each command's module imported now, at collection: some of their dependencies run a
+    process once as they are imported (zeroconf's ifaddr asks ldconfig for libc), which
+    tests/conftest.py forbids while a test runs."""
+    for _, commands in _generator().COMMANDS:
+        for module in commands:
+            spec = importlib.util.find_spec(module[0])
+            name = f"{module[0]}.__main__" if spec.submodule_search_locations else module[0]
+            importlib.import_module(name)
+
+
+_import_the_commands()
+
+
 def test_the_reference_is_what_the_parsers_say():
     generator = _generator()
     assert generator.TARGET.read_text() == generator.render(), (
