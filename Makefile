@@ -55,7 +55,7 @@ lint: install
 # The docs site (mkdocs.yml, docs/) into site/; --strict fails on a broken link or a page
 # missing from the navigation.
 docs: $(VENV)/.installed
-	$(PY) -m mkdocs build --strict --quiet
+	$(PY) -m mkdocs build --strict
 
 # Everything: the docs site, then every test (the end-to-end ones start real processes).
 test: install /usr/bin/chromium docs
@@ -87,7 +87,7 @@ bench: $(VENV)/.installed
 	@test $(VENV)/.installed-bench -nt pyproject.toml || { \
 		$(PY) -m pip install --quiet -e '.[dev,bench]' && touch $(VENV)/.installed-bench; }
 	$(PY) -m bench $(if $(filter-out 0,$(QUICK)),--quick) $(if $(ONLY),--only $(ONLY))
-	$(PY) -m bench.readme  # README's Performance table, from bench/results/latest.json
+	$(PY) -m bench.readme  # docs/performance.md's tables, from bench/results/latest.json
 
 clean:
 	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache

@@ -16,7 +16,7 @@ from google.rpc import error_details_pb2
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 from grpc_status import rpc_status
 
-from services.common import convert
+from services.common import se3
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
 from telerobot.v1 import (
     force_sensor_pb2,
@@ -25,6 +25,7 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
     types_pb2,
 )
+from wire import convert
 from wire.errors import (
     DeadlineExceededError,
     TelerobotError,
@@ -149,13 +150,13 @@ class GrpcSlave:
                          delta_position_m=convert.vector3_to_proto(delta_position),
                          delta_rotation=convert.rotation_to_proto(delta_rotation),
                          frame=_FRAMES[frame]))
-        return MoveResult(convert.trusted_pose(reply.target_tool_pose), reply.applied_fraction)
+        return MoveResult(se3.trusted_pose(reply.target_tool_pose), reply.applied_fraction)
 
     def move_joints(self, delta_joints_rad) -> MoveResult:
         reply = call(self.robot.MoveJointsIncremental,
                      proxy_robot_pb2.MoveJointsIncrementalRequest(
                          delta_joint_positions_rad=[float(v) for v in delta_joints_rad]))
-        return MoveResult(convert.trusted_pose(reply.target_tool_pose), 1.0)
+        return MoveResult(se3.trusted_pose(reply.target_tool_pose), 1.0)
 
     def hold(self, reason: str) -> None:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
@@ -217,7 +218,7 @@ class GrpcSlave:
         call(self.sensor.SetSensorConfig, force_sensor_pb2.SetSensorConfigRequest(
             config=force_sensor_pb2.SensorConfig(flange_to_tool=reply.flange_to_tool),
             update_mask={"paths": ["flange_to_tool"]}))
-        return convert.pose_from_proto(reply.flange_to_tool, "flange_to_tool")
+        return se3.pose_from_proto(reply.flange_to_tool, "flange_to_tool")
 
     def state(self) -> SlaveState:
         state = self._state
@@ -311,7 +312,7 @@ class GrpcSlave:
 
     @staticmethod
     def _state_from(state: types_pb2.RobotState) -> SlaveState:
-        return SlaveState(convert.trusted_pose(state.tool_pose), _status_name(state.status),
+        return SlaveState(se3.trusted_pose(state.tool_pose), _status_name(state.status),
                           state.sample_time.ToNanoseconds())
 
     def _follow(self, name: str, open_stream: Callable[[], Iterator],

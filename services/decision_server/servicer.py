@@ -13,7 +13,7 @@ import grpc
 import numpy as np
 
 from domain.geometry import finite_vector
-from services.common import convert
+from services.common import se3
 from services.common.fanout import Subscription
 from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
@@ -52,6 +52,7 @@ from telerobot.v1 import (
     stereo_camera_pb2_grpc,
     types_pb2,
 )
+from wire import convert
 from wire.errors import AbortedError, InvalidArgumentError, TelerobotError
 from wire.metadata import LEASE_METADATA_KEY
 
@@ -604,7 +605,7 @@ def make_facades(core: DecisionCore, robot_stub, sensor_stub, stereo_stub) -> li
             return proxy_robot_pb2.ResetResponse(status=_status(core.reset(lease_id(context))))
 
         def SetToolFrame(self, request, context):
-            flange_to_tool = convert.pose_from_proto(request.flange_to_tool, "flange_to_tool")
+            flange_to_tool = se3.pose_from_proto(request.flange_to_tool, "flange_to_tool")
             return proxy_robot_pb2.SetToolFrameResponse(flange_to_tool=convert.pose_to_proto(
                 core.set_tool_frame(lease_id(context), flange_to_tool)))
 

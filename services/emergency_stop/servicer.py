@@ -6,12 +6,12 @@ import logging
 import threading
 from collections.abc import Callable
 
-from services.common import convert
 from services.proxy_robot.servicer import status_to_proto
 from services.proxy_robot.status import RobotStatus
 from services.world.link import EmergencyStopLink
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc
+from wire import convert
 from wire.addresses import address_for, env_name
 from wire.errors import UnavailableError, UnimplementedError
 

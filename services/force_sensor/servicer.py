@@ -12,12 +12,13 @@ from collections.abc import Sequence
 
 from google.protobuf.timestamp_pb2 import Timestamp
 
-from services.common import convert
+from services.common import se3
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.settings import ThreadPriority
 from services.force_sensor.subscribers import StreamOptions, WrenchBatch, WrenchReading
 from telerobot.v1 import force_sensor_pb2 as pb
 from telerobot.v1 import force_sensor_pb2_grpc, types_pb2
+from wire import convert
 from wire.errors import InvalidArgumentError, UnavailableError
 
 STREAM_POLL_S = 0.1  # how often an idle stream checks that its client is still there
@@ -111,7 +112,7 @@ class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
             changes["thread_priority"] = priority_from_proto(config.thread_priority)
         tool_frame = None
         if "flange_to_tool" in paths and config.HasField("flange_to_tool"):
-            tool_frame = convert.pose_from_proto(config.flange_to_tool, "flange_to_tool")
+            tool_frame = se3.pose_from_proto(config.flange_to_tool, "flange_to_tool")
         # Validate everything before changing anything: all or none.
         settings = dataclasses.replace(self._core.settings, **changes).validated()
         self._core.configure(settings)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 
-from services.common import convert
+from services.common import se3
 from services.common.fanout import Fanout, Subscription
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.status import (
@@ -16,6 +16,7 @@ from services.proxy_robot.status import (
 )
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
+from wire import convert
 from wire.errors import FailedPreconditionError, InvalidArgumentError, UnavailableError
 
 _FRAMES = {
@@ -121,7 +122,7 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
         return pb.GetToolFrameResponse(flange_to_tool=convert.pose_to_proto(self._core.tool_frame))
 
     def SetToolFrame(self, request, context):
-        pose = convert.pose_from_proto(request.flange_to_tool, "flange_to_tool")
+        pose = se3.pose_from_proto(request.flange_to_tool, "flange_to_tool")
         return pb.SetToolFrameResponse(
             flange_to_tool=convert.pose_to_proto(self._core.set_tool_frame(pose)))
 

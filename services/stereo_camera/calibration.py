@@ -43,8 +43,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from domain.geometry import rotation_matrix
-from services.common import convert
 from telerobot.v1 import stereo_camera_pb2, types_pb2
+from wire import convert
 from wire.errors import InvalidArgumentError
 
 if TYPE_CHECKING:

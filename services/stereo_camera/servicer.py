@@ -20,7 +20,6 @@ import time
 
 from google.protobuf.duration_pb2 import Duration
 
-from services.common import convert
 from services.stereo_camera.capture import CaptureHub
 from services.stereo_camera.encoding import (
     DEFAULT_JPEG_QUALITY,
@@ -41,6 +40,7 @@ from services.stereo_camera.receipts import PacedStream, PacedStreams
 from services.stereo_camera.source import SourceGeometry, StereoFrame
 from telerobot.v1 import stereo_camera_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2_grpc
+from wire import convert
 from wire.errors import DeadlineExceededError
 
 log = logging.getLogger(__name__)
