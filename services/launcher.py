@@ -6,7 +6,7 @@ it stops them all (SIGTERM, then SIGKILL after a deadline) and exits.
 
 If a child ends on its own, the launcher says which and how, shows its last log lines, and
 restarts it on the same address after a capped back-off (services.runtime.restart): the arm
-holds meanwhile (each layer's watchdog, see the README's Faults), and the rest of the station,
+holds meanwhile (each layer's watchdog, see docs/operations.md), and the rest of the station,
 the stop button and the video included, keeps serving. Two exceptions stop the whole station:
 the world (the hardware link: nothing can be commanded without it) and a child that failed too
 often (5 times within 60 s), which a supervisor above (systemd) can take over. When several

@@ -110,5 +110,5 @@ def _read(path: Path) -> bytes:
         return path.read_bytes()
     except OSError as exc:
         raise FileNotFoundError(f"cannot read {path}: {exc.strerror}; `make certs` writes the "
-                                "development certificates, or see the README's Security "
-                                "section for a real CA") from None
+                                "development certificates, or see docs/security.md for "
+                                "a real CA") from None

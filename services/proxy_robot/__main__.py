@@ -26,8 +26,8 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
         "--aio-server", action=argparse.BooleanOptionalAction,
         default=os.environ.get("TELEROBOT_PROXY_ROBOT_AIO_SERVER", "") == "1",
         help="serve on grpc.aio: an EmergencyStop sent here under a flood of other calls is "
-             "seen 5x sooner, and every other call takes about 0.3 ms longer (README: "
-             "Performance; env TELEROBOT_PROXY_ROBOT_AIO_SERVER=1)")
+             "seen 5x sooner, and every other call takes about 0.3 ms longer (docs/"
+             "performance.md; env TELEROBOT_PROXY_ROBOT_AIO_SERVER=1)")
 
 
 def build(args: argparse.Namespace) -> CoreService:

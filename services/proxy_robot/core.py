@@ -69,7 +69,7 @@ ARRIVAL_SPEED_RAD_PER_S = 2e-2
 # How often the monitor samples the link (state stream, arrival, faults): 100 Hz, the rate the
 # station's readers take the state at (the DecisionServer follows it every 10 ms). At 500 Hz the
 # monitor's FK and wake-ups competed with the moves it serves: a Teleoperate move's round trip
-# took 3.3-4.8 ms at p50 against 2.4-2.7 at 100 Hz (bench/README.md, Profiles). Stops, holds
+# took 3.3-4.8 ms at p50 against 2.4-2.7 at 100 Hz (docs/performance.md, Profiles). Stops, holds
 # and faults act at the hardware at once; the status shows them at the next sample.
 STATE_PERIOD_S = 0.01
 TOOL_OFFSET_LIMIT_M = 1.0

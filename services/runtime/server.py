@@ -1,6 +1,6 @@
 """create_server: a gRPC server with priority lanes, health, reflection and, optionally, TLS.
 
-Security (see the README's Security section):
+Security (see docs/security.md):
 - without TLS a server listens only on loopback; a non-loopback address is refused unless the
   caller explicitly allows plaintext there (`--allow-plaintext-network`), and then it warns;
 - with TLS (`ServerSecurity`) its port requires a client certificate from the station's CA,

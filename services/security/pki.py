@@ -13,7 +13,7 @@ What `init` (the default) writes into the directory:
 
 An identity is the subject's common name (CN); its role is the subject's organizational unit
 (OU). A real CA works the same way: issue certificates with those two fields, put its
-certificate in `ca.pem` and each service's pair as `<service>.pem`/`.key` (see the README).
+certificate in `ca.pem` and each service's pair as `<service>.pem`/`.key` (see docs/security.md).
 Keys are EC P-256 (fast handshakes), written with mode 0600. Nothing here imports grpc.
 """
 

@@ -17,8 +17,8 @@ It uses time.sleep (clock_nanosleep on Linux), not a spin, so it leaves the CPU 
 price is ~0.1 ms of wake-up jitter, which the absolute schedule absorbs. What wakes it on time
 under load is the thread's priority: the world runs this loop at SCHED_FIFO where allowed
 (service.py), which took the overruns under load from 13-36 % at nice -10 to 0.05-0.5 % on a
-shared 2-core VM, the rest being the hypervisor's steal time (README, "The simulated slave
-station").
+shared 2-core VM, the rest being the hypervisor's steal time (docs/services/world.md, "Real-time
+priority").
 """
 
 from __future__ import annotations
