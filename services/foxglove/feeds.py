@@ -27,7 +27,7 @@ log = logging.getLogger(__name__)
 RETRY_MIN_S = 0.5
 RETRY_MAX_S = 2.0  # (the arm not connected yet is the usual cause: show it soon after)
 RECEIPT_TIMEOUT_S = 5.0
-DEFAULT_VIDEO_KBIT = 1000  # the video's ceiling: 640x480 per eye, 10 fps (docs/services/live-view.md)
+DEFAULT_VIDEO_KBIT = 1000  # 640x480 per eye, 10 fps (docs/services/live-view.md)
 
 
 class Feed:
