@@ -81,7 +81,7 @@ certs: $(VENV)/.installed
 	$(PY) -m services.security.pki --dir var/pki $(foreach h,$(HOSTS),--host $(h)) \
 		$(if $(filter-out 0,$(FORCE)),--force)
 
-# ONLY="group ..." runs only those groups of bench/run.py (e.g. ONLY=network, ONLY=soak:
+# ONLY="group ..." runs only those groups of bench/plan.py (e.g. ONLY=network, ONLY=soak:
 # not in the default run, they take minutes).
 bench: $(VENV)/.installed
 	@test $(VENV)/.installed-bench -nt pyproject.toml || { \

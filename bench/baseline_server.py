@@ -20,7 +20,7 @@ and runs until SIGTERM/SIGINT (or until its parent, TELEROBOT_PARENT_PID, is gon
   instead of grpcio. A DEALER sends TeleoperateRequest bytes (init, then commands, then an
   empty frame for the half-close); each gets [K, TeleoperateResponse bytes] (ready, then one
   ack per command), [E, why] (the session is over), or [X] for the half-close. Commands that
-  arrived together are one batch for the servicer's own code (TeleopSessions), as on the gRPC
+  arrived together are one batch for the servicer's own code (OperatorSessions), as on the gRPC
   stream. An init without a lease takes one (the bench has no other channel).
   It prints ``TELEROBOT_READY baseline_teleop host:port``.
 """
@@ -38,13 +38,12 @@ import threading
 from pathlib import Path
 
 from bench import framing
-from services.common import convert
 from services.decision_server.arbitration import ControlMode
 from services.decision_server.backends import GrpcSlave
 from services.decision_server.core import DecisionCore
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import _END_OF_SESSION, DecisionServerServicer
-from services.decision_server.teleop import TeleopSession
+from services.decision_server.sessions import OperatorSession
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.servicer import reading_to_proto
 from services.force_sensor.subscribers import StreamOptions
@@ -53,6 +52,7 @@ from services.runtime.process import GIL_SWITCH_INTERVAL_S, watch_parent
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2, types_pb2
+from wire import convert
 from wire.errors import InvalidArgumentError, TelerobotError
 from wire.processes import ready_line
 
@@ -205,7 +205,7 @@ def serve_tcp(cores: Cores, stop: threading.Event) -> list[threading.Thread]:
 # -- zmq-teleop ---------------------------------------------------------------------------------
 
 
-class TeleopSessions:
+class OperatorSessions:
     """The Teleoperate sessions of the DEALERs connected, by their zmq identity, served by the
     DecisionServer servicer's own per-message and per-batch code (`_received`: a command
     checked, converted and stamped; `_serve_batch`: the commands that arrived together go to
@@ -216,7 +216,7 @@ class TeleopSessions:
     def __init__(self, core: DecisionCore):
         self.core = core
         self.servicer = DecisionServerServicer(core)
-        self._sessions: dict[bytes, tuple[TeleopSession, str | None, bool]] = {}  # grouped acks
+        self._sessions: dict[bytes, tuple[OperatorSession, str | None, bool]] = {}  # grouped acks
 
     def handle(self, frames: list[tuple[bytes, bytes]]) -> list[tuple[bytes, list[bytes]]]:
         """Frames (identity, payload) that arrived together, in order: the replies, in order.
@@ -319,7 +319,7 @@ def serve_teleop_zmq(core: DecisionCore, stop: threading.Event) -> list[threadin
     router = context.socket(zmq.ROUTER)
     router.setsockopt(zmq.LINGER, 0)
     port = router.bind_to_random_port("tcp://127.0.0.1")
-    sessions = TeleopSessions(core)
+    sessions = OperatorSessions(core)
 
     def teleoperate():
         # One thread: everything that arrived since the last look is one batch (the gRPC

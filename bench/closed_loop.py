@@ -34,10 +34,10 @@ from bench.stats import summary
 from domain.robot_model.ik import solve_ik
 from domain.robot_model.kinematics import PumaKinematics
 from domain.robot_model.workspace import FIXTURE_CENTER_XY, TABLE_TOP_Z
-from services.common import convert
 from telerobot.v1 import force_sensor_pb2 as fpb
 from telerobot.v1 import force_sensor_pb2_grpc, proxy_robot_pb2_grpc, types_pb2
 from telerobot.v1 import proxy_robot_pb2 as pb
+from wire import convert
 
 GAP_M = -0.001  # the tip starts pressed 1 mm into the table (see the docstring)
 PRESS_M = 0.002

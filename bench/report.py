@@ -172,7 +172,7 @@ def machine() -> dict:
                     model = line.split(":", 1)[1].strip()
                     break
     except OSError:
-        model = platform.processor() or "unknown"
+        pass  # not Linux: platform.processor() would run `uname -p`, and the model is a label
     versions = {}
     for package in ("grpcio", "protobuf", "pyzmq", "numpy", "mujoco"):
         try:
@@ -180,7 +180,9 @@ def machine() -> dict:
         except metadata.PackageNotFoundError:
             versions[package] = None
     return {"cores": os.cpu_count(), "cpu_model": model, "python": platform.python_version(),
-            "platform": platform.platform(), "packages": versions}
+            # platform.platform() runs `uname -p`: these are the same fields without it.
+            "platform": f"{platform.system()}-{platform.release()}-{platform.machine()}",
+            "packages": versions}
 
 
 def fmt(value, digits: int = 2) -> str:

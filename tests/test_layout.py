@@ -15,6 +15,7 @@ from __future__ import annotations
 import ast
 import functools
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -158,11 +159,17 @@ HEAVY = ("mujoco", "pinocchio", "pin", "cv2", "opencv_python_headless", "uvicorn
 def test_pip_install_dot_gives_the_python_client_without_the_stations_weight(tmp_path):
     """`pip install .` into a fresh venv, then `import clients.python`: none of MuJoCo,
     Pinocchio, OpenCV, uvicorn or Foxglove is installed or imported."""
+    source = tmp_path / "source"  # a copy: pip builds in the tree it is given
+    source.mkdir()
+    shutil.copy(REPO / "pyproject.toml", source)
+    for package in ("wire", "domain", "discovery", "services", "clients", "gen"):
+        shutil.copytree(REPO / package, source / package,
+                        ignore=shutil.ignore_patterns("__pycache__"))
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     python = str(venv / "bin" / "python")
     env = {**os.environ, "PIP_DISABLE_PIP_VERSION_CHECK": "1"}
-    subprocess.run([python, "-m", "pip", "install", "--quiet", str(REPO)], check=True, env=env,
+    subprocess.run([python, "-m", "pip", "install", "--quiet", str(source)], check=True, env=env,
                    cwd=tmp_path, timeout=600)
     installed = subprocess.run([python, "-m", "pip", "list", "--format=freeze"], check=True,
                                capture_output=True, text=True, cwd=tmp_path).stdout.lower()

@@ -1,7 +1,7 @@
 """The same servicers and LaneInterceptor on a grpc.aio server: calls arrive on an event loop
 instead of grpcio's sync polling thread.
 
-Why (bench/estop_probe.py, issue #12): under a load that keeps a server busy, every call's
+Why (bench/probes/estop.py): under a load that keeps a server busy, every call's
 events queue for the sync server's one polling thread, which takes the GIL for each, and an
 emergency stop's arrival waits its turn: 12-15 ms at p99 on a server whose calls do nothing,
 17-27 ms with ProxyRobot's stack. On grpc.aio the same servicer sees the stop within 3 ms.

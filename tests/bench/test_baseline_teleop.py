@@ -7,7 +7,7 @@ import pytest
 from google.protobuf import timestamp_pb2
 
 from bench import framing
-from bench.baseline_server import TELEOP_END, TeleopSessions
+from bench.baseline_server import TELEOP_END, OperatorSessions
 from bench.teleop import init_request
 from services.decision_server.core import DecisionCore
 from services.decision_server.recordings import RecordingStore
@@ -22,7 +22,7 @@ def sessions(tmp_path):
     clock = FakeClock()
     slave = FakeSlave(clock)
     core = DecisionCore(slave, RecordingStore(tmp_path / "recordings", clock), clock)
-    sessions = TeleopSessions(core)
+    sessions = OperatorSessions(core)
     yield sessions, slave
     sessions.close()
     core.close()
