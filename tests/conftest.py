@@ -1,35 +1,32 @@
-"""Helpers shared by the tests: real service processes on port 0, supervised by
-services.runtime.children (each reports the port it bound on its ready line)."""
+"""The tests' shared fixtures, and the guard that keeps `pytest -m "not e2e"` process-free.
+
+Every test not marked e2e runs in this process: it starts no process (subprocess, fork,
+posix_spawn, multiprocessing, os.system), attaches no shared memory (so no world), and, in
+the modules a folder names in its `modules_on_the_clock` fixture, reads no system time.
+At collection, such a test that uses a fixture marked `@starts_processes` is refused (a
+session fixture would start its world before any check at run time could refuse it); while it
+is set up and runs, starting a process fails it. The helpers that start processes are in
+tests/processes.py; the fakes that stand in for them in tests/fakes."""
 
 from __future__ import annotations
 
+import _posixsubprocess
 import os
-import signal
 import subprocess
 import time
 from dataclasses import dataclass
-from pathlib import Path
+from multiprocessing import process as multiprocessing_process
+from multiprocessing import shared_memory
 
-import grpc
 import pytest
 
 # MuJoCo picks its GL backend at import: headless rendering needs EGL, set before any test
 # module imports mujoco (make does it too, but a bare `pytest` should work the same).
 os.environ.setdefault("MUJOCO_GL", "egl")
 
-from services.runtime import children
-from services.runtime.children import Child
-from services.runtime.children import refused_address as refused_address  # for the tests
-
-REPO = Path(__file__).resolve().parent.parent
-BUF = REPO / "node_modules" / ".bin" / "buf"
-
-# A started process: .process, .lines, .ready (name -> host:port), .wait_ready(names),
-# .wait_line(text), .stop(sig), .describe(); see services.runtime.children.Child.
-RunningProcess = Child
-# refused_address() (imported above, for the tests too): host:port where connections are
-# refused, for a dependency deliberately absent; held by this process and never listened on.
-STOP_GRACE_S = 10.0  # a test's process gets this long to stop on SIGTERM before SIGKILL
+from services.runtime import children  # noqa: E402
+from services.runtime.children import Child  # noqa: E402
+from tests.processes import start_process, start_service, start_world, stop_world  # noqa: E402
 
 
 def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
@@ -44,29 +41,103 @@ def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
     raise AssertionError(f"timed out waiting for {what}")
 
 
-def start_process(args: list[str], env: dict[str, str] | None = None,
-                  name: str | None = None) -> Child:
-    """Start `python <args>` from the repo root, every output line kept (stderr merged)."""
-    if name is None:
-        name = args[1].rsplit(".", 1)[-1] if args[:1] == ["-m"] else "python"
-    return children.start(name, args, env=env, cwd=REPO, own_group=False, max_lines=None,
-                          stop_grace_s=STOP_GRACE_S)
+# -- the guard: tests not marked e2e start no process ---------------------------------------
+
+def starts_processes(fixture_function):
+    """Mark a fixture function (under @pytest.fixture) as one that starts processes: a test
+    not marked e2e that uses it, even through another fixture, is refused at collection."""
+    fixture_function.starts_processes = True
+    return fixture_function
 
 
-def start_service(name: str, *args: str, env: dict[str, str] | None = None) -> Child:
-    """`python -m services.<name>` on 127.0.0.1:0 (plus `args`), once it printed its ready
-    line; its address is `.address`."""
-    running = start_process(["-m", f"services.{name}", "--address", "127.0.0.1:0", *args],
-                            env, name)
-    try:
-        running.wait_ready(timeout_s=60.0)
-    except children.ChildFailed:
-        running.stop()
-        raise
-    return running
+def _process_fixtures(item) -> list[str]:
+    """The fixtures `item` uses (directly or through others) that start processes."""
+    definitions = getattr(getattr(item, "_fixtureinfo", None), "name2fixturedefs", {})
+    return sorted(name for name, fixturedefs in definitions.items()
+                  if fixturedefs and getattr(fixturedefs[-1].func, "starts_processes", False))
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    refused = [f"{item.nodeid} uses {used}" for item in items
+               if not item.get_closest_marker("e2e") and (used := _process_fixtures(item))]
+    if refused:
+        raise pytest.UsageError("tests not marked e2e use fixtures that start processes: "
+                                "mark them e2e or use the fakes (tests/fakes)\n  "
+                                + "\n  ".join(refused))
+
+
+def _refused(what: str):
+    def refuse(*args, **kwargs):
+        raise AssertionError(f"a test not marked e2e called {what}, which starts a process or "
+                             "attaches shared memory (a world's): mark it e2e, or keep it in "
+                             "this process")
+
+    return refuse
+
+
+def refuse_processes(monkeypatch: pytest.MonkeyPatch) -> None:
+    """From here on (until `monkeypatch` undoes it), starting a process or attaching shared
+    memory fails."""
+    # Popen is also asyncio's subprocesses' and os.popen's.
+    monkeypatch.setattr(subprocess.Popen, "__init__", _refused("subprocess.Popen"))
+    # Below Popen: multiprocessing's spawn and forkserver start their processes here.
+    monkeypatch.setattr(_posixsubprocess, "fork_exec", _refused("_posixsubprocess.fork_exec"))
+    monkeypatch.setattr(multiprocessing_process.BaseProcess, "start",
+                        _refused("multiprocessing's Process.start"))
+    for name in ("fork", "forkpty", "posix_spawn", "posix_spawnp", "system"):  # os.spawn* fork
+        monkeypatch.setattr(os, name, _refused(f"os.{name}"))
+    monkeypatch.setattr(shared_memory.SharedMemory, "__init__",
+                        _refused("multiprocessing's SharedMemory"))
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_setup(item):
+    """Refuse processes while a test not marked e2e is set up: its fixtures of every scope,
+    a module's or session's first set up here too."""
+    if item.get_closest_marker("e2e"):
+        return (yield)
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        refuse_processes(monkeypatch)
+        return (yield)
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_call(item):
+    """Refuse processes while a test not marked e2e runs."""
+    if item.get_closest_marker("e2e"):
+        return (yield)
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        refuse_processes(monkeypatch)
+        return (yield)
+
+
+class _NoSystemTime:
+    """Stands in for the `time` module inside a core: any reading of the real clock fails."""
+
+    def __getattr__(self, name: str):
+        raise AssertionError(f"the core read time.{name}: it must use its injected clock")
 
 
 @pytest.fixture
+def modules_on_the_clock() -> tuple:
+    """Modules that must read no system time in tests not marked e2e (they take an injected
+    clock); a folder's conftest names its own."""
+    return ()
+
+
+@pytest.fixture(autouse=True)
+def _no_system_time(request, monkeypatch, modules_on_the_clock) -> None:
+    """In tests not marked e2e, `modules_on_the_clock` read no system time."""
+    if request.node.get_closest_marker("e2e"):
+        return
+    for module in modules_on_the_clock:
+        monkeypatch.setattr(module, "time", _NoSystemTime(), raising=False)
+
+
+# -- fixtures that start processes (e2e only) -----------------------------------------------
+
+@pytest.fixture
+@starts_processes
 def service_process():
     """Factory: start `python -m services.<name>` on port 0 and wait until SERVING; returns
     its address."""
@@ -81,13 +152,12 @@ def service_process():
 
 
 @pytest.fixture(scope="session")
+@starts_processes
 def world():
     """One real world process for the tests that drive or read the simulated arm."""
-    from tests.world.conftest import _cleanup, start_world  # tests/world imports this module
-
     running = start_world()
     yield running
-    _cleanup(running)
+    stop_world(running)
 
 
 @dataclass
@@ -99,6 +169,7 @@ class Backends:
 
 
 @pytest.fixture(scope="session")
+@starts_processes
 def backends(world):
     """Real ProxyRobot, ForceSensor and emergency-stop band processes on the shared world, for
     the tests that put a DecisionServer or a client in front of them."""
@@ -113,82 +184,3 @@ def backends(world):
         raise
     yield Backends(running, *addresses)
     children.stop_all(running)
-
-
-# -- a whole station through the launcher (e2e) ---------------------------------------------
-
-def station_env(**settings: str) -> dict[str, str]:
-    """Every service on port 0 (the launcher reports the ports bound), a shared-memory segment
-    of this station's own so stations never collide, and `settings` (TELEROBOT_* variables)."""
-    from services.launcher import STATION
-    from tests.world.conftest import unique_shm_name
-
-    env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
-    env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
-    env.update(settings)
-    return env
-
-
-def start_station(env: dict[str, str]) -> Child:
-    """The real launcher, once it reported every service's address and said the station is
-    up; `.ready` maps each service to its address."""
-    from services.launcher import STATION, UP_LINE
-
-    launcher = start_process(["-m", "services.launcher", "--grace-s", "1"], env=env)
-    try:
-        launcher.wait_ready(STATION, timeout_s=90)
-        launcher.wait_line(UP_LINE, timeout_s=10)
-    except Exception:
-        launcher.stop(signal.SIGINT)
-        raise
-    return launcher
-
-
-def pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    # A zombie still answers kill(0); it is gone for our purposes once its parent reaped it.
-    with open(f"/proc/{pid}/stat") as stat:
-        return stat.read().split()[2] != "Z"
-
-
-def child_pids(pid: int) -> list[int]:
-    """The pids of a process's children now."""
-    out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout
-    return [int(p) for p in out.split()]
-
-
-def service_pid(launcher: Child, name: str) -> int | None:
-    """The pid of the launcher's child running services.<name> now (None between a death and
-    its restart)."""
-    for pid in child_pids(launcher.process.pid):
-        try:
-            with open(f"/proc/{pid}/cmdline") as cmdline:
-                if f"services.{name}" in cmdline.read():
-                    return pid
-        except FileNotFoundError:
-            continue
-    return None
-
-
-def health_serving(address: str) -> bool:
-    """Whether the server at `address` (plaintext) says SERVING within a second."""
-    from grpc_health.v1 import health_pb2, health_pb2_grpc
-
-    try:
-        with grpc.insecure_channel(address) as channel:
-            reply = health_pb2_grpc.HealthStub(channel).Check(health_pb2.HealthCheckRequest(),
-                                                              timeout=1)
-        return reply.status == health_pb2.HealthCheckResponse.SERVING
-    except grpc.RpcError:
-        return False
-
-
-def restarted(launcher: Child, name: str, old_pid: int) -> int | None:
-    """The new pid of `name` once the launcher restarted it and it serves; None before."""
-    pid = service_pid(launcher, name)
-    if pid is None or pid == old_pid or not health_serving(launcher.ready[name]):
-        return None
-    return pid

@@ -23,6 +23,8 @@ from services.stereo_camera.pattern import read_tick
 from telerobot.v1 import decision_server_pb2 as pb
 from tests.clients.conftest import CAMERA_WIDTH_PX
 
+pytestmark = pytest.mark.e2e
+
 
 def test_async_decision_client_lease_teleoperate_and_streams(station):
     async def main():

@@ -36,7 +36,8 @@ from services.stereo_camera.pattern import read_tick
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
 from tests.clients.conftest import CAMERA_HEIGHT_PX, CAMERA_WIDTH_PX
-from tests.conftest import refused_address, wait_for
+from tests.conftest import wait_for
+from tests.processes import refused_address
 
 
 def lease_metadata(client: DecisionClient) -> list[tuple[str, str]]:
@@ -95,6 +96,7 @@ def test_a_dead_server_fails_at_once_without_retries():
 
 # -- ProxyRobot and ForceSensor on their own ports --------------------------------------------
 
+@pytest.mark.e2e
 def test_proxy_robot_client_on_its_own_port(station, backends):
     lease, metadata = station.acquire()
     station.ready_at_home(metadata)
@@ -125,6 +127,7 @@ def test_proxy_robot_client_on_its_own_port(station, backends):
     station.wait_status(RobotStatus.READY)
 
 
+@pytest.mark.e2e
 def test_force_sensor_client_on_its_own_port(station, backends):
     with ForceSensorClient(backends.sensor_address) as sensor:
         config = sensor.start_reading()
@@ -145,6 +148,7 @@ def test_force_sensor_client_on_its_own_port(station, backends):
 
 # -- the DecisionServer: lease, facades, context manager --------------------------------------
 
+@pytest.mark.e2e
 def test_the_lease_goes_in_metadata_and_errors_are_typed(station):
     with DecisionClient(station.address) as client:
         with pytest.raises(FailedPreconditionError) as error:
@@ -183,6 +187,7 @@ def test_the_lease_goes_in_metadata_and_errors_are_typed(station):
             pb.GetControlStateRequest())
 
 
+@pytest.mark.e2e
 def test_lanes_and_forwarded_camera_errors(station):
     with DecisionClient(station.address, lane="low") as client:
         assert client.get_control_state(lane="high") is not None
@@ -193,6 +198,7 @@ def test_lanes_and_forwarded_camera_errors(station):
             client.camera.get_stream_info(timeout=5)
 
 
+@pytest.mark.e2e
 def test_a_shared_channel_stays_open(station):
     with grpc.insecure_channel(station.address) as channel:
         with DecisionClient(channel) as client:
@@ -202,6 +208,7 @@ def test_a_shared_channel_stays_open(station):
             assert isinstance(robot.get_status().status, RobotStatus)
 
 
+@pytest.mark.e2e
 def test_events_stream_sees_the_lock_change(station):
     stop = threading.Event()
 
@@ -232,6 +239,7 @@ def test_events_stream_sees_the_lock_change(station):
 
 # -- Teleoperate --------------------------------------------------------------------------------
 
+@pytest.mark.e2e
 def test_teleoperate_session_sends_commands_and_gets_acks(station, operator):
     received = []
     assert operator.sensor.start_reading().reading  # the facade carries the lease too
@@ -264,6 +272,7 @@ def test_teleoperate_session_sends_commands_and_gets_acks(station, operator):
         session.send((0, 0, 0))
 
 
+@pytest.mark.e2e
 def test_teleoperate_needs_the_lease(station):
     with DecisionClient(station.address) as client:
         with pytest.raises(FailedPreconditionError) as error:
@@ -272,6 +281,7 @@ def test_teleoperate_needs_the_lease(station):
         assert error.value.method == "/telerobot.v1.DecisionServer/Teleoperate"
 
 
+@pytest.mark.e2e
 def test_losing_the_lease_ends_the_session_with_aborted(station, operator):
     session = operator.teleoperate(watchdog_timeout_s=0.5)
     assert session.send((0, 0, 0.002)).applied
@@ -285,6 +295,7 @@ def test_losing_the_lease_ends_the_session_with_aborted(station, operator):
     session.close()
 
 
+@pytest.mark.e2e
 def test_a_malformed_command_ends_the_stream_with_invalid_argument(station, operator):
     with operator.teleoperate(watchdog_timeout_s=0.5) as session:
         with pytest.raises(InvalidArgumentError) as error:

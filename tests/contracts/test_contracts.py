@@ -15,7 +15,7 @@ from telerobot.v1 import (  # noqa: F401 - importing registers the descriptors
     proxy_robot_pb2,
     stereo_camera_pb2,
 )
-from tests.conftest import BUF, REPO
+from tests.processes import BUF, REPO
 
 SERVICES = ["ProxyRobot", "ForceSensor", "StereoCamera", "DecisionServer"]
 

@@ -81,8 +81,9 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
     types_pb2,
 )
-from tests.conftest import pid_alive, start_station, station_env, wait_for
+from tests.conftest import wait_for
 from tests.contracts import hostile
+from tests.processes import pid_alive, start_station, station_env
 
 pytestmark = pytest.mark.e2e
 

@@ -8,14 +8,13 @@ import queue
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
-from pathlib import Path
 
 import grpc
 import numpy as np
 import pytest
 
 from domain.robot_model.puma560 import HOME_Q
-from services.common import convert
+from services.common import se3
 from services.decision_server import arbitration, core, force_control, recordings
 from services.decision_server.__main__ import LANES
 from services.decision_server.arbitration import ControlMode, Lease
@@ -35,24 +34,18 @@ from telerobot.v1 import (
     stereo_camera_pb2_grpc,
     types_pb2,
 )
-from tests.conftest import refused_address, wait_for
+from tests.conftest import wait_for
 from tests.fakes.clock import FakeClock
 from tests.fakes.slave import FakeSlave
-from tests.in_process import refuse_processes, reject_process_fixtures
-
-HERE = Path(__file__).resolve().parent
-
-
-def pytest_collection_modifyitems(config, items) -> None:
-    reject_process_fixtures(items, HERE)
+from tests.processes import refused_address
+from wire import convert
 
 
-@pytest.fixture(autouse=True)
-def _in_process_only(request, monkeypatch) -> None:
-    """Tests not marked e2e start no process, attach no world and read no system time in the
-    core."""
-    if not request.node.get_closest_marker("e2e"):
-        refuse_processes(monkeypatch, (core, force_control, arbitration, recordings))
+@pytest.fixture
+def modules_on_the_clock() -> tuple:
+    """Tests not marked e2e read no system time in the core (tests/conftest.py's guard also
+    keeps them from starting a process or attaching a world)."""
+    return (core, force_control, arbitration, recordings)
 
 
 # The core alone, over a fake slave on a fake clock, with alice holding the lock.
@@ -138,7 +131,7 @@ class Station:
 
     def tool_pose(self):
         state = self.robot.GetState(proxy_robot_pb2.GetStateRequest()).state
-        return convert.pose_from_proto(state.tool_pose, "tool_pose")
+        return se3.pose_from_proto(state.tool_pose, "tool_pose")
 
 
 def serve_decisions(core: DecisionCore, robot_stub, sensor_stub) -> tuple[Station, callable]:

@@ -13,7 +13,7 @@ import pytest
 
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2
-from tests.conftest import start_process
+from tests.processes import start_process
 
 
 def test_commands_without_the_lock_are_refused_naming_the_holder(fake_station):

@@ -37,9 +37,10 @@ from services.runtime.supervisor_state import (
 )
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc
-from tests.conftest import start_service, start_station, station_env, wait_for
+from tests.conftest import wait_for
 from tests.fakes.clock import FakeClock
 from tests.fakes.slave import FakeSlave
+from tests.processes import start_service, start_station, station_env
 
 REFUSED = "UNAVAILABLE: failed to connect to all addresses; last error: Connection refused"
 KILLED = "was killed by signal 9 (SIGKILL)"

@@ -21,8 +21,9 @@ from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import event_to_proto
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, types_pb2
-from tests.conftest import BUF, wait_for
+from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
+from tests.processes import BUF
 from wire.errors import FailedPreconditionError
 
 

@@ -12,12 +12,13 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from services.common import convert
 from services.decision_server.sessions import WatchdogHold
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2, types_pb2
-from tests.conftest import start_process, wait_for
+from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
+from tests.processes import start_process
+from wire import convert
 
 BASE, TOOL = types_pb2.REFERENCE_FRAME_BASE, types_pb2.REFERENCE_FRAME_TOOL
 
@@ -117,7 +118,7 @@ def test_a_killed_client_gets_the_arm_held(driven):
     station, lease, _ = driven
     script = textwrap.dedent(f"""
         import time, grpc
-        from services.common import convert
+        from wire import convert
         from telerobot.v1 import decision_server_pb2 as pb, decision_server_pb2_grpc
         stub = decision_server_pb2_grpc.DecisionServerStub(grpc.insecure_channel(
             "{station.address}"))

@@ -12,8 +12,8 @@ import pytest
 
 from discovery.__main__ import ADVERTISED_LINE
 from services.runtime.children import Child
-from tests.conftest import start_process, station_env
 from tests.netns import linked_namespaces, python_in_namespace, unavailable_reason
+from tests.processes import start_process, station_env
 
 pytestmark = pytest.mark.e2e
 

@@ -33,7 +33,8 @@ from clients.python import (
     RobotStatus,
     TelerobotError,
 )
-from tests.conftest import restarted, service_pid, start_station, station_env, wait_for
+from tests.conftest import wait_for
+from tests.processes import restarted, service_pid, start_station, station_env
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow]
 

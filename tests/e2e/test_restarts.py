@@ -11,14 +11,14 @@ import grpc
 import pytest
 
 from telerobot.v1 import proxy_robot_pb2, proxy_robot_pb2_grpc, types_pb2
-from tests.conftest import (
+from tests.conftest import wait_for
+from tests.processes import (
     health_serving,
     pid_alive,
     restarted,
     service_pid,
     start_station,
     station_env,
-    wait_for,
 )
 
 pytestmark = pytest.mark.e2e

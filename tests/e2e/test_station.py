@@ -17,15 +17,8 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from services.launcher import GRPC_CHILDREN, HTTP_CHILDREN, STATION, WEBSOCKET_CHILDREN
 from services.runtime.children import refused_address
 from services.runtime.process import metrics_port_name
-from tests.conftest import (
-    BUF,
-    REPO,
-    child_pids,
-    pid_alive,
-    start_station,
-    station_env,
-    wait_for,
-)
+from tests.conftest import wait_for
+from tests.processes import BUF, REPO, child_pids, pid_alive, start_station, station_env
 
 pytestmark = pytest.mark.e2e
 

@@ -22,8 +22,9 @@ import pytest
 
 from services.runtime.children import Child
 from services.security import pki
-from tests.conftest import service_pid, start_process, station_env, wait_for
+from tests.conftest import wait_for
 from tests.netns import linked_namespaces, python_in_namespace, unavailable_reason
+from tests.processes import service_pid, start_process, station_env
 
 pytestmark = pytest.mark.e2e
 

@@ -10,8 +10,8 @@ from clients.python import ProxyRobotClient
 from clients.python.values import RobotStatus
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
-from tests.conftest import start_service, wait_for
-from tests.world.conftest import unique_shm_name
+from tests.conftest import wait_for
+from tests.processes import start_service, unique_shm_name
 from wire.errors import UnimplementedError
 
 
@@ -36,6 +36,7 @@ def joints(robot) -> tuple[np.ndarray, np.ndarray]:
     return np.array(state.joint_positions_rad), np.array(state.joint_velocities_rad_per_s)
 
 
+@pytest.mark.e2e
 def test_the_band_halts_a_moving_arm_and_proxy_robot_reports_the_latch(stubs):
     robot, band = stubs
     start, _ = joints(robot)
@@ -68,6 +69,7 @@ def test_the_band_halts_a_moving_arm_and_proxy_robot_reports_the_latch(stubs):
     assert np.max(np.abs(np.array(later.joint_positions_rad) - halted)) < 1e-3
 
 
+@pytest.mark.e2e
 def test_the_python_client_stops_through_the_band(stubs, backends):
     robot, _ = stubs
     with ProxyRobotClient(backends.emergency_address) as band:
@@ -78,6 +80,7 @@ def test_the_python_client_stops_through_the_band(stubs, backends):
              == types_pb2.ROBOT_STATUS_ESTOPPED, what="ProxyRobot to see the latch")
 
 
+@pytest.mark.e2e
 def test_the_band_serves_only_emergency_stop(stubs):
     _, band = stubs
     for call in (lambda: band.GetState(pb.GetStateRequest(), timeout=5),

@@ -19,7 +19,8 @@ from services.force_sensor.rdt import (
     REQUEST,
     RdtWrenchLink,
 )
-from tests.conftest import start_service, wait_for
+from tests.conftest import wait_for
+from tests.processes import start_service
 from wire.errors import UnavailableError
 
 COUNTS = 1_000_000

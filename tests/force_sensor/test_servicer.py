@@ -20,6 +20,8 @@ from telerobot.v1 import force_sensor_pb2_grpc
 from tests.conftest import wait_for
 from tests.proxy_robot.conftest import send_home
 
+pytestmark = pytest.mark.e2e
+
 
 @pytest.fixture
 def sensor(world):

@@ -11,7 +11,7 @@ import pytest
 
 from clients.teleop import mcap_log
 from telerobot.v1 import decision_server_pb2, stereo_camera_pb2, types_pb2
-from tests.conftest import REPO
+from tests.processes import REPO
 from wire import foxglove as fox
 
 LAYOUT = REPO / "docs" / "foxglove_layout.json"

@@ -17,7 +17,8 @@ from services.impairment.__main__ import (
 )
 from services.impairment.link import LinkProfile
 from services.runtime.server import create_server
-from tests.conftest import start_process, wait_for
+from tests.conftest import wait_for
+from tests.processes import start_process
 
 
 @pytest.mark.parametrize("text, seconds", [("50ms", 0.05), ("3s", 3.0), ("0.5s", 0.5),

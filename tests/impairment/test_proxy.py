@@ -15,7 +15,8 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.impairment import ImpairmentProxy, LinkProfile
 from services.runtime.server import create_server
-from tests.conftest import refused_address, wait_for
+from tests.conftest import wait_for
+from tests.processes import refused_address
 
 SERVING = health_pb2.HealthCheckResponse.SERVING
 ONE_WAY_S = 0.05

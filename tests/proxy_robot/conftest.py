@@ -5,7 +5,6 @@ tests marked e2e run against a real world process through the shared-memory link
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,25 +18,16 @@ from services.world.shm_link import SharedMemoryArmLink
 from tests.conftest import wait_for
 from tests.fakes.arm_link import FakeArm
 from tests.fakes.clock import FakeClock
-from tests.in_process import refuse_processes, reject_process_fixtures
 
 TICK_S = segment_timing_module.SERVO_PERIOD_S  # the servo's period, 1 ms
 TICKS_PER_SAMPLE = round(core_module.STATE_PERIOD_S / TICK_S)  # the monitor's period
 
 
-HERE = Path(__file__).resolve().parent
-
-
-def pytest_collection_modifyitems(config, items) -> None:
-    reject_process_fixtures(items, HERE)
-
-
-@pytest.fixture(autouse=True)
-def _in_process_only(request, monkeypatch) -> None:
-    """Tests not marked e2e start no process, attach no shared memory (so no world) and read no
-    real time in the proxy."""
-    if not request.node.get_closest_marker("e2e"):
-        refuse_processes(monkeypatch, (core_module, segment_timing_module))
+@pytest.fixture
+def modules_on_the_clock() -> tuple:
+    """Tests not marked e2e read no real time in the proxy (tests/conftest.py's guard also
+    keeps them from starting a process or attaching shared memory, so a world)."""
+    return (core_module, segment_timing_module)
 
 
 class Rig:

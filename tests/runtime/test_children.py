@@ -14,8 +14,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.runtime import children
 from services.runtime.children import ChildFailed
-from tests.conftest import REPO
-from tests.world.conftest import unique_shm_name
+from tests.processes import REPO, unique_shm_name
 from wire.processes import (
     PARENT_PID_ENV,
     STACKS_LINE,

@@ -15,7 +15,8 @@ import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.runtime.server import create_server
-from tests.conftest import REPO, wait_for
+from tests.conftest import wait_for
+from tests.processes import REPO
 from wire.tls import open_channel
 
 # The keepalives' own bound is 1 s (a ping every 250 ms, 750 ms to answer). This test checks the

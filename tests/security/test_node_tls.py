@@ -21,7 +21,7 @@ from services.security import pki
 from services.security.roles import Role
 from services.security.tokens import TokenStore
 from telerobot.v1 import proxy_robot_pb2, proxy_robot_pb2_grpc
-from tests.conftest import REPO, start_station, station_env
+from tests.processes import REPO, start_station, station_env
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, TOKEN_ENV, ChannelSecurity, open_channel
 
 pytestmark = pytest.mark.e2e

@@ -16,7 +16,7 @@ from services.security.pki import (
     issue,
 )
 from services.security.roles import Role
-from tests.conftest import REPO
+from tests.processes import REPO
 
 
 @pytest.fixture(scope="module")

@@ -15,9 +15,8 @@ import sys
 import pytest
 
 from services.security.pki import init
-from tests.conftest import REPO, start_process
 from tests.netns import linked_namespaces, python_in_namespace, unavailable_reason
-from tests.world.conftest import unique_shm_name
+from tests.processes import REPO, start_process, unique_shm_name
 
 pytestmark = pytest.mark.e2e
 

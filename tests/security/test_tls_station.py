@@ -32,7 +32,8 @@ from telerobot.v1 import (
 from telerobot.v1 import force_sensor_pb2 as fs
 from telerobot.v1 import proxy_robot_pb2 as pr
 from telerobot.v1 import stereo_camera_pb2 as sc
-from tests.conftest import BUF, REPO, start_station, station_env, wait_for
+from tests.conftest import wait_for
+from tests.processes import BUF, REPO, start_station, station_env
 from wire.metadata import LEASE_METADATA_KEY
 from wire.tls import ChannelSecurity, open_channel
 

@@ -17,7 +17,7 @@ import pytest
 from services.security import tokens
 from services.security.roles import Role
 from services.security.tokens import TokenStore, parse_ttl, token_id_of
-from tests.conftest import REPO
+from tests.processes import REPO
 from wire.errors import FailedPreconditionError, InvalidArgumentError, UnauthenticatedError
 
 START = 1_700_000_000.0

@@ -13,7 +13,7 @@ import pytest
 from services.stereo_camera.client import open_channel
 from telerobot.v1 import stereo_camera_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2_grpc
-from tests.conftest import REPO, start_service
+from tests.processes import REPO, start_service
 
 
 def test_the_sim_service_without_a_world_serves_headers_refuses_pairs_and_stops_cleanly():

@@ -19,8 +19,7 @@ from clients.teleop.stack import local_station
 from services.launcher import GRPC_CHILDREN, STATION
 from services.runtime.process import metrics_port_name
 from services.security import pki
-from tests.conftest import REPO
-from tests.world.conftest import unique_shm_name
+from tests.processes import REPO, unique_shm_name
 
 pytestmark = pytest.mark.e2e
 

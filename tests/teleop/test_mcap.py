@@ -32,9 +32,8 @@ from services.launcher import STATION
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
-from tests.conftest import REPO
 from tests.foxglove.test_channels import stereo_header, world_poses
-from tests.world.conftest import unique_shm_name
+from tests.processes import REPO, unique_shm_name
 from wire import convert
 from wire import foxglove as fox
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import pytest
 
 from services.runtime import children
-from tests.conftest import start_service
+from tests.processes import start_service
 
 
 @dataclass

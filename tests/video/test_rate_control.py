@@ -13,7 +13,7 @@ from clients.python.stereo_camera import StereoCameraClient
 from services.impairment.link import LinkProfile
 from services.impairment.proxy import ImpairmentProxy
 from telerobot.v1 import stereo_camera_pb2 as pb
-from tests.conftest import start_service
+from tests.processes import start_service
 
 ONE_WAY_S = 0.025
 WIDE_BPS, NARROW_BPS = 4e6, 1.0e6

@@ -21,8 +21,7 @@ from clients.teleop.stack import local_station
 from clients.teleop.video import FRAMES_LOG, WIDTH_PX
 from services.impairment.link import LinkProfile
 from services.launcher import STATION
-from tests.conftest import REPO
-from tests.world.conftest import unique_shm_name
+from tests.processes import REPO, unique_shm_name
 from wire.errors import FailedPreconditionError
 
 pytestmark = pytest.mark.e2e

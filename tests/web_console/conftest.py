@@ -12,7 +12,7 @@ import grpc
 import pytest
 
 from telerobot.v1 import decision_server_pb2_grpc, proxy_robot_pb2, proxy_robot_pb2_grpc
-from tests.conftest import start_station, station_env
+from tests.processes import start_station, station_env
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",

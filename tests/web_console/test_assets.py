@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import REPO
+from tests.processes import REPO
 
 WEB = REPO / "web"
 BIN = WEB / "node_modules" / ".bin"

@@ -15,7 +15,7 @@ from services.security.pki import init as init_pki
 from services.security.roles import Role
 from services.security.tokens import TokenStore
 from telerobot.v1 import decision_server_pb2 as ds
-from tests.conftest import start_station, station_env
+from tests.processes import start_station, station_env
 from tests.web_console.test_gateway import get, post
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow]

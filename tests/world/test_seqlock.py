@@ -12,8 +12,7 @@ import numpy as np
 import pytest
 
 from services.world.seqlock import SeqlockRecord, TornRead
-from tests.conftest import REPO
-from tests.world.conftest import unique_shm_name
+from tests.processes import REPO, unique_shm_name
 
 # A big record, so that an unprotected copy would very likely catch the writer half-way.
 DTYPE = np.dtype([("counter", "u8"), ("values", "f8", (2048,))])

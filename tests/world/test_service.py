@@ -10,7 +10,7 @@ from services.world.service import WorldService
 from services.world.shm_link import SharedMemoryArmLink
 from services.world.sim import ArmSim
 from tests.conftest import wait_for
-from tests.world.conftest import segment_exists, unique_shm_name
+from tests.processes import segment_exists, unique_shm_name
 
 
 class SimThatBreaks(ArmSim):

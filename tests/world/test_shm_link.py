@@ -22,7 +22,7 @@ from services.world.shm_link import (
 )
 from services.world.sim import ArmSim
 from tests.fakes.clock import FakeClock
-from tests.world.conftest import segment_exists, unique_shm_name
+from tests.processes import segment_exists, unique_shm_name
 from wire.errors import AlreadyExistsError, InvalidArgumentError, OutOfRangeError, UnavailableError
 
 PERIOD_S = 0.001

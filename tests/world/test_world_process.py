@@ -14,8 +14,8 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.world.link import ArmSample
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryArmLink, SharedMemoryWrenchLink
-from tests.conftest import REPO, wait_for
-from tests.world.conftest import World, segment_exists
+from tests.conftest import wait_for
+from tests.processes import REPO, World, segment_exists
 from wire.errors import UnavailableError
 
 pytestmark = pytest.mark.e2e
