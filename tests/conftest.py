@@ -26,7 +26,13 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 from services.runtime import children  # noqa: E402
 from services.runtime.children import Child  # noqa: E402
-from tests.processes import start_process, start_service, start_world, stop_world  # noqa: E402
+from tests.processes import (  # noqa: E402
+    SHM_DIR,
+    start_process,
+    start_service,
+    start_world,
+    stop_world,
+)
 
 
 def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
@@ -86,8 +92,20 @@ def refuse_processes(monkeypatch: pytest.MonkeyPatch) -> None:
                         _refused("multiprocessing's Process.start"))
     for name in ("fork", "forkpty", "posix_spawn", "posix_spawnp", "system"):  # os.spawn* fork
         monkeypatch.setattr(os, name, _refused(f"os.{name}"))
-    monkeypatch.setattr(shared_memory.SharedMemory, "__init__",
-                        _refused("multiprocessing's SharedMemory"))
+    monkeypatch.setattr(shared_memory.SharedMemory, "__init__", _attach_only_nothing)
+
+
+_attach = shared_memory.SharedMemory.__init__
+_refuse_shared_memory = _refused("multiprocessing's SharedMemory")
+
+
+def _attach_only_nothing(self, name=None, create=False, size=0, **options):
+    """Creating a segment (its resource tracker is a process) or attaching one that exists (a
+    world's) fails the test; attaching one that does not exist fails as it would anyway, with
+    FileNotFoundError (code that looks for a world and finds none may be tested in-process)."""
+    if not create and name and not (SHM_DIR / name.lstrip("/")).exists():
+        return _attach(self, name, create, size, **options)
+    _refuse_shared_memory()
 
 
 @pytest.hookimpl(wrapper=True)

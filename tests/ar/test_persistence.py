@@ -52,6 +52,7 @@ def test_a_saved_identification_projects_identically_after_loading(tmp_path, kin
     assert not [p for p in tmp_path.iterdir() if p.name != "cameras.json"]  # no temp files
 
 
+@pytest.mark.e2e
 def test_a_fresh_process_loads_the_same_projections(tmp_path):
     saved = _identification()
     path = save_identification(saved, tmp_path / "cameras.json")

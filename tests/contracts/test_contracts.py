@@ -33,6 +33,7 @@ def _tree_differences(left, right) -> list[str]:
     return diffs
 
 
+@pytest.mark.e2e
 def test_generated_code_is_what_make_gen_writes(tmp_path):
     subprocess.run(["make", "--no-print-directory", "-s", "gen", f"GEN_OUT={tmp_path}"],
                    cwd=REPO, check=True, capture_output=True)
@@ -40,6 +41,7 @@ def test_generated_code_is_what_make_gen_writes(tmp_path):
     assert not diffs, "gen/ is stale; run `make gen` and commit:\n" + "\n".join(diffs)
 
 
+@pytest.mark.e2e
 def test_buf_lint_passes():
     if not BUF.exists():
         pytest.fail("node_modules/.bin/buf is missing: run `make install`")

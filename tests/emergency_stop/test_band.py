@@ -92,6 +92,7 @@ def test_the_band_serves_only_emergency_stop(stubs):
         assert "TELEROBOT_PROXY_ROBOT_ADDRESS" in error.value.details()
 
 
+@pytest.mark.e2e
 def test_a_stop_that_cannot_reach_the_arm_is_unavailable():
     band = start_service("emergency_stop", "--shm-name", unique_shm_name())
     try:

@@ -53,6 +53,7 @@ def test_a_direction_s_own_option_wins_over_the_shared_one():
                                stall_s=0.2, seed=8)
 
 
+@pytest.mark.e2e
 def test_by_hand_it_says_where_it_listens_what_it_does_and_cuts_on_time():
     server, port = create_server("127.0.0.1:0", [])
     server.start()
@@ -75,6 +76,7 @@ def test_by_hand_it_says_where_it_listens_what_it_does_and_cuts_on_time():
         server.stop(0)
 
 
+@pytest.mark.e2e
 def test_sigusr1_cuts_the_link_when_asked():
     proxy = start_process(["-m", "services.impairment", "--listen", "127.0.0.1:0",
                            "--target", "127.0.0.1:1", "--cut-for", "150ms"])

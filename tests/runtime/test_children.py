@@ -56,6 +56,7 @@ def test_ready_lines_round_trip():
     assert parse_ready_line("INFO serving world on 127.0.0.1:4321") is None
 
 
+@pytest.mark.e2e
 def test_a_service_on_port_0_reports_its_port_serves_there_and_stops_cleanly():
     exits: list[children.Child] = []
     band = children.start_service("emergency_stop", ["--shm-name", unique_shm_name()],
@@ -76,6 +77,7 @@ def test_a_service_on_port_0_reports_its_port_serves_there_and_stops_cleanly():
     assert any("stopped" in line for line in band.lines)
 
 
+@pytest.mark.e2e
 def test_a_crash_is_reported_with_the_signal_and_the_last_lines(started):
     died = threading.Event()
     child = started("sleeper", _python("import signal; print('about to wait', flush=True); "
@@ -90,6 +92,7 @@ def test_a_crash_is_reported_with_the_signal_and_the_last_lines(started):
     assert "about to wait" in description
 
 
+@pytest.mark.e2e
 def test_a_child_that_exits_before_ready_fails_the_wait_with_its_last_lines(started):
     child = started("broken", _python("print('cannot start: no arm', flush=True); "
                                       "raise SystemExit(3)"))
@@ -100,6 +103,7 @@ def test_a_child_that_exits_before_ready_fails_the_wait_with_its_last_lines(star
     assert "cannot start: no arm" in message
 
 
+@pytest.mark.e2e
 def test_a_child_that_never_gets_ready_fails_the_wait_at_the_deadline(started):
     child = started("mute", _python("import signal; print('thinking', flush=True); "
                                     "signal.pause()"))
@@ -108,6 +112,7 @@ def test_a_child_that_never_gets_ready_fails_the_wait_at_the_deadline(started):
         child.wait_ready(timeout_s=0.2)
 
 
+@pytest.mark.e2e
 def test_waiting_for_readiness_can_be_cancelled(started):
     child = started("mute", _python("import signal; signal.pause()"))
     cancel = threading.Event()
@@ -116,6 +121,7 @@ def test_waiting_for_readiness_can_be_cancelled(started):
     assert child.returncode is None
 
 
+@pytest.mark.e2e
 def test_ready_lines_of_several_names_and_a_line_by_predicate(started):
     child = started("pair", _python(
         f"print({ready_line('first', '127.0.0.1:1')!r}); "
@@ -126,6 +132,7 @@ def test_ready_lines_of_several_names_and_a_line_by_predicate(started):
     assert child.wait(30) == 0
 
 
+@pytest.mark.e2e
 def test_stop_kills_a_child_that_ignores_sigterm_after_the_grace(started):
     child = started("stubborn", _python(
         "import signal; signal.signal(signal.SIGTERM, signal.SIG_IGN); "
@@ -134,6 +141,7 @@ def test_stop_kills_a_child_that_ignores_sigterm_after_the_grace(started):
     assert child.stop(grace_s=0.2) == -signal.SIGKILL
 
 
+@pytest.mark.e2e
 def test_stop_all_stops_the_willing_and_kills_the_stubborn(started):
     willing = started("willing", _python("import signal; print('up', flush=True); "
                                          "signal.pause()"))
@@ -158,6 +166,7 @@ _HUNG_SERVICE = (
     "stuck_in_here()\n")
 
 
+@pytest.mark.e2e
 @pytest.mark.parametrize("stopped_by", ["stop", "stop_all"])
 def test_a_hung_service_is_killed_and_the_log_says_where_it_was_stuck(started, caplog,
                                                                      stopped_by):
@@ -182,6 +191,7 @@ def test_only_this_projects_services_are_asked_for_their_stacks():
     assert not runs_a_service(["-c", "import services"])
 
 
+@pytest.mark.e2e
 def test_a_service_writes_its_stacks_on_the_signal_and_serves_on(started):
     band = started("emergency_stop", ["-m", "services.emergency_stop", "--address",
                                       "127.0.0.1:0", "--shm-name", unique_shm_name()])
@@ -194,6 +204,7 @@ def test_a_service_writes_its_stacks_on_the_signal_and_serves_on(started):
     assert band.stop(grace_s=10) == 0, band.describe()
 
 
+@pytest.mark.e2e
 def test_a_child_gets_its_own_group_the_parent_pid_and_the_extra_environment(started):
     child = started("env", _python(
         "import os; print(os.getpgid(0), os.environ['TELEROBOT_PARENT_PID'], "
@@ -206,6 +217,7 @@ def test_a_child_gets_its_own_group_the_parent_pid_and_the_extra_environment(sta
     assert PARENT_PID_ENV == "TELEROBOT_PARENT_PID"
 
 
+@pytest.mark.e2e
 def test_a_child_may_stay_in_our_group_and_keep_every_line(started):
     child = started("chatty", _python("import os; [print(i) for i in range(500)]; "
                                       "print(os.getpgid(0))"), own_group=False, max_lines=None)

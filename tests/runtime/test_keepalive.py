@@ -19,6 +19,8 @@ from tests.conftest import wait_for
 from tests.processes import REPO
 from wire.tls import open_channel
 
+pytestmark = pytest.mark.e2e
+
 # The keepalives' own bound is 1 s (a ping every 250 ms, 750 ms to answer). This test checks the
 # mechanism, with slack for a loaded machine: far under the minutes TCP alone would take.
 NOTICED_WITHIN_S = 3.0

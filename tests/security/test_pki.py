@@ -67,6 +67,7 @@ def test_a_certificate_without_a_role_is_not_an_identity(pki, tmp_path):
         identity_of(b"garbage")
 
 
+@pytest.mark.e2e
 def test_make_certs_command_line(tmp_path):
     result = subprocess.run(
         [sys.executable, "-m", "services.security.pki", "--dir", str(tmp_path), "--host",

@@ -121,6 +121,7 @@ def test_a_running_store_sees_another_stores_changes(path, clock):
     assert server.verify(again).identity == "alice"
 
 
+@pytest.mark.e2e
 def test_the_command_line_issues_lists_and_revokes_for_a_running_store(path):
     server = TokenStore(path)
     issued = run_cli("issue", "--identity", "ops-script", "--role", "station", "--ttl", "15m",
@@ -235,6 +236,7 @@ def test_bad_command_lines_exit_2(path, argv, capsys):
     assert not path.exists()
 
 
+@pytest.mark.e2e
 def test_a_bad_command_line_exits_2_as_a_process(path):
     result = run_cli("issue", "--identity", "", "--role", "operator", "--file", str(path))
     assert result.returncode == 2
@@ -286,6 +288,7 @@ def test_writers_in_parallel_lose_no_token(path):
     assert len(TokenStore(path).entries()) == 40
 
 
+@pytest.mark.e2e
 def test_tokens_and_audit_stay_free_of_grpc():
     code = ("import sys, services.security.tokens, services.security.audit; "
             "sys.exit('grpc' in sys.modules)")

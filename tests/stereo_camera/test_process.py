@@ -15,6 +15,8 @@ from telerobot.v1 import stereo_camera_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2_grpc
 from tests.processes import REPO, start_service
 
+pytestmark = pytest.mark.e2e
+
 
 def test_the_sim_service_without_a_world_serves_headers_refuses_pairs_and_stops_cleanly():
     absent = f"telerobot_test_absent_{uuid.uuid4().hex[:8]}"

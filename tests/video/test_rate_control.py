@@ -15,6 +15,8 @@ from services.impairment.proxy import ImpairmentProxy
 from telerobot.v1 import stereo_camera_pb2 as pb
 from tests.processes import start_service
 
+pytestmark = pytest.mark.e2e
+
 ONE_WAY_S = 0.025
 WIDE_BPS, NARROW_BPS = 4e6, 1.0e6
 

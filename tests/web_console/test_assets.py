@@ -11,6 +11,8 @@ import pytest
 
 from tests.processes import REPO
 
+pytestmark = pytest.mark.e2e
+
 WEB = REPO / "web"
 BIN = WEB / "node_modules" / ".bin"
 

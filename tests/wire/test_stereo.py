@@ -56,6 +56,7 @@ def test_an_image_of_the_wrong_size_is_a_value_error():
         decode_image(png, pb.IMAGE_ENCODING_PNG, HEIGHT, WIDTH)
 
 
+@pytest.mark.e2e
 def test_raw_frames_do_not_load_opencv():
     code = ("import sys; from wire.stereo import decode_image; "
             "decode_image(bytes(12), 1, 2, 2); print('cv2' in sys.modules)")

@@ -14,6 +14,8 @@ import pytest
 from services.world.seqlock import SeqlockRecord, TornRead
 from tests.processes import REPO, unique_shm_name
 
+pytestmark = pytest.mark.e2e
+
 # A big record, so that an unprotected copy would very likely catch the writer half-way.
 DTYPE = np.dtype([("counter", "u8"), ("values", "f8", (2048,))])
 READ_S = 0.5

@@ -12,6 +12,8 @@ from services.world.sim import ArmSim
 from tests.conftest import wait_for
 from tests.processes import segment_exists, unique_shm_name
 
+pytestmark = pytest.mark.e2e
+
 
 class SimThatBreaks(ArmSim):
     """A simulation whose step raises after a few steps, like a bug in the physics would."""

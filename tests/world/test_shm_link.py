@@ -67,6 +67,7 @@ def kinds(commands: list[Command]) -> list[str]:
     return [command.kind for command in commands]
 
 
+@pytest.mark.e2e
 def test_samples_arrive_intact(publisher, link, sim: ArmSim) -> None:
     arm, wrench = sim.arm_sample(42), sim.wrench_sample(43)
     loop = LoopStats(steps=5, overruns=1, dropped_steps=2, worst_lateness_ns=7, worst_step_ns=3)
@@ -86,6 +87,7 @@ def test_samples_arrive_intact(publisher, link, sim: ArmSim) -> None:
     assert link.read_loop_stats() == loop
 
 
+@pytest.mark.e2e
 def test_faults_and_holds_arrive(publisher, link, sim: ArmSim) -> None:
     arm = sim.arm_sample()
     faulty = type(arm)(**{**arm.__dict__, "hold_latched": True, "fault": "motor 3 über-hot"})
@@ -94,6 +96,7 @@ def test_faults_and_holds_arrive(publisher, link, sim: ArmSim) -> None:
     assert read.hold_latched and read.fault == "motor 3 über-hot"
 
 
+@pytest.mark.e2e
 def test_the_record_keeps_the_time_of_the_step_the_hold_latched_at(publisher, sim: ArmSim):
     """A reader that missed the first latched step (a busy bench) still reads its time."""
     arm = sim.arm_sample()
@@ -110,6 +113,7 @@ def test_the_record_keeps_the_time_of_the_step_the_hold_latched_at(publisher, si
     assert publish(500, True) == 500  # a new stop, a new time
 
 
+@pytest.mark.e2e
 def test_commands_arrive_in_the_order_they_were_issued(publisher, link) -> None:
     target = link.read_arm().joint_targets_rad + 0.1
     link.hold()
@@ -126,6 +130,7 @@ def test_commands_arrive_in_the_order_they_were_issued(publisher, link) -> None:
     assert kinds(publisher.poll_commands()) == ["release", "hold"]
 
 
+@pytest.mark.e2e
 def test_a_target_carries_the_segment_to_reach_it_over(publisher, link) -> None:
     target = link.read_arm().joint_targets_rad + 0.01
     link.write_target(target, 0.02)
@@ -139,6 +144,7 @@ def test_a_target_carries_the_segment_to_reach_it_over(publisher, link) -> None:
     assert publisher.poll_commands() == []  # nothing half-written
 
 
+@pytest.mark.e2e
 def test_no_edge_is_lost_between_two_polls(publisher, link) -> None:
     for _ in range(3):
         link.hold()
@@ -149,6 +155,7 @@ def test_no_edge_is_lost_between_two_polls(publisher, link) -> None:
     assert kinds(publisher.poll_commands()) == ["release", "hold"]
 
 
+@pytest.mark.e2e
 def test_an_emergency_stop_beside_the_driver_latches_after_its_commands(publisher, link) -> None:
     button = SharedMemoryEmergencyStop(publisher.name)
     try:
@@ -166,6 +173,7 @@ def test_an_emergency_stop_beside_the_driver_latches_after_its_commands(publishe
         button.close()
 
 
+@pytest.mark.e2e
 def test_an_emergency_stop_into_a_stale_world_is_unavailable(paused_publisher, clock,
                                                               sim) -> None:
     button = SharedMemoryEmergencyStop(paused_publisher.name, stale_after_s=0.05, clock=clock)
@@ -181,6 +189,7 @@ def test_an_emergency_stop_into_a_stale_world_is_unavailable(paused_publisher, c
         button.close()
 
 
+@pytest.mark.e2e
 def test_the_driver_sees_when_its_commands_are_applied(publisher, link, sim: ArmSim) -> None:
     link.write_target(link.read_arm().joint_targets_rad)
     assert not link.commands_applied()
@@ -190,6 +199,7 @@ def test_the_driver_sees_when_its_commands_are_applied(publisher, link, sim: Arm
     assert link.commands_applied()
 
 
+@pytest.mark.e2e
 def test_a_new_driver_continues_the_command_numbers(publisher, link) -> None:
     link.hold()
     first = publisher.poll_commands()[0].number
@@ -199,6 +209,7 @@ def test_a_new_driver_continues_the_command_numbers(publisher, link) -> None:
     assert publisher.poll_commands()[0].number > first
 
 
+@pytest.mark.e2e
 def test_a_torn_target_from_a_dead_driver_is_never_applied(publisher, link, sim) -> None:
     link.hold()
     publisher.poll_commands()
@@ -217,12 +228,14 @@ def test_a_torn_target_from_a_dead_driver_is_never_applied(publisher, link, sim)
     segment.close()
 
 
+@pytest.mark.e2e
 @pytest.mark.parametrize("bad", [np.zeros(5), np.array([0, 0, np.nan, 0, 0, 0])])
 def test_malformed_targets_are_refused(link, bad) -> None:
     with pytest.raises(InvalidArgumentError):
         link.write_target(bad)
 
 
+@pytest.mark.e2e
 def test_targets_past_a_joint_limit_are_refused(link) -> None:
     target = link.read_arm().joint_positions_rad
     target[2] = link.joint_lower[2] - 0.1
@@ -230,6 +243,7 @@ def test_targets_past_a_joint_limit_are_refused(link) -> None:
         link.write_target(target)
 
 
+@pytest.mark.e2e
 def test_a_world_that_has_not_published_yet_is_starting(sim: ArmSim) -> None:
     world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
     with pytest.raises(UnavailableError, match="starting"):
@@ -246,6 +260,7 @@ def test_opening_with_no_world_is_unavailable() -> None:
         SharedMemoryWrenchLink(unique_shm_name())
 
 
+@pytest.mark.e2e
 def test_a_world_that_stops_stepping_is_unavailable(paused_publisher, clock,
                                                     sim: ArmSim) -> None:
     link = SharedMemoryArmLink(paused_publisher.name, stale_after_s=0.05, clock=clock)
@@ -263,6 +278,7 @@ def test_a_world_that_stops_stepping_is_unavailable(paused_publisher, clock,
     link.close()
 
 
+@pytest.mark.e2e
 def test_a_closed_world_is_unavailable_and_its_segment_gone(sim: ArmSim) -> None:
     world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
     world.publish(sim.arm_sample(), sim.wrench_sample())
@@ -278,12 +294,14 @@ def test_a_closed_world_is_unavailable_and_its_segment_gone(sim: ArmSim) -> None
         link.read_arm()
 
 
+@pytest.mark.e2e
 def test_a_second_world_on_a_live_segment_is_refused(publisher, sim: ArmSim) -> None:
     with pytest.raises(AlreadyExistsError, match=f"pid {os.getpid()}"):
         WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, publisher.name)
     SharedMemoryArmLink(publisher.name).close()  # the first is untouched
 
 
+@pytest.mark.e2e
 def test_a_stale_segment_from_a_killed_world_is_replaced(sim: ArmSim) -> None:
     name = unique_shm_name()
     killed = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, name)
