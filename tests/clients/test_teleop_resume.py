@@ -113,6 +113,7 @@ def test_ack_order_survives_a_resume(linked):
     session.close()
 
 
+@pytest.mark.e2e
 def test_a_link_that_stays_down_ends_the_session_after_the_resume_window(linked):
     _, _, proxy, client = linked
     links: list[str] = []

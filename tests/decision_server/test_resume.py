@@ -66,6 +66,7 @@ def test_a_resend_within_one_batch_is_answered_too(rig, session):
     assert session.counts().processed == 2
 
 
+@pytest.mark.e2e
 def test_a_resend_older_than_the_kept_results_is_a_duplicate(rig, session):
     session.commands(commands(rig, *range(1, RESULTS_KEPT + 2)))
     (late,) = session.commands(commands(rig, 1))

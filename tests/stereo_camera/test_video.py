@@ -53,6 +53,7 @@ def test_every_frame_holds_both_eyes_of_one_capture_tick(pattern):
     call.cancel()
 
 
+@pytest.mark.e2e
 def test_a_stream_whose_client_does_not_report_stops_at_its_window(pattern):
     """The first frames fill the window (the start rate times the assumed round trip); with no
     receipt nothing more is sent, and each receipt lets more go."""
