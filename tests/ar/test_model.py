@@ -24,12 +24,12 @@ from clients.ar.model import (
 )
 from domain.robot_model.kinematics import PumaKinematics
 from domain.robot_model.puma560 import HOME_Q
-from services.common import convert
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.servicer import event_to_proto, snapshot_to_proto
 from services.proxy_robot.status import Moved
 from services.world.link import ArmSample
 from telerobot.v1 import proxy_robot_pb2, types_pb2
+from wire import convert
 
 RNG = np.random.default_rng(0)
 

@@ -8,10 +8,10 @@ import grpc
 import numpy as np
 import pytest
 
-from services.common import convert
 from services.decision_server.sessions import MasterIncrement
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
+from wire import convert
 
 DOWN = np.array([0.0, 0.0, -1.0])
 STEP_M = 5e-4

@@ -7,12 +7,13 @@ import grpc
 import numpy as np
 import pytest
 
-from services.common import convert
+from services.common import se3
 from services.decision_server.sessions import CommandResult
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
+from wire import convert
 from wire.errors import FailedPreconditionError
 
 
@@ -23,7 +24,7 @@ def test_acks_carry_the_outcome_pose_status_and_a_fresh_wrench(fake_station):
     ack = operator.move((0, 0, 0.005))
     assert ack.sequence == 1 and ack.outcome == pb.COMMAND_OUTCOME_APPLIED
     assert ack.status == types_pb2.ROBOT_STATUS_MOVING
-    np.testing.assert_allclose(convert.pose_from_proto(ack.tool_pose, "").translation,
+    np.testing.assert_allclose(se3.pose_from_proto(ack.tool_pose, "").translation,
                                slave.tool_pose().translation)
     assert not ack.HasField("tool_wrench")  # the sensor has sampled nothing yet
     slave.step(0.001)

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 from domain.robot_model.workspace import TABLE_TOP_Z
-from services.common import convert
 from services.runtime.lanes import Lane
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, options_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
+from wire import convert
 
 
 @pytest.fixture

@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from domain.robot_model import puma560
-from services.common import convert
 from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.servicer import reading_to_proto
 from services.force_sensor.subscribers import WrenchReading
 from telerobot.v1 import force_sensor_pb2 as pb
+from wire import convert
 
 
 def test_the_sensor_rotation_is_the_kinematics_frame_pose():
