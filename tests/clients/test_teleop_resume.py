@@ -42,6 +42,7 @@ def closed_event(subscription) -> SessionChanged:
             return event.payload
 
 
+@pytest.mark.e2e
 @pytest.mark.parametrize("mode", ["stall", "reset"])
 def test_a_cut_mid_stream_is_resumed_and_every_command_applies_once(linked, mode):
     station, slave, proxy, client = linked
@@ -97,6 +98,7 @@ def test_resume_can_be_turned_off(linked):
     assert session.resumes == 0
 
 
+@pytest.mark.e2e
 def test_ack_order_survives_a_resume(linked):
     """Blocking sends across a cut: each returns its own command's ack."""
     _, slave, proxy, client = linked
