@@ -116,6 +116,7 @@ class DecisionEvent:
 class _Replay:
     """A running replay: its thread, how to stop it, and how far it got."""
 
+    lease_id: str = ""  # the lease that started it: it moves the arm only while that is held
     thread: threading.Thread | None = None
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)
     reason: str = ""
@@ -385,14 +386,18 @@ class DecisionCore:
     # -- control changes --------------------------------------------------------------------
 
     def _on_control_change(self, view: ControlView, reason: str) -> None:
-        """Force control moves the arm by itself, so it lives only as long as the lease that
-        switched it on: released or lapsed (a crashed operator), it stops and the arm holds
-        where it is. The next holder switches it on again if they want it."""
+        """Force control and a replay move the arm by themselves, so each lives only as long as
+        the lease that started it: released or lapsed (a crashed operator), it stops and the
+        arm holds where it is. The next holder starts them again if they want them."""
         self.emit(ControlChanged(view, reason))
         held = {lease.lease_id for lease in view.holders}
         with self._lock:
             orphans = [s for s in self._sessions.values()
                        if s.detached and s.lease.lease_id not in held]
+            replay = self._replay
+            if replay is not None and replay.lease_id not in held:
+                replay.reason = f"the lease that started it ended ({reason})"
+                replay.stop.set()  # its thread ends between two moves; nothing joins it here
         for session in orphans:  # nobody can resume them now
             session.close(f"the lease ended ({reason})")
         with self._lock:
@@ -441,7 +446,7 @@ class DecisionCore:
             lambda: self._state or self.slave.state(), self.slave.wrench))
 
     def start_replay(self, lease_id: str, name: str, speed: float) -> RecordingInfo:
-        self.locks.require(lease_id)
+        lease = self.locks.require(lease_id)
         speed = speed or 1.0
         if not MIN_REPLAY_SPEED <= speed <= MAX_REPLAY_SPEED:
             raise InvalidArgumentError(f"speed must be {MIN_REPLAY_SPEED}..{MAX_REPLAY_SPEED}",
@@ -456,7 +461,7 @@ class DecisionCore:
             if self.latched:
                 raise FailedPreconditionError(f"the arm is {self.latched}: Reset it first",
                                               reason=self.latched)
-            replay = _Replay()
+            replay = _Replay(lease.lease_id)
             replay.thread = threading.Thread(target=self._run_replay,
                                              args=(info, commands, speed, replay),
                                              name="replay", daemon=True)

@@ -26,6 +26,7 @@ log = logging.getLogger("web_console")
 
 NAME = "web_console"
 TOKEN_ADDRESS_ENV = env_name("decision_server", "token_address")
+ALLOWED_HOSTS_ENV = env_name(NAME, "allowed_hosts")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -45,6 +46,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--allow-plaintext-network", action="store_true",
                         default=os.environ.get(PLAINTEXT_ENV) == "1",
                         help="listen beyond loopback without TLS (the console serves HTTP only)")
+    parser.add_argument("--allowed-host", action="append", dest="allowed_hosts",
+                        default=[h for h in os.environ.get(ALLOWED_HOSTS_ENV, "").split(",")
+                                 if h],
+                        help="a name browsers reach the console by, besides an IP address or "
+                             "localhost (repeat for several; env "
+                             f"{ALLOWED_HOSTS_ENV}, comma-separated): a request with any other "
+                             "name in its Host header is refused, as a DNS-rebinding page's is")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     args = parser.parse_args(argv)
     configure_logging(NAME, args.log_level)
@@ -85,7 +93,8 @@ def _channels(args) -> tuple[Upstream, str]:
 async def _serve(args) -> int:
     upstream, auth = _channels(args)
     host, port = args.address.rsplit(":", 1)
-    config = uvicorn.Config(ConsoleApp(upstream, auth), host=host.strip("[]"), port=int(port),
+    app = ConsoleApp(upstream, auth, args.allowed_hosts)
+    config = uvicorn.Config(app, host=host.strip("[]"), port=int(port),
                             log_level="warning", access_log=False, lifespan="on",
                             ws_max_size=1 << 16, timeout_graceful_shutdown=2)
     server = uvicorn.Server(config)

@@ -3,6 +3,8 @@ Teleoperate WebSocket, and /healthz for the launcher."""
 
 from __future__ import annotations
 
+import ipaddress
+from collections.abc import Iterable
 from pathlib import Path
 from urllib.parse import urlsplit
 
@@ -43,11 +45,41 @@ def same_origin(scope) -> bool:
     return urlsplit(origin.decode("latin-1")).netloc == host.decode("latin-1")
 
 
+def foreign_origin(scope) -> bool:
+    """Whether a request carries the Origin of another site (a browser sends Origin with every
+    POST; a program such as buf curl sends none, and is not a page)."""
+    headers = dict(scope.get("headers") or ())
+    return b"origin" in headers and not same_origin(scope)
+
+
+class HostCheck:
+    """Which names a request's Host header may give: an IP address, `localhost`, or a name the
+    operator allowed (--allowed-host). A page on a name of its own that DNS re-binds to this
+    host (evil.example -> 127.0.0.1) reaches the console with its own name in Host, and is
+    refused, with its Origin matching that Host or not."""
+
+    def __init__(self, allowed: Iterable[str] = ()):
+        self.allowed = frozenset({"localhost", *(name.lower() for name in allowed)})
+
+    def refuses(self, scope) -> str | None:
+        """None for an allowed Host; else the name it gave ("" when it gave none)."""
+        host = dict(scope.get("headers") or ()).get(b"host", b"").decode("latin-1")
+        name = urlsplit(f"//{host}").hostname or ""
+        if name in self.allowed:
+            return None
+        try:
+            ipaddress.ip_address(name)
+            return None  # an address is not a name anyone can re-bind
+        except ValueError:
+            return name
+
+
 class ConsoleApp:
     """Routes: /telerobot.v1.* (Connect), /ws/teleoperate (WebSocket), /healthz, assets."""
 
-    def __init__(self, upstream: Upstream, auth: str):
+    def __init__(self, upstream: Upstream, auth: str, allowed_hosts: Iterable[str] = ()):
         self.upstream = upstream
+        self.hosts = HostCheck(allowed_hosts)
         self.auth = auth  # "token" or "none": the page asks for a token only with "token"
         self.bridge = ConnectBridge(upstream)
         self.assets = _assets()
@@ -56,13 +88,22 @@ class ConsoleApp:
         if scope["type"] == "lifespan":
             return await self._lifespan(receive, send)
         path = scope["path"]
+        refused_host = self.hosts.refuses(scope)
         if scope["type"] == "websocket":
-            if path != teleoperate.PATH or not same_origin(scope):
+            if path != teleoperate.PATH or not same_origin(scope) or refused_host is not None:
                 await receive()
                 await send({"type": "websocket.close", "code": teleoperate.CLOSE_POLICY})
                 return
             return await teleoperate.serve(scope, receive, send, self.upstream)
+        if refused_host is not None:
+            return await _respond(send, 403, (
+                f"this console does not answer to the name {refused_host!r}: a page served "
+                "elsewhere may not reach it through a re-bound name; to use that name, start "
+                "the console with --allowed-host\n").encode())
         if path.startswith(CONTRACT_PREFIX):
+            if foreign_origin(scope):
+                return await _respond(send, 403, b"a page of another site may not call the "
+                                      b"station through this console\n")
             return await self.bridge(scope, receive, send)
         if scope["method"] not in ("GET", "HEAD"):
             return await _respond(send, 405, b"method not allowed\n",

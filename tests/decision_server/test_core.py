@@ -15,6 +15,7 @@ from services.decision_server.core import (
     AssistanceChanged,
     ControlChanged,
     DecisionCore,
+    ReplayProgress,
 )
 from services.decision_server.sessions import WatchdogHold
 from tests.conftest import wait_for
@@ -357,3 +358,31 @@ def test_closing_a_session_holds_after_the_move_in_flight_and_no_move_follows(ri
     late = session.command(np.array([0.0, 0.0, 0.001]), np.eye(3), False)
     assert late.outcome == "REJECTED" and "ended" in late.detail
     assert rig.slave.commands[-1].kind == "hold"
+
+
+def test_a_replay_stops_when_its_lease_ends(rig):
+    """A replay moves the arm only while the lease that started it is held: released (or
+    lapsed), the replay ends and no recorded move follows."""
+    lease = rig.lease.lease_id
+    rig.core.start_recording(lease, "three")
+    for _ in range(3):
+        rig.core.move_cartesian(lease, np.array([0.0, 0.0, 0.002]), np.eye(3), "BASE")
+        rig.clock.advance(1.0)
+    rig.core.recordings.stop()
+    events = rig.core.events.subscribe(64)
+    before = len(rig.slave.commands)
+    rig.core.start_replay(lease, "three", 1.0)
+    wait_for(lambda: len(rig.slave.commands) == before + 1, what="the replay's first move")
+    rig.core.locks.release(lease)
+    payloads = []
+
+    def interrupted():
+        while (event := events.get(0)) is not None:
+            payloads.append(event.payload)
+        return [p for p in payloads if isinstance(p, ReplayProgress)
+                and p.state == "INTERRUPTED"]
+
+    (ended,) = wait_for(interrupted, what="the replay to end with the lease")
+    assert "lease" in ended.detail
+    rig.clock.advance(5.0)  # past every recorded move's time
+    assert len(rig.slave.commands) == before + 1
