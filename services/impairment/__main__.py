@@ -20,6 +20,7 @@ import threading
 
 from services.impairment.link import LinkProfile
 from services.impairment.proxy import CUT_MODES, ImpairmentProxy
+from wire.addresses import is_loopback
 from wire.processes import dump_stacks_on_signal, ready_line
 
 _DURATION_UNITS = {"us": 1e-6, "ms": 1e-3, "s": 1.0}
@@ -81,6 +82,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--cut-for", type=parse_duration, default=parse_duration("3s"))
     parser.add_argument("--cut-mode", choices=CUT_MODES, default="stall",
                         help="after the cut: connections resume (stall) or are reset")
+    parser.add_argument("--allow-network", action="store_true",
+                        help="listen beyond loopback: whoever reaches --listen reaches --target "
+                             "through it (with the target's TLS, end to end, if it has any)")
     return parser
 
 
@@ -102,6 +106,11 @@ def profiles(args: argparse.Namespace) -> tuple[LinkProfile, LinkProfile]:
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    if not (is_loopback(args.listen) or args.allow_network):
+        print(f"impairment: refusing to listen on {args.listen}, beyond loopback: anyone on "
+              f"that network would reach {args.target} through it. Listen on 127.0.0.1, or "
+              "pass --allow-network", file=sys.stderr)
+        return 2
     dump_stacks_on_signal()
     try:
         up, down = profiles(args)

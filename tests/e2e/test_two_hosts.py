@@ -89,7 +89,8 @@ def slave(hosts, tls_dir) -> Iterator[Slave]:
                               {**env, "TELEROBOT_IDENTITY": "observer"}, "session_watch")
         started.append(watch)
         proxy = start_process(hosts.python(hosts.slave, [
-            "-m", "services.impairment", "--listen", f"{hosts.slave_ip}:0", "--target", door,
+            "-m", "services.impairment", "--allow-network", "--listen", f"{hosts.slave_ip}:0",
+            "--target", door,
             "--delay", ONE_WAY_DELAY, "--jitter", JITTER, "--seed", "14",
             "--cut-for", f"{CUT_S:g}s", "--cut-mode", "reset"]), env, "impairment")
         started.append(proxy)

@@ -11,6 +11,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from services.impairment.__main__ import (
     build_parser,
+    main,
     parse_bandwidth,
     parse_duration,
     profiles,
@@ -92,3 +93,13 @@ def test_sigusr1_cuts_the_link_when_asked():
         assert proxy.stop(signal.SIGTERM) == 0
     finally:
         proxy.stop()
+
+
+@pytest.mark.parametrize("listen", ["0.0.0.0:0", "10.0.0.2:50061", "[::]:0"])
+def test_beyond_loopback_it_is_refused_unless_allowed(listen, capsys):
+    """As every other port of the station: beyond loopback only when told so (it forwards
+    whoever reaches it to the target)."""
+    assert main(["--listen", listen, "--target", "127.0.0.1:50051"]) == 2
+    assert "--allow-network" in capsys.readouterr().err
+    assert build_parser().parse_args(
+        ["--listen", listen, "--target", "127.0.0.1:50051", "--allow-network"]).allow_network
