@@ -55,7 +55,7 @@ lint: install
 # The docs site (mkdocs.yml, docs/) into site/; --strict fails on a broken link or a page
 # missing from the navigation.
 docs: $(VENV)/.installed
-	$(PY) -m mkdocs build --strict
+	NO_MKDOCS_2_WARNING=1 $(PY) -m mkdocs build --strict
 
 # Everything: the docs site, then every test (the end-to-end ones start real processes).
 test: install /usr/bin/chromium docs
