@@ -26,6 +26,7 @@ import ipaddress
 import os
 import socket
 import sys
+import tempfile
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -142,18 +143,30 @@ def _general_name(name: str) -> x509.GeneralName:
 def _write_pair(directory: Path, name: str, cert: x509.Certificate,
                 key: ec.EllipticCurvePrivateKey) -> list[Path]:
     """Write the key first (0600 from its creation, never readable by others), then the
-    certificate; each by rename, so a server reloading them never reads half a file."""
+    certificate; each through a new file of a random name (created exclusively: no link or
+    file planted in the directory is followed or reused), flushed to disk, then renamed into
+    place, so a server reloading them never reads half a file and a crash leaves the old one."""
     key_bytes = key.private_bytes(serialization.Encoding.PEM, serialization.PrivateFormat.PKCS8,
                                   serialization.NoEncryption())
     paths = [directory / f"{name}.key", directory / f"{name}.pem"]
     for path, data, mode in ((paths[0], key_bytes, 0o600),
                              (paths[1], cert.public_bytes(serialization.Encoding.PEM), 0o644)):
-        temporary = path.with_name(f".{path.name}.tmp")
-        fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, mode)
-        with os.fdopen(fd, "wb") as file:
-            file.write(data)
-        os.chmod(temporary, mode)
-        os.replace(temporary, path)
+        fd, temporary = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.")  # 0600
+        try:
+            with os.fdopen(fd, "wb") as file:
+                file.write(data)
+                file.flush()
+                os.fsync(file.fileno())
+            os.chmod(temporary, mode)
+            os.replace(temporary, path)
+        except BaseException:
+            Path(temporary).unlink(missing_ok=True)
+            raise
+    directory_fd = os.open(directory, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        os.fsync(directory_fd)  # the renames themselves reach the disk
+    finally:
+        os.close(directory_fd)
     return paths
 
 

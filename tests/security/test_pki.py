@@ -79,3 +79,19 @@ def test_make_certs_command_line(tmp_path):
          "issue", "bob", "--role", "operator"], cwd=REPO, capture_output=True, text=True,
         timeout=60)
     assert again.returncode == 2 and "make certs" in again.stderr
+
+
+def test_a_link_planted_in_the_directory_is_not_followed(tmp_path):
+    """Keys go through new files of random names, created exclusively: a link planted where
+    a fixed temporary name would be leads nowhere, and the key never lands outside."""
+    directory = tmp_path / "pki"
+    directory.mkdir()
+    elsewhere = tmp_path / "attacker.txt"
+    elsewhere.write_text("theirs\n")
+    for name in (".ca.key.tmp", ".ca.pem.tmp", ".admin.key.tmp"):
+        (directory / name).symlink_to(elsewhere)
+    init(directory)
+    assert elsewhere.read_text() == "theirs\n"
+    assert stat.S_IMODE((directory / "ca.key").stat().st_mode) == 0o600
+    assert not [p.name for p in directory.iterdir()
+                if p.name.startswith(".") and not p.is_symlink()]  # no temporary left behind
