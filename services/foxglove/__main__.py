@@ -28,7 +28,7 @@ from foxglove import Context, StatusLevel
 from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
 from services.foxglove.live import Demand, LiveChannels
 from services.runtime.config import configure_logging
-from services.runtime.process import watch_parent
+from services.runtime.process import wait_for_stop, watch_parent
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name, is_loopback
 from wire.processes import dump_stacks_on_signal, ready_line
@@ -121,7 +121,7 @@ def main(argv: list[str] | None = None) -> int:
         address = f"{host}:{server.port}"
         log.info("the live view serves %s://%s/", "wss" if tls else "ws", address)
         print(ready_line(NAME, address), flush=True)
-        stop.wait()
+        wait_for_stop(stop)
     finally:
         if server is not None:
             server.stop()

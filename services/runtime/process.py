@@ -42,6 +42,10 @@ log = logging.getLogger(__name__)
 # default is 5 ms, longer than a whole command budget). Every call crosses several threads.
 GIL_SWITCH_INTERVAL_S = 0.001
 _PARENT_POLL_S = 0.25  # how often a process checks that its parent (PARENT_PID_ENV) lives
+# A process-directed signal may land on any thread (gRPC's C threads included); its Python
+# handler runs only once the main thread runs bytecode again, which a main thread blocked in
+# Event.wait() without a timeout never does. So the main thread wakes this often to let it run.
+SIGNAL_POLL_S = 0.25
 
 
 def token_port_name(service: str) -> str:
@@ -143,7 +147,7 @@ def run_service(
         print(ready_line(metrics_port_name(name), metrics_address), flush=True)
     print(ready_line(name, f"{host}:{port}"), flush=True)
 
-    stop.wait()
+    wait_for_stop(stop)
     log.info("stopping: draining calls for up to %.1f s", args.grace_s)
     server.stop(args.grace_s)
     service.close()
@@ -178,6 +182,12 @@ def server_security(args: argparse.Namespace, name: str, inner_port: bool
         Path(args.tls_dir), name, inner_port, token_address,
         tokens=TokenStore(tokens_file()) if token_address else None,
         audit=audit_log_for(name))
+
+
+def wait_for_stop(stop: threading.Event) -> None:
+    """Block the main thread until `stop` is set, by a signal's handler too (SIGNAL_POLL_S)."""
+    while not stop.wait(SIGNAL_POLL_S):
+        pass
 
 
 def _install_signal_handlers(stop: threading.Event) -> None:
