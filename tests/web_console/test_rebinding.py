@@ -5,6 +5,7 @@ route refuses it. In-process: the ASGI app called as uvicorn calls it, upstream 
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 
 import pytest
 
@@ -57,7 +58,9 @@ def call(app, kind: str, path: str, host: str, origin: str | None, method: str =
     async def send(message):
         sent.append(message)
 
-    asyncio.run(app(scope, receive, send))
+    # A loop of its own, on a thread of its own: a session's Playwright may run one here.
+    with concurrent.futures.ThreadPoolExecutor(1) as thread:
+        thread.submit(asyncio.run, app(scope, receive, send)).result()
     return sent
 
 
