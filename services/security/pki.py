@@ -26,7 +26,6 @@ import ipaddress
 import os
 import socket
 import sys
-import tempfile
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,6 +35,7 @@ from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.x509.oid import ExtendedKeyUsageOID, NameOID
 
+from services.security.files import replace_file
 from services.security.roles import Role
 
 DEFAULT_PKI_DIR = "var/pki"
@@ -143,25 +143,14 @@ def _general_name(name: str) -> x509.GeneralName:
 def _write_pair(directory: Path, name: str, cert: x509.Certificate,
                 key: ec.EllipticCurvePrivateKey) -> list[Path]:
     """Write the key first (0600 from its creation, never readable by others), then the
-    certificate; each through a new file of a random name (created exclusively: no link or
-    file planted in the directory is followed or reused), flushed to disk, then renamed into
-    place, so a server reloading them never reads half a file and a crash leaves the old one."""
+    certificate, each by `replace_file`, so a server reloading them never reads half a file;
+    then the directory is flushed, so the renames reach the disk too."""
     key_bytes = key.private_bytes(serialization.Encoding.PEM, serialization.PrivateFormat.PKCS8,
                                   serialization.NoEncryption())
     paths = [directory / f"{name}.key", directory / f"{name}.pem"]
     for path, data, mode in ((paths[0], key_bytes, 0o600),
                              (paths[1], cert.public_bytes(serialization.Encoding.PEM), 0o644)):
-        fd, temporary = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.")  # 0600
-        try:
-            with os.fdopen(fd, "wb") as file:
-                file.write(data)
-                file.flush()
-                os.fsync(file.fileno())
-            os.chmod(temporary, mode)
-            os.replace(temporary, path)
-        except BaseException:
-            Path(temporary).unlink(missing_ok=True)
-            raise
+        replace_file(path, data, mode)
     directory_fd = os.open(directory, os.O_RDONLY | os.O_DIRECTORY)
     try:
         os.fsync(directory_fd)  # the renames themselves reach the disk

@@ -26,7 +26,6 @@ import os
 import re
 import secrets
 import sys
-import tempfile
 import threading
 import time
 import unicodedata
@@ -34,6 +33,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+from services.security.files import replace_file
 from services.security.roles import Role
 from wire.errors import (
     FailedPreconditionError,
@@ -265,19 +265,8 @@ class TokenStore:
         document = {"format": FORMAT, "version": VERSION,
                     "tokens": [_unparse(s) for s in stored]}
         text = json.dumps(document, indent=1) + "\n"
-        # mkstemp creates the file 0600, so the hashes are never readable by others, even
-        # for a moment; os.replace then swaps it in whole, so a reader never sees half a file.
-        handle, temporary = tempfile.mkstemp(dir=self._path.parent,
-                                             prefix=f".{self._path.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(handle, "w", encoding="utf-8") as file:
-                file.write(text)
-                file.flush()
-                os.fsync(file.fileno())
-            os.replace(temporary, self._path)
-        except BaseException:
-            Path(temporary).unlink(missing_ok=True)
-            raise
+        # 0600 from its creation: the hashes are never readable by others, even for a moment.
+        replace_file(self._path, text.encode("utf-8"))
 
 
 def _parse(item: dict) -> _Stored:
