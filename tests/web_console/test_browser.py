@@ -138,35 +138,17 @@ def test_closing_the_tab_mid_drive_holds_the_arm(browser, console_url, robot, de
     take_lock(page)
     ready_arm(page, robot)
     start_driving(page)
-    holds: list[decision_server_pb2.WatchdogHoldEvent] = []
-    events = decision.StreamEvents(decision_server_pb2.StreamEventsRequest())
-    watching = threading.Event()
-
-    def follow():
-        try:
-            for event in events:
-                watching.set()
-                if event.HasField("watchdog_hold"):
-                    holds.append(event.watchdog_hold)
-        except grpc.RpcError:
-            pass  # cancelled at the end of the test
-
-    threading.Thread(target=follow, daemon=True).start()
-    start = tool_z(robot)
-    page.keyboard.down("f")  # -Z, held while the tab closes
-    wait_for(lambda: tool_z(robot) < start - 0.003, timeout_s=DEADLINE_S,
-             what="the arm moving down")
+    drive_down(page, robot)  # F (-Z) stays down while the tab closes
     assert status_of(robot) in ("ROBOT_STATUS_MOVING", "ROBOT_STATUS_READY")
-    holds.clear()
-    page.close()  # mid-drive: the key is still down
+    watch = HoldWatch(decision)
     try:
-        hold = wait_for(lambda: holds[0] if holds else None, timeout_s=DEADLINE_S,
-                        what="a watchdog_hold event after the tab closed")
+        page.close()
+        ended = watch.wait_for_session_end("the tab closed")
+        watch.wait_for_hold("the tab closed")
     finally:
-        events.cancel()
-    # The stream ended with the tab, not the watchdog's timeout.
-    print("watchdog hold:", hold.reason)
-    assert "timeout" not in hold.reason, hold.reason
+        watch.close()
+    # The session ended with the tab (its end message, or its socket closing), not by silence.
+    assert "timeout" not in ended.reason, ended.reason
     assert_held(robot)  # at rest and staying there, without a latch
 
 
@@ -213,20 +195,44 @@ def test_assistance_and_record_replay_from_the_page(browser, console_url, robot,
 
 
 class HoldWatch:
-    """The DecisionServer's watchdog_hold events, from now on."""
+    """The DecisionServer's watchdog holds and Teleoperate session changes, from now on.
+
+    When an operator's link goes, two things hold the arm: the gateway ending the stream, and
+    the session's watchdog when no command comes. Which is first depends on the machine's load,
+    so a test reads why the session ended from its DETACHED or CLOSED event, which says so
+    whichever held first."""
 
     def __init__(self, decision):
         self.holds: list[decision_server_pb2.WatchdogHoldEvent] = []
-        self._events = decision.StreamEvents(decision_server_pb2.StreamEventsRequest())
+        self.session_ends: list[decision_server_pb2.TeleopSessionEvent] = []
+        # With the arm's state samples, whose first one says the subscription is in place:
+        # an event published before that would be missed.
+        self._events = decision.StreamEvents(
+            decision_server_pb2.StreamEventsRequest(include_data_received=True))
+        self._subscribed = threading.Event()
         threading.Thread(target=self._follow, daemon=True).start()
+        wait_for(self._subscribed.is_set, timeout_s=DEADLINE_S, what="StreamEvents subscribed")
 
     def _follow(self):
+        ends = (decision_server_pb2.TELEOP_SESSION_STATE_DETACHED,
+                decision_server_pb2.TELEOP_SESSION_STATE_CLOSED)
         try:
             for event in self._events:
+                self._subscribed.set()
                 if event.HasField("watchdog_hold"):
                     self.holds.append(event.watchdog_hold)
+                elif event.HasField("teleop_session") and event.teleop_session.state in ends:
+                    self.session_ends.append(event.teleop_session)
         except grpc.RpcError:
             pass  # cancelled by close()
+
+    def wait_for_hold(self, after: str) -> decision_server_pb2.WatchdogHoldEvent:
+        return wait_for(lambda: self.holds[0] if self.holds else None, timeout_s=DEADLINE_S,
+                        what=f"a watchdog_hold after {after}")
+
+    def wait_for_session_end(self, after: str) -> decision_server_pb2.TeleopSessionEvent:
+        return wait_for(lambda: self.session_ends[0] if self.session_ends else None,
+                        timeout_s=DEADLINE_S, what=f"the session to end after {after}")
 
     def close(self):
         self._events.cancel()
@@ -275,8 +281,7 @@ def test_a_frozen_tab_trips_the_watchdog(browser, console_url, robot, decision):
     try:
         # The page's one thread busy for 2 s: no command, no heartbeat, the socket still open.
         page.evaluate("() => { const t = Date.now(); while (Date.now() - t < 2000) {} }")
-        hold = wait_for(lambda: watch.holds[0] if watch.holds else None, timeout_s=DEADLINE_S,
-                        what="a watchdog_hold while the tab was frozen")
+        hold = watch.wait_for_hold("the tab froze")
     finally:
         watch.close()
     assert "timeout" in hold.reason, hold.reason
@@ -301,12 +306,13 @@ def test_a_lost_link_mid_drive_holds_the_arm(playwright_driver, tmp_path, consol
             # The browser dies mid-drive: no end message, no close frame, the TCP link drops.
             for pid in browser_pids(profile):
                 os.kill(pid, signal.SIGKILL)
-            hold = wait_for(lambda: watch.holds[0] if watch.holds else None, timeout_s=DEADLINE_S,
-                            what="a watchdog_hold after the browser died")
+            detached = watch.wait_for_session_end("the browser died")
+            watch.wait_for_hold("the browser died")
         finally:
             watch.close()
-        assert "timeout" not in hold.reason and "ended the session" not in hold.reason, \
-            hold.reason
+        # The gateway saw the socket drop and ended or broke the stream: the session waits to
+        # be resumed (an end message would have closed it; the watchdog detaches nothing).
+        assert detached.state == decision_server_pb2.TELEOP_SESSION_STATE_DETACHED, detached
         assert_held(robot)
     finally:
         with contextlib.suppress(Exception):
