@@ -36,7 +36,12 @@ from services.decision_server.cobegin import Barriers, SimulatedProcessor
 from services.decision_server.force_control import ForceLoop
 from services.decision_server.recording_mcap import Sources
 from services.decision_server.recordings import RecordingInfo, RecordingStore
-from services.decision_server.sessions import OperatorSession
+from services.decision_server.sessions import (
+    DEFAULT_MAX_COMMAND_AGE_S,
+    MAX_MAX_COMMAND_AGE_S,
+    MIN_MAX_COMMAND_AGE_S,
+    OperatorSession,
+)
 from services.decision_server.slave import (
     LATCHED_STATUSES,
     MoveResult,
@@ -263,14 +268,21 @@ class DecisionCore:
     # -- teleoperation ----------------------------------------------------------------------
 
     def open_session(self, operator_id: str, lease_id: str, mapping: str | None,
-                     watchdog_s: float, passivity: bool = False) -> OperatorSession:
+                     watchdog_s: float, passivity: bool = False,
+                     max_command_age_s: float = 0.0) -> OperatorSession:
         """A new Teleoperate session; with `passivity`, TDPA's slave port keeps the channel
-        passive (domain.passivity)."""
-        lease = self.locks.require(lease_id)
+        passive (domain.passivity). Zero for `watchdog_s` or `max_command_age_s`: the
+        default."""
         watchdog_s = watchdog_s or DEFAULT_WATCHDOG_S
         if not MIN_WATCHDOG_S <= watchdog_s <= MAX_WATCHDOG_S:
             raise InvalidArgumentError(f"watchdog_timeout must be {MIN_WATCHDOG_S * 1e3:.0f} ms.."
                                        f"{MAX_WATCHDOG_S:.0f} s", reason="BAD_WATCHDOG")
+        max_command_age_s = max_command_age_s or DEFAULT_MAX_COMMAND_AGE_S
+        if not MIN_MAX_COMMAND_AGE_S <= max_command_age_s <= MAX_MAX_COMMAND_AGE_S:
+            raise InvalidArgumentError(
+                f"max_command_age must be {MIN_MAX_COMMAND_AGE_S * 1e3:.0f} ms.."
+                f"{MAX_MAX_COMMAND_AGE_S:.0f} s", reason="BAD_MAX_COMMAND_AGE")
+        lease = self.locks.require(lease_id)
         status = self.robot_state().status
         if status in LATCHED_STATUSES:
             raise FailedPreconditionError(f"the arm is {status}: Reset it first", reason=status)
@@ -280,7 +292,8 @@ class DecisionCore:
         # An authenticated holder drives as itself, whatever the session's init says.
         session = OperatorSession(self, lease.identity or operator_id or lease.operator_id, lease,
                                 mapping, watchdog_s,
-                                passivity=SlavePassivity() if passivity else None)
+                                passivity=SlavePassivity() if passivity else None,
+                                max_command_age_s=max_command_age_s)
         with self._lock:
             if self._replay is not None:
                 raise FailedPreconditionError("a replay is running: stop it first",

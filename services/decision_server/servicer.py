@@ -62,8 +62,8 @@ PROXY_COMMANDS = {"Connect", "Initialize", "Disconnect", "SetToolFrame", "MoveJo
                   "MoveCartesianIncremental", "Hold", "Reset"}
 SENSOR_COMMANDS = {"StartReading", "StopReading", "Tare", "SetSensorConfig"}
 _OUTCOMES = {name: pb.CommandOutcome.Value(f"COMMAND_OUTCOME_{name}")
-             for name in ("APPLIED", "MODIFIED", "INDEXED", "REJECTED", "HEARTBEAT",
-                          "DUPLICATE")}
+             for name in ("APPLIED", "MODIFIED", "MERGED_LATE", "INDEXED", "REJECTED",
+                          "HEARTBEAT", "DUPLICATE")}
 
 
 _END_OF_SESSION = object()  # from _serve_batch: the operator sent `end`
@@ -276,12 +276,21 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         # Told each command's age (receive minus send time, in seconds): the process's metrics.
         self.on_command_age: Callable[[float], None] | None = None
 
-    def _ack(self, sequence: int, send_time, result: CommandResult,
+    def _ack(self, sequence: int, send_time_ns: int, result: CommandResult,
              session: OperatorSession | None = None) -> pb.TeleoperateResponse:
-        ack = pb.CommandAck(sequence=sequence, command_send_time=send_time,
+        ack = pb.CommandAck(sequence=sequence,
+                            command_send_time=convert.timestamp(send_time_ns)
+                            if send_time_ns else None,
                             receive_time=convert.timestamp(result.receive_time_ns),
                             apply_time=convert.timestamp(result.apply_time_ns),
                             outcome=_OUTCOMES[result.outcome], detail=result.detail)
+        if session is not None:
+            clock = session.clock_offset
+            clock.answered(sequence, send_time_ns, result.receive_time_ns, result.apply_time_ns)
+            estimate = clock.estimate()
+            if estimate is not None:
+                ack.clock_offset.FromNanoseconds(estimate.offset_ns)
+                ack.clock_offset_error.FromNanoseconds(estimate.error_ns)
         passivity = session.passivity if session is not None else None
         if passivity is not None:  # the slave port's energy, for the master's controller
             ack.slave_energy.CopyFrom(pb.PortEnergy(
@@ -322,7 +331,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 assistance=assistance_to_proto(self._core.assistance),
                 resumed=stream > 1, last_sequence=session.last_sequence,
                 resume_window=convert.duration(session.resume_window_s),
-                passivity=pb.PASSIVITY_TDPA if session.passivity else pb.PASSIVITY_OFF))
+                passivity=pb.PASSIVITY_TDPA if session.passivity else pb.PASSIVITY_OFF,
+                max_command_age=convert.duration(session.max_command_age_s)))
             # Three threads (services/common/inbox.py): the inbox reads, the producer moves the
             # arm, this one writes the acks; the arm never waits for an ack to be written.
             inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
@@ -363,7 +373,9 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 raise InvalidArgumentError("mapping is BASE (world) or TOOL", reason="BAD_MAPPING")
         session = self._core.open_session(init.operator_id, init.lease_id, mapping,
                                           convert.seconds(init.watchdog_timeout),
-                                          passivity=init.passivity == pb.PASSIVITY_TDPA)
+                                          passivity=init.passivity == pb.PASSIVITY_TDPA,
+                                          max_command_age_s=convert.seconds(
+                                              init.max_command_age))
         return session, session.stream
 
     def _received(self, request: pb.TeleoperateRequest
@@ -389,7 +401,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             convert.vector3_from_proto(command.delta_position_m, "delta_position_m"),
             convert.rotation_from_proto(command.delta_rotation, "delta_rotation"),
             command.clutch_engaged, received_ns, command.sequence,
-            _master_energy_in(command))
+            _master_energy_in(command), convert.time_ns(command.send_time))
 
     def _answers(self, session: OperatorSession, stream: int, batch, grouped: bool
                  ) -> Iterator[pb.TeleoperateResponse]:
@@ -419,23 +431,26 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                      ) -> Iterator[pb.TeleoperateResponse]:
         """Acks, in order, for messages that arrived together: the commands between heartbeats
         go to the session together (it may merge them into one move)."""
-        commands: list[pb.MasterCommand] = []
         increments: list[MasterIncrement] = []
         for request, increment in [*batch, (None, None)]:
+            if request is not None and request.WhichOneof("message") != "end":
+                receipt = getattr(request, request.WhichOneof("message")).ack_receipt
+                if receipt.sequence > 0:
+                    session.clock_offset.receipt(receipt.sequence,
+                                                 convert.time_ns(receipt.receive_time))
             if increment is not None:
-                commands.append(request.command)
                 increments.append(increment)
                 continue
-            for command, result in zip(commands, session.commands(increments, stream),
-                                       strict=True):
-                yield self._ack(command.sequence, command.send_time, result, session)
-            commands, increments = [], []
+            # (A late command's ack comes with that of the fresh command it joins.)
+            for command, result in session.decide(increments, stream):
+                yield self._ack(command.sequence, command.send_time_ns, result, session)
+            increments = []
             if request is not None and request.WhichOneof("message") == "end":
                 yield _END_OF_SESSION  # what came after it is ignored
                 return
             if request is not None:
                 heartbeat = request.heartbeat
-                yield self._ack(0, heartbeat.send_time,
+                yield self._ack(0, convert.time_ns(heartbeat.send_time),
                                 session.heartbeat(stream, _master_energy_in(heartbeat)), session)
 
     def _control_state(self) -> pb.ControlState:

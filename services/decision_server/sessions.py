@@ -8,6 +8,14 @@ number that increases within the session; a command whose sequence was already p
 resend (the master did not get its ack before the cut) and is answered with its first result
 instead of being applied again. So across a cut nothing is applied twice, and nothing the
 master still waits for is lost: it resends what was not acked.
+
+No command moves the arm on its own once it is stale: one that waited in the station longer than
+the session's `max_command_age` before its turn (a backlog behind a slow arm or a starved
+process) is carried, its ack held back, until a fresh command comes; the two go to the arm as one
+move, and the late one's ack says MERGED_LATE. Motion is not lost, and the arm goes to where the
+operator is now instead of replaying where they were. A carry that grows past one move's bounds,
+or older than BACKLOG_AGE_FACTOR ages, is refused instead and the arm holds; so is one that
+anything else overtakes (the clutch, a latch, a hold): its acks say REJECTED and why.
 """
 
 from __future__ import annotations
@@ -28,6 +36,7 @@ from domain.geometry import moved_by, rotation_angle
 from domain.passivity import SlavePassivity
 from services.decision_server.arbitration import Lease
 from services.decision_server.assistance import Assistance, apply_assistance
+from services.decision_server.clock_offset import ClockOffsetEstimator
 from services.decision_server.slave import Slave, SlaveWrench
 from services.runtime.clock import Clock
 from wire.errors import AbortedError, FailedPreconditionError, TelerobotError, UnavailableError
@@ -41,6 +50,12 @@ RESUME_WINDOW_S = 10.0
 # most what was in flight when the link went, about a round trip's worth (400 at 1 kHz over
 # 400 ms), so 4,096 is ample; an older resend is answered DUPLICATE without its first result.
 RESULTS_KEPT = 4096
+# A command may wait this long in the station and still be applied on its own (the session's
+# max_command_age unless its init says otherwise), within these bounds.
+DEFAULT_MAX_COMMAND_AGE_S = 0.05
+MIN_MAX_COMMAND_AGE_S, MAX_MAX_COMMAND_AGE_S = 0.005, 1.0
+# A late carry older than this many max_command_ages is a backlog: refused, and the arm holds.
+BACKLOG_AGE_FACTOR = 10
 
 
 # -- events -----------------------------------------------------------------------------------
@@ -100,9 +115,12 @@ class SessionHost(Protocol):
 
 # -- commands ---------------------------------------------------------------------------------
 
+APPLIED_OUTCOMES = ("APPLIED", "MODIFIED", "MERGED_LATE")
+
+
 @dataclass(frozen=True)
 class CommandResult:
-    outcome: str  # APPLIED, MODIFIED, INDEXED, REJECTED, HEARTBEAT, DUPLICATE
+    outcome: str  # APPLIED, MODIFIED, MERGED_LATE, INDEXED, REJECTED, HEARTBEAT, DUPLICATE
     detail: str
     receive_time_ns: int
     apply_time_ns: int
@@ -119,6 +137,7 @@ class MasterIncrement:
     receive_time_ns: int
     sequence: int = 0
     master_energy_in_j: float | None = None  # the master port's E_in it carried (TDPA)
+    send_time_ns: int = 0  # when the master sent it, on its clock (0: not said)
 
 
 # A merged move stays well inside ProxyRobot's caps per move (50 mm, 15 deg), so merging never
@@ -179,7 +198,7 @@ class _Resends:
     def record(self, increments: list[MasterIncrement], results: list[CommandResult]) -> None:
         for increment, result in zip(increments, results, strict=True):
             self.processed += 1
-            self.applied += result.outcome in ("APPLIED", "MODIFIED")
+            self.applied += result.outcome in APPLIED_OUTCOMES
             if increment.sequence > 0:
                 self.last_sequence = max(self.last_sequence, increment.sequence)
                 self._results[increment.sequence] = result
@@ -209,7 +228,8 @@ class OperatorSession:
 
     def __init__(self, core: SessionHost, operator_id: str, lease: Lease, mapping: str | None,
                  watchdog_s: float, resume_window_s: float = RESUME_WINDOW_S,
-                 passivity: SlavePassivity | None = None):
+                 passivity: SlavePassivity | None = None,
+                 max_command_age_s: float = DEFAULT_MAX_COMMAND_AGE_S):
         self.core = core
         # TDPA's slave port (domain.passivity), or None: increments applied as sent.
         self.passivity = passivity
@@ -219,11 +239,20 @@ class OperatorSession:
         self.mapping = mapping
         self.watchdog_s = watchdog_s
         self.resume_window_s = resume_window_s
+        self.max_command_age_s = max_command_age_s
         self._clock = core.clock
         self._lock = threading.Lock()
         self._moving = threading.Lock()  # held across a move; see close()
         self._serving = threading.Lock()  # held across a batch; see `stream`
         self._resends = _Resends()
+        # The master's clock offset from the session's exchanges (its serving thread's).
+        self.clock_offset = ClockOffsetEstimator()
+        # Late commands waiting for a fresh one (see the module's docstring), with the stream
+        # they came on and the holds so far when they were carried: a new stream or a hold since
+        # overtakes them.
+        self._late: list[MasterIncrement] = []
+        self._late_since: tuple[int, int] = (0, 0)
+        self._holds = 0
         self.stream = 1
         self._detached_at: float | None = None
         self._last_activity = self._clock.monotonic()
@@ -275,11 +304,18 @@ class OperatorSession:
 
     def commands(self, increments: list[MasterIncrement], stream: int = 1
                  ) -> list[CommandResult]:
+        """The results `decide` gives, without their commands."""
+        return [result for _, result in self.decide(increments, stream)]
+
+    def decide(self, increments: list[MasterIncrement], stream: int = 1
+               ) -> list[tuple[MasterIncrement, CommandResult]]:
         """Master commands that arrived together on `stream` (a backlog behind a slow arm), in
-        order: a result each. Resends are answered with their first result; the others are
-        processed, consecutive motion commands going to the arm as one move, their increments
-        composed (see `merge_groups`), so a backlog costs one arm round trip instead of one
-        per command, and the newest command reaches the arm soonest."""
+        order, and the results decided now, each with its command, in order: resends answered
+        with their first result, then the rest processed, consecutive motion commands going to
+        the arm as one move, their increments composed (see `merge_groups`), so a backlog costs
+        one arm round trip instead of one per command, and the newest command reaches the arm
+        soonest. Late commands (see the module's docstring) get their results later, with the
+        fresh command they join; ones carried from earlier batches may come first here."""
         if not increments:
             return []
         with self._serving:
@@ -287,16 +323,15 @@ class OperatorSession:
             for increment in increments:
                 self._heard(increment.master_energy_in_j)
             resend = self._resends.split(increments)
+            decided = [(i, self._resends.answer(i))
+                       for i, again in zip(increments, resend, strict=True) if again]
             fresh = [i for i, again in zip(increments, resend, strict=True) if not again]
-            fresh_results: list[CommandResult] = []
             # Recorded group by group: if the stream breaks mid-batch, what moved the arm is
             # remembered (a resend of it is answered) and the rest counts as never received.
             for group, results in self._process(fresh, stream):
                 self._resends.record(group, results)
-                fresh_results += results
-            processed = iter(fresh_results)
-            return [self._resends.answer(i) if again else next(processed)
-                    for i, again in zip(increments, resend, strict=True)]
+                decided += zip(group, results, strict=True)
+            return decided
 
     def _heard(self, master_energy_in_j: float | None) -> None:
         if self.passivity is not None and master_energy_in_j is not None:
@@ -315,18 +350,81 @@ class OperatorSession:
         self.core.require_lease(self.lease.lease_id)  # FailedPreconditionError ends the stream
         assistance, indexing, latched = self.core.snapshot()
         sensor_lost = self._sensor_check()
+        if self._late and self._late_since != (stream, self._holds):
+            if self._late_since[0] == stream:  # a hold overtook them; (a new stream: resent)
+                yield self._refused(self._late, "the arm held before a fresh command came")
+            self._late = []
         for group in merge_groups(increments):
             first = group[0]
             if first.clutch_engaged or indexing:
                 self._target = None  # the reference follows the hand; re-read the pose after
+                yield from self._refuse_late("indexing engaged before a fresh command came")
                 yield group, [CommandResult("INDEXED", "indexing is engaged", i.receive_time_ns,
                                             i.receive_time_ns) for i in group]
             elif latched or sensor_lost:
                 why = f"the arm is {latched}: Reset it first" if latched else sensor_lost
-                yield group, [CommandResult("REJECTED", why, i.receive_time_ns,
-                                            i.receive_time_ns) for i in group]
+                yield from self._refuse_late(why)
+                yield self._refused(group, why)
+            elif self._is_late(group[-1]):
+                if not self._late:
+                    self._late_since = (stream, self._holds)
+                self._late += group  # its results come with the fresh command it joins
             else:
-                yield group, self._move(assistance, group, stream)
+                group, self._late = self._late + group, []
+                ages = [self._age_s(i) for i in group]
+                backlog = self._backlog(group, ages)
+                if backlog:
+                    with self._moving:
+                        self._hold(backlog)
+                    yield self._refused(group, backlog)
+                else:
+                    yield group, self._with_late(group, ages,
+                                                 self._move(assistance, group, stream))
+
+    def _is_late(self, increment: MasterIncrement) -> bool:
+        return self._age_s(increment) > self.max_command_age_s
+
+    def _age_s(self, increment: MasterIncrement) -> float:
+        """How long `increment` has waited in the station."""
+        return (self._clock.time_ns() - increment.receive_time_ns) / 1e9
+
+    def _backlog(self, group: list[MasterIncrement], ages: list[float]) -> str | None:
+        """Why `group` (late commands and the fresh one they join) is a backlog to refuse rather
+        than one move, or None."""
+        late = sum(age > self.max_command_age_s for age in ages)
+        if not late:
+            return None
+        if ages[0] > BACKLOG_AGE_FACTOR * self.max_command_age_s:
+            return (f"a backlog: {late} commands waited up to {ages[0] * 1e3:.0f} ms, past "
+                    f"{BACKLOG_AGE_FACTOR} x max_command_age; the arm holds")
+        translation = float(np.linalg.norm(sum(i.delta_position for i in group)))
+        rotation = sum(rotation_angle(i.delta_rotation) for i in group)
+        if translation > MAX_MERGED_TRANSLATION_M or rotation > MAX_MERGED_ROTATION_RAD:
+            return (f"a backlog: {late} late commands and the fresh one add up to "
+                    f"{translation * 1e3:.1f} mm and {np.degrees(rotation):.1f} deg, more than "
+                    "one move may carry; the arm holds")
+        return None
+
+    def _with_late(self, group: list[MasterIncrement], ages: list[float],
+                   results: list[CommandResult]) -> list[CommandResult]:
+        """The move's results, the late commands' marked MERGED_LATE."""
+        joined = group[-1].sequence
+        return [dataclasses.replace(result, outcome="MERGED_LATE",
+                                    detail=f"waited {age * 1e3:.0f} ms; applied with command "
+                                           f"{joined}")
+                if result.outcome in ("APPLIED", "MODIFIED") and age > self.max_command_age_s
+                else result
+                for age, result in zip(ages, results, strict=True)]
+
+    def _refuse_late(self, why: str):
+        if self._late:
+            late, self._late = self._late, []
+            yield self._refused(late, why)
+
+    def _refused(self, group: list[MasterIncrement], why: str
+                 ) -> tuple[list[MasterIncrement], list[CommandResult]]:
+        now = self._clock.time_ns()
+        return group, [CommandResult("REJECTED", why, i.receive_time_ns, now) for i in group]
 
     def _sensor_check(self) -> str | None:
         """Why the sensor is lost (see DecisionCore.sensor_lost); the first time, the arm is
@@ -488,6 +586,8 @@ class OperatorSession:
 
     def _hold(self, reason: str) -> None:
         silence = self._clock.monotonic() - self._last_activity
+        with self._lock:
+            self._holds += 1  # late commands carried before now will not join a later move
         self._target = None
         try:
             self.core.slave.hold(reason)

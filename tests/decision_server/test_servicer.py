@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from services.common import se3
+from services.decision_server.clock_offset import ClockOffsetEstimator
 from services.decision_server.sessions import CommandResult
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
@@ -99,12 +100,13 @@ class _Session:
     def __init__(self, fail_on_run: int | None = None):
         self.runs = 0
         self.fail_on_run = fail_on_run
+        self.clock_offset = ClockOffsetEstimator()
 
-    def commands(self, increments, stream):
+    def decide(self, increments, stream):
         self.runs += 1
         if self.runs == self.fail_on_run:
             raise FailedPreconditionError("control was lost", reason="NO_CONTROL")
-        return [CommandResult("APPLIED", "", 1, 2) for _ in increments]
+        return [(i, CommandResult("APPLIED", "", 1, 2)) for i in increments]
 
     def heartbeat(self, stream, master_energy_in_j=None):
         return CommandResult("HEARTBEAT", "", 1, 1)

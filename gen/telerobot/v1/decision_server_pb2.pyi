@@ -37,6 +37,7 @@ class CommandOutcome(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     COMMAND_OUTCOME_REJECTED: _ClassVar[CommandOutcome]
     COMMAND_OUTCOME_HEARTBEAT: _ClassVar[CommandOutcome]
     COMMAND_OUTCOME_DUPLICATE: _ClassVar[CommandOutcome]
+    COMMAND_OUTCOME_MERGED_LATE: _ClassVar[CommandOutcome]
 
 class ControlMode(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -84,6 +85,7 @@ COMMAND_OUTCOME_INDEXED: CommandOutcome
 COMMAND_OUTCOME_REJECTED: CommandOutcome
 COMMAND_OUTCOME_HEARTBEAT: CommandOutcome
 COMMAND_OUTCOME_DUPLICATE: CommandOutcome
+COMMAND_OUTCOME_MERGED_LATE: CommandOutcome
 CONTROL_MODE_UNSPECIFIED: ControlMode
 CONTROL_MODE_EXCLUSIVE: ControlMode
 CONTROL_MODE_COLLABORATIVE: ControlMode
@@ -119,7 +121,7 @@ class TeleoperateEnd(_message.Message):
     def __init__(self) -> None: ...
 
 class TeleoperateInit(_message.Message):
-    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout", "resume_session_id", "passivity", "grouped_acks")
+    __slots__ = ("operator_id", "lease_id", "mapping", "watchdog_timeout", "resume_session_id", "passivity", "grouped_acks", "max_command_age")
     OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
     LEASE_ID_FIELD_NUMBER: _ClassVar[int]
     MAPPING_FIELD_NUMBER: _ClassVar[int]
@@ -127,6 +129,7 @@ class TeleoperateInit(_message.Message):
     RESUME_SESSION_ID_FIELD_NUMBER: _ClassVar[int]
     PASSIVITY_FIELD_NUMBER: _ClassVar[int]
     GROUPED_ACKS_FIELD_NUMBER: _ClassVar[int]
+    MAX_COMMAND_AGE_FIELD_NUMBER: _ClassVar[int]
     operator_id: str
     lease_id: str
     mapping: _types_pb2.ReferenceFrame
@@ -134,31 +137,44 @@ class TeleoperateInit(_message.Message):
     resume_session_id: str
     passivity: Passivity
     grouped_acks: bool
-    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., resume_session_id: _Optional[str] = ..., passivity: _Optional[_Union[Passivity, str]] = ..., grouped_acks: _Optional[bool] = ...) -> None: ...
+    max_command_age: _duration_pb2.Duration
+    def __init__(self, operator_id: _Optional[str] = ..., lease_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., resume_session_id: _Optional[str] = ..., passivity: _Optional[_Union[Passivity, str]] = ..., grouped_acks: _Optional[bool] = ..., max_command_age: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
 
 class MasterCommand(_message.Message):
-    __slots__ = ("sequence", "send_time", "delta_position_m", "delta_rotation", "clutch_engaged", "master_energy")
+    __slots__ = ("sequence", "send_time", "delta_position_m", "delta_rotation", "clutch_engaged", "master_energy", "ack_receipt")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     SEND_TIME_FIELD_NUMBER: _ClassVar[int]
     DELTA_POSITION_M_FIELD_NUMBER: _ClassVar[int]
     DELTA_ROTATION_FIELD_NUMBER: _ClassVar[int]
     CLUTCH_ENGAGED_FIELD_NUMBER: _ClassVar[int]
     MASTER_ENERGY_FIELD_NUMBER: _ClassVar[int]
+    ACK_RECEIPT_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     send_time: _timestamp_pb2.Timestamp
     delta_position_m: _types_pb2.Vector3
     delta_rotation: _types_pb2.Matrix3
     clutch_engaged: bool
     master_energy: PortEnergy
-    def __init__(self, sequence: _Optional[int] = ..., send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., delta_position_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ..., delta_rotation: _Optional[_Union[_types_pb2.Matrix3, _Mapping]] = ..., clutch_engaged: _Optional[bool] = ..., master_energy: _Optional[_Union[PortEnergy, _Mapping]] = ...) -> None: ...
+    ack_receipt: AckReceipt
+    def __init__(self, sequence: _Optional[int] = ..., send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., delta_position_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ..., delta_rotation: _Optional[_Union[_types_pb2.Matrix3, _Mapping]] = ..., clutch_engaged: _Optional[bool] = ..., master_energy: _Optional[_Union[PortEnergy, _Mapping]] = ..., ack_receipt: _Optional[_Union[AckReceipt, _Mapping]] = ...) -> None: ...
 
 class Heartbeat(_message.Message):
-    __slots__ = ("send_time", "master_energy")
+    __slots__ = ("send_time", "master_energy", "ack_receipt")
     SEND_TIME_FIELD_NUMBER: _ClassVar[int]
     MASTER_ENERGY_FIELD_NUMBER: _ClassVar[int]
+    ACK_RECEIPT_FIELD_NUMBER: _ClassVar[int]
     send_time: _timestamp_pb2.Timestamp
     master_energy: PortEnergy
-    def __init__(self, send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., master_energy: _Optional[_Union[PortEnergy, _Mapping]] = ...) -> None: ...
+    ack_receipt: AckReceipt
+    def __init__(self, send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., master_energy: _Optional[_Union[PortEnergy, _Mapping]] = ..., ack_receipt: _Optional[_Union[AckReceipt, _Mapping]] = ...) -> None: ...
+
+class AckReceipt(_message.Message):
+    __slots__ = ("sequence", "receive_time")
+    SEQUENCE_FIELD_NUMBER: _ClassVar[int]
+    RECEIVE_TIME_FIELD_NUMBER: _ClassVar[int]
+    sequence: int
+    receive_time: _timestamp_pb2.Timestamp
+    def __init__(self, sequence: _Optional[int] = ..., receive_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ...) -> None: ...
 
 class PortEnergy(_message.Message):
     __slots__ = ("energy_in_j", "energy_out_j", "dissipated_j", "sample_time")
@@ -189,7 +205,7 @@ class CommandAcks(_message.Message):
     def __init__(self, acks: _Optional[_Iterable[_Union[CommandAck, _Mapping]]] = ...) -> None: ...
 
 class TeleoperateReady(_message.Message):
-    __slots__ = ("session_id", "mapping", "watchdog_timeout", "assistance", "resumed", "last_sequence", "resume_window", "passivity")
+    __slots__ = ("session_id", "mapping", "watchdog_timeout", "assistance", "resumed", "last_sequence", "resume_window", "passivity", "max_command_age")
     SESSION_ID_FIELD_NUMBER: _ClassVar[int]
     MAPPING_FIELD_NUMBER: _ClassVar[int]
     WATCHDOG_TIMEOUT_FIELD_NUMBER: _ClassVar[int]
@@ -198,6 +214,7 @@ class TeleoperateReady(_message.Message):
     LAST_SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     RESUME_WINDOW_FIELD_NUMBER: _ClassVar[int]
     PASSIVITY_FIELD_NUMBER: _ClassVar[int]
+    MAX_COMMAND_AGE_FIELD_NUMBER: _ClassVar[int]
     session_id: str
     mapping: _types_pb2.ReferenceFrame
     watchdog_timeout: _duration_pb2.Duration
@@ -206,10 +223,11 @@ class TeleoperateReady(_message.Message):
     last_sequence: int
     resume_window: _duration_pb2.Duration
     passivity: Passivity
-    def __init__(self, session_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., assistance: _Optional[_Union[AssistanceConfig, _Mapping]] = ..., resumed: _Optional[bool] = ..., last_sequence: _Optional[int] = ..., resume_window: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., passivity: _Optional[_Union[Passivity, str]] = ...) -> None: ...
+    max_command_age: _duration_pb2.Duration
+    def __init__(self, session_id: _Optional[str] = ..., mapping: _Optional[_Union[_types_pb2.ReferenceFrame, str]] = ..., watchdog_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., assistance: _Optional[_Union[AssistanceConfig, _Mapping]] = ..., resumed: _Optional[bool] = ..., last_sequence: _Optional[int] = ..., resume_window: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., passivity: _Optional[_Union[Passivity, str]] = ..., max_command_age: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
 
 class CommandAck(_message.Message):
-    __slots__ = ("sequence", "command_send_time", "receive_time", "apply_time", "outcome", "detail", "tool_pose", "tool_wrench", "status", "slave_energy", "passivity_drift_m")
+    __slots__ = ("sequence", "command_send_time", "receive_time", "apply_time", "outcome", "detail", "tool_pose", "tool_wrench", "status", "slave_energy", "passivity_drift_m", "clock_offset", "clock_offset_error")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     COMMAND_SEND_TIME_FIELD_NUMBER: _ClassVar[int]
     RECEIVE_TIME_FIELD_NUMBER: _ClassVar[int]
@@ -221,6 +239,8 @@ class CommandAck(_message.Message):
     STATUS_FIELD_NUMBER: _ClassVar[int]
     SLAVE_ENERGY_FIELD_NUMBER: _ClassVar[int]
     PASSIVITY_DRIFT_M_FIELD_NUMBER: _ClassVar[int]
+    CLOCK_OFFSET_FIELD_NUMBER: _ClassVar[int]
+    CLOCK_OFFSET_ERROR_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     command_send_time: _timestamp_pb2.Timestamp
     receive_time: _timestamp_pb2.Timestamp
@@ -232,7 +252,9 @@ class CommandAck(_message.Message):
     status: _types_pb2.RobotStatus
     slave_energy: PortEnergy
     passivity_drift_m: _types_pb2.Vector3
-    def __init__(self, sequence: _Optional[int] = ..., command_send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., receive_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., apply_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., outcome: _Optional[_Union[CommandOutcome, str]] = ..., detail: _Optional[str] = ..., tool_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ..., tool_wrench: _Optional[_Union[_types_pb2.Wrench, _Mapping]] = ..., status: _Optional[_Union[_types_pb2.RobotStatus, str]] = ..., slave_energy: _Optional[_Union[PortEnergy, _Mapping]] = ..., passivity_drift_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ...) -> None: ...
+    clock_offset: _duration_pb2.Duration
+    clock_offset_error: _duration_pb2.Duration
+    def __init__(self, sequence: _Optional[int] = ..., command_send_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., receive_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., apply_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., outcome: _Optional[_Union[CommandOutcome, str]] = ..., detail: _Optional[str] = ..., tool_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ..., tool_wrench: _Optional[_Union[_types_pb2.Wrench, _Mapping]] = ..., status: _Optional[_Union[_types_pb2.RobotStatus, str]] = ..., slave_energy: _Optional[_Union[PortEnergy, _Mapping]] = ..., passivity_drift_m: _Optional[_Union[_types_pb2.Vector3, _Mapping]] = ..., clock_offset: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., clock_offset_error: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
 
 class GetAssistanceRequest(_message.Message):
     __slots__ = ()
