@@ -303,18 +303,20 @@ class DecisionClient(_DecisionMethods, SyncClient):
                     watchdog_timeout_s: float | None = None, timeout: float | None = None,
                     on_ack: Callable[[Ack], Any] | None = None, resume: bool = True,
                     on_link: Callable[[str, str], Any] | None = None,
-                    passivity: MasterPassivity | None = None) -> TeleopSession:
+                    passivity: MasterPassivity | None = None,
+                    max_command_age_s: float | None = None) -> TeleopSession:
         """Open a Teleoperate session with the held lease (operator: the lease's, unless given;
         mapping: BASE or TOOL, None keeps the assistance configuration's; watchdog: None is the
         server's 100 ms). Waits up to `timeout` for the Ready; FAILED_PRECONDITION without the
         lock or when the arm is not READY. A broken link is resumed (see teleoperate.py) unless
         `resume` is False; `on_link(state, detail)` hears of it. With `passivity` (TDPA's master
         port, the one the master arm displays its force through) the session asks the server
-        for TDPA and carries the two ports' energies."""
+        for TDPA and carries the two ports' energies. `max_command_age_s`: how long a command
+        may wait in the server and still move the arm on its own (None: the server's 50 ms)."""
         self._check_open()
         init = teleoperate_init(operator_id or (self._held.operator_id if self._held else ""),
                      self._held_lease_id() or "", mapping, watchdog_timeout_s,
-                     passivity=passivity is not None)
+                     passivity=passivity is not None, max_command_age_s=max_command_age_s)
         return TeleopSession(self._stub, init, self._metadata(None),
                              ready_timeout=self._timeout(timeout),
                              default_timeout=self.default_timeout, on_ack=on_ack,
@@ -360,11 +362,13 @@ class AsyncDecisionClient(_DecisionMethods, AsyncClient):
     async def teleoperate(self, operator_id: str | None = None, mapping: int | None = None, *,
                           watchdog_timeout_s: float | None = None,
                           timeout: float | None = None,
-                          on_ack: Callable[[Ack], Any] | None = None) -> AsyncTeleopSession:
+                          on_ack: Callable[[Ack], Any] | None = None,
+                          max_command_age_s: float | None = None) -> AsyncTeleopSession:
         """As `DecisionClient.teleoperate`, awaited."""
         self._check_open()
         init = teleoperate_init(operator_id or (self._held.operator_id if self._held else ""),
-                     self._held_lease_id() or "", mapping, watchdog_timeout_s)
+                     self._held_lease_id() or "", mapping, watchdog_timeout_s,
+                     max_command_age_s=max_command_age_s)
         return await AsyncTeleopSession.open(self._stub, init, self._metadata(None),
                                              ready_timeout=self._timeout(timeout),
                                              default_timeout=self.default_timeout,

@@ -31,13 +31,25 @@ clutch, the master re-indexes) and ``heartbeat_nowait`` sends nothing. ``on_link
 detail)`` is told "lost", "reconnecting", "resumed" and "gave up". If the session cannot be
 resumed (the lease lapsed, the server restarted, the window passed), the session ends with that
 error. ``resume=False`` turns this off. The asyncio session does not resume.
+
+**A link slower than the master (blocking session).** Commands sent with ``send_nowait`` that
+are still waiting to go when the link takes the next message go as one (clients/python/
+outbox.py): the newest sequence carries their composed increment, and each merged command's
+ack is that command's ack again, its detail saying so (``merged`` counts them). So the arm is
+never driven from a queue of old increments on this side either; the server's own bound on a
+command's wait is ``max_command_age`` (MERGED_LATE).
+
+**Clocks.** Every command and heartbeat tells the server when the last command ack arrived
+(AckReceipt); from these exchanges the server estimates this machine's clock offset, NTP-style,
+and each ack carries it: ``Ack.clock_offset_s`` and ``Ack.sent_to_applied_s`` (send to apply on
+one clock, across hosts).
 """
 
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import logging
-import queue
 import threading
 import time
 from collections import deque
@@ -49,6 +61,7 @@ import numpy as np
 
 from clients.python.base import run_in_thread
 from clients.python.errors import from_rpc_error
+from clients.python.outbox import Outbox, compose_increments
 from clients.python.values import Ack, ReferenceFrame, enum_value, seconds
 from telerobot.v1 import decision_server_pb2 as pb
 from wire import convert
@@ -97,14 +110,16 @@ def _command(sequence: int, delta_position, delta_rotation, clutch: bool) -> pb.
 
 
 def teleoperate_init(operator_id: str, lease_id: str, mapping: int | None,
-                     watchdog_timeout_s: float | None, passivity: bool = False
-                     ) -> pb.TeleoperateInit:
+                     watchdog_timeout_s: float | None, passivity: bool = False,
+                     max_command_age_s: float | None = None) -> pb.TeleoperateInit:
     init = pb.TeleoperateInit(operator_id=operator_id, lease_id=lease_id,
                               mapping=int(mapping or 0),
                               passivity=pb.PASSIVITY_TDPA if passivity else pb.PASSIVITY_OFF,
                               grouped_acks=True)
     if watchdog_timeout_s:
         init.watchdog_timeout.CopyFrom(convert.duration(watchdog_timeout_s))
+    if max_command_age_s:
+        init.max_command_age.CopyFrom(convert.duration(max_command_age_s))
     return init
 
 
@@ -134,6 +149,7 @@ class _SessionState:
         self._received = 0  # acks received
         self._sequence = 0  # the last command sequence used
         self._latest_ack: Ack | None = None
+        self._receipt: pb.AckReceipt | None = None  # the newest command ack's, not yet sent
         self._error: TelerobotError | None = None
         self._closing = False
         self._cancelled = False
@@ -155,6 +171,10 @@ class _SessionState:
         return seconds(self.ready.watchdog_timeout) if self.ready else 0.0
 
     @property
+    def max_command_age_s(self) -> float:
+        return seconds(self.ready.max_command_age) if self.ready else 0.0
+
+    @property
     def latest_ack(self) -> Ack | None:
         """The newest ack received (any message's), for the slave's latest pose and wrench."""
         return self._latest_ack
@@ -169,6 +189,17 @@ class _SessionState:
         """The sequence number of the last command sent (= the commands sent: they count from
         one)."""
         return self._sequence
+
+    def _with_receipt(self, request: pb.TeleoperateRequest) -> None:
+        """The newest command ack's arrival, on the next command or heartbeat (once)."""
+        if self._receipt is not None:
+            getattr(request, request.WhichOneof("message")).ack_receipt.CopyFrom(self._receipt)
+            self._receipt = None
+
+    def _noted(self, ack: Ack) -> None:
+        if ack.sequence:
+            self._receipt = pb.AckReceipt(sequence=ack.sequence,
+                                          receive_time=convert.timestamp(ack.received_time_ns))
 
     def _deliver(self, ack: Ack) -> None:
         if self.passivity is not None and ack.message.HasField("slave_energy"):
@@ -220,6 +251,10 @@ class TeleopSession(_SessionState):
         self._command_waiters: dict[int, _Waiter] = {}
         self._heartbeat_waiters: deque[_Waiter] = deque()  # this stream's, oldest first
         self._unacked: dict[int, pb.TeleoperateRequest] = {}  # sent, not acked; in order
+        self._merged_into: dict[int, list[int]] = {}  # a sent sequence: the ones it carries
+        # Resent commands are never merged: the server may have applied one already, and
+        # answers its resend without applying it again; merged into a newer one, it would be.
+        self._last_resent = 0
         self._interrupted = False
         # Called with every command and heartbeat queued (not resends), on the sender's thread.
         self.on_request: Callable[[pb.TeleoperateRequest], Any] | None = None
@@ -227,12 +262,13 @@ class TeleopSession(_SessionState):
         self.commands_applied = 0  # of those, acked APPLIED or MODIFIED
         self.resends = 0  # commands sent again after a resume
         self.resumes = 0
+        self.merged = 0  # commands sent inside a newer one (the link was slower than the master)
         self._ready_event = threading.Event()
         self._finished = threading.Event()
         self._stop_reconnecting = threading.Event()
-        self._requests: queue.SimpleQueue = queue.SimpleQueue()
+        self._requests = self._outbox()
         self._requests.put(pb.TeleoperateRequest(init=init))
-        self._call = stub.Teleoperate(iter(self._requests.get, _END), metadata=metadata)
+        self._call = stub.Teleoperate(self._requests, metadata=metadata)
         self._reader = run_in_thread(self._read, "teleoperate-acks")
         if not self._ready_event.wait(ready_timeout):
             self._abandon()
@@ -286,15 +322,65 @@ class TeleopSession(_SessionState):
             if ack.sequence:
                 if self._unacked.pop(ack.sequence, None) is None:
                     return  # acked already (a resend raced its first ack): once is enough
-                self.commands_acked += 1
-                self.commands_applied += ack.applied
+                acks = [dataclasses.replace(
+                            ack, sequence=sequence,
+                            detail=f"merged by the client into command {ack.sequence}; "
+                                   f"{ack.detail}".rstrip("; "))
+                        for sequence in self._merged_into.pop(ack.sequence, [])] + [ack]
+                self.commands_acked += len(acks)
+                self.commands_applied += ack.applied * len(acks)
                 waiter = self._command_waiters.pop(ack.sequence, None)
+                self._noted(ack)
             else:
+                acks = [ack]
                 waiter = self._heartbeat_waiters.popleft() if self._heartbeat_waiters else None
         if waiter is not None:
             waiter.ack = ack
             waiter.event.set()
-        self._deliver(ack)
+        for each in acks:
+            self._deliver(each)
+
+    # -- merging what waits to be sent --------------------------------------------------------
+    def _outbox(self) -> Outbox:
+        box: Outbox = Outbox(_END, self._mergeable, lambda run: self._merge(run, box))
+        return box
+
+    def _mergeable(self, request) -> bool:
+        """A motion command nobody blocks on (send_nowait's), sent for the first time."""
+        return (isinstance(request, pb.TeleoperateRequest)
+                and request.WhichOneof("message") == "command"
+                and not request.command.clutch_engaged
+                and request.command.sequence > self._last_resent
+                and request.command.sequence not in self._command_waiters)
+
+    def _merge(self, run: list[pb.TeleoperateRequest], box: Outbox) -> pb.TeleoperateRequest:
+        """One command for `run` (consecutive commands waiting together): the newest's, with
+        their composed increment and the newest energy and receipt among them."""
+        frame = "TOOL" if self.mapping == ReferenceFrame.TOOL else "BASE"
+        dx, dm = compose_increments(
+            [(convert.vector3_value(r.command.delta_position_m),
+              convert.rotation_value(r.command.delta_rotation)) for r in run], frame)
+        merged = pb.TeleoperateRequest()
+        merged.CopyFrom(run[-1])
+        merged.command.delta_position_m.CopyFrom(convert.vector3_to_proto(dx))
+        merged.command.delta_rotation.CopyFrom(convert.rotation_to_proto(dm))
+        receipt = next((r.command.ack_receipt for r in reversed(run)
+                        if r.command.HasField("ack_receipt")), None)
+        if receipt is not None:
+            merged.command.ack_receipt.CopyFrom(receipt)
+        with self._lock:
+            if box is self._requests:  # (a stream a resume replaced: its commands were resent)
+                older = []  # what the run carries, a resent merged command's too
+                for request in run:
+                    sequence = request.command.sequence
+                    older += self._merged_into.pop(sequence, [])
+                    if request is not run[-1]:
+                        older.append(sequence)
+                        self._unacked.pop(sequence, None)
+                        self.merged += 1
+                self._unacked[merged.command.sequence] = merged  # what a resume would resend
+                self._merged_into[merged.command.sequence] = sorted(older)
+        return merged
 
     def _resumable(self, error: TelerobotError) -> bool:
         return (self._resume and self.ready is not None and not self._closing
@@ -346,10 +432,9 @@ class TeleopSession(_SessionState):
                     ) -> TelerobotError | None:
         """One try: a new stream that resumes the session; None once it serves the session
         (the unacked commands queued on it), else why not."""
-        requests: queue.SimpleQueue = queue.SimpleQueue()
+        requests = self._outbox()
         requests.put(pb.TeleoperateRequest(init=init))
-        call = self._stub.Teleoperate(iter(requests.get, _END), metadata=self._metadata,
-                                      wait_for_ready=True)
+        call = self._stub.Teleoperate(requests, metadata=self._metadata, wait_for_ready=True)
         guard, outcome = threading.Lock(), {"ready": False, "expired": False}
 
         def expire() -> None:  # no Ready in time: give this try up (atomically with its Ready)
@@ -379,6 +464,7 @@ class TeleopSession(_SessionState):
         with self._lock:
             old, self._requests, self._call = self._requests, requests, call
             self.ready = reply.ready
+            self._last_resent = max(self._unacked, default=self._last_resent)
             for request in self._unacked.values():  # in order, with their sequence numbers
                 requests.put(request)
             self.resends += len(self._unacked)
@@ -418,6 +504,7 @@ class TeleopSession(_SessionState):
             request = build()
             if self.passivity is not None:
                 self._with_energy(request)
+            self._with_receipt(request)
             self._sent += 1
             if request.WhichOneof("message") == "command":
                 self._unacked[request.command.sequence] = request
@@ -587,6 +674,7 @@ class AsyncTeleopSession(_SessionState):
                     future = self._waiters.pop(self._received, None)
                     if future is not None and not future.done():
                         future.set_result(ack)
+                    self._noted(ack)
                     self._deliver(ack)
         except grpc.aio.AioRpcError as error:
             if not (self._cancelled and error.code() == grpc.StatusCode.CANCELLED):
@@ -609,6 +697,7 @@ class AsyncTeleopSession(_SessionState):
             if self._closing:
                 raise self._dead()
             request = build()
+            self._with_receipt(request)
             self._sent += 1
             index = self._sent
             if future is not None:

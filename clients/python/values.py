@@ -298,5 +298,31 @@ class Ack:
 
     @property
     def applied(self) -> bool:
-        """True when the increment moved the slave (APPLIED or MODIFIED)."""
-        return self.outcome in (CommandOutcome.APPLIED, CommandOutcome.MODIFIED)
+        """True when the increment moved the slave (APPLIED, MODIFIED, or MERGED_LATE: with
+        the fresh command after it)."""
+        return self.outcome in (CommandOutcome.APPLIED, CommandOutcome.MODIFIED,
+                                CommandOutcome.MERGED_LATE)
+
+    @property
+    def clock_offset_s(self) -> float | None:
+        """The server's estimate of its clock minus this client's, or None before it has one
+        (it needs an AckReceipt, which the session sends with the next message)."""
+        if not self.message.HasField("clock_offset"):
+            return None
+        return self.message.clock_offset.ToNanoseconds() * 1e-9
+
+    @property
+    def clock_offset_error_s(self) -> float | None:
+        """How far `clock_offset_s` can be off."""
+        if not self.message.HasField("clock_offset"):
+            return None
+        return self.message.clock_offset_error.ToNanoseconds() * 1e-9
+
+    @property
+    def sent_to_applied_s(self) -> float | None:
+        """From sending the command to the server applying it, on the server's clock (the send
+        time moved by `clock_offset_s`), so it holds across hosts; None without an offset."""
+        offset = self.clock_offset_s
+        if offset is None or not self.command_send_time_ns:
+            return None
+        return (self.apply_time_ns - self.command_send_time_ns) * 1e-9 - offset
