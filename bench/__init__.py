@@ -10,14 +10,15 @@ Layout:
   failures, the ``*_tls`` and ``*_mcap`` twins, a DecisionServer in front of the station);
 - ``groups/``        a module per group, each what its rows measure: command, force,
   baselines, observers, estop, decision (Teleoperate and the e-stop through the
-  DecisionServer), closed_loop, stereo, soak, network, video;
+  DecisionServer), closed_loop, stereo, soak, soak_overload, network, video;
 - ``procs.py``       child processes (services, workers, baseline servers) and their clean stop;
 - ``worker.py``      ``python -m bench.worker KIND``: one measuring client process;
 - ``command.py``, ``teleop.py``, ``force.py``, ``estop.py``, ``closed_loop.py``, ``stereo.py``:
   the scenarios' client code (run inside workers); ``teleop.py`` streams Teleoperate pipelined;
-- ``soak.py``, ``network.py``, ``video.py``: those groups' definitions, worker side, rows,
-  tables and figures (the soak, issue #16; the peg-in-hole task across a delayed link, #14
-  and #15; the stereo stream across it, #27);
+- ``soak.py``, ``overload.py``, ``network.py``, ``video.py``: those groups' definitions,
+  worker side, rows, tables and figures (the soak, issue #16; Teleoperate beside busy
+  co-tenants, soak_overload, #29; the peg-in-hole task across a delayed link, #14 and #15;
+  the stereo stream across it, #27);
 - ``baseline_server.py``: the same domain code (ProxyRobotCore, ForceSensorCore; the
   DecisionServer's DecisionCore for Teleoperate) behind pyzmq or a plain TCP socket
   (``framing.py``) instead of gRPC, so a ratio isolates the transport;

@@ -3,7 +3,9 @@
 Starts a slave station of its own on free loopback ports, measures every scenario against its
 baselines in the same run, prints a table, and writes bench/results/latest.json,
 raw_latencies.json and PNG plots. --quick (`make bench QUICK=1`) shortens every scenario so the
-whole run takes under 3 minutes. The soak (issue #16) runs only when asked for:
+whole run takes under 3 minutes. soak_overload (issue #29, bench/overload.py: Teleoperate at
+500 Hz beside a busy co-tenant process per core) runs by default, 45 s (15 s with --quick);
+alone: `python -m bench --only soak_overload`. The soak (issue #16) runs only when asked for:
 `python -m bench --only soak [--soak-minutes N]` (10 minutes; 1 with --quick); so does the
 network experiment (issue #14, bench/network.py): `python -m bench --only network` (about 8
 minutes; --quick: fewer round trips), which merges its row into an existing latest.json,

@@ -18,6 +18,10 @@ pair, FAILs the row.
 
 The soak's goal (issue #16) is of another kind: no station process's memory grows steadily
 (`rss_misses`) and nothing is lost (`loss_misses`); bench/README.md says why these bounds.
+So is soak_overload's (issue #29, bench/overload.py): Teleoperate beside busy co-tenants, its
+received -> applied p99 besides the sent -> applied one (`p99_ms`), no third of the run worse
+than a factor of the first, the arm's measured motion equal to the sum of the commands acked
+as applied, and no command applied on its own after max_command_age (`overload_misses`).
 """
 
 from __future__ import annotations
@@ -45,6 +49,14 @@ class Goal:
     max_overrun_pct: float | None = None  # the world loop's overruns, % of its steps
     max_rss_slope: float | None = None  # MiB/min, sustained, of every station process (soak)
     no_loss: bool = False  # soak: every command acked, no watchdog trip, no lease lost...
+    # soak_overload (bench/overload.py): the p99 of received -> applied (server clock), ms;
+    received_p99_ms: float | None = None
+    # each later third's p99 (sent -> applied and received -> applied) <= this x the first's;
+    max_third_ratio: float | None = None
+    # |measured motion - the sum of the commands acked as applied|, mm;
+    max_motion_error_mm: float | None = None
+    # no command acked APPLIED or MODIFIED that waited past the session's max_command_age.
+    none_stale: bool = False
     source: str = ""
 
     def text(self) -> str:
@@ -55,6 +67,15 @@ class Goal:
             parts.append(f"p50 <= {self.p50_ms:g} ms")
         if self.p99_ms is not None:
             parts.append(f"p99 <= {self.p99_ms:g} ms")
+        if self.received_p99_ms is not None:
+            parts.append(f"received -> applied p99 <= {self.received_p99_ms:g} ms")
+        if self.max_third_ratio is not None:
+            parts.append(f"no third's p99 > {self.max_third_ratio:g} x the first's")
+        if self.max_motion_error_mm is not None:
+            parts.append(f"motion within {self.max_motion_error_mm:g} mm of the commands "
+                         "applied")
+        if self.none_stale:
+            parts.append("none applied past max_command_age")
         if self.rate_vs is not None:
             parts.append(f"delivered >= {self.rate_vs[1]:g} x {self.rate_vs[0]}")
         if self.p50_vs is not None:
@@ -93,8 +114,8 @@ _MEDIANS = {"delivered_hz": "delivered", "p50_ms": "p50", "p99_ms": "p99",
             CPU_KEY: "server_cpu"}
 
 
-_ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE, _MCAP_ISSUE = (
-    "issue #12", "architecture brief", "issue #13", "issue #16", "issue #17")
+_ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE, _MCAP_ISSUE, _OVERLOAD_ISSUE = (
+    "issue #12", "architecture brief", "issue #13", "issue #16", "issue #17", "issue #29")
 
 
 def _recording_overhead(twin: str, cost: str) -> Goal:
@@ -128,6 +149,9 @@ GOALS: tuple[tuple[str, Goal], ...] = (
     ("force_1000", Goal(p99_ms=2.0, source=_BRIEF)),
     ("world_loop", Goal(max_overrun_pct=0.1, source=_ISSUE)),
     ("soak", Goal(max_rss_slope=2.0, no_loss=True, source=_SOAK_ISSUE)),
+    # Both ends on this host: sent -> applied is on one clock (p99_ms).
+    ("soak_overload", Goal(p99_ms=100.0, received_p99_ms=10.0, max_third_ratio=2.0,
+                           max_motion_error_mm=0.5, none_stale=True, source=_OVERLOAD_ISSUE)),
 )
 
 # A process's RSS grows "steadily" when, after the warm-up, its least squares slope is over
@@ -198,6 +222,7 @@ def judge(name: str, results: dict[str, dict], final: bool = True) -> dict:
         misses += rss_misses(result.get("rss") or {}, goal.max_rss_slope)
     if goal.no_loss:
         misses += loss_misses(result)
+    misses += overload_misses(result, goal)
     if goal.recording_complete:
         if result.get("recordings"):  # an interleaved row: every on leg's file
             for index, entry in enumerate(result["recordings"], 1):
@@ -302,6 +327,53 @@ def loss_misses(result: dict) -> list[str]:
             errors = entry["errors"]
             misses.append(f"{label}: {errors if isinstance(errors, int) else len(errors)} "
                           "streams failed")
+    return misses
+
+
+# The p99s soak_overload compares third by third (bench/overload.py's `thirds`), and their names.
+THIRD_KEYS = {"sent_p99_ms": "sent -> applied", "received_p99_ms": "received -> applied"}
+
+
+def overload_misses(result: dict, goal: Goal) -> list[str]:
+    """What soak_overload's row fell short by, for each of the goal's bounds of its kind: the
+    received -> applied p99; a later third's p99 over `max_third_ratio` x the first's (or a
+    third without one); the measured motion off the commands applied by more than
+    `max_motion_error_mm` (or not measured); commands applied on their own past
+    max_command_age."""
+    misses = []
+    if goal.received_p99_ms is not None:
+        value = result.get("received_p99_ms")
+        if value is None or value > goal.received_p99_ms:
+            misses.append(f"received -> applied p99 {_num(value)} ms > {goal.received_p99_ms:g}")
+    if goal.max_third_ratio is not None:
+        thirds = result.get("thirds") or []
+        if len(thirds) < 2:
+            misses.append("no thirds measured")
+        for key, label in THIRD_KEYS.items():
+            first = thirds[0].get(key) if thirds else None
+            for third in thirds[1:]:
+                value = third.get(key)
+                if first is None or value is None:
+                    misses.append(f"{label} p99: third {third['third']} {_num(value)} ms, "
+                                  f"the first {_num(first)} ms")
+                elif value > goal.max_third_ratio * first:
+                    misses.append(f"{label} p99 of third {third['third']} {_num(value)} ms > "
+                                  f"{goal.max_third_ratio:g} x the first's {_num(first)}")
+    if goal.max_motion_error_mm is not None:
+        error = (result.get("motion") or {}).get("error_mm")
+        if error is None:
+            misses.append("motion not measured")
+        elif error > goal.max_motion_error_mm:
+            misses.append(f"motion {_num(error)} mm off the commands applied > "
+                          f"{goal.max_motion_error_mm:g}")
+    if goal.none_stale:
+        stale = result.get("stale_applied")
+        if stale is None:
+            misses.append("waits not measured")
+        elif stale:
+            misses.append(f"{stale} applied on their own past max_command_age "
+                          f"({_num(result.get('max_command_age_ms'))} ms; longest "
+                          f"{_num(result.get('max_wait_applied_ms'))} ms)")
     return misses
 
 

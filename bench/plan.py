@@ -7,9 +7,10 @@ from dataclasses import dataclass, field
 
 # In the order they run; each is a module of bench/groups/ (bench/run.py dispatches to it).
 GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
-          "stereo", "soak", "network", "video")
+          "stereo", "soak", "soak_overload", "network", "video")
 # `make bench`; the soak and the network experiment (bench/network.py, and its video rows,
-# bench/video.py) take minutes.
+# bench/video.py) take minutes. soak_overload (bench/overload.py) runs by default: 45 s, 15 s
+# with --quick.
 DEFAULT_GROUPS = tuple(group for group in GROUPS if group not in ("soak", "network", "video"))
 @dataclass(frozen=True)
 class Plan:
@@ -70,6 +71,11 @@ class Plan:
         if self.soak_minutes is not None:
             return 60.0 * self.soak_minutes
         return 60.0 if self.quick else 600.0
+
+    @property
+    def overload_s(self) -> float:
+        """soak_overload's measured stream (bench/overload.py)."""
+        return 15.0 if self.quick else 45.0
 
     @property
     def soak_sample_s(self) -> float:

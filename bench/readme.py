@@ -65,6 +65,9 @@ WHAT = (
     ("closed_loop", "operator command → contact → force change at the operator"),
     ("stereo_*", "stereo pair captured → decoded, 640×480 JPEG"),
     ("world_loop", "the world's 1 kHz loop over the whole run"),
+    ("soak_overload", "Teleoperate at 500 Hz (Python client, pipelined) beside a busy "
+                      "co-tenant process per core: sent → applied; received → applied and "
+                      "each third of the run in bench/results/latest.json"),
 )
 # The ratios a variant's row shows over its twin (label, result key): the TLS goal's p99; the
 # recording goal's p50 or the DecisionServer's CPU per command, and the p99 beside them.

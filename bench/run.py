@@ -45,6 +45,7 @@ from bench.groups import (
     force,
     observers,
     soak,
+    soak_overload,
     stereo,
 )
 from bench.groups import network as network_group
@@ -61,7 +62,8 @@ RESULTS_DIR = Path(__file__).resolve().parent / "results"
 GROUP_MODULES = {"command": command, "force": force, "baselines": baselines,
                  "observers": observers, "estop": estop, "decision": decision,
                  "closed_loop": closed_loop, "stereo": stereo, "soak": soak,
-                 "network": network_group, "video": video_group}
+                 "soak_overload": soak_overload, "network": network_group,
+                 "video": video_group}
 # Groups whose row carries its own run, so that a run of them alone merges into a latest.json;
 # each has its own table (terminal_lines) and figure (plot, PLOT_FILE).
 OWN_RUN_GROUPS = {network.NAME: network, video.NAME: video}

@@ -116,6 +116,12 @@ def _events(p: dict) -> dict:
     return follow_events(p["address"], p["max_s"], _ready, stop)
 
 
+def _overload(p: dict) -> dict:
+    from bench.overload import operate
+
+    return operate(p, _ready)  # BENCH_READY once its Teleoperate session is open
+
+
 def _network(p: dict) -> dict:
     from bench.network import task
 
@@ -130,7 +136,7 @@ def _video(p: dict) -> dict:
 
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
          "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo,
-         "events": _events, "network": _network, "video": _video}
+         "events": _events, "overload": _overload, "network": _network, "video": _video}
 
 
 def main(argv: list[str] | None = None) -> int:
