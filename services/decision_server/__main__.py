@@ -23,6 +23,7 @@ from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.metrics import ServiceMetrics
+from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
 from services.runtime.service import HealthReporter, Service
@@ -136,4 +137,5 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
 if __name__ == "__main__":
     raise SystemExit(run_service(
         "decision_server", "DecisionServer: supervisory control and arbitration.",
-        DecisionService, add_arguments=_add_arguments))
+        DecisionService, add_arguments=_add_arguments,
+        realtime_priority=COMMAND_PATH_FIFO_PRIORITY))

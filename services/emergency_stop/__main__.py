@@ -13,6 +13,7 @@ import threading
 
 from services.emergency_stop.servicer import EmergencyStopServicer
 from services.runtime.core_service import CoreService
+from services.runtime.priority import BAND_FIFO_PRIORITY
 from services.runtime.process import run_service
 from services.runtime.server import binding
 from services.world.shm_layout import add_shm_name_argument
@@ -48,4 +49,5 @@ if __name__ == "__main__":
     _raise_priority()
     raise SystemExit(run_service(
         "emergency_stop", "The emergency-stop band: ProxyRobot.EmergencyStop past the driver.",
-        build, add_arguments=_add_arguments))
+        build, add_arguments=_add_arguments,
+        realtime_priority=BAND_FIFO_PRIORITY))

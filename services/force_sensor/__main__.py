@@ -15,6 +15,7 @@ from services.force_sensor.core import ForceSensorCore
 from services.force_sensor.rdt import RDT_PORT, RdtWrenchLink
 from services.force_sensor.servicer import ForceSensorServicer
 from services.runtime.core_service import CoreService
+from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from services.runtime.process import run_service
 from services.runtime.server import binding
 from services.runtime.supervisor_state import RESTARTED_BECAUSE_ENV
@@ -72,4 +73,5 @@ def _resume_reading(core: ForceSensorCore, previous_end: str) -> None:
 
 if __name__ == "__main__":
     raise SystemExit(run_service("force_sensor", "ForceSensor: the wrist F/T sensor.", build,
-                                 add_arguments=_add_arguments))
+                                 add_arguments=_add_arguments,
+        realtime_priority=COMMAND_PATH_FIFO_PRIORITY))

@@ -12,6 +12,7 @@ import os
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.servicer import ProxyRobotServicer
 from services.runtime.core_service import CoreService
+from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from services.runtime.process import run_service
 from services.runtime.server import binding
 from services.runtime.supervisor_state import RESTARTED_BECAUSE_ENV
@@ -44,4 +45,5 @@ def build(args: argparse.Namespace) -> CoreService:
 
 if __name__ == "__main__":
     raise SystemExit(run_service("proxy_robot", "ProxyRobot: the software proxy of the arm.",
-                                 build, add_arguments=_add_arguments))
+                                 build, add_arguments=_add_arguments,
+        realtime_priority=COMMAND_PATH_FIFO_PRIORITY))

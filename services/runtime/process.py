@@ -23,6 +23,7 @@ from prometheus_client import disable_created_metrics
 
 from services.runtime.config import METRICS_OFF, base_parser, configure_logging
 from services.runtime.metrics import ServiceMetrics
+from services.runtime.priority import raise_thread_priority
 from services.runtime.server import (
     PlaintextRefused,
     ServerSecurity,
@@ -32,7 +33,7 @@ from services.runtime.server import (
 from services.runtime.service import Service
 from services.security.audit import audit_log_for
 from services.security.tokens import TokenStore, tokens_file
-from wire.addresses import is_loopback
+from wire.addresses import env_name, is_loopback
 from wire.errors import TelerobotError
 from wire.processes import PARENT_PID_ENV, dump_stacks_on_signal, ready_line
 
@@ -65,14 +66,25 @@ def run_service(
     argv: Sequence[str] | None = None,
     add_arguments: Callable[[argparse.ArgumentParser], None] | None = None,
     switch_interval_s: float = GIL_SWITCH_INTERVAL_S,
+    realtime_priority: int = 0,
 ) -> int:
     """Run the service `name` until SIGINT/SIGTERM; returns the process exit code.
-    `switch_interval_s` is the process's GIL switch interval (the world's is shorter)."""
+    `switch_interval_s` is the process's GIL switch interval (the world's is shorter).
+    `realtime_priority` > 0: the service is on the command path, and every thread of its
+    process runs at SCHED_FIFO at that priority where the host allows it (`--rt-priority`)."""
     parser = base_parser(name, description)
+    if realtime_priority:
+        add_realtime_argument(parser, name, realtime_priority)
     if add_arguments:
         add_arguments(parser)
     args = parser.parse_args(argv)
     configure_logging(name, args.log_level)
+    if realtime_priority:  # first: the threads started from now on inherit it
+        if args.rt_priority:
+            raise_thread_priority(args.rt_priority, 0, what=f"{name}'s threads",
+                                  inherited=True)
+        else:
+            log.info("real-time scheduling off (--rt-priority 0)")
     dump_stacks_on_signal()
     sys.setswitchinterval(switch_interval_s)
 
@@ -157,6 +169,16 @@ def run_service(
         security.audit.close()
     log.info("stopped")
     return 0
+
+
+def add_realtime_argument(parser: argparse.ArgumentParser, name: str, default: int) -> None:
+    parser.add_argument(
+        "--rt-priority", type=int, default=int(os.environ.get(env_name(name, "rt_priority"),
+                                                              default)),
+        choices=range(0, 100), metavar="0-99",
+        help=f"SCHED_FIFO priority of every thread of this process where the OS allows it "
+             f"(default {default}, below the world's physics thread); 0 turns it off "
+             f"(env {env_name(name, 'rt_priority')})")
 
 
 def check_metrics_address(address: str, allow_network: bool) -> None:

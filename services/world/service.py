@@ -18,7 +18,6 @@ it got. Other threads of the process keep the default scheduling.
 from __future__ import annotations
 
 import logging
-import os
 import threading
 import time
 from collections.abc import Callable, Sequence
@@ -26,6 +25,7 @@ from collections.abc import Callable, Sequence
 import mujoco
 
 from services.runtime.metrics import ServiceMetrics
+from services.runtime.priority import raise_thread_priority
 from services.runtime.server import ServiceBinding
 from services.runtime.service import HealthReporter, Service
 from services.world.realtime import LoopStats, RealtimeLoop
@@ -43,8 +43,6 @@ STOP_TIMEOUT_S = 2.0  # close() waits this long for the physics thread
 # thread), else the default. Both need CAP_SYS_NICE.
 PHYSICS_THREAD_FIFO_PRIORITY = 10
 PHYSICS_THREAD_NICE = -10
-RT_RUNTIME_PATH = "/proc/sys/kernel/sched_rt_runtime_us"
-RT_PERIOD_PATH = "/proc/sys/kernel/sched_rt_period_us"
 _NOT_SET = object()
 
 
@@ -171,51 +169,3 @@ class WorldService(Service):
 
 def _log_mujoco_warning(message: str) -> None:
     log.warning("MuJoCo: %s", message.strip())
-
-
-def read_rt_throttling() -> tuple[int, int] | None:
-    """(runtime, period) in µs of the kernel's real-time throttling: real-time threads may use
-    `runtime` of every `period` (runtime -1: unlimited, throttling off); None if unknown."""
-    try:
-        with open(RT_RUNTIME_PATH) as runtime, open(RT_PERIOD_PATH) as period:
-            return int(runtime.read()), int(period.read())
-    except (OSError, ValueError):
-        return None
-
-
-def raise_thread_priority(fifo_priority: int, nice: int, *, system=os,
-                          rt_throttling: Callable[[], tuple[int, int] | None] = read_rt_throttling,
-                          thread_id: int | None = None) -> str:
-    """Give the calling thread SCHED_FIFO at `fifo_priority` where the OS allows it and the
-    kernel throttles real-time threads, else the nice value `nice`; returns what it got
-    ("SCHED_FIFO 10", "nice -10" or "default"). `system` stands for the os module (tests pass a
-    fake); `fifo_priority` 0 asks for the nice value only."""
-    thread_id = threading.get_native_id() if thread_id is None else thread_id
-    if fifo_priority > 0:
-        throttling = rt_throttling()
-        if not hasattr(system, "sched_setscheduler"):
-            why_not = "this OS has no SCHED_FIFO"
-        elif throttling is None:
-            why_not = f"the kernel's real-time throttling is unknown ({RT_RUNTIME_PATH})"
-        elif throttling[0] < 0:
-            why_not = ("the kernel's real-time throttling is off (sched_rt_runtime_us -1), so a "
-                       "runaway real-time thread could lock a core")
-        else:
-            policy = system.SCHED_FIFO | getattr(system, "SCHED_RESET_ON_FORK", 0)
-            try:
-                system.sched_setscheduler(thread_id, policy, system.sched_param(fifo_priority))
-            except OSError as exc:  # EPERM: no CAP_SYS_NICE, or no RT budget in the cgroup
-                why_not = f"no privilege ({exc.strerror or exc})"
-            else:
-                log.info("physics thread at SCHED_FIFO priority %d (real-time threads are "
-                         "throttled to %d µs of every %d µs)", fifo_priority, *throttling)
-                return f"SCHED_FIFO {fifo_priority}"
-        log.info("no SCHED_FIFO %d for the physics thread: %s; asking for nice %d instead",
-                 fifo_priority, why_not, nice)
-    try:
-        system.setpriority(system.PRIO_PROCESS, thread_id, nice)
-    except (PermissionError, AttributeError):
-        log.info("no privilege to set nice %d on the physics thread; it runs at the default",
-                 nice)
-        return "default"
-    return f"nice {nice}"

@@ -9,7 +9,7 @@ import os
 
 import pytest
 
-from services.world.service import raise_thread_priority
+from services.runtime.priority import raise_thread_priority
 
 THROTTLED = (950_000, 1_000_000)  # Linux's default: 95 % of every second
 THREAD = 4242
@@ -51,7 +51,7 @@ def _raise(system, fifo=10, nice=-10, throttling=THROTTLED) -> str:
 
 def test_sched_fifo_where_allowed(caplog) -> None:
     system = FakeOs()
-    with caplog.at_level(logging.INFO, "services.world.service"):
+    with caplog.at_level(logging.INFO, "services.runtime.priority"):
         assert _raise(system, fifo=15) == "SCHED_FIFO 15"
     assert system.calls == [("sched_setscheduler", THREAD,
                              FakeOs.SCHED_FIFO | FakeOs.SCHED_RESET_ON_FORK, 15)]
@@ -60,7 +60,7 @@ def test_sched_fifo_where_allowed(caplog) -> None:
 
 def test_without_the_privilege_it_falls_back_to_nice(caplog) -> None:
     system = FakeOs("sched_setscheduler")
-    with caplog.at_level(logging.INFO, "services.world.service"):
+    with caplog.at_level(logging.INFO, "services.runtime.priority"):
         assert _raise(system) == "nice -10"
     assert [call[0] for call in system.calls] == ["sched_setscheduler", "setpriority"]
     assert system.calls[-1] == ("setpriority", FakeOs.PRIO_PROCESS, THREAD, -10)
@@ -69,7 +69,7 @@ def test_without_the_privilege_it_falls_back_to_nice(caplog) -> None:
 
 def test_without_any_privilege_it_runs_at_the_default(caplog) -> None:
     system = FakeOs("sched_setscheduler", "setpriority")
-    with caplog.at_level(logging.INFO, "services.world.service"):
+    with caplog.at_level(logging.INFO, "services.runtime.priority"):
         assert _raise(system) == "default"
     assert "no privilege to set nice -10" in caplog.text
 
@@ -80,7 +80,7 @@ def test_without_any_privilege_it_runs_at_the_default(caplog) -> None:
 ])
 def test_no_sched_fifo_unless_the_kernel_throttles_it(caplog, throttling, why) -> None:
     system = FakeOs()
-    with caplog.at_level(logging.INFO, "services.world.service"):
+    with caplog.at_level(logging.INFO, "services.runtime.priority"):
         assert _raise(system, throttling=throttling) == "nice -10"
     assert [call[0] for call in system.calls] == ["setpriority"]  # never asked for SCHED_FIFO
     assert why in caplog.text
@@ -96,3 +96,12 @@ def test_priority_zero_asks_for_the_nice_value_only() -> None:
     system = FakeOs()
     assert _raise(system, fifo=0) == "nice -10"
     assert [call[0] for call in system.calls] == ["setpriority"]
+
+
+def test_a_process_wide_priority_is_inherited_by_later_threads() -> None:
+    """Linux's SCHED_RESET_ON_FORK covers new threads too: a service asking for all of its
+    threads leaves it out."""
+    system = FakeOs()
+    assert raise_thread_priority(5, 0, system=system, rt_throttling=lambda: THROTTLED,
+                                 thread_id=THREAD, inherited=True) == "SCHED_FIFO 5"
+    assert system.calls == [("sched_setscheduler", THREAD, FakeOs.SCHED_FIFO, 5)]
