@@ -23,6 +23,14 @@ import pytest
 # MuJoCo picks its GL backend at import: headless rendering needs EGL, set before any test
 # module imports mujoco (make does it too, but a bare `pytest` should work the same).
 os.environ.setdefault("MUJOCO_GL", "egl")
+# The suite starts station after station on a shared 2-core machine, beside a browser and the
+# cameras' rendering. With their command-path threads real-time (services/runtime/priority.py)
+# they would take the cores from the test runner, the launchers and the cameras whenever they
+# wake, which is what real-time is for on a station and not what a test of something else
+# needs. So the suite's stations run them as ordinary threads; tests/runtime/test_realtime.py
+# checks the real-time start, and `make bench` (soak_overload) measures what it buys.
+for _service in ("decision_server", "proxy_robot", "force_sensor", "emergency_stop"):
+    os.environ.setdefault(f"TELEROBOT_{_service.upper()}_RT_PRIORITY", "0")
 
 from services.runtime import children  # noqa: E402
 from services.runtime.children import Child  # noqa: E402

@@ -48,7 +48,6 @@ one clock, across hosts).
 from __future__ import annotations
 
 import asyncio
-import dataclasses
 import logging
 import threading
 import time
@@ -130,6 +129,16 @@ def acks_in(reply: pb.TeleoperateResponse) -> list[pb.CommandAck]:
     if kind == "acks":
         return list(reply.acks.acks)
     return [reply.ack] if kind == "ack" else []
+
+
+def _merged_ack(ack: Ack, sequence: int) -> Ack:
+    """The ack of command `sequence`, which the client sent inside `ack`'s command."""
+    message = pb.CommandAck()
+    message.CopyFrom(ack.message)
+    message.sequence = sequence
+    message.detail = f"merged by the client into command {ack.sequence}; {ack.detail}".rstrip(
+        "; ")
+    return Ack.from_proto(message, ack.received_time_ns)
 
 
 def _again(error: TelerobotError) -> TelerobotError:
@@ -322,10 +331,7 @@ class TeleopSession(_SessionState):
             if ack.sequence:
                 if self._unacked.pop(ack.sequence, None) is None:
                     return  # acked already (a resend raced its first ack): once is enough
-                acks = [dataclasses.replace(
-                            ack, sequence=sequence,
-                            detail=f"merged by the client into command {ack.sequence}; "
-                                   f"{ack.detail}".rstrip("; "))
+                acks = [_merged_ack(ack, sequence)
                         for sequence in self._merged_into.pop(ack.sequence, [])] + [ack]
                 self.commands_acked += len(acks)
                 self.commands_applied += ack.applied * len(acks)

@@ -85,7 +85,10 @@ class Result:
     link_interruptions: int = 0  # times the link broke and the session resumed
     resent: int = 0  # commands sent again after a resume (the server applied each once)
     commands_acked: int = 0  # commands acked, once each
-    commands_applied: int = 0  # of those, acked APPLIED or MODIFIED
+    commands_applied: int = 0  # of those, acked APPLIED, MODIFIED or MERGED_LATE
+    # Of those, commands the client sent inside a newer one (the link was slower than the
+    # master): the server processed the rest.
+    commands_merged: int = 0
     passivity: bool = False  # TDPA on (feedback mode only)
     # Master–slave position drift at the end (m): where the master sent the tool (its start
     # plus every increment sent) against where it is. (In compliance mode the server's force
@@ -329,6 +332,7 @@ class PegInHole:
             self._session.resends if self._session else 0,
             self._session.commands_acked if self._session else 0,
             self._session.commands_applied if self._session else 0,
+            self._session.merged if self._session else 0,
             passivity=self._passivity is not None,
             drift_m=float(np.linalg.norm(start.translation + self._sent_m - end)),
             transparency_rms_n=self._transparency_rms(), oscillation_swings=swings,
