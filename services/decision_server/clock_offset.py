@@ -1,5 +1,4 @@
-"""The master's clock as the server sees it: its offset, estimated as NTP does from the
-session's own exchanges, and each message's queueing delay on the way.
+"""The master's clock offset, estimated as NTP does from the session's own exchanges.
 
 One exchange is a command and its ack: the master sends it at t0 (its clock), the server
 receives it at t1 and answers at t2 (the server's clock), the master receives the ack at t3 (its
@@ -65,32 +64,3 @@ class ClockOffsetEstimator:
             return None
         delay, offset = min(self._samples)
         return OffsetEstimate(offset, delay // 2)
-
-
-# The least transit is taken over this long: short enough to follow a drifting clock, long
-# enough that a standing queue shows as one rather than becoming the new normal.
-TRANSIT_WINDOW_NS = 10_000_000_000
-
-
-class QueueingDelay:
-    """How long each message queued on its way to the server, beyond the fastest any message
-    took lately: its transit (received, on the server's clock, less sent, on the master's)
-    less the least transit of the last TRANSIT_WINDOW_NS. The clocks' offset cancels out, and
-    so does the link's own delay; what is left is time spent in a queue: the master's send
-    buffers, the network's, or the server's before its handler read the message."""
-
-    def __init__(self, window_ns: int = TRANSIT_WINDOW_NS):
-        self._window_ns = window_ns
-        self._floor: deque[tuple[int, int]] = deque()  # (received, transit), transit rising
-
-    def queued_ns(self, sent_ns: int, received_ns: int) -> int:
-        """The message's queueing delay (0 without a send time)."""
-        if sent_ns <= 0:
-            return 0
-        transit = received_ns - sent_ns
-        while self._floor and self._floor[-1][1] >= transit:
-            self._floor.pop()
-        self._floor.append((received_ns, transit))
-        while self._floor[0][0] < received_ns - self._window_ns:
-            self._floor.popleft()
-        return transit - self._floor[0][1]

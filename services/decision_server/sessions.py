@@ -9,15 +9,13 @@ resend (the master did not get its ack before the cut) and is answered with its 
 instead of being applied again. So across a cut nothing is applied twice, and nothing the
 master still waits for is lost: it resends what was not acked.
 
-No command moves the arm on its own once it is stale: one that waited longer than the session's
-`max_command_age` before its turn is carried. Its wait counts from when it would have arrived
-without a queue (clock_offset.QueueingDelay: behind a slow link, in the gRPC buffers of a
-starved process) to its turn (behind a slow arm). Its ack is held back until a fresh command
-comes; the two go to the arm as one move, and the late one's ack says MERGED_LATE. Motion is
-not lost, and the arm goes to where the operator is now instead of replaying where they were.
-A carry that grows past one move's bounds, or older than BACKLOG_AGE_FACTOR ages, is refused
-instead and the arm holds; so is one that anything else overtakes (the clutch, a latch, a
-hold): its acks say REJECTED and why.
+No command moves the arm on its own once it is stale: one that waited in the station longer than
+the session's `max_command_age` before its turn (a backlog behind a slow arm or a starved
+process) is carried, its ack held back, until a fresh command comes; the two go to the arm as one
+move, and the late one's ack says MERGED_LATE. Motion is not lost, and the arm goes to where the
+operator is now instead of replaying where they were. A carry that grows past one move's bounds,
+or older than BACKLOG_AGE_FACTOR ages, is refused instead and the arm holds; so is one that
+anything else overtakes (the clutch, a latch, a hold): its acks say REJECTED and why.
 """
 
 from __future__ import annotations
@@ -38,7 +36,7 @@ from domain.geometry import moved_by, rotation_angle
 from domain.passivity import SlavePassivity
 from services.decision_server.arbitration import Lease
 from services.decision_server.assistance import Assistance, apply_assistance
-from services.decision_server.clock_offset import ClockOffsetEstimator, QueueingDelay
+from services.decision_server.clock_offset import ClockOffsetEstimator
 from services.decision_server.slave import Slave, SlaveWrench
 from services.runtime.clock import Clock
 from wire.errors import AbortedError, FailedPreconditionError, TelerobotError, UnavailableError
@@ -140,7 +138,6 @@ class MasterIncrement:
     sequence: int = 0
     master_energy_in_j: float | None = None  # the master port's E_in it carried (TDPA)
     send_time_ns: int = 0  # when the master sent it, on its clock (0: not said)
-    queued_ns: int = 0  # how long it queued on its way, beyond the link's least delay
 
 
 # A merged move stays well inside ProxyRobot's caps per move (50 mm, 15 deg), so merging never
@@ -250,7 +247,6 @@ class OperatorSession:
         self._resends = _Resends()
         # The master's clock offset from the session's exchanges (its serving thread's).
         self.clock_offset = ClockOffsetEstimator()
-        self._queueing = QueueingDelay()
         # Late commands waiting for a fresh one (see the module's docstring), with the stream
         # they came on and the holds so far when they were carried: a new stream or a hold since
         # overtakes them.
@@ -329,9 +325,7 @@ class OperatorSession:
             resend = self._resends.split(increments)
             decided = [(i, self._resends.answer(i))
                        for i, again in zip(increments, resend, strict=True) if again]
-            fresh = [dataclasses.replace(i, queued_ns=self._queueing.queued_ns(
-                         i.send_time_ns, i.receive_time_ns))
-                     for i, again in zip(increments, resend, strict=True) if not again]
+            fresh = [i for i, again in zip(increments, resend, strict=True) if not again]
             # Recorded group by group: if the stream breaks mid-batch, what moved the arm is
             # remembered (a resend of it is answered) and the rest counts as never received.
             for group, results in self._process(fresh, stream):
@@ -391,8 +385,8 @@ class OperatorSession:
         return self._age_s(increment) > self.max_command_age_s
 
     def _age_s(self, increment: MasterIncrement) -> float:
-        """How long `increment` has waited: queued on its way, and since it arrived."""
-        return (self._clock.time_ns() - increment.receive_time_ns + increment.queued_ns) / 1e9
+        """How long `increment` has waited in the station."""
+        return (self._clock.time_ns() - increment.receive_time_ns) / 1e9
 
     def _backlog(self, group: list[MasterIncrement], ages: list[float]) -> str | None:
         """Why `group` (late commands and the fresh one they join) is a backlog to refuse rather

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from services.decision_server.clock_offset import WINDOW, ClockOffsetEstimator, QueueingDelay
+from services.decision_server.clock_offset import WINDOW, ClockOffsetEstimator
 
 OFFSET_NS = 3_700_000_123  # the server's clock is 3.7 s ahead of the master's
 MS = 1_000_000
@@ -77,32 +77,3 @@ def test_an_unknown_or_impossible_receipt_is_refused():
     assert not estimator.receipt(1, 1_005 * MS)  # acked 5 ms after sending, 10 ms in the server
     assert estimator.estimate() is None
     assert not estimator.receipt(1, 2_000 * MS)  # an exchange is used once
-
-
-# -- queueing delay -----------------------------------------------------------------------------
-
-def test_queueing_is_transit_beyond_the_least_lately_whatever_the_offset_and_link_delay():
-    queueing = QueueingDelay()
-    at, base = EPOCH_NS, 40 * MS  # 40 ms each way, the master's clock 3.7 s behind
-
-    def message(sent_at: int, queued: int) -> int:
-        return queueing.queued_ns(sent_at - OFFSET_NS, sent_at + base + queued)
-
-    assert message(at, 0) == 0
-    assert message(at + 2 * MS, 80 * MS) == 80 * MS
-    assert message(at + 4 * MS, 30 * MS) == 30 * MS
-    assert message(at + 6 * MS, 0) == 0
-
-
-def test_queueing_forgets_a_least_transit_older_than_its_window():
-    queueing = QueueingDelay(window_ns=1_000 * MS)
-    assert queueing.queued_ns(EPOCH_NS, EPOCH_NS + 5 * MS) == 0
-    # 2 s later every message takes 20 ms more (a clock stepped, a route changed): the new
-    # least is the normal once the old one is out of the window.
-    later = EPOCH_NS + 2_000 * MS
-    assert queueing.queued_ns(later, later + 25 * MS) == 0
-    assert queueing.queued_ns(later + MS, later + MS + 35 * MS) == 10 * MS
-
-
-def test_a_message_without_a_send_time_has_no_queueing_known():
-    assert QueueingDelay().queued_ns(0, EPOCH_NS) == 0
