@@ -376,16 +376,12 @@ class TeleopSession(_SessionState):
             merged.command.ack_receipt.CopyFrom(receipt)
         with self._lock:
             if box is self._requests:  # (a stream a resume replaced: its commands were resent)
-                older = []  # what the run carries, a resent merged command's too
-                for request in run:
-                    sequence = request.command.sequence
-                    older += self._merged_into.pop(sequence, [])
-                    if request is not run[-1]:
-                        older.append(sequence)
-                        self._unacked.pop(sequence, None)
-                        self.merged += 1
+                older = [r.command.sequence for r in run[:-1]]  # (never resends: see above)
+                for sequence in older:
+                    self._unacked.pop(sequence, None)
+                self.merged += len(older)
                 self._unacked[merged.command.sequence] = merged  # what a resume would resend
-                self._merged_into[merged.command.sequence] = sorted(older)
+                self._merged_into[merged.command.sequence] = older
         return merged
 
     def _resumable(self, error: TelerobotError) -> bool:
