@@ -55,6 +55,11 @@ FEEL_N = 8.0  # the operator stops pushing once it feels this much
 DESIRED_FORCE_N = 5.0
 COMPLIANCE_GAIN_M_PER_N_S = 3e-4  # stable with the arm's ~1e5 N/m contact stiffness
 SETTLE_S = 3.0
+SETTLED_N = 1.0  # compliance has settled once the contact force stays this close to the desired
+# The force loop approaches at A·F; on a loaded station it runs slower (it skips wrench samples
+# that arrive stale), so the operator waits for the contact itself, up to this many times the
+# nominal approach.
+APPROACH_SLACK = 3.0
 FINAL_WINDOW_S = 1.0  # the final force is the mean over the run's last second
 OVERREACH_M = 0.01  # the feedback operator aims past the floor and stops when it feels it
 BACK_OFF_STEP_M = 0.0002  # then raises the peg this much per command
@@ -298,6 +303,23 @@ class PegInHole:
             self._show(False)
             time.sleep(period)
 
+    def _hold_until_settled(self, session, period: float, limit_s: float) -> None:
+        """Heartbeats until the contact force has stayed within SETTLED_N of the desired for
+        SETTLE_S (or `limit_s` has passed): the operator watches the contact, not a clock."""
+        deadline = time.monotonic() + limit_s
+        settled_since = None
+        while time.monotonic() < deadline:
+            session.heartbeat_nowait()
+            self._show(False)
+            now = time.monotonic()
+            if abs(self._contact_force() - DESIRED_FORCE_N) > SETTLED_N:
+                settled_since = None
+            elif settled_since is None:
+                settled_since = now
+            elif now - settled_since >= SETTLE_S:
+                return
+            time.sleep(period)
+
     def _comply(self, session, period: float) -> None:
         """Server-side force control along the peg until the floor pushes back as desired."""
         assistance = pb.AssistanceConfig(force_control=pb.ForceControl(
@@ -308,8 +330,8 @@ class PegInHole:
         try:
             # Approach at A·F = 1.5 mm/s over the rest of the hole, then settle on the floor.
             rest = HOLE_DEPTH_M - HAND_INSERT_M
-            self._hold(session, period,
-                       rest / (COMPLIANCE_GAIN_M_PER_N_S * DESIRED_FORCE_N) + SETTLE_S)
+            approach_s = rest / (COMPLIANCE_GAIN_M_PER_N_S * DESIRED_FORCE_N)
+            self._hold_until_settled(session, period, APPROACH_SLACK * approach_s + SETTLE_S)
         finally:
             self.client.set_assistance(pb.AssistanceConfig())
 
