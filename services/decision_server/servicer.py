@@ -57,6 +57,9 @@ from wire.errors import AbortedError, InvalidArgumentError, TelerobotError
 from wire.metadata import LEASE_METADATA_KEY
 
 STREAM_POLL_S = 0.1
+# A Teleoperate stream takes one of the server's capped stream slots from its first byte: its
+# init must come within this, or the stream is cancelled and the slot freed.
+INIT_TIMEOUT_S = 10.0
 # Calls through the facades that command the arm or the sensor need the control lock.
 PROXY_COMMANDS = {"Connect", "Initialize", "Disconnect", "SetToolFrame", "MoveJointsIncremental",
                   "MoveCartesianIncremental", "Hold", "Reset"}
@@ -312,7 +315,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         return pb.TeleoperateResponse(ack=ack)
 
     def Teleoperate(self, request_iterator, context):
-        first = next(request_iterator, None)
+        first = _first_message(request_iterator, context, INIT_TIMEOUT_S)
         if first is None or first.WhichOneof("message") != "init":
             raise InvalidArgumentError("the first Teleoperate message must be an init",
                                        reason="NO_INIT")
@@ -638,3 +641,15 @@ def make_facades(core: DecisionCore, robot_stub, sensor_stub, stereo_stub) -> li
     return [(proxy_robot_pb2_grpc, "ProxyRobot", robot()),
             (force_sensor_pb2_grpc, "ForceSensor", sensor()),
             (stereo_camera_pb2_grpc, "StereoCamera", stereo())]
+
+
+def _first_message(request_iterator, context: grpc.ServicerContext, timeout_s: float):
+    """The stream's first message, or None; a client that sends none within `timeout_s` has its
+    call cancelled (a blocked read ends only so)."""
+    timer = threading.Timer(timeout_s, context.cancel)
+    timer.daemon = True
+    timer.start()
+    try:
+        return next(request_iterator, None)
+    finally:
+        timer.cancel()

@@ -6,12 +6,15 @@ from __future__ import annotations
 
 import signal
 import textwrap
+import threading
 import time
 
+import grpc
 import numpy as np
 import pinocchio as pin
 import pytest
 
+from services.decision_server import servicer as servicer_module
 from services.decision_server.sessions import WatchdogHold
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2, types_pb2
@@ -151,3 +154,21 @@ def test_a_killed_client_gets_the_arm_held(driven):
     settled_position(station)  # it stays
 
 
+
+
+def test_a_stream_that_sends_no_init_is_ended_and_frees_its_slot(fake_station, monkeypatch):
+    """A stream holds one of the capped stream slots from its first byte: without an init in
+    time, the server cancels it."""
+    station, _ = fake_station
+    monkeypatch.setattr(servicer_module, "INIT_TIMEOUT_S", 0.2)
+    silent = threading.Event()
+
+    def nothing():
+        silent.wait(30)  # sends nothing until the test ends
+        yield from ()
+
+    call = station.decisions.Teleoperate(nothing(), timeout=20)
+    with pytest.raises(grpc.RpcError) as ended:
+        next(call)
+    silent.set()
+    assert ended.value.code() == grpc.StatusCode.CANCELLED
