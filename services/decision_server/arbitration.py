@@ -38,11 +38,16 @@ from wire.errors import (
     InvalidArgumentError,
     NotFoundError,
     PermissionDeniedError,
+    ResourceExhaustedError,
+    RpcCancelledError,
 )
 
-DEFAULT_LEASE_S = 10.0  # outlives a short cut: see teleop.RESUME_WINDOW_S
+DEFAULT_LEASE_S = 10.0  # outlives a short cut: see sessions.RESUME_WINDOW_S
 MIN_LEASE_S, MAX_LEASE_S = 0.1, 60.0
 MAX_WAIT_S = 3600.0
+# Waiting callers at once, and each operator waits once: a waiting call holds a server thread,
+# so a flood of waits must not take them all.
+MAX_WAITERS = 16
 REAPER_PERIOD_S = 0.05  # expired leases are noticed this fast even when nobody calls
 
 
@@ -71,6 +76,7 @@ class _Waiter:
     deadline: float  # clock.monotonic()
     identity: str | None = None
     granted: Lease | None = None
+    abandoned: bool = False  # the caller went away while it waited
     ready: threading.Event = field(default_factory=threading.Event)
 
 
@@ -103,9 +109,13 @@ class LockManager:
     # -- requests ---------------------------------------------------------------------------
 
     def acquire(self, operator_id: str, mode: ControlMode, group: str = "", wait: bool = False,
-                wait_timeout_s: float | None = None, lease_s: float = DEFAULT_LEASE_S) -> Lease:
+                wait_timeout_s: float | None = None, lease_s: float = DEFAULT_LEASE_S,
+                on_caller_gone: Callable[[Callable[[], None]], object] | None = None) -> Lease:
         """Grant a lease now, or queue for one (wait=True), or fail with AbortedError. An
-        authenticated caller holds it as its identity, whatever `operator_id` says."""
+        authenticated caller holds it as its identity, whatever `operator_id` says. A waiting
+        caller that goes away (`on_caller_gone(callback)` registers the callback: gRPC's
+        context.add_callback) leaves the queue at once, and a lease granted as it left is
+        released."""
         caller = current_caller()
         identity = caller.identity if caller is not None else None
         operator_id = identity or operator_id
@@ -115,11 +125,17 @@ class LockManager:
         if not MIN_LEASE_S <= lease_s <= MAX_LEASE_S:
             raise InvalidArgumentError(f"lease must be {MIN_LEASE_S}..{MAX_LEASE_S} s",
                                        reason="BAD_LEASE")
-        lease, waiter, holders = None, None, ""
+        lease, waiter, holders, refusal = None, None, "", None
         with self._lock:
             expired = self._expire()
             if not self._queue and self._compatible(mode, group):
                 lease = self._grant(operator_id, mode, group, lease_s, identity)
+            elif wait and any(w.operator_id == operator_id for w in self._queue):
+                refusal = AbortedError(f"{operator_id} already waits for control: one wait at "
+                                       "a time", reason="ALREADY_WAITING")
+            elif wait and len(self._queue) >= MAX_WAITERS:
+                refusal = ResourceExhaustedError(f"{MAX_WAITERS} callers already wait for "
+                                                 "control: try later", reason="QUEUE_FULL")
             elif wait:
                 deadline = (self._clock.monotonic()
                             + min(wait_timeout_s or MAX_WAIT_S, MAX_WAIT_S))
@@ -130,21 +146,41 @@ class LockManager:
         if lease is not None:
             self._notify([*expired, f"{operator_id} acquired {mode.name} control"])
             return lease
+        if refusal is not None:
+            self._notify(expired)
+            raise refusal
         if waiter is None:
             self._notify(expired)
             raise AbortedError(f"control is held by {holders}; ask with wait=true to queue, or try "
                                "later", reason="CONTROL_HELD")
         self._notify([*expired, f"{operator_id} waits for {mode.name} control"])
+        # False: the call already ended, so the callback would never run.
+        if on_caller_gone is not None and on_caller_gone(lambda: self._abandon(waiter)) is False:
+            self._abandon(waiter)
         if (self._clock.wait_until(waiter.ready, waiter.deadline)
-                and waiter.granted):
+                and waiter.granted and not waiter.abandoned):
             return waiter.granted
         with self._lock:
-            if waiter.granted:  # granted just as the wait timed out
+            if waiter.granted and not waiter.abandoned:  # granted just as the wait timed out
                 return waiter.granted
-            self._queue.remove(waiter)
+            if waiter in self._queue:
+                self._queue.remove(waiter)
+            granted = waiter.granted
+        if waiter.abandoned:
+            if granted is not None:  # granted as the caller left: nobody would renew it
+                self.release(granted.lease_id)
+            self._notify([f"{operator_id} left the queue"])
+            raise RpcCancelledError(f"{operator_id} went away while waiting for control",
+                                    reason="CALLER_GONE")
         self._notify([f"{operator_id} gave up waiting"])
         raise DeadlineExceededError(f"control did not come free in time; held by "
                                     f"{self.describe_holders()}", reason="WAIT_TIMEOUT")
+
+    def _abandon(self, waiter: _Waiter) -> None:
+        """The waiting caller went away: wake its wait (a finished one ignores this)."""
+        with self._lock:
+            waiter.abandoned = True
+        waiter.ready.set()
 
     def renew(self, lease_id: str) -> Lease:
         with self._lock:

@@ -479,7 +479,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         wait_s = convert.seconds(request.wait_timeout) or context.time_remaining()
         lease = self._core.locks.acquire(
             request.operator_id, mode, request.group, request.wait, wait_s,
-            convert.seconds(request.lease_duration) or DEFAULT_LEASE_S)
+            convert.seconds(request.lease_duration) or DEFAULT_LEASE_S,
+            on_caller_gone=context.add_callback)  # a cancelled wait leaves the queue
         return pb.AcquireControlResponse(lease_id=lease.lease_id, operator_id=lease.operator_id,
                                          expire_time=_holder(lease, self._core.clock).expire_time,
                                          state=self._control_state())

@@ -11,6 +11,7 @@ import pytest
 
 from services.decision_server.arbitration import (
     DEFAULT_LEASE_S,
+    MAX_WAITERS,
     ControlMode,
     ControlView,
     LockManager,
@@ -22,6 +23,8 @@ from wire.errors import (
     DeadlineExceededError,
     FailedPreconditionError,
     NotFoundError,
+    ResourceExhaustedError,
+    RpcCancelledError,
     TelerobotError,
 )
 
@@ -247,3 +250,46 @@ def test_on_change_is_told_with_the_lock_released(clock):
     assert not worker.is_alive(), "on_change deadlocked calling back into the LockManager"
     assert seen == [("ann acquired EXCLUSIVE control", "'ann' (EXCLUSIVE)"),
                     ("ann released control", "nobody")]
+
+
+class CallerGone:
+    """Stands in for gRPC's context.add_callback: `leave()` runs what was registered, as the
+    server does when the caller cancels or its connection drops."""
+
+    def __init__(self):
+        self.callbacks = []
+
+    def __call__(self, callback) -> bool:
+        self.callbacks.append(callback)
+        return True
+
+    def leave(self) -> None:
+        for callback in self.callbacks:
+            callback()
+
+
+def test_a_waiter_that_goes_away_leaves_the_queue_at_once(locks, changes):
+    holder = locks.acquire("holder", EXCLUSIVE)
+    gone = CallerGone()
+    waiter = Acquirer(locks, "waiter", on_caller_gone=gone)
+    wait_until_queued(locks, ["waiter"])
+    gone.leave()  # long before its wait (an hour by default) would end
+    error = waiter.result()
+    assert isinstance(error, RpcCancelledError) and error.reason == "CALLER_GONE"
+    assert queued(locks) == [] and holders(locks) == ["holder"]
+    locks.release(holder.lease_id)
+    assert holders(locks) == []  # nobody was promoted for the caller that left
+
+
+def test_each_operator_waits_once_and_the_queue_is_bounded(locks):
+    locks.acquire("holder", EXCLUSIVE)
+    first = Acquirer(locks, "ann")
+    wait_until_queued(locks, ["ann"])
+    with pytest.raises(AbortedError, match="already waits"):
+        locks.acquire("ann", EXCLUSIVE, wait=True)
+    waiting = [first]
+    for index in range(1, MAX_WAITERS):
+        waiting.append(Acquirer(locks, f"op{index}"))
+        wait_until_queued(locks, ["ann", *(f"op{i}" for i in range(1, index + 1))])
+    with pytest.raises(ResourceExhaustedError, match="already wait for control"):
+        locks.acquire("latecomer", EXCLUSIVE, wait=True)
