@@ -19,6 +19,8 @@ from collections import deque
 from collections.abc import Callable, Iterator
 from typing import Generic, TypeVar
 
+from wire.errors import ResourceExhaustedError
+
 T = TypeVar("T")
 M = TypeVar("M")
 
@@ -91,17 +93,28 @@ _END = object()
 class Producer(Generic[T]):
     """Runs `produce(emit)` on a daemon thread; iterating yields what it emits, in order, in the
     iterating thread, then raises what `produce` raised, if anything. Emitting never waits for
-    the reader. Stop its input (Inbox.close()) to end it."""
+    the reader, but a reader that falls `max_pending` answers behind (a client that never
+    reads: each write waits for it) ends the producing: emit raises ResourceExhaustedError,
+    which the reader gets after what was pending. Stop its input (Inbox.close()) to end it."""
 
-    def __init__(self, produce: Callable[[Callable[[T], None]], None], name: str = "producer"):
+    def __init__(self, produce: Callable[[Callable[[T], None]], None], name: str = "producer",
+                 max_pending: int = 4096):
         self._produce = produce
+        self._max_pending = max_pending
         self._out: queue.SimpleQueue = queue.SimpleQueue()
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
         self._thread.start()
 
+    def _emit(self, item: T) -> None:
+        if self._out.qsize() >= self._max_pending:
+            raise ResourceExhaustedError(
+                f"{self._max_pending} answers wait to be read: a stream's reader must keep up "
+                "with its answers", reason="ANSWERS_UNREAD")
+        self._out.put(item)
+
     def _run(self) -> None:
         try:
-            self._produce(self._out.put)
+            self._produce(self._emit)
         except BaseException as error:  # noqa: BLE001 - raised again in the iterating thread
             self._out.put(error)
         finally:

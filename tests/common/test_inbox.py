@@ -9,6 +9,7 @@ import pytest
 
 from services.common.inbox import Inbox, Producer
 from tests.conftest import wait_for
+from wire.errors import ResourceExhaustedError
 
 
 class Gate:
@@ -85,6 +86,28 @@ def test_a_producer_yields_what_it_emits_in_order_then_raises_its_error():
         for value in Producer(produce):
             got.append(value)
     assert got == [0, 1, 2, 3, 4]
+
+
+def test_a_reader_that_falls_too_far_behind_ends_the_producing():
+    """A client that never reads its acks: the answers pending stop at the bound, the producer
+    stops acting, and the reader gets the error after what was pending."""
+    produced, gave_up = [], threading.Event()
+
+    def produce(emit):
+        try:
+            for value in range(100):
+                emit(value)
+                produced.append(value)
+        finally:
+            gave_up.set()
+
+    stream = Producer(produce, max_pending=8)
+    assert gave_up.wait(5)  # nobody read meanwhile
+    got = []
+    with pytest.raises(ResourceExhaustedError, match="8 answers wait to be read"):
+        for value in stream:
+            got.append(value)
+    assert got == produced == list(range(8))
 
 
 def test_a_closed_inbox_ends_the_producer_that_takes_from_it():
