@@ -16,12 +16,21 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from wire.errors import DeadlineExceededError, InvalidArgumentError, NotFoundError
+from services.runtime.clock import SYSTEM_CLOCK, Clock
+from wire.errors import (
+    DeadlineExceededError,
+    InvalidArgumentError,
+    NotFoundError,
+    ResourceExhaustedError,
+)
 
 SLICE_S = 0.001
 MAX_ACTIONS = 64
 DEFAULT_BARRIER_TIMEOUT_S = 10.0
 MAX_BARRIER_TIMEOUT_S = 60.0
+# Cobegins open at once, across every caller: each holds a little memory until its actions
+# arrive or, abandoned (none arrived by its deadline), the next opening drops it.
+MAX_OPEN_BARRIERS = 256
 
 
 @dataclass
@@ -36,7 +45,8 @@ class _Barrier:
 class Barriers:
     """Open cobegin barriers, by id."""
 
-    def __init__(self):
+    def __init__(self, clock: Clock = SYSTEM_CLOCK):
+        self._clock = clock
         self._lock = threading.Lock()
         self._barriers: dict[str, _Barrier] = {}
 
@@ -48,8 +58,17 @@ class Barriers:
             raise InvalidArgumentError(f"barrier_timeout must be 0..{MAX_BARRIER_TIMEOUT_S} s",
                                        reason="BAD_TIMEOUT")
         barrier_id = uuid.uuid4().hex
+        now = self._clock.monotonic()
         with self._lock:
-            self._barriers[barrier_id] = _Barrier(count, time.monotonic() + timeout_s)
+            abandoned = [key for key, barrier in self._barriers.items()
+                         if barrier.arrived == 0 and barrier.deadline <= now]
+            for key in abandoned:
+                del self._barriers[key]
+            if len(self._barriers) >= MAX_OPEN_BARRIERS:
+                raise ResourceExhaustedError(
+                    f"{MAX_OPEN_BARRIERS} cobegins are open: run their actions, or let them "
+                    "time out, before opening another", reason="TOO_MANY_COBEGINS")
+            self._barriers[barrier_id] = _Barrier(count, now + timeout_s)
         return barrier_id, timeout_s
 
     def arrived(self, barrier_id: str) -> int:
@@ -73,7 +92,7 @@ class Barriers:
             if barrier.arrived == barrier.expected:
                 barrier.released.notify_all()
             while barrier.arrived < barrier.expected and not barrier.failed:
-                remaining = barrier.deadline - time.monotonic()
+                remaining = barrier.deadline - self._clock.monotonic()
                 if remaining <= 0:
                     barrier.failed = True
                     barrier.released.notify_all()
