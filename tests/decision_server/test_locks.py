@@ -283,13 +283,16 @@ def test_a_waiter_that_goes_away_leaves_the_queue_at_once(locks, changes):
 
 def test_each_operator_waits_once_and_the_queue_is_bounded(locks):
     locks.acquire("holder", EXCLUSIVE)
-    first = Acquirer(locks, "ann")
+    gone = CallerGone()  # every waiter leaves at the end: none polls the clock after the test
+    waiting = [Acquirer(locks, "ann", on_caller_gone=gone)]
     wait_until_queued(locks, ["ann"])
     with pytest.raises(AbortedError, match="already waits"):
         locks.acquire("ann", EXCLUSIVE, wait=True)
-    waiting = [first]
     for index in range(1, MAX_WAITERS):
-        waiting.append(Acquirer(locks, f"op{index}"))
+        waiting.append(Acquirer(locks, f"op{index}", on_caller_gone=gone))
         wait_until_queued(locks, ["ann", *(f"op{i}" for i in range(1, index + 1))])
     with pytest.raises(ResourceExhaustedError, match="already wait for control"):
         locks.acquire("latecomer", EXCLUSIVE, wait=True)
+    gone.leave()
+    assert all(isinstance(w.result(), RpcCancelledError) for w in waiting)
+    assert queued(locks) == []
