@@ -8,11 +8,19 @@ A client finds its credentials in the environment (or is given them):
   the station's services present their own).
 - ``TELEROBOT_TOKEN``: a bearer token instead of a certificate (sent as ``authorization: Bearer
   ...``, only ever over TLS; only the DecisionServer's token port takes it).
+
+Which server it is: every certificate of the station's CA names the hosts the station answers
+on, so the host name alone only says "some server of this station". A service's certificate
+also names the service (`server_name`: ``decision-server.telerobot.internal``), and a channel
+opened for a service (``open_channel(..., service="decision_server")``) checks that name instead
+of the host's, so no other certificate of the CA (the observer-role live view's, say) passes
+for it.
 """
 
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -44,6 +52,28 @@ TLS_DIR_ENV = "TELEROBOT_TLS_DIR"
 IDENTITY_ENV = "TELEROBOT_IDENTITY"
 TOKEN_ENV = "TELEROBOT_TOKEN"
 DEFAULT_IDENTITY = "operator"
+# The domain of the names services' certificates carry for clients to check. Never resolved,
+# only compared (not .local, which mDNS resolves and discovery/ advertises hosts under).
+SERVER_NAME_DOMAIN = "telerobot.internal"
+TARGET_NAME_OPTION = "grpc.ssl_target_name_override"
+_SERVICE_NAME = re.compile(r"[a-z0-9](?:[a-z0-9_]{0,61}[a-z0-9])?")
+
+
+def server_name(service: str) -> str:
+    """The name `service`'s certificate carries beside the host names, which a client dialing
+    that service checks: "decision_server" -> "decision-server.telerobot.internal". A
+    service's name has no '-' of its own, so no two services share a server name."""
+    if not _SERVICE_NAME.fullmatch(service):
+        raise ValueError(f"{service!r} cannot be a service's server name: lower-case letters, "
+                         "digits and '_' (not at either end), at most 63")
+    return f"{service.replace('_', '-')}.{SERVER_NAME_DOMAIN}"
+
+
+def server_name_options(service: str) -> tuple[tuple[str, str], ...]:
+    """Channel options that make a TLS channel accept only `service`'s certificate: gRPC
+    checks `server_name(service)` instead of the target's host (for a channel made without
+    `open_channel`)."""
+    return ((TARGET_NAME_OPTION, server_name(service)),)
 
 
 @dataclass(frozen=True)
@@ -80,13 +110,21 @@ class ChannelSecurity:
 
 
 def open_channel(target: str, options: Sequence[tuple[str, object]] = (),
-                 security: ChannelSecurity | None = None, aio: bool = False):
+                 security: ChannelSecurity | None = None, aio: bool = False,
+                 service: str | None = None):
     """A channel to `target`: TLS when `security` (default: from the environment) has a TLS
     directory, plaintext otherwise; with KEEPALIVE_OPTIONS (before `options`, which may
-    override them). `aio` makes a grpc.aio channel."""
+    override them). `aio` makes a grpc.aio channel.
+
+    `service` (a name of wire.addresses' DEFAULT_PORTS, e.g. "decision_server"): over TLS the
+    server's certificate must name it (`server_name`), whatever host `target` names, so another
+    certificate of the station's CA cannot pose as it; the handshake fails otherwise
+    (UNAVAILABLE, "Hostname Verification Check failed": a PKI made before service names, which
+    `make certs` reissues). None checks only that the certificate names the target's host."""
     security = security or ChannelSecurity.from_env()
     target = dialable(target)
-    options = [*KEEPALIVE_OPTIONS, *options]
+    expected = server_name_options(service) if service is not None else ()  # a bad name fails
+    options = [*KEEPALIVE_OPTIONS, *(expected if security.secure else ()), *options]
     grpc_module = grpc.aio if aio else grpc
     if security.token and not security.secure:
         raise ValueError("a bearer token is sent only over TLS: set TELEROBOT_TLS_DIR to a "

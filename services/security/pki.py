@@ -4,17 +4,22 @@
     python -m services.security.pki issue NAME --role operator [--host ...] [--dir var/pki]
 
 What `init` (the default) writes into the directory:
-- `ca.pem` and `ca.key`: the station's certificate authority;
+- `ca.pem` and `ca.key`: the station's certificate authority, which may sign only end
+  certificates (path length 0), never another CA;
 - `<service>.pem` and `<service>.key` for every service of the station, role STATION: each is
-  a server certificate (SANs: localhost, 127.0.0.1, ::1, this host's name and every --host) and
-  also a client certificate, which the DecisionServer presents on its inner links;
+  a server certificate (SANs: its own name, `decision-server.telerobot.internal` for instance,
+  which a client dialing that service checks (wire/tls.py's `server_name`); then localhost,
+  127.0.0.1, ::1, this host's name and every --host) and also a client certificate, which the
+  DecisionServer presents on its inner links;
 - `admin`, `operator` and `observer`: client certificates with those roles, and `launcher`
   (role STATION), which `make serve` presents to ask each service for its health.
 
 An identity is the subject's common name (CN); its role is the subject's organizational unit
 (OU). A real CA works the same way: issue certificates with those two fields, put its
 certificate in `ca.pem` and each service's pair as `<service>.pem`/`.key` (see docs/security.md).
-Keys are EC P-256 (fast handshakes), written with mode 0600. Nothing here imports grpc.
+Keys are EC P-256 (fast handshakes), written with mode 0600. `init` reissues every service's and
+identity's certificate and keeps the CA, so it also brings a directory made by an older version
+up to date (the services' names).
 """
 
 from __future__ import annotations
@@ -37,6 +42,7 @@ from cryptography.x509.oid import ExtendedKeyUsageOID, NameOID
 
 from services.security.files import replace_file
 from services.security.roles import Role
+from wire.tls import server_name
 
 DEFAULT_PKI_DIR = "var/pki"
 # Every process of the station, and the identities a fresh station hands out.
@@ -93,7 +99,8 @@ def init(directory: Path, hosts: Iterable[str] = (), force: bool = False) -> lis
 def issue(directory: Path, name: str, role: Role, server_names: Iterable[str] = (),
           days: int = LEAF_DAYS) -> list[Path]:
     """Sign `<name>.pem`/`.key` with the directory's CA: a client certificate for identity
-    `name` with `role`, and also a server certificate for `server_names` when given."""
+    `name` with `role`, and also, when `server_names` are given, a server certificate for
+    them and for `name`'s own server name (`server_name(name)`, first)."""
     ca_cert = x509.load_pem_x509_certificate((directory / "ca.pem").read_bytes())
     ca_key = serialization.load_pem_private_key((directory / "ca.key").read_bytes(), None)
     key = ec.generate_private_key(ec.SECP256R1())
@@ -105,8 +112,9 @@ def issue(directory: Path, name: str, role: Role, server_names: Iterable[str] = 
                .public_key(key.public_key()).serial_number(x509.random_serial_number())
                .not_valid_before(now).not_valid_after(now + datetime.timedelta(days=days))
                .add_extension(x509.BasicConstraints(ca=False, path_length=None), critical=True))
-    names = list(dict.fromkeys(server_names))  # in order, without repeats
-    if names:
+    names = list(server_names)
+    if names:  # its own name first: the one no other certificate carries
+        names = list(dict.fromkeys([server_name(name), *names]))  # in order, without repeats
         usages.append(ExtendedKeyUsageOID.SERVER_AUTH)
         builder = builder.add_extension(
             x509.SubjectAlternativeName([_general_name(n) for n in names]), critical=False)
@@ -184,7 +192,10 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "issue":
         if not (args.dir / "ca.key").exists():
             parser.error(f"no CA in {args.dir}: run `make certs` first")
-        written = issue(args.dir, args.name, args.role, args.host)
+        try:
+            written = issue(args.dir, args.name, args.role, args.host)
+        except ValueError as exc:  # a server certificate for a name that cannot be one
+            parser.error(str(exc))
     else:
         written = init(args.dir, args.host, args.force)
     for path in written:

@@ -154,6 +154,25 @@ def test_a_certificate_from_another_ca_or_none_fails_the_handshake(station, pki,
         assert code == grpc.StatusCode.UNAVAILABLE, (what, code, details)
 
 
+def test_a_client_naming_the_service_it_dials_reaches_that_service_only(station, pki, tokens):
+    """Every certificate of the station names the same hosts; each also names its service,
+    and a client that asks for a service (open_channel's `service`) takes no other's."""
+    ports = ("decision_server", "proxy_robot", "force_sensor", "stereo_camera", "emergency_stop")
+    for port in ports:
+        for service in ports:
+            with open_channel(station["address"][port], security=ChannelSecurity(pki, "observer"),
+                              service=service) as channel:
+                code, details = _code(health_pb2_grpc.HealthStub(channel).Check,
+                                      health_pb2.HealthCheckRequest())
+            assert (code == grpc.StatusCode.OK) == (service == port), (port, service, details)
+    # The token port presents the DecisionServer's certificate too.
+    token_port = station["address"][token_port_name("decision_server")]
+    with open_channel(token_port, security=ChannelSecurity(pki, token=tokens["observer"]),
+                      service="decision_server") as channel:
+        stub = decision_server_pb2_grpc.DecisionServerStub(channel)
+        assert _code(stub.GetControlState, ds.GetControlStateRequest())[0] == grpc.StatusCode.OK
+
+
 def test_a_lease_belongs_to_the_identity_that_took_it(station, pki):
     with _channel(station, "decision_server", pki, "operator") as mine, \
             _channel(station, "decision_server", pki, "operator2") as thief, \
