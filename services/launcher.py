@@ -297,12 +297,14 @@ def _wait_until_serving(child: Child, stop: threading.Event,
     address = child.wait_ready(timeout_s=STARTUP_TIMEOUT_S, cancel=stop)
     serving = (_http_serving if child.name in HTTP_CHILDREN
                else _websocket_serving if child.name in WEBSOCKET_CHILDREN else _is_serving)
-    while address is not None and not serving(address, security):
+    while address is not None and not serving(address, security, child.name):
         if child.returncode is not None:
             raise ChildFailed(child.describe())
         if time.monotonic() > deadline:
-            raise ChildFailed(f"{child.name} not serving after {STARTUP_TIMEOUT_S:.0f} s: "
-                              f"{child.describe()}")
+            hint = (" (over TLS its certificate must name it: `make certs` reissues a PKI "
+                    "made before service names)" if security.secure else "")
+            raise ChildFailed(f"{child.name} not serving after {STARTUP_TIMEOUT_S:.0f} s"
+                              f"{hint}: {child.describe()}")
         if stop.wait(0.05):
             return None
     if address is not None:
@@ -310,9 +312,11 @@ def _wait_until_serving(child: Child, stop: threading.Event,
     return address
 
 
-def _is_serving(address: str, security: ChannelSecurity) -> bool:
+def _is_serving(address: str, security: ChannelSecurity, service: str) -> bool:
     try:
-        with open_channel(address, security=security) as channel:
+        # Over TLS the certificate must name the service: a PKI made before service names
+        # fails here, and `make certs` reissues it.
+        with open_channel(address, security=security, service=service) as channel:
             reply = health_pb2_grpc.HealthStub(channel).Check(
                 health_pb2.HealthCheckRequest(service=""), timeout=1.0)
         return reply.status == health_pb2.HealthCheckResponse.SERVING
@@ -320,7 +324,7 @@ def _is_serving(address: str, security: ChannelSecurity) -> bool:
         return False
 
 
-def _http_serving(address: str, _security: ChannelSecurity) -> bool:
+def _http_serving(address: str, _security: ChannelSecurity, _service: str) -> bool:
     try:
         with urllib.request.urlopen(f"http://{address}/healthz", timeout=1.0) as reply:
             return reply.status == 200
@@ -328,7 +332,7 @@ def _http_serving(address: str, _security: ChannelSecurity) -> bool:
         return False
 
 
-def _websocket_serving(address: str, security: ChannelSecurity) -> bool:
+def _websocket_serving(address: str, security: ChannelSecurity, _service: str) -> bool:
     """Whether a Foxglove WebSocket server answers a handshake at `address` (wss:// with the
     station's CA when TLS is on); it is closed at once, as a client that leaves. A bare TCP
     connect would do, but the server logs every connection that never shakes hands as an

@@ -62,6 +62,10 @@ class _ClientCore:
 
     SERVICE: str = ""  # full service name, e.g. "telerobot.v1.ProxyRobot"
     ADDRESS_NAME: str = ""  # the name in TELEROBOT_<NAME>_ADDRESS, e.g. "proxy_robot"
+    # Over TLS, the service whose name the server's certificate must carry (wire.tls), or None
+    # for any certificate naming the host: a ProxyRobot or StereoCamera client may be talking
+    # to the DecisionServer's forward of that service, with the DecisionServer's certificate.
+    CERTIFICATE_SERVICE: str | None = None
     STUB: Callable[[Any], Any]
     EXTRA_OPTIONS: tuple[tuple[str, Any], ...] = ()
 
@@ -77,7 +81,8 @@ class _ClientCore:
         if target is None or isinstance(target, str):
             self.address = target or address_for(self.ADDRESS_NAME)
             self._channel = open_channel(
-                self.address, [*CHANNEL_OPTIONS, *self.EXTRA_OPTIONS, *options], security, aio)
+                self.address, [*CHANNEL_OPTIONS, *self.EXTRA_OPTIONS, *options], security, aio,
+                service=self.CERTIFICATE_SERVICE)
             self._owns_channel = True
         else:
             self.address = None

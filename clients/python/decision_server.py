@@ -90,6 +90,7 @@ class _DecisionMethods:
 
     SERVICE = "telerobot.v1.DecisionServer"
     ADDRESS_NAME = "decision_server"
+    CERTIFICATE_SERVICE = "decision_server"  # only a DecisionServer serves this contract
     STUB = decision_server_pb2_grpc.DecisionServerStub
 
     def _init_decision(self, release_on_close: bool) -> None:

@@ -31,7 +31,8 @@ LAST_LINES = 40  # how many of the launcher's last lines an error message shows
 
 def serving(address: str, timeout_s: float = 1.0) -> bool:
     try:
-        with open_channel(address) as channel:  # TLS as the environment says
+        # TLS as the environment says; over TLS the certificate must be the DecisionServer's.
+        with open_channel(address, service="decision_server") as channel:
             reply = health_pb2_grpc.HealthStub(channel).Check(
                 health_pb2.HealthCheckRequest(), timeout=timeout_s)
         return reply.status == health_pb2.HealthCheckResponse.SERVING

@@ -99,17 +99,18 @@ class GrpcSlave:
                  security: ChannelSecurity | None = None):
         security = security or ChannelSecurity()  # plaintext unless told
 
-        def channel(address: str) -> grpc.Channel:
-            return open_channel(address, RECONNECT_OPTIONS, security)
+        def channel(address: str, service: str) -> grpc.Channel:
+            # Over TLS the certificate must name that service (wire.tls.open_channel).
+            return open_channel(address, RECONNECT_OPTIONS, security, service=service)
 
-        self.robot_channel = channel(proxy_address)
-        self.sensor_channel = channel(sensor_address)
+        self.robot_channel = channel(proxy_address, "proxy_robot")
+        self.sensor_channel = channel(sensor_address, "force_sensor")
         self.robot = proxy_robot_pb2_grpc.ProxyRobotStub(self.robot_channel)
         self.sensor = force_sensor_pb2_grpc.ForceSensorStub(self.sensor_channel)
         # The emergency-stop band (services/emergency_stop): the same EmergencyStop contract,
         # in a process that no ProxyRobot load can delay.
-        self.emergency_channel = channel(emergency_stop_address) if emergency_stop_address \
-            else None
+        self.emergency_channel = (channel(emergency_stop_address, "emergency_stop")
+                                  if emergency_stop_address else None)
         self.emergency = (proxy_robot_pb2_grpc.ProxyRobotStub(self.emergency_channel)
                           if self.emergency_channel is not None else None)
         self.on_state: Callable[[SlaveState], None] = lambda state: None
