@@ -6,6 +6,12 @@ a waiter) or fails at once, as the caller chooses. Every lock is a lease: it exp
 its holder renews it or uses it (each authorized call renews it), so a crashed operator never
 blocks the arm for longer than one lease. No gRPC here.
 
+A group admits only whom its members invite: its first holder starts it and gets a join secret
+(Lease.group_secret, random, the same for every member), and anyone joining the group while it
+holds control must present it, or is refused with PermissionDeniedError (BAD_GROUP_SECRET). The
+group, and its secret, end when its last member's lease does; the next first holder of that
+name starts a new group with a new secret. The servicer never puts the secret in a ControlState.
+
 A lease belongs to the identity that took it. When the server authenticates its callers (TLS),
 the holder is the caller's identity (services.security.caller), not the request's operator_id,
 and a lease id presented by anyone else is refused with PermissionDeniedError; only an admin may
@@ -22,6 +28,8 @@ manager's lock released (it may take locks of its own and call back in).
 from __future__ import annotations
 
 import enum
+import hmac
+import secrets
 import threading
 import uuid
 from collections import deque
@@ -65,6 +73,8 @@ class Lease:
     duration_s: float
     expires_at: float  # on the LockManager's clock.monotonic() scale
     identity: str | None = None  # the authenticated holder; None when nobody is authenticated
+    # COLLABORATIVE: the group's join secret, the same for every member; "" for EXCLUSIVE.
+    group_secret: str = field(default="", repr=False)
 
 
 @dataclass
@@ -75,7 +85,9 @@ class _Waiter:
     duration_s: float
     deadline: float  # clock.monotonic()
     identity: str | None = None
+    group_secret: str = field(default="", repr=False)  # the one it presented
     granted: Lease | None = None
+    refusal: PermissionDeniedError | None = None  # its turn came, but its group refused it
     abandoned: bool = False  # the caller went away while it waited
     ready: threading.Event = field(default_factory=threading.Event)
 
@@ -110,12 +122,14 @@ class LockManager:
 
     def acquire(self, operator_id: str, mode: ControlMode, group: str = "", wait: bool = False,
                 wait_timeout_s: float | None = None, lease_s: float = DEFAULT_LEASE_S,
-                on_caller_gone: Callable[[Callable[[], None]], object] | None = None) -> Lease:
+                on_caller_gone: Callable[[Callable[[], None]], object] | None = None,
+                group_secret: str = "") -> Lease:
         """Grant a lease now, or queue for one (wait=True), or fail with AbortedError. An
         authenticated caller holds it as its identity, whatever `operator_id` says. A waiting
         caller that goes away (`on_caller_gone(callback)` registers the callback: gRPC's
         context.add_callback) leaves the queue at once, and a lease granted as it left is
-        released."""
+        released. Joining a COLLABORATIVE group that holds control takes its `group_secret`
+        (PermissionDeniedError otherwise, at once, or when a waiter's turn comes)."""
         caller = current_caller()
         identity = caller.identity if caller is not None else None
         operator_id = identity or operator_id
@@ -128,7 +142,9 @@ class LockManager:
         lease, waiter, holders, refusal = None, None, "", None
         with self._lock:
             expired = self._expire()
-            if not self._queue and self._compatible(mode, group):
+            if not self._admitted(mode, group, group_secret):
+                refusal = self._not_invited(group, group_secret)
+            elif not self._queue and self._compatible(mode, group):
                 lease = self._grant(operator_id, mode, group, lease_s, identity)
             elif wait and any(w.operator_id == operator_id for w in self._queue):
                 refusal = AbortedError(f"{operator_id} already waits for control: one wait at "
@@ -139,7 +155,8 @@ class LockManager:
             elif wait:
                 deadline = (self._clock.monotonic()
                             + min(wait_timeout_s or MAX_WAIT_S, MAX_WAIT_S))
-                waiter = _Waiter(operator_id, mode, group, lease_s, deadline, identity)
+                waiter = _Waiter(operator_id, mode, group, lease_s, deadline, identity,
+                                 group_secret)
                 self._queue.append(waiter)
             else:
                 holders = self._describe_holders()
@@ -172,6 +189,9 @@ class LockManager:
             self._notify([f"{operator_id} left the queue"])
             raise RpcCancelledError(f"{operator_id} went away while waiting for control",
                                     reason="CALLER_GONE")
+        if waiter.refusal is not None:
+            self._notify([f"{operator_id} was not admitted to group '{group}'"])
+            raise waiter.refusal
         self._notify([f"{operator_id} gave up waiting"])
         raise DeadlineExceededError(f"control did not come free in time; held by "
                                     f"{self.describe_holders()}", reason="WAIT_TIMEOUT")
@@ -256,19 +276,47 @@ class LockManager:
             h.mode == ControlMode.COLLABORATIVE and h.group == group
             for h in self._holders.values())
 
+    def _group_secret(self) -> str | None:
+        """The join secret of the COLLABORATIVE group holding control, or None."""
+        lease = next(iter(self._holders.values()), None)
+        return lease.group_secret if lease and lease.mode == ControlMode.COLLABORATIVE else None
+
+    def _admitted(self, mode: ControlMode, group: str, presented: str) -> bool:
+        """False for a COLLABORATIVE request joining the group that holds control without its
+        secret; True otherwise (joining nobody, or a request that conflicts anyway)."""
+        secret = self._group_secret()
+        joining = mode == ControlMode.COLLABORATIVE and self._compatible(mode, group)
+        if secret is None or not joining:
+            return True
+        return hmac.compare_digest(presented.encode(), secret.encode())
+
+    def _not_invited(self, group: str, presented: str) -> PermissionDeniedError:
+        what = "a wrong group_secret" if presented else "no group_secret"
+        return PermissionDeniedError(
+            f"group '{group}' holds control ({self._describe_holders()}) and this request "
+            f"has {what}: joining it takes the group_secret its members got from "
+            "AcquireControl; ask one of them for it", reason="BAD_GROUP_SECRET")
+
     def _grant(self, operator_id: str, mode: ControlMode, group: str, lease_s: float,
                identity: str | None) -> Lease:
+        secret = ""
+        if mode == ControlMode.COLLABORATIVE:  # the group's, or a new group's
+            secret = self._group_secret() or secrets.token_urlsafe(24)
         lease = Lease(uuid.uuid4().hex, operator_id, mode, group, lease_s,
-                      self._clock.monotonic() + lease_s, identity)
+                      self._clock.monotonic() + lease_s, identity, secret)
         self._holders[lease.lease_id] = lease
         return lease
 
     def _promote(self) -> None:
-        """Grant waiters from the head of the queue while they fit."""
+        """Grant waiters from the head of the queue while they fit; one whose group holds
+        control without admitting it leaves the queue refused."""
         while self._queue and self._compatible(self._queue[0].mode, self._queue[0].group):
             waiter = self._queue.pop(0)
-            waiter.granted = self._grant(waiter.operator_id, waiter.mode, waiter.group,
-                                         waiter.duration_s, waiter.identity)
+            if self._admitted(waiter.mode, waiter.group, waiter.group_secret):
+                waiter.granted = self._grant(waiter.operator_id, waiter.mode, waiter.group,
+                                             waiter.duration_s, waiter.identity)
+            else:
+                waiter.refusal = self._not_invited(waiter.group, waiter.group_secret)
             waiter.ready.set()
 
     def _expire(self) -> list[str]:

@@ -458,6 +458,13 @@ class DecisionCore:
         return self.recordings.start(name, format, Sources(
             lambda: self._state or self.slave.state(), self.slave.wrench))
 
+    def stop_recording(self, lease_id: str | None) -> RecordingInfo:
+        """End the recording and save it: the lock holder only, as for StartRecording. Whoever
+        holds control decides what is recorded of it, so a recording whose starter released
+        control or vanished is stopped by the next holder, and nobody else can cut it short."""
+        self.locks.require(lease_id)
+        return self.recordings.stop()
+
     def start_replay(self, lease_id: str, name: str, speed: float) -> RecordingInfo:
         lease = self.locks.require(lease_id)
         speed = speed or 1.0

@@ -19,6 +19,7 @@ from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
 from services.decision_server.arbitration import DEFAULT_LEASE_S, ControlMode, ControlView, Lease
 from services.decision_server.backends import forwarding_servicer
+from services.decision_server.cobegin import MAX_BUSY_WORK_S
 from services.decision_server.core import (
     AssistanceChanged,
     ControlChanged,
@@ -480,10 +481,12 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         lease = self._core.locks.acquire(
             request.operator_id, mode, request.group, request.wait, wait_s,
             convert.seconds(request.lease_duration) or DEFAULT_LEASE_S,
-            on_caller_gone=context.add_callback)  # a cancelled wait leaves the queue
+            on_caller_gone=context.add_callback,  # a cancelled wait leaves the queue
+            group_secret=request.group_secret)
         return pb.AcquireControlResponse(lease_id=lease.lease_id, operator_id=lease.operator_id,
                                          expire_time=_holder(lease, self._core.clock).expire_time,
-                                         state=self._control_state())
+                                         state=self._control_state(),
+                                         group_secret=lease.group_secret)
 
     def RenewControl(self, request, context):
         return pb.RenewControlResponse(
@@ -504,7 +507,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
 
     def StopRecording(self, request, context):
         return pb.StopRecordingResponse(recording=recording_to_proto(
-            self._core.recordings.stop()))
+            self._core.stop_recording(lease_id(context))))
 
     def ListRecordings(self, request, context):
         return pb.ListRecordingsResponse(
@@ -535,15 +538,16 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         if kind is None:
             raise InvalidArgumentError("set one action: busy_work, move_joints or move_cartesian",
                                        reason="NO_ACTION")
+        # The action checked first, then the lease (every action needs it, busy work too: it
+        # holds a lane thread and the processor), before waiting at a barrier.
         move = _move_from_proto(self._core, lease_id(context), kind, getattr(request, kind))
-        if kind != "busy_work":
-            self._core.locks.require(lease_id(context))  # before waiting at a barrier
+        busy_s = _busy_work_s(request.busy_work) if kind == "busy_work" else 0.0
+        self._core.locks.require(lease_id(context))
         if request.cobegin_id:
             self._core.barriers.arrive_and_wait(request.cobegin_id)
         if kind == "busy_work":
-            start, end = self._core.processor.run(
-                int(lane), convert.seconds(request.busy_work.duration),
-                cancelled=lambda: not context.is_active())
+            start, end = self._core.processor.run(int(lane), busy_s,
+                                                  cancelled=lambda: not context.is_active())
         else:
             start = time.time_ns()
             move()
@@ -585,6 +589,15 @@ def _move_from_proto(core: DecisionCore, lease: str | None, kind: str, action):
         frame = frame_from_proto(action.frame)
         return lambda: core.move_cartesian(lease, delta_x, delta_m, frame)
     return None
+
+
+def _busy_work_s(action: pb.BusyWorkAction) -> float:
+    """RunAction's busy work, its duration checked now (before the lease and the barrier)."""
+    seconds = convert.seconds(action.duration)
+    if not 0 <= seconds <= MAX_BUSY_WORK_S:
+        raise InvalidArgumentError(f"busy_work.duration must be 0..{MAX_BUSY_WORK_S:.0f} s",
+                                   reason="BAD_DURATION")
+    return seconds
 
 
 def _status(name: str) -> int:

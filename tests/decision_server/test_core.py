@@ -18,10 +18,12 @@ from services.decision_server.core import (
     ReplayProgress,
 )
 from services.decision_server.sessions import WatchdogHold
+from services.security.caller import Caller, acting_as
+from services.security.roles import Role
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Rig
 from tests.fakes.slave import FakeSlave
-from wire.errors import FailedPreconditionError, OutOfRangeError
+from wire.errors import FailedPreconditionError, OutOfRangeError, PermissionDeniedError
 
 SERVO_PERIOD_S = 0.001
 
@@ -386,3 +388,23 @@ def test_a_replay_stops_when_its_lease_ends(rig):
     assert "lease" in ended.detail
     rig.clock.advance(5.0)  # past every recorded move's time
     assert len(rig.slave.commands) == before + 1
+
+
+def test_only_the_lease_holder_stops_a_recording(rig):
+    """Issue #31: StopRecording needed no lease. With identities (TLS), another operator
+    presenting the holder's lease id is refused too, as for every call that needs the lock."""
+    rig.core.locks.release(rig.lease.lease_id)
+    with acting_as(Caller("alice", Role.OPERATOR)):
+        lease = rig.core.locks.acquire("alice", ControlMode.EXCLUSIVE).lease_id
+        rig.core.start_recording(lease, "hers")
+    with acting_as(Caller("mallory", Role.OPERATOR)):
+        with pytest.raises(FailedPreconditionError, match="held by 'alice'") as refused:
+            rig.core.stop_recording(None)
+        assert refused.value.reason == "NO_CONTROL"
+        with pytest.raises(PermissionDeniedError) as refused:
+            rig.core.stop_recording(lease)
+        assert refused.value.reason == "NOT_YOUR_LEASE"
+    assert rig.core.recordings.recording
+    with acting_as(Caller("alice", Role.OPERATOR)):
+        assert rig.core.stop_recording(lease).name == "hers"
+    assert not rig.core.recordings.recording

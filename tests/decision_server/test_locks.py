@@ -23,6 +23,7 @@ from wire.errors import (
     DeadlineExceededError,
     FailedPreconditionError,
     NotFoundError,
+    PermissionDeniedError,
     ResourceExhaustedError,
     RpcCancelledError,
     TelerobotError,
@@ -122,7 +123,7 @@ def test_two_operators_racing_have_exactly_one_winner(locks):
 
 def test_collaborative_control_is_shared_by_one_group(locks):
     a = locks.acquire("ann", COLLABORATIVE, "surgery")
-    b = locks.acquire("bob", COLLABORATIVE, "surgery")
+    b = locks.acquire("bob", COLLABORATIVE, "surgery", group_secret=a.group_secret)
     assert set(holders(locks)) == {"ann", "bob"}
     with pytest.raises(AbortedError, match="COLLABORATIVE, group 'surgery'"):
         locks.acquire("cat", COLLABORATIVE, "other-group")
@@ -137,9 +138,9 @@ def test_waiters_are_served_in_order(locks, changes):
     wait_until_queued(locks, ["second"])
     third = Acquirer(locks, "third")
     wait_until_queued(locks, ["second", "third"])
-    # A newcomer may not overtake the queue, even one that could share control with the holder.
+    # A newcomer may not overtake the queue, even one the group would admit.
     with pytest.raises(AbortedError, match="'first' \\(COLLABORATIVE, group 'g'\\)"):
-        locks.acquire("newcomer", COLLABORATIVE, "g")
+        locks.acquire("newcomer", COLLABORATIVE, "g", group_secret=first.group_secret)
 
     locks.release(first.lease_id)
     assert second.result().operator_id == "second"
@@ -296,3 +297,55 @@ def test_each_operator_waits_once_and_the_queue_is_bounded(locks):
     gone.leave()
     assert all(isinstance(w.result(), RpcCancelledError) for w in waiting)
     assert queued(locks) == []
+
+
+def test_joining_a_group_takes_the_secret_its_first_holder_got(locks, changes):
+    """Issue #31: anyone could join a collaborative lease by naming its group."""
+    ann = locks.acquire("ann", COLLABORATIVE, "surgery")  # the first holder needs nothing
+    assert len(ann.group_secret) >= 32
+    gone = CallerGone()  # (a waiter queued by mistake leaves at the end)
+    for presented in ("", "guess", ann.group_secret[:-1], ann.group_secret + "x"):
+        with pytest.raises(PermissionDeniedError, match="group 'surgery' holds control") \
+                as refused:
+            locks.acquire("mallory", COLLABORATIVE, "surgery", group_secret=presented)
+        assert refused.value.reason == "BAD_GROUP_SECRET"
+        waiting = Acquirer(locks, "mallory", COLLABORATIVE, "surgery", group_secret=presented,
+                           on_caller_gone=gone)  # wait=True: refused at once too, not queued
+        try:
+            assert isinstance(waiting.result(), PermissionDeniedError)
+        finally:
+            gone.leave()
+    assert holders(locks) == ["ann"] and queued(locks) == []
+    bob = locks.acquire("bob", COLLABORATIVE, "surgery", group_secret=ann.group_secret)
+    assert bob.group_secret == ann.group_secret and holders(locks) == ["ann", "bob"]
+    assert ann.group_secret not in repr(locks.view())  # nor in what on_change is told
+    assert not any(ann.group_secret in repr(view) for view, _ in changes)
+
+    locks.release(ann.lease_id)
+    locks.release(bob.lease_id)  # the group ends with its last member, and its secret
+    cat = locks.acquire("cat", COLLABORATIVE, "surgery", group_secret="whatever")
+    assert cat.group_secret not in ("", ann.group_secret)
+    with pytest.raises(PermissionDeniedError):
+        locks.acquire("ann", COLLABORATIVE, "surgery", group_secret=ann.group_secret)
+
+
+def test_a_waiter_the_group_does_not_admit_is_refused_when_its_turn_comes(locks):
+    """Two queued for group g behind an exclusive holder: the first starts the group; the
+    second would join it without its new secret, so it leaves the queue refused, and the
+    waiter behind it moves up."""
+    holder = locks.acquire("holder", EXCLUSIVE)
+    first = Acquirer(locks, "first", COLLABORATIVE, "g")
+    wait_until_queued(locks, ["first"])
+    second = Acquirer(locks, "second", COLLABORATIVE, "g", group_secret="an old one")
+    wait_until_queued(locks, ["first", "second"])
+    third = Acquirer(locks, "third", EXCLUSIVE)
+    wait_until_queued(locks, ["first", "second", "third"])
+
+    locks.release(holder.lease_id)
+    assert first.result().operator_id == "first" and first.result().group_secret
+    refused = second.result()
+    assert isinstance(refused, PermissionDeniedError)
+    assert refused.reason == "BAD_GROUP_SECRET"
+    assert holders(locks) == ["first"] and queued(locks) == ["third"]
+    locks.release(first.result().lease_id)
+    assert third.result().operator_id == "third"

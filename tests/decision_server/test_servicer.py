@@ -7,6 +7,7 @@ import grpc
 import numpy as np
 import pytest
 
+from clients.python.errors import from_rpc_error
 from services.common import se3
 from services.decision_server.clock_offset import ClockOffsetEstimator
 from services.decision_server.sessions import CommandResult
@@ -206,7 +207,8 @@ def test_run_action_moves_go_through_the_core(fake_station):
         move_cartesian=proxy_robot_pb2.MoveCartesianIncrementalRequest(
             delta_position_m=types_pb2.Vector3(z=0.01), frame=types_pb2.REFERENCE_FRAME_BASE)),
         metadata=metadata)
-    assert station.decisions.StopRecording(pb.StopRecordingRequest()).recording.command_count == 2
+    assert station.decisions.StopRecording(pb.StopRecordingRequest(),
+                                           metadata=metadata).recording.command_count == 2
     station.robot.EmergencyStop(proxy_robot_pb2.EmergencyStopRequest(reason="t"))
     target = slave.q_target.copy()
     with pytest.raises(grpc.RpcError) as error:
@@ -299,3 +301,80 @@ def test_a_resume_of_a_session_not_ours_is_refused(fake_station, which, code):
         next(station.decisions.Teleoperate(iter([pb.TeleoperateRequest(init=resume)]),
                                            timeout=5))
     assert error.value.code() is code
+
+
+def _refusal(call, *args, **kwargs):
+    """The typed error (code and ErrorInfo reason) a call that must fail fails with."""
+    with pytest.raises(grpc.RpcError) as error:
+        call(*args, **kwargs)
+    return from_rpc_error(error.value)
+
+
+def test_busy_work_needs_the_lease_before_it_waits_at_a_barrier(fake_station):
+    """Issue #31: RunAction busy_work needed no lease, so any operator could hold lane
+    threads and the processor while the holder's RenewControl starved."""
+    station, _ = fake_station
+    work = pb.RunActionRequest(busy_work=pb.BusyWorkAction(duration=convert.duration(0.001)))
+    _, metadata = station.acquire()
+    cobegin = station.decisions.BeginCobegin(pb.BeginCobeginRequest(
+        action_count=2, barrier_timeout=convert.duration(30))).cobegin_id
+    for lease in (None, "not-a-lease"):
+        refused = _refusal(station.decisions.RunAction, work, timeout=5, metadata=[
+            ("telerobot-lease-id", lease)] if lease else None)
+        assert refused.code is grpc.StatusCode.FAILED_PRECONDITION
+        assert refused.reason == "NO_CONTROL" and "'alice' (EXCLUSIVE)" in refused.message
+        at_barrier = pb.RunActionRequest(cobegin_id=cobegin, busy_work=work.busy_work)
+        refused = _refusal(station.decisions.RunAction, at_barrier, timeout=5)
+        assert refused.reason == "NO_CONTROL"
+        assert station.core.barriers.arrived(cobegin) == 0  # it never reached the barrier
+    reply = station.decisions.RunAction(work, metadata=metadata, timeout=5)
+    assert reply.end_time.ToNanoseconds() >= reply.start_time.ToNanoseconds()
+
+
+def test_stop_recording_needs_the_lease_and_the_next_holder_may_stop_it(fake_station):
+    """Issue #31: StopRecording needed no lease, so anyone could cut another's recording."""
+    station, _ = fake_station
+    lease, alice = station.acquire("alice")
+    station.decisions.StartRecording(pb.StartRecordingRequest(name="kept"), metadata=alice)
+    refused = _refusal(station.decisions.StopRecording, pb.StopRecordingRequest(), timeout=5)
+    assert refused.code is grpc.StatusCode.FAILED_PRECONDITION
+    assert refused.reason == "NO_CONTROL"
+    assert station.core.recordings.recording  # still recording
+    station.decisions.ReleaseControl(pb.ReleaseControlRequest(lease_id=lease))
+    _, bob = station.acquire("bob")  # alice left it running: whoever holds control may stop it
+    assert station.decisions.StopRecording(pb.StopRecordingRequest(), metadata=bob,
+                                           timeout=5).recording.name == "kept"
+
+
+def test_the_group_secret_is_in_the_members_answers_only(fake_station):
+    """Issue #31: anyone could join a collaborative lease by naming its group. Joining takes
+    the secret its members got, which neither the control state nor the events show."""
+    station, _ = fake_station
+    events = station.decisions.StreamEvents(pb.StreamEventsRequest(), timeout=10)
+    wait_for(lambda: station.core.events.subscriber_count >= 1,
+             what="the event stream to subscribe")
+    collaborative = {"mode": pb.CONTROL_MODE_COLLABORATIVE, "group": "surgery"}
+    ann = station.decisions.AcquireControl(pb.AcquireControlRequest(
+        operator_id="ann", **collaborative), timeout=5)
+    secret = ann.group_secret
+    assert len(secret) >= 32
+    for presented in ("", "guess"):
+        refused = _refusal(station.decisions.AcquireControl, pb.AcquireControlRequest(
+            operator_id="mallory", group_secret=presented, **collaborative), timeout=5)
+        assert refused.code is grpc.StatusCode.PERMISSION_DENIED
+        assert refused.reason == "BAD_GROUP_SECRET" and secret not in refused.message
+    bob = station.decisions.AcquireControl(pb.AcquireControlRequest(
+        operator_id="bob", group_secret=secret, **collaborative), timeout=5)
+    assert bob.group_secret == secret
+    assert [h.operator_id for h in bob.state.holders] == ["ann", "bob"]
+    seen = [next(events) for _ in range(2)]  # ann's and bob's control changes
+    events.cancel()
+    assert [event.WhichOneof("event") for event in seen] == ["control_changed"] * 2
+    shown = [bob.state, station.decisions.GetControlState(pb.GetControlStateRequest()).state,
+             *(event.control_changed for event in seen)]
+    assert all(secret.encode() not in message.SerializeToString() for message in shown)
+    station.decisions.ReleaseControl(pb.ReleaseControlRequest(lease_id=ann.lease_id))
+    station.decisions.ReleaseControl(pb.ReleaseControlRequest(lease_id=bob.lease_id))
+    exclusive = station.decisions.AcquireControl(pb.AcquireControlRequest(
+        operator_id="cat", mode=pb.CONTROL_MODE_EXCLUSIVE), timeout=5)
+    assert exclusive.group_secret == ""

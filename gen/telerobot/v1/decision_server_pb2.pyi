@@ -291,32 +291,36 @@ class SetIndexingResponse(_message.Message):
     def __init__(self, engaged: _Optional[bool] = ...) -> None: ...
 
 class AcquireControlRequest(_message.Message):
-    __slots__ = ("operator_id", "mode", "group", "wait", "wait_timeout", "lease_duration")
+    __slots__ = ("operator_id", "mode", "group", "wait", "wait_timeout", "lease_duration", "group_secret")
     OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
     MODE_FIELD_NUMBER: _ClassVar[int]
     GROUP_FIELD_NUMBER: _ClassVar[int]
     WAIT_FIELD_NUMBER: _ClassVar[int]
     WAIT_TIMEOUT_FIELD_NUMBER: _ClassVar[int]
     LEASE_DURATION_FIELD_NUMBER: _ClassVar[int]
+    GROUP_SECRET_FIELD_NUMBER: _ClassVar[int]
     operator_id: str
     mode: ControlMode
     group: str
     wait: bool
     wait_timeout: _duration_pb2.Duration
     lease_duration: _duration_pb2.Duration
-    def __init__(self, operator_id: _Optional[str] = ..., mode: _Optional[_Union[ControlMode, str]] = ..., group: _Optional[str] = ..., wait: _Optional[bool] = ..., wait_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., lease_duration: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ...) -> None: ...
+    group_secret: str
+    def __init__(self, operator_id: _Optional[str] = ..., mode: _Optional[_Union[ControlMode, str]] = ..., group: _Optional[str] = ..., wait: _Optional[bool] = ..., wait_timeout: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., lease_duration: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., group_secret: _Optional[str] = ...) -> None: ...
 
 class AcquireControlResponse(_message.Message):
-    __slots__ = ("lease_id", "expire_time", "state", "operator_id")
+    __slots__ = ("lease_id", "expire_time", "state", "operator_id", "group_secret")
     LEASE_ID_FIELD_NUMBER: _ClassVar[int]
     EXPIRE_TIME_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
     OPERATOR_ID_FIELD_NUMBER: _ClassVar[int]
+    GROUP_SECRET_FIELD_NUMBER: _ClassVar[int]
     lease_id: str
     expire_time: _timestamp_pb2.Timestamp
     state: ControlState
     operator_id: str
-    def __init__(self, lease_id: _Optional[str] = ..., expire_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., state: _Optional[_Union[ControlState, _Mapping]] = ..., operator_id: _Optional[str] = ...) -> None: ...
+    group_secret: str
+    def __init__(self, lease_id: _Optional[str] = ..., expire_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., state: _Optional[_Union[ControlState, _Mapping]] = ..., operator_id: _Optional[str] = ..., group_secret: _Optional[str] = ...) -> None: ...
 
 class RenewControlRequest(_message.Message):
     __slots__ = ("lease_id",)

@@ -207,9 +207,16 @@ class DecisionServerServicer:
         """AcquireControl asks for the control lock: EXCLUSIVE (a write lock) or COLLABORATIVE (a read
         lock shared by one group). A conflicting request waits in a fair queue or fails at once,
         as asked. The lock is a lease: renew it before it expires.
-        Errors: ABORTED when it conflicts and `wait` is false (the message names the holder);
-        DEADLINE_EXCEEDED when the wait timed out; INVALID_ARGUMENT for an empty operator id,
-        an unspecified mode or a lease outside 0.1..60 s.
+        A group admits whom its members invite: its first holder needs nothing and gets the
+        group's join secret (AcquireControlResponse.group_secret); joining the group while it holds
+        control takes that secret (AcquireControlRequest.group_secret), which a member passes on.
+        Errors: ABORTED when it conflicts and `wait` is false (the message names the holder), or
+        when the caller already waits; DEADLINE_EXCEEDED when the wait timed out;
+        RESOURCE_EXHAUSTED when 16 callers already wait; PERMISSION_DENIED (reason
+        BAD_GROUP_SECRET) when it joins the COLLABORATIVE group holding control without that
+        group's secret: at once, or, for a waiter, when its turn comes and the group it would join
+        then is not one whose secret it sent; INVALID_ARGUMENT for an empty operator id, an
+        unspecified mode or a lease outside 0.1..60 s.
         Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
@@ -256,8 +263,11 @@ class DecisionServerServicer:
         raise NotImplementedError('Method not implemented!')
 
     def StopRecording(self, request, context):
-        """StopRecording ends the recording and saves it to disk.
-        Errors: FAILED_PRECONDITION when not recording, or (reason RECORDING_FAILED) when an MCAP
+        """StopRecording ends the recording and saves it to disk. Like StartRecording it needs the
+        control lock: the holder decides what is recorded, so a recording whose starter released
+        control is stopped by whoever holds it next, and nobody without it can cut one short.
+        Errors: FAILED_PRECONDITION without the control lock (reason NO_CONTROL), when not
+        recording, or (reason RECORDING_FAILED) when an MCAP
         recording had stopped by itself because its file could not be written (a full disk): the
         message says why, nothing was saved, and the next StartRecording starts afresh.
         Lane: medium. Role: operator.
@@ -317,10 +327,13 @@ class DecisionServerServicer:
 
     def RunAction(self, request, context):
         """RunAction runs one action on the lane the client asks for (metadata `telerobot-lane`),
-        at once, or at the barrier of its cobegin. It returns when the action ends.
-        Errors: NOT_FOUND for an unknown cobegin id; DEADLINE_EXCEEDED when the barrier times
-        out (every action of that cobegin then fails, and none runs); FAILED_PRECONDITION for a
-        motion action without the control lock; the action's own errors otherwise.
+        at once, or at the barrier of its cobegin. It returns when the action ends. Every action
+        needs the control lock, busy_work too (it holds a lane thread and the processor).
+        Errors: INVALID_ARGUMENT for a malformed action (checked first); FAILED_PRECONDITION
+        without the control lock (reason NO_CONTROL, checked before the barrier);
+        PERMISSION_DENIED for another identity's lease; NOT_FOUND for an unknown cobegin id;
+        DEADLINE_EXCEEDED when the barrier times out (every action of that cobegin then fails,
+        and none runs); the action's own errors otherwise.
         Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
