@@ -7,15 +7,21 @@ With TLS on, every call but Health is authenticated and authorized before its ha
   PERMISSION_DENIED naming the role needed; no credentials or a bad token: UNAUTHENTICATED;
 - every command-class call (any RPC that needs the operator role or more, and EmergencyStop)
   is written to the audit log with its outcome, except the station's own calls on its inner
-  ports (see `station_internal`).
+  ports (see `station_internal`); a command-class stream (Teleoperate) also as it starts
+  (outcome STARTED), so a session that moves the arm is on record while it runs;
+- a refused call (no credentials, a bad token, a role too low, no room: REFUSALS) is counted in
+  the audit log's summary of refusals per source instead (services.security.audit), so a
+  flood of them cannot rotate the commands' records out.
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import grpc
+from google.protobuf import descriptor_pool
 
 from services.runtime.lanes import Lane, declared_lane
 from services.security.caller import Caller
@@ -28,6 +34,11 @@ if TYPE_CHECKING:
     from services.security.tokens import TokenStore
 
 _BEARER = "bearer "
+# The outcomes of a call refused for who is calling or for room: it changed nothing. A unary
+# call that ends so is a refusal (summarized); a stream's end is always a command record, as
+# its start was.
+REFUSALS = frozenset({"UNAUTHENTICATED", "PERMISSION_DENIED", "RESOURCE_EXHAUSTED"})
+STARTED = "STARTED"
 
 
 @dataclass
@@ -42,7 +53,8 @@ class CallSecurity:
     def admit(self, method: str, context: grpc.ServicerContext) -> Caller | None:
         """The authenticated caller, allowed to call `method`; None for an open method
         (Health). Raises UnauthenticatedError or PermissionDeniedError; an audited method's refusal
-        is recorded (with the identity, when it is known)."""
+        is counted in the audit log's refusals (with the identity, when it is known), and an
+        audited stream's start is recorded."""
         if required_role(method, self.inner_port) is None:
             return None
         caller = None
@@ -50,9 +62,14 @@ class CallSecurity:
             caller = self.authenticate(context)
             check_role(caller.role, method, self.inner_port)
         except TelerobotError as error:
-            if self.audited(method):
-                self.record(method, caller, context, error.status_name, error.message)
+            if self.audited(method) and self.audit is not None:
+                self.audit.refused(identity=caller.identity if caller else "",
+                                   role=caller.role.label if caller else "", method=method,
+                                   outcome=error.status_name, peer=context.peer(),
+                                   detail=error.message)
             raise
+        if streams(method) and self.audited(method) and not self.station_internal(caller):
+            self.record(method, caller, context, STARTED)  # its end is recorded as it ends
         return caller
 
     def authenticate(self, context: grpc.ServicerContext) -> Caller:
@@ -98,11 +115,27 @@ class CallSecurity:
 
     def record(self, method: str, caller: Caller | None, context: grpc.ServicerContext,
                outcome: str, detail: str = "") -> None:
+        """Audit how a call ended (or that a stream started): a refusal (REFUSALS, but not a
+        stream's end) in the summary of refusals, anything else in full."""
         if self.audit is None:
             return
-        self.audit.record(identity=caller.identity if caller else "",
-                          role=caller.role.label if caller else "", method=method,
-                          outcome=outcome, peer=context.peer(), detail=detail)
+        write = (self.audit.refused if outcome in REFUSALS and not streams(method)
+                 else self.audit.record)
+        write(identity=caller.identity if caller else "",
+              role=caller.role.label if caller else "", method=method, outcome=outcome,
+              peer=context.peer(), detail=detail)
+
+
+@functools.lru_cache(maxsize=1024)  # looked up for every call: cached (methods are few)
+def streams(method_path: str) -> bool:
+    """Whether "/pkg.Service/Method" streams its requests or its responses (from the loaded
+    protos; False for a method they do not define)."""
+    service, _, method = method_path.lstrip("/").partition("/")
+    try:
+        found = descriptor_pool.Default().FindMethodByName(f"{service}.{method}")
+    except KeyError:
+        return False
+    return bool(found.client_streaming or found.server_streaming)
 
 
 def bearer_token(metadata) -> str | None:
