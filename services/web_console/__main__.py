@@ -11,6 +11,7 @@ from pathlib import Path
 
 import grpc
 import uvicorn
+from uvicorn.protocols.http.h11_impl import H11Protocol
 
 from services.runtime.config import PLAINTEXT_ENV, configure_logging
 from services.runtime.process import watch_parent
@@ -27,6 +28,11 @@ log = logging.getLogger("web_console")
 NAME = "web_console"
 TOKEN_ADDRESS_ENV = env_name("decision_server", "token_address")
 ALLOWED_HOSTS_ENV = env_name(NAME, "allowed_hosts")
+# What one client may hold of the console before it is authenticated, if ever:
+MAX_CONNECTIONS = 64  # open at once; a request beyond them gets 503 (uvicorn's limit_concurrency)
+HEAD_TIMEOUT_S = 10.0  # from a connection's opening (or its last response) to a whole request head
+KEEP_ALIVE_S = 5  # an idle connection's life after a response
+MAX_HEAD_BYTES = 16 * 1024  # a request line and headers; larger: 400, and closed
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -94,10 +100,7 @@ async def _serve(args) -> int:
     upstream, auth = _channels(args)
     host, port = args.address.rsplit(":", 1)
     app = ConsoleApp(upstream, auth, args.allowed_hosts)
-    config = uvicorn.Config(app, host=host.strip("[]"), port=int(port),
-                            log_level="warning", access_log=False, lifespan="on",
-                            ws_max_size=1 << 16, timeout_graceful_shutdown=2)
-    server = uvicorn.Server(config)
+    server = uvicorn.Server(server_config(app, host.strip("[]"), int(port)))
     watch_parent(lambda: setattr(server, "should_exit", True))
     serving = asyncio.ensure_future(server.serve())
     while not server.started:
@@ -113,6 +116,71 @@ async def _serve(args) -> int:
     await upstream.channel.close()
     await upstream.stereo_channel.close()
     return 0
+
+
+def server_config(app, host: str, port: int, *, max_connections: int = MAX_CONNECTIONS,
+                  head_timeout_s: float = HEAD_TIMEOUT_S) -> uvicorn.Config:
+    """uvicorn's configuration of the console, with its limits on unauthenticated clients."""
+    protocol = type("HeadTimeoutH11", (HeadTimeoutH11,), {"head_timeout_s": head_timeout_s})
+    return uvicorn.Config(app, host=host, port=port, log_level="warning", access_log=False,
+                          lifespan="on", http=protocol, ws_max_size=1 << 16,
+                          limit_concurrency=max_connections, timeout_keep_alive=KEEP_ALIVE_S,
+                          h11_max_incomplete_event_size=MAX_HEAD_BYTES,
+                          timeout_graceful_shutdown=2)
+
+
+class HeadTimeoutH11(H11Protocol):
+    """uvicorn's HTTP/1.1 protocol, which also closes a connection whose request head has not
+    come whole within `head_timeout_s` of the connection's opening or of its last response.
+    uvicorn has no such timeout: its keep-alive timer starts only after a response and stops at
+    the next byte, so a client that connects and sends nothing, or a byte a second, holds its
+    connection (and a slot of limit_concurrency) for ever."""
+
+    head_timeout_s = HEAD_TIMEOUT_S
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._head_timer: asyncio.TimerHandle | None = None
+
+    def connection_made(self, transport) -> None:
+        super().connection_made(transport)
+        self._await_head()
+
+    def handle_events(self) -> None:
+        super().handle_events()
+        if self._in_request():
+            self._stop_head_timer()
+
+    def on_response_complete(self) -> None:
+        super().on_response_complete()
+        if not self._in_request():
+            self._await_head()
+
+    def handle_websocket_upgrade(self, event) -> None:
+        self._stop_head_timer()  # the connection is the WebSocket protocol's from now on
+        super().handle_websocket_upgrade(event)
+
+    def connection_lost(self, exc) -> None:
+        self._stop_head_timer()
+        super().connection_lost(exc)
+
+    def _in_request(self) -> bool:
+        return self.cycle is not None and not self.cycle.response_complete
+
+    def _await_head(self) -> None:
+        self._stop_head_timer()
+        if not self.transport.is_closing():
+            self._head_timer = self.loop.call_later(self.head_timeout_s, self._head_timed_out)
+
+    def _stop_head_timer(self) -> None:
+        if self._head_timer is not None:
+            self._head_timer.cancel()
+            self._head_timer = None
+
+    def _head_timed_out(self) -> None:
+        self._head_timer = None
+        if not self._in_request() and self.transport.get_protocol() is self:
+            self.transport.close()
 
 
 if __name__ == "__main__":

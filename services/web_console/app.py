@@ -3,17 +3,26 @@ Teleoperate WebSocket, and /healthz for the launcher."""
 
 from __future__ import annotations
 
+import asyncio
 import ipaddress
+import json
 from collections.abc import Iterable
 from pathlib import Path
 from urllib.parse import urlsplit
 
 from services.web_console import teleoperate
-from services.web_console.bridge import ConnectBridge, Upstream
+from services.web_console.bridge import BODY_MAX_BYTES, ConnectBridge, Upstream
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
 HEALTH_PATH = "/healthz"
 CONTRACT_PREFIX = "/telerobot.v1."
+# Teleoperate sockets open at once (uvicorn's connection limit does not count upgraded
+# connections): one operator needs one; more get 1013, "try again later".
+MAX_SOCKETS = 16
+CLOSE_TRY_AGAIN_LATER = 1013
+# A Connect request's body comes whole within this, or gets 408 (a client that sends its
+# headers and then a byte now and then holds no connection for long).
+BODY_TIMEOUT_S = 10.0
 _TYPES = {".html": "text/html; charset=utf-8", ".js": "text/javascript; charset=utf-8",
           ".css": "text/css; charset=utf-8", ".map": "application/json", ".png": "image/png",
           ".svg": "image/svg+xml"}
@@ -77,8 +86,14 @@ class HostCheck:
 class ConsoleApp:
     """Routes: /telerobot.v1.* (Connect), /ws/teleoperate (WebSocket), /healthz, assets."""
 
-    def __init__(self, upstream: Upstream, auth: str, allowed_hosts: Iterable[str] = ()):
+    def __init__(self, upstream: Upstream, auth: str, allowed_hosts: Iterable[str] = (),
+                 max_body_bytes: int = BODY_MAX_BYTES, max_sockets: int = MAX_SOCKETS,
+                 body_timeout_s: float = BODY_TIMEOUT_S):
         self.upstream = upstream
+        self.max_body_bytes = max_body_bytes
+        self.body_timeout_s = body_timeout_s
+        self.max_sockets = max_sockets
+        self.open_sockets = 0
         self.hosts = HostCheck(allowed_hosts)
         self.auth = auth  # "token" or "none": the page asks for a token only with "token"
         self.bridge = ConnectBridge(upstream)
@@ -94,7 +109,15 @@ class ConsoleApp:
                 await receive()
                 await send({"type": "websocket.close", "code": teleoperate.CLOSE_POLICY})
                 return
-            return await teleoperate.serve(scope, receive, send, self.upstream)
+            if self.open_sockets >= self.max_sockets:
+                await receive()
+                await send({"type": "websocket.close", "code": CLOSE_TRY_AGAIN_LATER})
+                return
+            self.open_sockets += 1
+            try:
+                return await teleoperate.serve(scope, receive, send, self.upstream)
+            finally:
+                self.open_sockets -= 1
         if refused_host is not None:
             return await _respond(send, 403, (
                 f"this console does not answer to the name {refused_host!r}: a page served "
@@ -104,6 +127,10 @@ class ConsoleApp:
             if foreign_origin(scope):
                 return await _respond(send, 403, b"a page of another site may not call the "
                                       b"station through this console\n")
+            receive = await _bounded_body(scope, receive, send, self.max_body_bytes,
+                                          self.body_timeout_s)
+            if receive is None:
+                return  # refused: too large or too slow
             return await self.bridge(scope, receive, send)
         if scope["method"] not in ("GET", "HEAD"):
             return await _respond(send, 405, b"method not allowed\n",
@@ -128,6 +155,57 @@ class ConsoleApp:
             elif message["type"] == "lifespan.shutdown":
                 await send({"type": "lifespan.shutdown.complete"})
                 return
+
+
+async def _bounded_body(scope, receive, send, limit: int, timeout_s: float):
+    """Read a request's body, up to `limit` bytes within `timeout_s`, before the bridge sees
+    it: a larger one (by its Content-Length, before a byte of it is read, or as it comes) is
+    refused with 413 and a Connect resource_exhausted error, a slower one with 408 and
+    deadline_exceeded, and the connection closed, so that no more of it is read. Returns a
+    `receive` that gives the bridge the body read, then the client's own messages (a
+    disconnect); None when refused."""
+    length = dict(scope.get("headers") or ()).get(b"content-length", b"0")
+    too_large = not length.isdigit() or int(length) > limit
+    chunks: list[bytes] = []
+    size = 0
+    try:
+        async with asyncio.timeout(timeout_s):
+            while not too_large:
+                message = await receive()
+                if message["type"] != "http.request":
+                    return _replay([message], receive)  # the client left: the bridge hears it
+                chunks.append(message.get("body", b""))
+                size += len(chunks[-1])
+                too_large = size > limit
+                if not message.get("more_body", False):
+                    break
+    except TimeoutError:
+        await _refuse(send, 408, "deadline_exceeded",
+                      f"the request's body did not come within {timeout_s:g} s")
+        return None
+    if too_large:
+        await _refuse(send, 413, "resource_exhausted",
+                      f"the request's body is larger than {limit} bytes")
+        return None
+    return _replay([{"type": "http.request", "body": b"".join(chunks), "more_body": False}],
+                   receive)
+
+
+def _replay(messages: list, receive):
+    """A `receive` that gives `messages`, then what `receive` gives."""
+    pending = list(messages)
+
+    async def replayed():
+        return pending.pop(0) if pending else await receive()
+
+    return replayed
+
+
+async def _refuse(send, status: int, code: str, message: str) -> None:
+    """A Connect error (its JSON body) on a connection that is closed after it: the rest of
+    the request is never read."""
+    await _respond(send, status, json.dumps({"code": code, "message": message}).encode(),
+                   "application/json", extra=[(b"connection", b"close")])
 
 
 async def _respond(send, status: int, body: bytes, kind: str = "text/plain; charset=utf-8",

@@ -11,7 +11,9 @@ client.
 
 from __future__ import annotations
 
+import gzip
 import logging
+import zlib
 from collections.abc import AsyncIterator, Iterable, Mapping
 
 import grpc
@@ -44,8 +46,11 @@ SERVICES = ("telerobot.v1.DecisionServer", "telerobot.v1.ProxyRobot",
 FORWARDED_HEADERS = (LEASE_METADATA_KEY, LANE_METADATA_KEY, "authorization")
 # A call without a Connect timeout gets this deadline (streams get none).
 DEFAULT_UNARY_TIMEOUT_S = 30.0
-# The largest request a browser may send, in bytes (a Teleoperate command is under 200).
+# The largest request a browser may send, in bytes (a Teleoperate command is under 200): its
+# message once decompressed, and its body as it comes (the body has room for the Connect
+# envelope's 5 bytes and gzip's framing of an incompressible message).
 READ_MAX_BYTES = 1 << 20
+BODY_MAX_BYTES = READ_MAX_BYTES + 4096
 _STATUS_DETAILS_KEY = "grpc-status-details-bin"
 
 
@@ -113,6 +118,40 @@ class _StrictCodec:
 for _name, _inner in list(_codec._codecs.items()):
     if not isinstance(_inner, _StrictCodec):
         _codec._codecs[_name] = _StrictCodec(_inner)
+
+
+class BoundedGzip:
+    """gzip for the Connect bridge that stops decompressing past `limit` bytes: a request whose
+    message would be larger gets RESOURCE_EXHAUSTED after at most `limit` + 1 bytes were
+    produced, not after the whole of it (connect-python's own gzip inflates a message whole
+    before comparing it with read_max_bytes: a megabyte of zeros inflates to a gigabyte)."""
+
+    def __init__(self, limit: int = READ_MAX_BYTES):
+        self.limit = limit
+
+    def name(self) -> str:
+        return "gzip"
+
+    def compress(self, data) -> bytes:
+        return gzip.compress(data, compresslevel=6)
+
+    def decompress(self, data) -> bytes:
+        out = bytearray()
+        rest = bytes(data)
+        while rest:  # one gzip member after another, as gzip.decompress reads them
+            member = zlib.decompressobj(wbits=16 + zlib.MAX_WBITS)
+            try:
+                out += member.decompress(rest, self.limit + 1 - len(out))
+            except zlib.error as error:
+                raise ConnectError(Code.INVALID_ARGUMENT, f"the request is not valid gzip: "
+                                   f"{error}") from None
+            if len(out) > self.limit:
+                raise ConnectError(Code.RESOURCE_EXHAUSTED, "the request's message is larger "
+                                   f"than {self.limit} bytes once decompressed")
+            if not member.eof:
+                raise ConnectError(Code.INVALID_ARGUMENT, "the request's gzip data is cut short")
+            rest = member.unused_data.lstrip(b"\0")  # gzip allows zeros between members
+        return bytes(out)
 
 
 def _timeout_s(ctx: RequestContext) -> float:
@@ -185,7 +224,8 @@ class ConnectBridge(ConnectASGIApplication):
     """The ASGI application serving `endpoints(upstream)` over the Connect protocol."""
 
     def __init__(self, upstream: Upstream):
-        super().__init__(service=upstream, endpoints=endpoints, read_max_bytes=READ_MAX_BYTES)
+        super().__init__(service=upstream, endpoints=endpoints, read_max_bytes=READ_MAX_BYTES,
+                         compressions=[BoundedGzip(READ_MAX_BYTES)])
 
     @property
     def path(self) -> str:
