@@ -40,18 +40,25 @@ What is measured, and where:
   (`telerobot_world_steps_total`, `..._overruns_total`, `..._dropped_steps_total`,
   `telerobot_world_worst_lateness_seconds`, `..._worst_step_seconds`).
 - process_*: the process's CPU, memory and open files (prometheus_client's ProcessCollector).
+
+The endpoint is prometheus_client's WSGI app on a server of our own: a connection is served by
+one of at most MAX_HANDLERS threads, each of whose reads and writes gives up after
+HANDLER_TIMEOUT_S, and a connection beyond them gets 503 at once (prometheus_client's own
+server starts a thread per connection, which waits for ever on a client that sends nothing).
 """
 
 from __future__ import annotations
 
 import logging
+import socket
 import threading
 from collections.abc import Callable, Iterable
 from typing import Any
+from wsgiref.simple_server import WSGIRequestHandler, WSGIServer, make_server
 
 from prometheus_client import CollectorRegistry, Counter, Histogram, ProcessCollector
 from prometheus_client.core import CounterMetricFamily, GaugeMetricFamily
-from prometheus_client.exposition import start_http_server
+from prometheus_client.exposition import make_wsgi_app
 
 log = logging.getLogger(__name__)
 
@@ -63,6 +70,12 @@ WAIT_BUCKETS_S = (0.0, *LATENCY_BUCKETS_S, 0.2, 0.5, 1.0)
 AGE_BUCKETS_S = (*LATENCY_BUCKETS_S, 0.2, 0.5, 1.0, 2.0, 5.0)
 
 METRICS_PATH = "/metrics"
+# The endpoint's bounds: connections served at once (Prometheus needs one), and how long one
+# read or write on a connection may wait.
+MAX_HANDLERS = 8
+HANDLER_TIMEOUT_S = 5.0
+_BUSY = (b"HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\n"
+         b"Content-Length: 5\r\nConnection: close\r\n\r\nbusy\n")
 
 
 class ServiceMetrics:
@@ -187,12 +200,23 @@ class ServiceMetrics:
 
     # -- the HTTP endpoint ------------------------------------------------------------------
 
-    def serve(self, address: str) -> int:
+    def serve(self, address: str, max_handlers: int = MAX_HANDLERS,
+              timeout_s: float = HANDLER_TIMEOUT_S) -> int:
         """Serve /metrics on host:port (port 0 picks a free one); returns the port bound.
         OSError if the address cannot be bound."""
         host, _, port = address.rpartition(":")
-        self._http, self._http_thread = start_http_server(
-            int(port), addr=host.strip("[]") or "127.0.0.1", registry=self.registry)
+        host = host.strip("[]") or "127.0.0.1"
+        family = socket.getaddrinfo(host, int(port), type=socket.SOCK_STREAM,
+                                    flags=socket.AI_PASSIVE)[0][0]
+        server_class = type("MetricsServer", (_BoundedServer,), {
+            "address_family": family, "max_handlers": max_handlers,
+            "handler_name": f"metrics-{self.service}-handler"})
+        handler_class = type("MetricsHandler", (_QuietHandler,), {"timeout": timeout_s})
+        self._http = make_server(host, int(port), make_wsgi_app(self.registry), server_class,
+                                 handler_class)
+        self._http_thread = threading.Thread(target=self._http.serve_forever,
+                                             name=f"metrics-{self.service}", daemon=True)
+        self._http_thread.start()
         return self._http.server_port
 
     def close(self) -> None:
@@ -201,6 +225,58 @@ class ServiceMetrics:
         if http is not None:
             http.shutdown()
             http.server_close()
+
+
+class _BoundedServer(WSGIServer):
+    """A thread per connection, at most `max_handlers` at once: a connection beyond them is
+    answered 503 (if its socket takes the few bytes at once) and closed, by the accepting
+    thread, which never waits on it."""
+
+    max_handlers = MAX_HANDLERS
+    handler_name = "metrics-handler"
+
+    def server_activate(self) -> None:
+        super().server_activate()
+        self.slots = threading.BoundedSemaphore(self.max_handlers)
+
+    def process_request(self, request, client_address) -> None:
+        if not self.slots.acquire(blocking=False):
+            try:
+                request.send(_BUSY, socket.MSG_DONTWAIT)
+            except OSError:
+                pass
+            self.shutdown_request(request)
+            return
+        handler = threading.Thread(target=self._handle, args=(request, client_address),
+                                   name=self.handler_name, daemon=True)
+        try:
+            handler.start()
+        except BaseException:
+            self.slots.release()
+            self.shutdown_request(request)
+            raise
+
+    def _handle(self, request, client_address) -> None:
+        try:
+            self.finish_request(request, client_address)
+        except Exception:  # noqa: BLE001 - one connection's end, never the server's
+            self.handle_error(request, client_address)
+        finally:
+            self.shutdown_request(request)
+            self.slots.release()
+
+    def handle_error(self, request, client_address) -> None:
+        # A client that went quiet (the handler's timeout) or away: nothing to print.
+        log.debug("metrics: a connection from %s ended in an error", client_address,
+                  exc_info=True)
+
+
+class _QuietHandler(WSGIRequestHandler):
+    """wsgiref's handler, whose reads and writes time out (`timeout`, set per server), and
+    which logs no request."""
+
+    def log_message(self, format, *args) -> None:  # noqa: A002 - the base class's name
+        pass
 
 
 class _LaneCollector:
