@@ -6,8 +6,13 @@ The channels and the metadata are documented on RecordingFormat (decision_server
 metadata record "recording". Each channel's schema is the message's file descriptors
 (mcap-protobuf-support writes them), so any MCAP reader decodes the file without gen/.
 
-`McapRecorder` writes on a thread of its own: the command path only queues (a deque append),
-so a slow or full disk never slows or fails a command; it stops the recording instead.
+`McapRecorder` writes on a thread of its own (`Recorder`, which the JSONL recorder shares): the
+command path only queues, so a slow or full disk never slows or fails a command. A full disk
+stops the recording. A writer that falls behind keeps what it wrote: new messages are dropped,
+counted, while it catches up, and each such gap is a "recording_gap" metadata record; the
+"recording" metadata then says what was dropped ("dropped", by channel). A recording that lost
+increments is kept, but not replayed (INCOMPLETE_RECORDING): its path would not be the one
+recorded.
 """
 
 from __future__ import annotations
@@ -20,7 +25,7 @@ import threading
 import zlib
 from collections import Counter
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -49,7 +54,13 @@ METADATA = "recording"
 MAGIC = b"\x89MCAP0\r\n"  # an MCAP file's first and last bytes
 
 SAMPLE_PERIOD_S = 0.05  # robot state and wrench at 20 Hz: the arm's path, not its servo
-QUEUE_LIMIT = 20_000  # items waiting for the writer; past that it has fallen behind: stop
+# Items waiting for the writer; past that it has fallen behind, and new acks and events are
+# dropped (counted) until it is back under half of it. Increments, which a replay needs, have
+# twice the room: a writer that stalls for a while loses its acks first.
+QUEUE_LIMIT = 20_000
+GAP = "recording_gap"  # the metadata record of each gap
+# What each kind of queued item is written as: the channels a gap counts.
+KIND_CHANNELS = {"increment": INCREMENT, "ack": ACK, "event": EVENTS}
 # The writer takes what is queued once a period, not as each item comes: at 1 kHz of acks,
 # waking for each cost the DecisionServer more than writing them (a wake is a GIL hand-over).
 DRAIN_PERIOD_S = 0.01
@@ -118,6 +129,10 @@ class McapFile:
     def flush(self) -> None:
         self._file.flush()
 
+    def metadata(self, name: str, data: dict[str, str]) -> None:
+        """A metadata record, between chunks (a gap's)."""
+        self._writer.add_metadata(name, data)
+
     def finish(self, metadata: dict[str, str]) -> None:
         try:
             self._writer.add_metadata(METADATA, metadata)
@@ -147,10 +162,41 @@ def write_commands(path: Path, name: str, create_time_ns: int, commands) -> None
     file.finish(metadata_for(name, create_time_ns, commands, file.counts))
 
 
-def metadata_for(name: str, create_time_ns: int, commands, counts) -> dict[str, str]:
+def metadata_for(name: str, create_time_ns: int, commands, counts,
+                 dropped: Counter | None = None) -> dict[str, str]:
     duration = commands[-1].offset_s - commands[0].offset_s if commands else 0.0
-    return {"name": name, "create_time_ns": str(create_time_ns), "duration_s": repr(duration),
-            "command_count": str(len(commands)), "counts": json.dumps(dict(counts))}
+    return metadata_of(name, create_time_ns, len(commands), duration, counts, dropped)
+
+
+def metadata_of(name: str, create_time_ns: int, command_count: int, duration_s: float, counts,
+                dropped: Counter | None = None) -> dict[str, str]:
+    """The "recording" metadata; "dropped" (by channel) only when a gap dropped messages."""
+    metadata = {"name": name, "create_time_ns": str(create_time_ns),
+                "duration_s": repr(float(duration_s)), "command_count": str(command_count),
+                "counts": json.dumps(dict(counts))}
+    if dropped:
+        metadata["dropped"] = json.dumps(dict(dropped))
+    return metadata
+
+
+def incomplete(name: str, dropped_increments: int) -> FailedPreconditionError:
+    """What a replay of a recording that lost increments answers."""
+    return FailedPreconditionError(
+        f"the recording '{name}' lost {dropped_increments} increments while its writer was "
+        "behind: it is kept, but a replay would not retrace the recorded path",
+        reason="INCOMPLETE_RECORDING")
+
+
+def check_complete(name: str, metadata: dict[str, str]) -> None:
+    """FailedPreconditionError (INCOMPLETE_RECORDING) when the "recording" metadata says
+    increments were dropped."""
+    try:
+        lost = int(json.loads(metadata.get("dropped") or "{}").get(INCREMENT, 0))
+    except (ValueError, TypeError, AttributeError) as error:
+        raise FailedPreconditionError(f"the recording '{name}' has bad metadata: {error}",
+                                      reason="CORRUPT_RECORDING") from error
+    if lost:
+        raise incomplete(name, lost)
 
 
 @dataclass(frozen=True)
@@ -162,96 +208,206 @@ class Sources:
     wrench: Callable[[], object] | None = None
 
 
-class McapRecorder:
-    """An MCAP recording being written on its own thread. `increment`, `ack` and `event`
-    only queue; `on_failure(reason)` is called (on the writer thread) when writing fails, and
-    the recording is then over: nothing more is queued, and the partial file is deleted."""
+@dataclass
+class Gap:
+    """Messages dropped while the writer was behind: from the first to the last dropped
+    (the server's wall clock, ns), counted by kind (increment, ack, event)."""
+
+    first_ns: int
+    last_ns: int
+    counts: Counter = field(default_factory=Counter)
+
+    def as_metadata(self) -> dict[str, str]:
+        return {"first_ns": str(self.first_ns), "last_ns": str(self.last_ns),
+                "dropped": json.dumps({KIND_CHANNELS[kind]: n for kind, n in self.counts.items()})}
+
+
+class Recorder:
+    """A recording being written on its own thread. `increment`, `ack` and `event` only queue;
+    the writer takes what is queued every DRAIN_PERIOD_S. `on_failure(reason)` is called (on
+    the writer thread) when writing fails (a full disk): the recording is then over, nothing
+    more is queued, and the partial file is deleted. A writer QUEUE_LIMIT behind loses no file:
+    new items are dropped and counted (`dropped`, by channel) until it catches up, and the gap
+    is written in the file (`write_gap`).
+
+    A format subclasses it: `open()` (in the constructor: a bad directory fails
+    StartRecording), `write(item)`, `write_gap(gap)`, `tick()` after each drain,
+    `finish_file()` and `abandon()`."""
 
     def __init__(self, path: Path, name: str, create_time_ns: int, clock: Clock,
-                 sources: Sources, event_to_message: Callable | None,
                  on_failure: Callable[[str], None]):
         self.path = Path(path)
         self.name, self.create_time_ns = name, create_time_ns
         self._clock = clock
-        self._sources = sources
-        self._event_to_message = event_to_message
         self._on_failure = on_failure
-        self._file = McapFile(self.path)  # opened here: a bad directory fails StartRecording
         self._queue: queue.SimpleQueue = queue.SimpleQueue()
         self._finishing = threading.Event()  # wakes the writer at once for the end
-        self._queued = 0  # approximate (no lock): only to notice a writer that fell behind
-        self._commands: list = []
+        self._lock = threading.Lock()  # the count of queued items and the open gap
+        self._queued = 0
+        self._gap: Gap | None = None
         self.error: str | None = None
-        self._last_samples: dict[str, int] = {}
+        # What was written (the writer thread's): the increments' count and span, and the
+        # messages dropped in gaps, by channel.
+        self.command_count = 0
+        self.first_offset_s: float | None = None
+        self.last_offset_s = 0.0
+        self.dropped: Counter[str] = Counter()
+        self.open()
         self._thread = threading.Thread(target=self._run, name=f"recording-{name}",
                                         daemon=True)
         self._thread.start()
 
+    @property
+    def duration_s(self) -> float:
+        return 0.0 if self.first_offset_s is None else self.last_offset_s - self.first_offset_s
+
     # -- from any thread: queue only --------------------------------------------------------
     def increment(self, command) -> None:
-        self._put(("increment", command))
+        self._put("increment", command)
 
     def ack(self, ack: pb.CommandAck) -> None:
-        self._put(("ack", ack, self._clock.time_ns()))
+        self._put("ack", ack, self._clock.time_ns())
 
     def event(self, event) -> None:
-        self._put(("event", event))
+        self._put("event", event)
 
-    def _put(self, item) -> None:
+    def _put(self, kind: str, *payload) -> None:
         if self.error is not None:
             return
-        if self._queued >= QUEUE_LIMIT:
-            self.error = f"the writer fell {QUEUE_LIMIT} messages behind the server"
-            return  # the writer thread sees `error` and stops
+        with self._lock:
+            resume = QUEUE_LIMIT // 2
+            if self._gap is not None and self._queued <= resume:
+                self._enqueue(("gap", self._gap))  # caught up: the gap is over
+                self._gap = None
+            limit = 2 * QUEUE_LIMIT if kind == "increment" else (
+                resume if self._gap is not None else QUEUE_LIMIT)
+            if self._queued < limit:
+                self._enqueue((kind, *payload))
+                return
+            now = self._clock.time_ns()
+            opened = self._gap is None
+            if opened:
+                self._gap = Gap(now, now)
+            self._gap.last_ns = now
+            self._gap.counts[kind] += 1
+        if opened:
+            log.warning("the recording '%s' fell %d messages behind: new ones are dropped, "
+                        "and counted, until it catches up", self.name, limit)
+
+    def _enqueue(self, item) -> None:
+        """With the lock held."""
         self._queued += 1
         self._queue.put(item)
 
-    def finish(self) -> list:
-        """Write what is queued, the metadata, and close; returns the recorded increments.
-        Raises FailedPreconditionError (RECORDING_FAILED) when the writing failed."""
-        self._queue.put(("finish",))
+    def finish(self) -> None:
+        """Write what is queued (and the gap still open), the end, and close. Raises
+        FailedPreconditionError (RECORDING_FAILED) when the writing failed."""
+        with self._lock:
+            if self._gap is not None:
+                self._enqueue(("gap", self._gap))
+                self._gap = None
+            self._enqueue(("finish",))
         self._finishing.set()
         self._thread.join()
         if self.error is not None:
             raise FailedPreconditionError(f"the recording '{self.name}' stopped by itself: "
                                           f"{self.error}; nothing was saved",
                                           reason="RECORDING_FAILED")
-        return self._commands
 
     # -- the writer thread ------------------------------------------------------------------
     def _run(self) -> None:
-        next_sample = self._clock.monotonic()
         try:
-            while self.error is None:
+            while True:
                 self._finishing.wait(DRAIN_PERIOD_S)
                 for item in queued_now(self._queue):
-                    self._queued -= 1
-                    if self.error is not None:
-                        break  # it fell behind meanwhile: what is left is not written
-                    if item[0] == "finish":
-                        self._sample()
-                        self._file.finish(metadata_for(self.name, self.create_time_ns,
-                                                       self._commands, self._file.counts))
+                    kind = item[0]
+                    if kind == "finish":
+                        self.finish_file()
                         return
-                    self._write(item)
-                now = self._clock.monotonic()
-                if now >= next_sample:
-                    self._sample()
-                    self._file.flush()  # a full disk shows up now, not at the end
-                    next_sample = now + SAMPLE_PERIOD_S
+                    if kind == "gap":
+                        gap = item[1]
+                        self.dropped.update({KIND_CHANNELS[k]: n for k, n in gap.counts.items()})
+                        self.write_gap(gap)
+                    else:
+                        if kind == "increment":
+                            self._count(item[1])
+                        self.write(item)
+                    with self._lock:
+                        self._queued -= 1
+                self.tick()
         except Exception as error:  # noqa: BLE001 - any failure to write ends the recording
             self.error = f"writing {self.path.name} failed: {error}"
-        # Failed (or fell behind): the recording is over, and its partial file goes.
-        self._file.abandon()
-        self.path.unlink(missing_ok=True)
+        # Failed: the recording is over, and its partial file goes.
+        self.abandon()
         log.warning("the recording '%s' stopped: %s", self.name, self.error)
         self._on_failure(self.error)
 
-    def _write(self, item) -> None:
+    def _count(self, command) -> None:
+        self.command_count += 1
+        if self.first_offset_s is None:
+            self.first_offset_s = command.offset_s
+        self.last_offset_s = command.offset_s
+
+    # -- a format's ----------------------------------------------------------------------------
+    def open(self) -> None:
+        raise NotImplementedError
+
+    def write(self, item) -> None:
+        raise NotImplementedError
+
+    def write_gap(self, gap: Gap) -> None:
+        raise NotImplementedError
+
+    def tick(self) -> None:
+        """After each drain: make what was written reach the disk (or at least the OS)."""
+
+    def finish_file(self) -> None:
+        raise NotImplementedError
+
+    def abandon(self) -> None:
+        raise NotImplementedError
+
+
+class McapRecorder(Recorder):
+    """An MCAP recording (see Recorder), which also samples `sources` every SAMPLE_PERIOD_S
+    and keeps the server's events (`event_to_message` makes each the message to keep, or
+    None to leave it out)."""
+
+    def __init__(self, path: Path, name: str, create_time_ns: int, clock: Clock,
+                 sources: Sources, event_to_message: Callable | None,
+                 on_failure: Callable[[str], None]):
+        self._sources = sources
+        self._event_to_message = event_to_message
+        self._last_samples: dict[str, int] = {}
+        self._next_sample = clock.monotonic()
+        super().__init__(path, name, create_time_ns, clock, on_failure)
+
+    def open(self) -> None:
+        self._file = McapFile(self.path)
+
+    def tick(self) -> None:
+        now = self._clock.monotonic()
+        if now >= self._next_sample:
+            self._sample()
+            self._file.flush()  # a full disk shows up now, not at the end
+            self._next_sample = now + SAMPLE_PERIOD_S
+
+    def finish_file(self) -> None:
+        self._sample()
+        self._file.finish(metadata_of(self.name, self.create_time_ns, self.command_count,
+                                      self.duration_s, self._file.counts, self.dropped))
+
+    def abandon(self) -> None:
+        self._file.abandon()
+        self.path.unlink(missing_ok=True)
+
+    def write_gap(self, gap: Gap) -> None:
+        self._file.metadata(GAP, gap.as_metadata())
+
+    def write(self, item) -> None:
         kind = item[0]
         if kind == "increment":
             command = item[1]
-            self._commands.append(command)
             self._file.write(INCREMENT, increment_to_proto(command),
                              self.create_time_ns + round(command.offset_s * 1e9))
         elif kind == "ack":
@@ -324,9 +480,10 @@ def read_summary(path: Path) -> dict[str, str]:
 def read_commands(path: Path, recorded_command_type) -> McapContents:
     """Every increment, with the recording's name and start time. Reads the whole file,
     checking its CRCs; FailedPreconditionError (CORRUPT_RECORDING) when it is truncated, corrupt
-    or holds a malformed increment."""
+    or holds a malformed increment, (INCOMPLETE_RECORDING) when increments were dropped."""
     try:
         metadata = read_summary(path)
+        check_complete(metadata.get("name", path.stem), metadata)
         _check_crcs(path.read_bytes())
         with open(path, "rb") as stream:
             reader = make_reader(stream, validate_crcs=True,

@@ -8,11 +8,21 @@ recording_mcap) holding the same increments and, beside them, the acks, robot st
 events of the recording's time. A replay reads either. A file that cannot be read (truncated,
 corrupt) is FailedPreconditionError (CORRUPT_RECORDING): the request was fine, the stored file is
 not.
+
+Both formats are written as the recording runs, off the command path (recording_mcap.Recorder),
+to <name>.<suffix>.partial, renamed when it stops. A JSONL recording reaches the OS every
+DRAIN_PERIOD_S (and the disk, fsync, when it stops), so a crash loses only its last moments: the
+next RecordingStore on the directory (the restarted server) finds the partial file and keeps
+what it holds as the recording (a torn last line cut off). A writer that fell behind leaves a
+gap line ({"gap": ...}); a recording that lost increments so is kept, but not replayed
+(INCOMPLETE_RECORDING).
 """
 
 from __future__ import annotations
 
 import json
+import logging
+import os
 import re
 import threading
 from collections.abc import Callable
@@ -22,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from services.decision_server import recording_mcap
-from services.decision_server.recording_mcap import McapRecorder, Sources
+from services.decision_server.recording_mcap import INCREMENT, Gap, McapRecorder, Recorder, Sources
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from wire.errors import (
     AlreadyExistsError,
@@ -31,8 +41,11 @@ from wire.errors import (
     NotFoundError,
 )
 
+log = logging.getLogger(__name__)
+
 NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]{1,64}")
 SUFFIXES = {"JSONL": ".jsonl", "MCAP": ".mcap"}
+PARTIAL = ".partial"  # a recording being written: <name>.<suffix>.partial
 
 
 @dataclass(frozen=True)
@@ -85,12 +98,25 @@ def write_jsonl(path: Path, name: str, create_time_ns: int, commands) -> None:
 
 def read_jsonl(path: Path) -> tuple[str, int, list[RecordedCommand]]:
     """(name in the header, create time, increments); FailedPreconditionError (CORRUPT_RECORDING)
-    for a file that is not one."""
+    for a file that is not one, (INCOMPLETE_RECORDING) for one whose writer lost increments."""
+    name, created, commands, lost = _read_jsonl(path)
+    if lost:
+        raise recording_mcap.incomplete(name, lost)
+    return name, created, commands
+
+
+def _read_jsonl(path: Path) -> tuple[str, int, list[RecordedCommand], int]:
+    """read_jsonl's, and how many increments its gaps lost."""
     try:
         header, *lines = path.read_text().splitlines()
         meta = json.loads(header)
-        commands = [RecordedCommand.from_json(line) for line in lines if line]
-        return str(meta.get("name", path.stem)), int(meta["create_time_ns"]), commands
+        commands, lost = [], 0
+        for line in lines:
+            if line.startswith('{"gap"'):
+                lost += int(json.loads(line)["gap"]["dropped"].get(INCREMENT, 0))
+            elif line:
+                commands.append(RecordedCommand.from_json(line))
+        return str(meta.get("name", path.stem)), int(meta["create_time_ns"]), commands, lost
     except (ValueError, KeyError, TypeError, AttributeError) as error:
         raise FailedPreconditionError(f"the recording file {path.name} cannot be read: "
                                       f"{type(error).__name__}: {error}",
@@ -102,17 +128,58 @@ def read_mcap(path: Path) -> tuple[str, int, list[RecordedCommand]]:
     return contents.name, contents.create_time_ns, contents.commands
 
 
+class JsonlRecorder(Recorder):
+    """A JSONL recording written as it runs (see recording_mcap.Recorder): the header at once,
+    each increment as a line, flushed to the OS after each drain, fsynced at the end. Acks and
+    events have no place in JSONL: they are not queued."""
+
+    def open(self) -> None:
+        self._file = open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - closed at the end
+        try:
+            self._file.write(json.dumps({"name": self.name,
+                                         "create_time_ns": self.create_time_ns}) + "\n")
+            self._file.flush()
+        except OSError:
+            self.abandon()
+            raise
+
+    def ack(self, ack) -> None:
+        pass
+
+    def event(self, event) -> None:
+        pass
+
+    def write(self, item) -> None:
+        self._file.write(item[1].to_json() + "\n")
+
+    def write_gap(self, gap: Gap) -> None:
+        dropped = {recording_mcap.KIND_CHANNELS[kind]: n for kind, n in gap.counts.items()}
+        self._file.write(json.dumps({"gap": {"first_ns": gap.first_ns, "last_ns": gap.last_ns,
+                                             "dropped": dropped}}) + "\n")
+
+    def tick(self) -> None:
+        self._file.flush()  # in the OS: a crash of the server loses nothing written
+
+    def finish_file(self) -> None:
+        self._file.flush()
+        os.fsync(self._file.fileno())
+        self._file.close()
+
+    def abandon(self) -> None:
+        try:
+            self._file.close()
+        except OSError:
+            pass  # the buffered lines had nowhere to go either
+        self.path.unlink(missing_ok=True)
+
+
 @dataclass
 class _Active:
     name: str
     format: str
     create_time_ns: int
     started: float  # monotonic
-    commands: list[RecordedCommand]  # JSONL: kept until stop; MCAP: written as they come
-    recorder: McapRecorder | None = None
-    count: int = 0
-    first_offset: float | None = None
-    last_offset: float = 0.0
+    recorder: Recorder
 
 
 class RecordingStore:
@@ -130,6 +197,8 @@ class RecordingStore:
         self.event_to_message: Callable[[object], object] | None = None
         # Told (name, why) when a recording stops by itself (the core raises an event).
         self.on_failed: Callable[[str, str], None] | None = None
+        for partial in sorted(self.directory.glob(f"*{SUFFIXES['JSONL']}{PARTIAL}")):
+            self._recover(partial)
 
     def _path(self, name: str, format: str = "JSONL") -> Path:
         if not NAME_PATTERN.fullmatch(name or ""):
@@ -158,16 +227,26 @@ class RecordingStore:
                 raise AlreadyExistsError(f"a recording named '{name}' exists: delete it or pick "
                                          "another name", reason="NAME_TAKEN")
             self._failure = None
-            active = _Active(name, format, self._clock.time_ns(), self._clock.monotonic(), [])
-            if format == "MCAP":
-                try:
-                    active.recorder = McapRecorder(
-                        path.with_name(path.name + ".partial"), name, active.create_time_ns,
-                        self._clock, sources or Sources(), self.event_to_message,
-                        lambda why, active=active: self._died(active, why))
-                except OSError as error:
-                    raise FailedPreconditionError(f"cannot write the recording: {error}",
-                                                  reason="RECORDING_FAILED") from error
+            created, started = self._clock.time_ns(), self._clock.monotonic()
+            partial = path.with_name(path.name + PARTIAL)
+            # A writer that fails at once waits in _died for this lock: `made` is set by then.
+            made: list[Recorder] = []
+
+            def died(why: str) -> None:
+                self._died(made[0], why)
+
+            try:
+                if format == "MCAP":
+                    recorder: Recorder = McapRecorder(
+                        partial, name, created, self._clock, sources or Sources(),
+                        self.event_to_message, died)
+                else:
+                    recorder = JsonlRecorder(partial, name, created, self._clock, died)
+            except OSError as error:
+                raise FailedPreconditionError(f"cannot write the recording: {error}",
+                                              reason="RECORDING_FAILED") from error
+            made.append(recorder)
+            active = _Active(name, format, created, started, recorder)
             self._active = active
         return RecordingInfo(name, active.create_time_ns, 0.0, 0, format)
 
@@ -192,38 +271,31 @@ class RecordingStore:
                 np.array(delta_position, float), np.array(delta_rotation, float),
                 np.array(target_position, float),
                 None if delta_joints is None else np.array(delta_joints, float))
-            active.count += 1
-            if active.first_offset is None:
-                active.first_offset = command.offset_s
-            active.last_offset = command.offset_s
-            if active.recorder is not None:
-                active.recorder.increment(command)  # queued: written off this thread
-            else:
-                active.commands.append(command)
+            active.recorder.increment(command)  # queued: written off this thread
 
     def note_ack(self, ack) -> None:
         """An ack the server sent (a CommandAck): kept by an MCAP recording."""
         active = self._active
-        if active is not None and active.recorder is not None:
+        if active is not None:
             active.recorder.ack(ack)
 
     def note_event(self, event) -> None:
         """One of the server's events (a DecisionEvent): kept by an MCAP recording."""
         active = self._active
-        if active is not None and active.recorder is not None:
+        if active is not None:
             active.recorder.event(event)
 
-    def _died(self, active: _Active, why: str) -> None:
-        """An MCAP recording's writer failed: the recording is over (StopRecording says why,
-        and `on_failed` hears of it now)."""
+    def _died(self, recorder: Recorder, why: str) -> None:
+        """A recording's writer failed: the recording is over (StopRecording says why, and
+        `on_failed` hears of it now)."""
         with self._lock:
-            if self._active is not active:
+            if self._active is None or self._active.recorder is not recorder:
                 return  # stopped meanwhile: StopRecording answered the failure itself
             self._active = None
-            self._failure = (active.name, why)
+            self._failure = (recorder.name, why)
         on_failed = self.on_failed
         if on_failed is not None:
-            on_failed(active.name, why)
+            on_failed(recorder.name, why)
 
     def stop(self) -> RecordingInfo:
         with self._lock:
@@ -238,18 +310,51 @@ class RecordingStore:
                 raise FailedPreconditionError("not recording", reason="NOT_RECORDING")
             self._active = None
         path = self._path(active.name, active.format)
+        recorder = active.recorder
         try:
-            if active.recorder is None:
-                write_jsonl(path, active.name, active.create_time_ns, active.commands)
-                commands = active.commands
-            else:
-                commands = active.recorder.finish()  # raises when the writing failed
-                active.recorder.path.replace(path)
+            recorder.finish()  # raises when the writing failed
+            recorder.path.replace(path)
+            _sync_directory(self.directory)
         except OSError as error:  # a full disk at the last write: nothing half-written stays
-            path.with_name(path.name + ".partial").unlink(missing_ok=True)
+            recorder.path.unlink(missing_ok=True)
             raise FailedPreconditionError(f"the recording '{active.name}' could not be saved: "
                                           f"{error}", reason="RECORDING_FAILED") from error
-        return self._info(active.name, active.create_time_ns, commands, active.format)
+        lost = recorder.dropped.get(INCREMENT, 0)
+        return RecordingInfo(active.name, active.create_time_ns, recorder.duration_s,
+                             recorder.command_count, active.format,
+                             recording_mcap.incomplete(active.name, lost).message if lost else "")
+
+    def _recover(self, partial: Path) -> None:
+        """A JSONL recording the server did not stop (it crashed, or was killed): what its file
+        holds becomes the recording, a torn last line cut off. Left alone when its name is taken
+        or its header is not whole."""
+        name = partial.name.removesuffix(SUFFIXES["JSONL"] + PARTIAL)
+        if not NAME_PATTERN.fullmatch(name) or any(
+                self._path(name, format).exists() for format in SUFFIXES):
+            log.warning("left %s as it is: not a recording's name, or the name is taken",
+                        partial.name)
+            return
+        try:
+            with open(partial, "r+b") as file:
+                data = file.read()
+                whole = data.rfind(b"\n") + 1
+                if whole == 0:
+                    log.warning("left %s as it is: its header is not whole", partial.name)
+                    return
+                if whole < len(data):
+                    file.truncate(whole)
+                file.flush()
+                os.fsync(file.fileno())
+            final = self._path(name)
+            partial.replace(final)
+            _sync_directory(self.directory)
+            info = self.info(name)
+        except (OSError, FailedPreconditionError, NotFoundError) as error:
+            log.warning("cannot recover the recording in %s: %s", partial.name, error)
+            return
+        log.warning("recovered the recording '%s' that was not stopped (the server ended without "
+                    "saving it): %d increments over %.3f s%s", name, info.command_count,
+                    info.duration_s, f"; {info.error}" if info.error else "")
 
     def load(self, name: str) -> tuple[RecordingInfo, list[RecordedCommand]]:
         path, format = self._existing(name)
@@ -261,10 +366,19 @@ class RecordingStore:
         path, format = self._existing(name)
         try:
             if format == "JSONL":
-                return self.load(name)[0]
+                _, created, commands, lost = _read_jsonl(path)
+                info = self._info(name, created, commands, format)
+                error = recording_mcap.incomplete(name, lost).message if lost else ""
+                return RecordingInfo(info.name, info.create_time_ns, info.duration_s,
+                                     info.command_count, format, error)
             meta = recording_mcap.read_summary(path)
+            try:
+                recording_mcap.check_complete(name, meta)
+                error = ""
+            except FailedPreconditionError as incomplete:
+                error = incomplete.message
             return RecordingInfo(name, int(meta["create_time_ns"]), float(meta["duration_s"]),
-                                 int(meta["command_count"]), format)
+                                 int(meta["command_count"]), format, error)
         except FailedPreconditionError as error:
             return RecordingInfo(name, 0, 0.0, 0, format, error.message)
         except (KeyError, ValueError) as error:
@@ -290,3 +404,12 @@ class RecordingStore:
               format: str = "JSONL") -> RecordingInfo:
         duration = commands[-1].offset_s - commands[0].offset_s if commands else 0.0
         return RecordingInfo(name, created, duration, len(commands), format)
+
+
+def _sync_directory(directory: Path) -> None:
+    """fsync a directory, so a rename in it survives a power cut."""
+    descriptor = os.open(directory, os.O_RDONLY)
+    try:
+        os.fsync(descriptor)
+    finally:
+        os.close(descriptor)

@@ -217,7 +217,8 @@ def test_start_recording_takes_a_format_and_the_file_holds_every_channel(fake_st
         scaling=pb.Scaling(translation_scale=0.5))), metadata=metadata)
     operator.move((0, 0, 0.002))
     operator.close()
-    saved = station.decisions.StopRecording(pb.StopRecordingRequest()).recording
+    saved = station.decisions.StopRecording(pb.StopRecordingRequest(),
+                                            metadata=metadata).recording
     assert saved.command_count == 6 and saved.format == pb.RECORDING_FORMAT_MCAP
 
     contents = _read(station.core.recordings.directory / "session.mcap")
@@ -243,7 +244,7 @@ def test_replaying_a_truncated_mcap_file_is_failed_precondition(fake_station):
     path = station.core.recordings.directory / "cut.mcap"
     station.decisions.StartRecording(pb.StartRecordingRequest(
         name="cut", format=pb.RECORDING_FORMAT_MCAP), metadata=metadata)
-    station.decisions.StopRecording(pb.StopRecordingRequest())
+    station.decisions.StopRecording(pb.StopRecordingRequest(), metadata=metadata)
     path.write_bytes(path.read_bytes()[:-30])
     with pytest.raises(grpc.RpcError) as error:
         station.decisions.StartReplay(pb.StartReplayRequest(name="cut"), metadata=metadata)
@@ -278,7 +279,8 @@ def test_an_mcap_recording_of_a_session_reads_back_and_replays_the_recorded_path
                 assistance=pb.AssistanceConfig(scaling=pb.Scaling(translation_scale=1.0))),
                 metadata=metadata)
     operator.close()
-    recording = station.decisions.StopRecording(pb.StopRecordingRequest()).recording
+    recording = station.decisions.StopRecording(pb.StopRecordingRequest(),
+                                                metadata=metadata).recording
     assert recording.command_count == 15 and recording.format == pb.RECORDING_FORMAT_MCAP
     recorded_end = station.tool_position()
 
@@ -346,7 +348,7 @@ def test_the_readme_buf_curl_calls_record_in_mcap_and_replay(driven):
         operator.move((0, 0, 0.002))
         station.wait_status(types_pb2.ROBOT_STATUS_READY)
     operator.close()
-    saved = curl("StopRecording", {})["recording"]
+    saved = curl("StopRecording", {}, lease)["recording"]
     assert saved["name"] == "drive2" and saved["commandCount"] == 3
     assert saved["format"] == "RECORDING_FORMAT_MCAP"
     events = station.core.events.subscribe(256)
