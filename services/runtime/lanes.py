@@ -75,6 +75,13 @@ DEFAULT_LANES: dict[Lane, LaneConfig] = {
 }
 
 
+def capacity(lanes: dict[Lane, LaneConfig] | None = None) -> int:
+    """How many calls the lanes hold at once, running and queued (DEFAULT_LANES when None):
+    each holds a gRPC thread while it waits for its answer."""
+    configs = DEFAULT_LANES if lanes is None else lanes
+    return sum(config.max_threads + config.queue_capacity for config in configs.values())
+
+
 _current = threading.local()
 
 

@@ -1,10 +1,21 @@
 """The gRPC side of the runtime: lanes for every call, and domain errors as status codes.
 
 `LaneInterceptor` wraps every method handler of a server:
-- unary calls run on the lane the RPC declares in its proto (`default_lane`), or the lane the
-  client asks for in the `telerobot-lane` metadata key, clamped to the server's limit;
+- unary calls run on the lane the RPC declares in its proto (`default_lane`), or a lower one
+  the client asks for in the `telerobot-lane` metadata key: a client may lower its call, never
+  raise it above the declared lane (nor above the server's `client_lane_limit`), so no caller
+  can crowd the high lane the lease holder's renewals run on;
 - streaming calls keep their gRPC thread (a stream would pin a lane thread for its whole life)
-  but count against a cap on open streams;
+  but count against caps on open streams (`CallSlots`): the server's (its ports together), and
+  each caller's. A caller is the authenticated identity (certificate or token), or, for a
+  caller without one, its peer's address; unary calls in flight are capped per caller too.
+  On a station's inner port the station's own streams (the DecisionServer's forwards) have room
+  of their own, and no per-caller cap. Over a cap: RESOURCE_EXHAUSTED with an ErrorInfo reason
+  (STREAMS_EXHAUSTED, CALLER_STREAMS_EXHAUSTED, CALLER_CALLS_EXHAUSTED);
+- on a sync server (`read_first`) each unary call takes its slot before its request arrives:
+  its handler is served as a client stream whose one message it reads itself, so a call that
+  sends its headers and never its body holds one of its caller's slots, and a caller over its
+  cap is refused at once instead of keeping a thread waiting for a body;
 - requests are decoded and checked here (services/runtime/validation.py), so a malformed
   message, an unknown enum value or an over-long string gets INVALID_ARGUMENT naming the
   field, instead of grpcio's INTERNAL or a handler's UNKNOWN;
@@ -33,6 +44,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import CancelledError
+from dataclasses import dataclass
 
 import grpc
 from google.protobuf.message import DecodeError, Message
@@ -51,12 +63,152 @@ from services.runtime.lanes import (  # noqa: F401 - LANE_TO_PROTO re-exported
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.validation import check_request
 from services.security.caller import Caller, acting_as
+from services.security.roles import Role
+from wire.addresses import is_loopback
 from wire.errors import TelerobotError
 from wire.metadata import LANE_METADATA_KEY
 
 log = logging.getLogger(__name__)
 
 ERROR_DOMAIN = "telerobot.v1"
+
+# Streams open on a server, its ports together (the DecisionServer's certificate and token
+# ports share them), not counting the station's own on an inner port.
+DEFAULT_MAX_STREAMS = 64
+# What one caller may hold on a server at once: open streams, and unary calls in flight (from
+# their headers to their answer, their time queued on a lane included). An operator's station
+# opens a handful of streams (Teleoperate, events, state, wrench, images), a web console tab
+# three; 32 calls is under the high lane's room (8 threads, 64 queued), so no caller alone
+# fills it.
+STREAMS_PER_CALLER = 16
+CALLS_PER_CALLER = 32
+# On an inner port (ProxyRobot, ForceSensor, StereoCamera), room for the station's own streams
+# beside everyone else's DEFAULT_MAX_STREAMS: as many as the DecisionServer forwards at most
+# (its DEFAULT_MAX_STREAMS, both ports together) plus its own follow and health streams, so the
+# others' streams never refuse the station's.
+STATION_OWN_STREAMS = 16
+STATION_STREAMS = DEFAULT_MAX_STREAMS + STATION_OWN_STREAMS
+
+
+@dataclass(frozen=True)
+class Holder:
+    """Whose slots a call takes. `key` the caller's (None: no per-caller cap, as for the
+    station on its inner port and for loopback in plaintext); `station`: the station's own room
+    on an inner port; `name` says who in a refusal."""
+
+    key: str | None
+    name: str
+    station: bool = False
+
+
+class SlotRefused(Exception):
+    """No room for a call: `message` and the ErrorInfo `reason` of its RESOURCE_EXHAUSTED."""
+
+    def __init__(self, message: str, reason: str):
+        super().__init__(message)
+        self.message, self.reason = message, reason
+
+
+class CallSlots:
+    """A server's open streams and unary calls in flight, by caller; its ports share one.
+
+    A stream takes one of `max_streams` (or, for the station on an inner port, one of
+    `station_streams` when that is not 0) and one of its caller's `streams_per_caller`; a unary
+    call one of its caller's `calls_per_caller` (the server's bound on calls is gRPC's
+    `maximum_concurrent_rpcs`, services/runtime/server.py). A holder without a key has no
+    per-caller cap."""
+
+    def __init__(self, max_streams: int = DEFAULT_MAX_STREAMS,
+                 streams_per_caller: int = STREAMS_PER_CALLER,
+                 calls_per_caller: int = CALLS_PER_CALLER, station_streams: int = 0):
+        if min(max_streams, streams_per_caller, calls_per_caller) < 1 or station_streams < 0:
+            raise ValueError("stream and call caps must be >= 1 (station_streams >= 0)")
+        self.max_streams = max_streams
+        self.streams_per_caller = streams_per_caller
+        self.calls_per_caller = calls_per_caller
+        self.station_streams = station_streams
+        self._lock = threading.Lock()
+        self._streams = 0  # everyone's but the station's own room
+        self._station = 0
+        self._calls = 0
+        self._held: dict[str, list[int]] = {}  # key -> [streams, calls]; gone at [0, 0]
+
+    @property
+    def open_streams(self) -> int:
+        return self._streams + self._station
+
+    @property
+    def calls_in_flight(self) -> int:
+        """Unary calls between their headers and their answer, every caller's."""
+        return self._calls
+
+    def held_by(self, key: str) -> tuple[int, int]:
+        """(streams, unary calls) the caller `key` holds now."""
+        with self._lock:
+            streams, calls = self._held.get(key, (0, 0))
+        return streams, calls
+
+    def take(self, holder: Holder, stream: bool) -> None:
+        """Take a stream's or a unary call's slot for `holder`; SlotRefused when the caller
+        or the server has no room. Give it back with give()."""
+        station_room = stream and holder.station and self.station_streams > 0
+        with self._lock:
+            held = self._held.get(holder.key) if holder.key is not None else None
+            if holder.key is not None:
+                cap = self.streams_per_caller if stream else self.calls_per_caller
+                if held is not None and held[0 if stream else 1] >= cap:
+                    raise SlotRefused(*_caller_refusal(holder.name, cap, stream))
+            if station_room and self._station >= self.station_streams:
+                raise SlotRefused(
+                    f"the station's {self.station_streams} streams on this server are open; "
+                    "close one or retry later", "STREAMS_EXHAUSTED")
+            if stream and not station_room and self._streams >= self.max_streams:
+                raise SlotRefused(f"{self.max_streams} streams are open on this server; close "
+                                  "one or retry later", "STREAMS_EXHAUSTED")
+            if station_room:
+                self._station += 1
+            elif stream:
+                self._streams += 1
+            else:
+                self._calls += 1
+            if holder.key is not None:
+                if held is None:
+                    held = self._held[holder.key] = [0, 0]
+                held[0 if stream else 1] += 1
+
+    def give(self, holder: Holder, stream: bool) -> None:
+        with self._lock:
+            if stream and holder.station and self.station_streams > 0:
+                self._station -= 1
+            elif stream:
+                self._streams -= 1
+            else:
+                self._calls -= 1
+            if holder.key is not None:
+                held = self._held[holder.key]
+                held[0 if stream else 1] -= 1
+                if held == [0, 0]:
+                    del self._held[holder.key]
+
+
+def _caller_refusal(name: str, cap: int, stream: bool) -> tuple[str, str]:
+    if stream:
+        return (f"{name} already holds {cap} streams on this server, as many as one caller "
+                "may: close one before opening another", "CALLER_STREAMS_EXHAUSTED")
+    return (f"{name} already has {cap} calls in flight on this server, as many as one caller "
+            "may: wait for one to end", "CALLER_CALLS_EXHAUSTED")
+
+
+def peer_host(peer: str) -> str:
+    """The host of a gRPC peer string ("ipv4:127.0.0.1:5000", "ipv6:[::1]:5000"), without
+    its port: a caller that opens many connections is still one address."""
+    kind, _, address = peer.partition(":")
+    if kind == "unix" or not address:
+        return peer
+    if address.startswith("["):
+        return address[1:].partition("]")[0]
+    return address.rpartition(":")[0] or address
+
 
 def error_status(code: grpc.StatusCode, message: str, reason: str) -> status_pb2.Status:
     """A google.rpc.Status carrying an ErrorInfo(reason, domain) detail."""
@@ -81,20 +233,25 @@ class LaneInterceptor(grpc.ServerInterceptor):
     """Dispatches every call of a server onto its priority lane; see the module docstring."""
 
     def __init__(self, executor: LaneExecutor, client_lane_limit: Lane = Lane.HIGH,
-                 max_streams: int = 64, on_emergency_call: Callable[[], None] | None = None,
-                 security: CallSecurity | None = None, metrics: ServiceMetrics | None = None):
+                 max_streams: int = DEFAULT_MAX_STREAMS,
+                 on_emergency_call: Callable[[], None] | None = None,
+                 security: CallSecurity | None = None, metrics: ServiceMetrics | None = None,
+                 slots: CallSlots | None = None, read_first: bool = False):
+        """`slots`: the server's streams and calls by caller, shared by its ports (a new one
+        of `max_streams` when None). `read_first`: each unary call takes its slot before its
+        request is read (the sync server; a grpc.aio server reads it on its loop first)."""
         self._executor = executor
         self._metrics = metrics
         self._on_emergency_call = on_emergency_call
         self._security = security
         self._client_lane_limit = client_lane_limit
-        self._max_streams = max_streams
-        self._open_streams = 0
-        self._streams_lock = threading.Lock()
+        self.slots = slots if slots is not None else CallSlots(max_streams)
+        self._read_first = read_first
 
     @property
     def open_streams(self) -> int:
-        return self._open_streams
+        """Streams open on the server (every port that shares its slots)."""
+        return self.slots.open_streams
 
     def intercept_service(self, continuation, handler_call_details):
         handler = continuation(handler_call_details)
@@ -111,7 +268,8 @@ class LaneInterceptor(grpc.ServerInterceptor):
         wrapped = self._wrap(handler, method, _requested_lane(metadata))
         if self._metrics is None:
             return wrapped
-        return _measured(wrapped, method, self._metrics)
+        unary = not handler.request_streaming and not handler.response_streaming
+        return _measured(wrapped, method, self._metrics, timed=unary)
 
     def _may_stop_early(self, metadata) -> bool:
         security = self._security
@@ -127,10 +285,48 @@ class LaneInterceptor(grpc.ServerInterceptor):
     # -- wrapping ---------------------------------------------------------------------------
 
     def _lane_for(self, method: str, requested: str | None) -> Lane:
+        declared = declared_lane(method)
         if requested is None:
-            return declared_lane(method)
+            return declared
         lane = Lane.parse(requested)  # ValueError for an unknown name
-        return max(lane, self._client_lane_limit)  # clamp: never above the limit
+        # Lowering is the client's to choose; raising is not: never above the RPC's declared
+        # lane, nor above the server's limit.
+        return max(lane, self._client_lane_limit, declared)
+
+    def _holder(self, context) -> Holder:
+        """Whose slots the call takes: its authenticated identity, else its peer's address."""
+        security = self._security
+        peer = context.peer() or ""
+        if security is not None:
+            try:
+                caller = security.authenticate(context)
+            except TelerobotError:  # refused later, by admit(), where the method needs it
+                host = peer_host(peer)
+                return Holder(f"peer {host}", f"unauthenticated callers from {host}")
+            if security.inner_port and caller.role is Role.STATION:
+                # The DecisionServer (and the launcher): bounded by its own caps at its door.
+                return Holder(None, f"the station ({caller.identity})", station=True)
+            return Holder(f"identity {caller.identity}", f"identity {caller.identity!r}")
+        host = peer_host(peer)
+        if peer.startswith("unix:") or is_loopback(f"{host}:0"):
+            # Plaintext on loopback: every process of the host is one address (the station's
+            # own services too), and any of them may command the arm anyway.
+            return Holder(None, host)
+        return Holder(f"peer {host}", f"peer {host}")
+
+    @contextlib.contextmanager
+    def _slot(self, context, stream: bool) -> Iterator[None]:
+        """Hold the call's slot for the `with` block; RESOURCE_EXHAUSTED when there is no
+        room."""
+        holder = self._holder(context)
+        try:
+            self.slots.take(holder, stream)
+        except SlotRefused as refused:
+            abort(context, grpc.StatusCode.RESOURCE_EXHAUSTED, refused.message, refused.reason)
+        try:
+            yield
+        finally:
+            self.slots.give(holder, stream)
 
     def _wrap(self, handler: grpc.RpcMethodHandler, method: str, requested: str | None):
         decode = handler.request_deserializer or (lambda raw: raw)
@@ -160,50 +356,70 @@ class LaneInterceptor(grpc.ServerInterceptor):
                 abort(context, grpc.StatusCode.INVALID_ARGUMENT,
                       f"bad {LANE_METADATA_KEY} metadata: {exc}", "BAD_LANE")
 
+        # On a sync server the handler reads a unary call's request itself (see read_first).
+        reads_first = self._read_first
+
+        def first(raw, context):
+            return _only_request(raw, context, method) if reads_first else raw
+
+        def call_slot(context):
+            # A stop is never refused for room either.
+            return contextlib.nullcontext() if emergency else self._slot(context, stream=False)
+
         if handler.unary_unary:
             behavior = handler.unary_unary
 
             def unary_unary(raw, context):
-                lane = resolve_lane(context)
-                caller = admit(context)
-                request = _decode_or_abort(decode, raw, context, emergency)
-                with audit(caller, context):
-                    return self._run_on_lane(lane, behavior, request, context, caller)
+                with call_slot(context):
+                    raw = first(raw, context)
+                    lane = resolve_lane(context)
+                    caller = admit(context)
+                    request = _decode_or_abort(decode, raw, context, emergency)
+                    with audit(caller, context):
+                        return self._run_on_lane(lane, behavior, request, context, caller)
 
+            if reads_first:
+                return grpc.stream_unary_rpc_method_handler(unary_unary, None, encode)
             return grpc.unary_unary_rpc_method_handler(unary_unary, None, encode)
 
         if handler.unary_stream:
             behavior = handler.unary_stream
 
             def unary_stream(raw, context):
-                resolve_lane(context)
-                caller = admit(context)
-                request = _decode_or_abort(decode, raw, context)
-                with audit(caller, context):
-                    yield from self._run_stream(behavior, request, context, caller)
+                with self._slot(context, stream=True):
+                    raw = first(raw, context)
+                    resolve_lane(context)
+                    caller = admit(context)
+                    request = _decode_or_abort(decode, raw, context)
+                    with audit(caller, context):
+                        yield from _streamed(behavior, request, context, caller)
 
+            if reads_first:
+                return grpc.stream_stream_rpc_method_handler(unary_stream, None, encode)
             return grpc.unary_stream_rpc_method_handler(unary_stream, None, encode)
 
         if handler.stream_unary:
             behavior = handler.stream_unary
 
             def stream_unary(raw_iterator, context):
-                resolve_lane(context)
-                caller = admit(context)
-                with self._stream_slot(context), audit(caller, context):
-                    return _call(behavior, _decoded(raw_iterator, decode, context), context,
-                                 caller)
+                with self._slot(context, stream=True):
+                    resolve_lane(context)
+                    caller = admit(context)
+                    with audit(caller, context):
+                        return _call(behavior, _decoded(raw_iterator, decode, context),
+                                     context, caller)
 
             return grpc.stream_unary_rpc_method_handler(stream_unary, None, encode)
 
         behavior = handler.stream_stream
 
         def stream_stream(raw_iterator, context):
-            resolve_lane(context)
-            caller = admit(context)
-            with audit(caller, context):
-                yield from self._run_stream(behavior, _decoded(raw_iterator, decode, context),
-                                            context, caller)
+            with self._slot(context, stream=True):
+                resolve_lane(context)
+                caller = admit(context)
+                with audit(caller, context):
+                    yield from _streamed(behavior, _decoded(raw_iterator, decode, context),
+                                         context, caller)
 
         return grpc.stream_stream_rpc_method_handler(stream_stream, None, encode)
 
@@ -225,28 +441,14 @@ class LaneInterceptor(grpc.ServerInterceptor):
             abort(context, grpc.StatusCode.CANCELLED, "the call was cancelled before it ran",
                   "CANCELLED")
 
-    def _run_stream(self, behavior: Callable, request, context,
-                    caller: Caller | None = None) -> Iterator:
-        with self._stream_slot(context), acting_as(caller):
-            try:
-                yield from behavior(request, context)
-            except TelerobotError as error:
-                abort_with_error(context, error)
 
-    @contextlib.contextmanager
-    def _stream_slot(self, context):
-        """Hold one of the server's stream slots for the life of a stream."""
-        with self._streams_lock:
-            if self._open_streams >= self._max_streams:
-                abort(context, grpc.StatusCode.RESOURCE_EXHAUSTED,
-                      f"{self._max_streams} streams are open on this server; close one or "
-                      "retry later", "STREAMS_EXHAUSTED")
-            self._open_streams += 1
+def _streamed(behavior: Callable, request, context, caller: Caller | None = None) -> Iterator:
+    """A streaming handler's responses, produced as `caller`, domain errors as status codes."""
+    with acting_as(caller):
         try:
-            yield
-        finally:
-            with self._streams_lock:
-                self._open_streams -= 1
+            yield from behavior(request, context)
+        except TelerobotError as error:
+            abort_with_error(context, error)
 
 
 def _call(behavior: Callable, request, context, caller: Caller | None = None):
@@ -277,10 +479,11 @@ def _audited_call(security: CallSecurity, method: str, caller: Caller | None, co
     security.record(method, caller, context, code.name if code else "OK")
 
 
-def _measured(handler: grpc.RpcMethodHandler, method: str, metrics: ServiceMetrics
-              ) -> grpc.RpcMethodHandler:
+def _measured(handler: grpc.RpcMethodHandler, method: str, metrics: ServiceMetrics,
+              timed: bool | None = None) -> grpc.RpcMethodHandler:
     """`handler` with each call counted by its status code as it ends, and a unary call's
-    time in the server observed."""
+    time in the server observed (`timed`: whether the RPC is unary, which a sync server's
+    handler no longer says: it reads its request itself)."""
 
     def outcome(context, default: str) -> str:
         try:
@@ -300,6 +503,9 @@ def _measured(handler: grpc.RpcMethodHandler, method: str, metrics: ServiceMetri
             started = time.perf_counter()
             try:
                 response = behavior(request, context)
+            except grpc.RpcError:  # the call broke under a read of its request
+                settle(context, started, unary, code="CANCELLED")
+                raise
             except BaseException:
                 settle(context, started, unary, default="UNKNOWN")
                 raise
@@ -307,10 +513,12 @@ def _measured(handler: grpc.RpcMethodHandler, method: str, metrics: ServiceMetri
             return response
         return call
 
+    if timed is None:
+        timed = not handler.request_streaming and not handler.response_streaming
     if handler.unary_unary:
-        return handler._replace(unary_unary=answered_once(handler.unary_unary, True))
+        return handler._replace(unary_unary=answered_once(handler.unary_unary, timed))
     if handler.stream_unary:
-        return handler._replace(stream_unary=answered_once(handler.stream_unary, False))
+        return handler._replace(stream_unary=answered_once(handler.stream_unary, timed))
 
     streaming = handler.unary_stream or handler.stream_stream
 
@@ -318,7 +526,7 @@ def _measured(handler: grpc.RpcMethodHandler, method: str, metrics: ServiceMetri
         started = time.perf_counter()
         try:
             yield from streaming(request, context)
-        except GeneratorExit:  # the client left
+        except (GeneratorExit, grpc.RpcError):  # the client left
             settle(context, started, False, code="CANCELLED")
             raise
         except BaseException:
@@ -363,6 +571,16 @@ def _decode_or_abort(decode: Callable, raw: bytes, context, emergency: bool = Fa
         except TelerobotError as error:
             abort_with_error(context, error)
     return request
+
+
+def _only_request(raw_iterator: Iterator[bytes], context, method: str) -> bytes:
+    """A unary call's one request, read from its stream of requests (grpc.RpcError if the
+    call ends meanwhile); none is what grpcio answers to it: UNIMPLEMENTED."""
+    raw = next(raw_iterator, None)
+    if raw is None:
+        abort(context, grpc.StatusCode.UNIMPLEMENTED,
+              f'"{method}" requires exactly one request message.', "NO_REQUEST")
+    return raw
 
 
 def _decoded(raw_iterator: Iterator[bytes], decode: Callable, context) -> Iterator:

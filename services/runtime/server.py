@@ -9,6 +9,17 @@ Security (see docs/security.md):
   certificates, for callers with bearer tokens. That port is a second grpc.Server on the same
   servicers and lanes, so that its interceptor knows every caller on it came without a
   certificate (gRPC tells an interceptor nothing about the port a call came in on).
+
+Room (see services/runtime/rpc.py's CallSlots): a server's ports share one count of streams
+and calls by caller. Each grpc.Server accepts at most as many calls as its thread pool has
+threads (`maximum_concurrent_rpcs`, sized from its lanes' capacity and its streams: one thread
+per call a lane can hold, per stream, and a few spare), so a flood of calls is answered
+RESOURCE_EXHAUSTED at once instead of queueing for a thread; and one connection may carry all
+but CONNECTION_RESERVE of them (`grpc.max_concurrent_streams`), so the calls of one
+connection, however many, always leave room for the others'. A client's calls past that wait
+on the client; gRPC narrows the share of a connection that keeps resetting streams (its
+"overload protection", against rapid resets), and refuses its streams past it with
+REFUSED_STREAM (UNAVAILABLE on the client).
 """
 
 from __future__ import annotations
@@ -27,9 +38,16 @@ from grpc_reflection.v1alpha import reflection, reflection_pb2_grpc
 
 from services.runtime.aio_server import AioLaneInterceptor, AioServerHandle, EventLoopThread
 from services.runtime.auth import CallSecurity
-from services.runtime.lanes import Lane, LaneConfig, LaneExecutor
+from services.runtime.lanes import Lane, LaneConfig, LaneExecutor, capacity
 from services.runtime.metrics import ServiceMetrics
-from services.runtime.rpc import LaneInterceptor
+from services.runtime.rpc import (
+    CALLS_PER_CALLER,
+    DEFAULT_MAX_STREAMS,
+    STATION_STREAMS,
+    STREAMS_PER_CALLER,
+    CallSlots,
+    LaneInterceptor,
+)
 from services.runtime.tls import server_credentials
 from wire.addresses import is_loopback
 from wire.tls import KEEPALIVE_INTERVAL_MS, KEEPALIVE_TIMEOUT_MS
@@ -71,6 +89,13 @@ SERVER_KEEPALIVE_OPTIONS = (
     ("grpc.http2.min_recv_ping_interval_without_data_ms", KEEPALIVE_INTERVAL_MS // 2),
     ("grpc.http2.max_ping_strikes", 0),
 )
+
+
+# Threads beyond the lanes' and the streams' (calls being refused, Health, reflection).
+SPARE_THREADS = 16
+# However many calls one connection carries, this many of a server's stay for the others
+# (a quarter of them on a small server).
+CONNECTION_RESERVE = 32
 
 
 class PlaintextRefused(ValueError):
@@ -136,7 +161,11 @@ def create_server(
     *,
     lanes: dict[Lane, LaneConfig] | None = None,
     client_lane_limit: Lane = Lane.HIGH,
-    max_streams: int = 64,
+    max_streams: int = DEFAULT_MAX_STREAMS,
+    streams_per_caller: int = STREAMS_PER_CALLER,
+    calls_per_caller: int = CALLS_PER_CALLER,
+    station_streams: int | None = None,
+    inner_port: bool | None = None,
     on_emergency_call: Callable[[], None] | None = None,
     security: ServerSecurity | None = None,
     allow_plaintext_network: bool = False,
@@ -152,22 +181,36 @@ def create_server(
     them over HTTP is the caller's: `metrics.serve(address)`). With `aio`, calls arrive on a
     grpc.aio server's event loop instead of grpcio's sync polling thread, and the same
     servicers and interceptor run on a thread pool (services/runtime/aio_server.py).
+
+    Streams: `max_streams` open on the server (its ports together), `streams_per_caller` and
+    `calls_per_caller` (unary calls in flight) for each caller (services/runtime/rpc.py). An
+    inner port (`inner_port`; None: what `security` says, or, in plaintext, every server but
+    the DecisionServer's) also keeps `station_streams` (None: STATION_STREAMS) for the
+    station's own; in plaintext, where the station cannot be told from the others, they are
+    added to `max_streams` for everyone.
     """
     check_plaintext(address, security is not None, allow_plaintext_network)
     executor = LaneExecutor(
         lanes, name="rpc",
         on_wait=(lambda lane, wait_s: metrics.lane_waited(lane.name.lower(), wait_s))
         if metrics is not None else None)
-    lane_configs = lanes or {}
-    capacity = sum(c.max_threads + c.queue_capacity for c in lane_configs.values()) or 512
     names = [item.full_name for item in bindings]
+    if inner_port is None:
+        inner_port = (security.inner_port if security is not None
+                      else f"{PACKAGE}.DecisionServer" not in names)
+    if station_streams is None:
+        station_streams = STATION_STREAMS if inner_port else 0
+    if security is None:  # nobody is known to be the station: one room for all
+        max_streams, station_streams = max_streams + station_streams, 0
+    slots = CallSlots(max_streams, streams_per_caller, calls_per_caller, station_streams)
     health_servicer = health.HealthServicer(experimental_non_blocking=True)
     for name in ["", *names]:
         health_servicer.set(name, _NOT_SERVING)
 
     # gRPC threads only receive calls and wait on the lanes (or carry a stream), so there
-    # must be one per call a lane can hold, plus the streams.
-    pool_size = capacity + max_streams + 16
+    # must be one per call a lane can hold, plus the streams; a call beyond that is refused.
+    pool_size = capacity(lanes) + max_streams + station_streams + SPARE_THREADS
+    per_connection = pool_size - min(CONNECTION_RESERVE, pool_size // 4)
     aio_loop = aio_pool = None
     if aio:  # one loop for the servers, one pool for their handlers (the token port's too)
         aio_loop = EventLoopThread()
@@ -177,18 +220,21 @@ def create_server(
 
     def build(call_security: CallSecurity | None):
         interceptor = LaneInterceptor(executor, client_lane_limit, max_streams,
-                                      on_emergency_call, call_security, metrics)
+                                      on_emergency_call, call_security, metrics, slots,
+                                      read_first=aio_loop is None)
         # Two servers on one port would split calls between them silently: refuse instead.
-        options = [("grpc.so_reuseport", 0), *SERVER_KEEPALIVE_OPTIONS]
+        options = [("grpc.so_reuseport", 0), *SERVER_KEEPALIVE_OPTIONS,
+                   ("grpc.max_concurrent_streams", per_connection)]
         if aio_loop is None:
             server = grpc.server(
                 futures.ThreadPoolExecutor(max_workers=pool_size, thread_name_prefix="grpc"),
-                interceptors=[interceptor], options=options)
+                interceptors=[interceptor], options=options,
+                maximum_concurrent_rpcs=pool_size)
             grpc_server = server
         else:
             async def aio_server():  # made on its loop, which it keeps
                 return grpc.aio.server(interceptors=[AioLaneInterceptor(interceptor, aio_pool)],
-                                       options=options)
+                                       options=options, maximum_concurrent_rpcs=pool_size)
 
             server = AioServerHandle(aio_loop.run(aio_server()), aio_loop)
             grpc_server = server.server
@@ -204,17 +250,15 @@ def create_server(
                      if security else None)
     server, interceptor = build(main_security)
     servers = [server]
-    interceptors = [interceptor]
     try:
         credentials = (server_credentials(security.tls_dir, security.name)
                        if security else None)
         port = _bind(server, address, credentials)
         token_port = None
         if security is not None and security.token_address:
-            token_server, token_interceptor = build(
+            token_server, _ = build(
                 CallSecurity(security.inner_port, security.tokens, security.audit))
             servers.append(token_server)
-            interceptors.append(token_interceptor)
             token_port = _bind(token_server, security.token_address, server_credentials(
                 security.tls_dir, security.name, require_client_certificate=False))
     except BaseException:
@@ -223,8 +267,7 @@ def create_server(
             _close_aio(aio_loop, aio_pool)
         raise
     if metrics is not None:
-        metrics.watch_lanes(executor.counters,
-                            lambda: sum(each.open_streams for each in interceptors))
+        metrics.watch_lanes(executor.counters, lambda: slots.open_streams)
     after_stop = (lambda: _close_aio(aio_loop, aio_pool)) if aio_loop is not None else None
     return TelerobotServer(servers, health_servicer, executor, interceptor, names,
                            token_port, metrics, aio, after_stop), port
