@@ -9,7 +9,9 @@ viewer watches one of its topics. It listens on loopback by default. The Foxglov
 no client authentication, so beyond loopback it listens only when told so explicitly
 (--allow-network or TELEROBOT_ALLOW_LIVE_VIEW_NETWORK=1): anyone who reaches the port then sees
 the arm and the video (never moves it: the view is read-only). With the station's TLS
-directory it serves wss:// with its own certificate (`make certs` issues foxglove.pem).
+directory it serves wss:// with its own certificate (`make certs` issues foxglove.pem). A
+browser page may watch only from the Foxglove app's origin, a desktop app's (file://) or one
+given with --allowed-origin: any other page the user opens is refused.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import argparse
 import logging
 import os
 import signal
+import ssl
 import sys
 import threading
 from pathlib import Path
@@ -26,7 +29,13 @@ import foxglove
 from foxglove import Context, StatusLevel
 
 from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
-from services.foxglove.live import Demand, LiveChannels
+from services.foxglove.live import (
+    DEFAULT_ORIGINS,
+    Demand,
+    LiveChannels,
+    OriginGate,
+    loopback_certificate,
+)
 from services.runtime.config import configure_logging
 from services.runtime.process import wait_for_stop, watch_parent
 from services.runtime.tls import station_channel_security
@@ -39,6 +48,7 @@ log = logging.getLogger("foxglove")
 NAME = "foxglove"
 NETWORK_ENV = "TELEROBOT_ALLOW_LIVE_VIEW_NETWORK"
 SERVER_NAME = "telerobot slave station"
+ALLOWED_ORIGINS_ENV = env_name(NAME, "allowed_origins")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -56,6 +66,14 @@ def build_parser() -> argparse.ArgumentParser:
                         default=os.environ.get(NETWORK_ENV) == "1",
                         help=f"listen beyond loopback (env {NETWORK_ENV}=1): viewers are not "
                              "authenticated")
+    parser.add_argument("--allowed-origin", action="append", dest="allowed_origins",
+                        default=[o for o in os.environ.get(ALLOWED_ORIGINS_ENV, "").split(",")
+                                 if o],
+                        help="a web origin whose pages may watch (e.g. http://localhost:8080), "
+                             f"besides {' and '.join(DEFAULT_ORIGINS)} and programs that send "
+                             "no Origin (repeat for several; env "
+                             f"{ALLOWED_ORIGINS_ENV}, comma-separated): the WebSocket upgrade "
+                             "of a page of any other origin is refused")
     parser.add_argument("--state-hz", type=float, default=30.0,
                         help="the arm's state rate (/tf, /joint_states)")
     parser.add_argument("--wrench-hz", type=float, default=50.0,
@@ -83,14 +101,20 @@ def main(argv: list[str] | None = None) -> int:
               f"authenticated, so anyone who reaches it would watch the arm and the cameras. "
               f"Listen on 127.0.0.1, or pass --allow-network ({NETWORK_ENV}=1)", file=sys.stderr)
         return 2
-    tls = {}
+    tls = None
     if args.tls_dir:
         cert, key = (Path(args.tls_dir) / f"{NAME}.{ext}" for ext in ("pem", "key"))
         if not (cert.exists() and key.exists()):
             print(f"{NAME}: {cert} or {key} is missing: run `make certs` again (it issues the "
                   "live view's certificate)", file=sys.stderr)
             return 2
-        tls = {"tls_cert": cert.read_bytes(), "tls_key": key.read_bytes()}
+        tls = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
+        try:
+            tls.load_cert_chain(cert, key)
+        except ssl.SSLError as error:
+            print(f"{NAME}: {cert} and {key} are no certificate and its key: {error}",
+                  file=sys.stderr)
+            return 2
 
     security = station_channel_security(args.tls_dir or None, NAME)
     upstream = [open_channel(address, security=security)
@@ -108,21 +132,30 @@ def main(argv: list[str] | None = None) -> int:
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda *_: stop.set())
     watch_parent(stop.set, stop)
-    server = None
+    server = gate = None
     try:
+        # The SDK's server on loopback, behind the gate that checks each viewer's Origin (the
+        # SDK cannot), over TLS with a certificate only the gate trusts.
+        inner_cert, inner_key = loopback_certificate()
         try:
-            server = foxglove.start_server(name=SERVER_NAME, host=host.strip("[]"),
-                                           port=int(port), server_listener=demand,
-                                           context=context, **tls)
-        except (RuntimeError, ValueError) as error:  # the port taken, a bad certificate
+            server = foxglove.start_server(name=SERVER_NAME, host="127.0.0.1", port=0,
+                                           server_listener=demand, context=context,
+                                           tls_cert=inner_cert, tls_key=inner_key)
+            gate = OriginGate(server.port, inner_cert, [*DEFAULT_ORIGINS, *args.allowed_origins],
+                              tls=tls)
+            bound = gate.start(host.strip("[]"), int(port))
+        except (RuntimeError, ValueError, OSError) as error:  # the port taken, a bad cert
             print(f"{NAME}: cannot serve on {args.address}: {error}", file=sys.stderr)
             return 1
         viewers.server = server
-        address = f"{host}:{server.port}"
-        log.info("the live view serves %s://%s/", "wss" if tls else "ws", address)
+        address = f"{host}:{bound}"
+        log.info("the live view serves %s://%s/ to viewers from %s or with no Origin",
+                 "wss" if tls else "ws", address, ", ".join(sorted(gate.allowed)))
         print(ready_line(NAME, address), flush=True)
         wait_for_stop(stop)
     finally:
+        if gate is not None:
+            gate.stop()
         if server is not None:
             server.stop()
         for feed in feeds.values():

@@ -28,10 +28,12 @@ _OPEN_TIMEOUT_S = 10.0
 
 
 class FoxgloveClient:
-    def __init__(self, url: str, ssl=None):
-        """Connects and shakes hands; InvalidHandshake if the server answers no upgrade."""
+    def __init__(self, url: str, ssl=None, origin: str | None = None):
+        """Connects and shakes hands; InvalidHandshake if the server answers no upgrade.
+        `origin`: the Origin header a browser's page would send (None: none, as a program)."""
         uri = parse_uri(url)
-        self._protocol = ClientProtocol(uri, subprotocols=[SUBPROTOCOL], max_size=None)
+        self._protocol = ClientProtocol(uri, origin=origin, subprotocols=[SUBPROTOCOL],
+                                        max_size=None)
         self._socket = socket.create_connection((uri.host, uri.port), timeout=_OPEN_TIMEOUT_S)
         self._inbox: list = []  # frames received and not yet read
         try:

@@ -8,8 +8,12 @@ DNS rebinding would resolve the attacker's name to the station):
   attacker's server, before the rebinding); its calls go to the real console.
 - cross-site: the page is on another port and calls the console's own address (no CORS
   preflight: text/plain, as a form post would).
+Both also open the Foxglove live view's WebSocket, by the re-bound name and by 127.0.0.1, as
+Foxglove does (subprotocol foxglove.sdk.v1): a page that could would watch the arm and the
+cameras.
 Every attempt is refused and, asked past the console, the station says nobody took control
-and the arm did not move."""
+and the arm did not move. A page of the Foxglove app's origin does open the live view: the
+refusals are the live view's, by Origin, not the browser's."""
 
 from __future__ import annotations
 
@@ -34,8 +38,17 @@ CALLS = {
     "/telerobot.v1.ProxyRobot/Initialize": {},
 }
 
+OPEN_SOCKET = """
+(url, protocol) => new Promise((resolve) => {
+  const socket = new WebSocket(url, protocol);
+  socket.onopen = () => { socket.close(); resolve("open"); };
+  socket.onclose = (event) => resolve("closed " + event.code);
+})
+"""
+
 ATTACK = """
-async (target) => {
+async ({target, live}) => {
+  const openSocket = OPEN_SOCKET;
   const out = {};
   for (const [path, body] of Object.entries(CALLS)) {
     for (const type of ["application/json", "text/plain"]) {
@@ -48,26 +61,53 @@ async (target) => {
       }
     }
   }
-  out.socket = await new Promise((resolve) => {
-    const socket = new WebSocket(target.replace("http", "ws") + "/ws/teleoperate",
-                                 "telerobot.v1.teleoperate");
-    socket.onopen = () => { socket.close(); resolve("open"); };
-    socket.onclose = (event) => resolve("closed " + event.code);
-  });
+  out.socket = await openSocket(target.replace("http", "ws") + "/ws/teleoperate",
+                                "telerobot.v1.teleoperate");
+  for (const url of live) {
+    out["live " + url] = await openSocket(url, "foxglove.sdk.v1");
+  }
   return out;
 }
-""".replace("CALLS", json.dumps(CALLS))
+""".replace("CALLS", json.dumps(CALLS)).replace("OPEN_SOCKET", OPEN_SOCKET.strip())
 
 
-def attack_from(browser, page_url: str, target: str) -> dict:
+def page_at(browser, page_url: str):
+    """A new tab showing a page the test serves itself at `page_url` (for the attacker's, as
+    the attacker's server would). The page may reach loopback: Chromium's Local Network Access
+    would otherwise refuse a served page's sockets to 127.0.0.1 itself (the page's address is
+    not known to be local), before they reach the station, and the test would show nothing of
+    the station's own refusals (a browser without it, or a user who clicked "allow", lets them
+    through)."""
+    origin = "{0.scheme}://{0.netloc}".format(urlsplit(page_url))
+    browser.grant_permissions(["local-network-access"], origin=origin)
     page = browser.new_page()
     page.route(page_url, lambda route: route.fulfill(
         status=200, content_type="text/html", body="<!doctype html><title>evil</title>"))
     page.goto(page_url)
+    return page
+
+
+def attack_from(browser, page_url: str, target: str, live: list[str]) -> dict:
+    page = page_at(browser, page_url)
     try:
-        return page.evaluate(ATTACK, target)
+        return page.evaluate(ATTACK, {"target": target, "live": live})
     finally:
         page.close()
+
+
+def foxglove_app_opens(browser, url: str) -> str:
+    """What a page of the Foxglove app's origin gets when it opens the live view at `url`."""
+    page = page_at(browser, "https://app.foxglove.dev/")
+    try:
+        return page.evaluate(f"(url) => ({OPEN_SOCKET.strip()})(url, 'foxglove.sdk.v1')", url)
+    finally:
+        page.close()
+
+
+def live_view_urls(console_station) -> list[str]:
+    """The live view by the re-bound name and by its address."""
+    port = urlsplit(f"//{console_station.ready['foxglove']}").port
+    return [f"ws://evil.localhost:{port}", f"ws://127.0.0.1:{port}"]
 
 
 def nobody_in_control(decision) -> bool:
@@ -76,21 +116,28 @@ def nobody_in_control(decision) -> bool:
 
 
 def test_a_rebound_page_and_a_cross_site_page_cannot_drive_the_arm(browser, console_url, robot,
-                                                                   decision):
+                                                                   decision, console_station):
     port = urlsplit(console_url).port
+    live = live_view_urls(console_station)
     robot.Connect(proxy_robot_pb2.ConnectRequest(), timeout=10)  # past the console: it reads
     before = wait_for(lambda: (state := arm_state(robot)).status
                       != types_pb2.ROBOT_STATUS_NOT_CONNECTED and state, 10,
                       "a state sample of the connected arm")
 
     rebound = f"http://evil.localhost:{port}"
-    refused = attack_from(browser, f"{rebound}/", rebound)
-    calls = {k: v for k, v in refused.items() if k != "socket"}
+    refused = attack_from(browser, f"{rebound}/", rebound, live)
+    calls = {k: v for k, v in refused.items() if k.startswith("/")}
     assert set(calls.values()) == {403}, refused  # same-origin to the page: statuses visible
-    assert refused["socket"].startswith("closed"), refused
+    sockets = {k: v for k, v in refused.items() if not k.startswith("/")}
+    assert len(sockets) == 3 and all(v.startswith("closed") for v in sockets.values()), refused
 
-    cross_site = attack_from(browser, f"http://evil.localhost:{port + 1}/", console_url)
-    assert cross_site["socket"].startswith("closed"), cross_site
+    cross_site = attack_from(browser, f"http://evil.localhost:{port + 1}/", console_url, live)
+    sockets = {k: v for k, v in cross_site.items() if not k.startswith("/")}
+    assert len(sockets) == 3 and all(v.startswith("closed") for v in sockets.values()), \
+        cross_site
+    # The Foxglove web app's origin, which the live view allows, does get its socket: what
+    # refused the pages above was the live view, by their Origin, not the browser.
+    assert foxglove_app_opens(browser, live[1]) == "open"
 
     # Past the console: no lease was taken and the arm is where it was.
     assert nobody_in_control(decision)
