@@ -172,7 +172,10 @@ def test_a_3s_cut_mid_task_is_resumed_and_the_task_succeeds(hosts, slave, tmp_pa
     # one while the link was slower than the operator.
     merged = run["commands_merged"]
     assert run["commands"] == run["commands_acked"] == int(server["commandsProcessed"]) + merged
-    assert run["commands_applied"] == int(server["commandsApplied"]) + merged
+    # A merged command shares the outcome of the one it went inside: applied with it, or
+    # refused with it (a backlog refused around the cut), so only the bounds are exact.
+    applied = int(server["commandsApplied"])
+    assert applied <= run["commands_applied"] <= applied + merged
     assert int(server["lastSequence"]) == run["commands"]
 
 
