@@ -166,7 +166,9 @@ class GrpcTeleop:
             metadata=[(LEASE_METADATA_KEY, self._lease)], timeout=10)
 
     def stop_recording(self) -> dpb.Recording:
-        return self._stub.StopRecording(dpb.StopRecordingRequest(), timeout=30).recording
+        return self._stub.StopRecording(dpb.StopRecordingRequest(),
+                                        metadata=[(LEASE_METADATA_KEY, self._lease)],
+                                        timeout=30).recording
 
     def close(self) -> None:
         release_control(self._stub, self._lease)

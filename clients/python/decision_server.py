@@ -108,13 +108,16 @@ class _DecisionMethods:
 
     # -- control ---------------------------------------------------------------------------------
     def acquire_control(self, operator_id: str, mode: int = ControlMode.EXCLUSIVE, *,
-                        group: str = "", wait: bool = False, wait_timeout_s: float = 0.0,
+                        group: str = "", group_secret: str = "", wait: bool = False,
+                        wait_timeout_s: float = 0.0,
                         lease_duration_s: float = 0.0, timeout: float | None = None,
                         lane: str | None = None) -> Lease:
         """Ask for the control lock; keep and return the `Lease`. With ``wait=True`` the call
-        queues fairly for up to `wait_timeout_s` (0: until the call's `timeout`)."""
+        queues fairly for up to `wait_timeout_s` (0: until the call's `timeout`). Joining a
+        COLLABORATIVE group that holds control takes its `group_secret` (a member's
+        `Lease.group_secret`)."""
         request = pb.AcquireControlRequest(operator_id=operator_id, mode=int(mode), group=group,
-                                           wait=wait)
+                                           group_secret=group_secret, wait=wait)
         if wait_timeout_s:
             request.wait_timeout.CopyFrom(convert.duration(wait_timeout_s))
         if lease_duration_s:
@@ -123,7 +126,8 @@ class _DecisionMethods:
         def keep(response: pb.AcquireControlResponse) -> Lease:
             holder = response.operator_id or operator_id  # with TLS: the server's identity
             self._held = Lease(response.lease_id, holder, enum_value(ControlMode, mode),
-                               group, time_ns(response.expire_time), response.state)
+                               group, time_ns(response.expire_time), response.state,
+                               response.group_secret)
             return self._held
 
         return self._unary("AcquireControl", request, keep, timeout, lane)

@@ -184,6 +184,7 @@ class Lease:
     group: str
     expire_time_ns: int
     state: ds_pb.ControlState = field(repr=False)
+    group_secret: str = field(default="", repr=False)  # COLLABORATIVE: what lets others join
 
 
 @dataclass(frozen=True)

@@ -14,12 +14,14 @@ import pytest
 from clients.python import (
     AbortedError,
     CommandOutcome,
+    ControlMode,
     DecisionClient,
     FailedPreconditionError,
     ForceSensorClient,
     InvalidArgumentError,
     MoveResult,
     OutOfRangeError,
+    PermissionDeniedError,
     Pose,
     ProxyRobotClient,
     ReferenceFrame,
@@ -185,6 +187,20 @@ def test_the_lease_goes_in_metadata_and_errors_are_typed(station):
     with pytest.raises(ValueError, match="closed channel"):
         decision_server_pb2_grpc.DecisionServerStub(client.channel).GetControlState(
             pb.GetControlStateRequest())
+
+
+@pytest.mark.e2e
+def test_a_collaborative_group_is_joined_with_its_secret(station):
+    with DecisionClient(station.address) as first, DecisionClient(station.address) as second:
+        lease = first.acquire_control("ann", ControlMode.COLLABORATIVE, group="lab")
+        assert lease.group_secret
+        with pytest.raises(PermissionDeniedError) as error:
+            second.acquire_control("bob", ControlMode.COLLABORATIVE, group="lab")
+        assert error.value.reason == "BAD_GROUP_SECRET"
+        joined = second.acquire_control("bob", ControlMode.COLLABORATIVE, group="lab",
+                                        group_secret=lease.group_secret)
+        assert joined.group_secret == lease.group_secret
+        assert {h.operator_id for h in first.get_control_state().holders} == {"ann", "bob"}
 
 
 @pytest.mark.e2e

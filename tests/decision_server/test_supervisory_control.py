@@ -25,12 +25,14 @@ def driven(station):
     return station, lease, metadata
 
 
-def busy(station, milliseconds: int, lane: str, cobegin_id: str = "", action_id: str = ""):
+def busy(station, metadata, milliseconds: int, lane: str, cobegin_id: str = "",
+         action_id: str = ""):
+    """RunAction busy_work, which needs the lease (`metadata` carries it), like every action."""
     return station.decisions.RunAction.future(
         pb.RunActionRequest(cobegin_id=cobegin_id, action_id=action_id,
                             busy_work=pb.BusyWorkAction(duration=convert.duration(
                                 milliseconds / 1000))),
-        metadata=[("telerobot-lane", lane)], timeout=60)
+        metadata=[*metadata, ("telerobot-lane", lane)], timeout=60)
 
 
 @pytest.mark.e2e
@@ -38,7 +40,7 @@ def test_emergency_stop_halts_the_arm_with_200_low_lane_calls_in_flight(driven):
     station, _, metadata = driven
     station.robot.MoveJointsIncremental(proxy_robot_pb2.MoveJointsIncrementalRequest(
         delta_joint_positions_rad=[0.45, 0, 0, 0, 0, 0]), metadata=metadata)
-    load = [busy(station, 50, "low") for _ in range(200)]
+    load = [busy(station, metadata, 50, "low") for _ in range(200)]
 
     def low_lane_busy() -> bool:
         low = station.server.executor.counters()[Lane.LOW]
@@ -72,20 +74,21 @@ def test_parma_precedence_without_and_with_cobegin(fake_station):
     """A medium action reaching the server first runs first without cobegin; with cobegin
     the batch waits for the high-priority action, which then runs first (no inversion)."""
     station, _ = fake_station
-    medium = busy(station, 60, "medium", action_id="medium")
+    _, metadata = station.acquire()
+    medium = busy(station, metadata, 60, "medium", action_id="medium")
     wait_for(lambda: station.server.executor.counters()[Lane.MEDIUM].running >= 1,
              what="the medium action to start")
-    high = busy(station, 60, "high", action_id="high")
+    high = busy(station, metadata, 60, "high", action_id="high")
     medium, high = medium.result(), high.result()
     assert medium.lane == options_pb2.LANE_MEDIUM and high.lane == options_pb2.LANE_HIGH
     start_medium, start_high = _starts(medium, high)
     assert start_medium < start_high
 
     cobegin = station.decisions.BeginCobegin(pb.BeginCobeginRequest(action_count=2)).cobegin_id
-    medium = busy(station, 60, "medium", cobegin, "medium")
+    medium = busy(station, metadata, 60, "medium", cobegin, "medium")
     wait_for(lambda: station.core.barriers.arrived(cobegin) == 1,
              what="the medium action at the barrier")
-    high = busy(station, 60, "high", cobegin, "high")
+    high = busy(station, metadata, 60, "high", cobegin, "high")
     medium, high = medium.result(), high.result()
     start_medium, start_high = _starts(medium, high)
     assert start_high < start_medium
@@ -95,10 +98,11 @@ def test_parma_precedence_without_and_with_cobegin(fake_station):
 
 def test_a_cobegin_that_never_fills_fails_every_action(fake_station):
     station, _ = fake_station
+    _, metadata = station.acquire()
     cobegin = station.decisions.BeginCobegin(pb.BeginCobeginRequest(
         action_count=2, barrier_timeout=convert.duration(0.2))).cobegin_id
     with pytest.raises(grpc.RpcError) as error:
-        busy(station, 10, "medium", cobegin).result()
+        busy(station, metadata, 10, "medium", cobegin).result()
     assert error.value.code() is grpc.StatusCode.DEADLINE_EXCEEDED
 
 
@@ -112,7 +116,8 @@ def test_replay_reproduces_the_recorded_path(driven):
         operator.move(dx)
         station.wait_status(types_pb2.ROBOT_STATUS_READY)  # one stroke at a time
     operator.close()
-    recording = station.decisions.StopRecording(pb.StopRecordingRequest()).recording
+    recording = station.decisions.StopRecording(pb.StopRecordingRequest(),
+                                                metadata=metadata).recording
     assert recording.command_count == 15 and recording.duration.ToNanoseconds() > 2e8
     path = [c.target_position_m for c in station.core.recordings.load("square")[1]]
     recorded_end = station.tool_position()
@@ -148,7 +153,7 @@ def test_an_emergency_stop_interrupts_a_replay(driven):
         operator.move((0, 0, 0.001))
         station.wait_status(types_pb2.ROBOT_STATUS_READY)  # one stroke at a time
     operator.close()
-    station.decisions.StopRecording(pb.StopRecordingRequest())
+    station.decisions.StopRecording(pb.StopRecordingRequest(), metadata=metadata)
     station.ready_at_home(metadata)
     events = station.core.events.subscribe(256)
     station.decisions.StartReplay(pb.StartReplayRequest(name="long"), metadata=metadata)
