@@ -58,11 +58,14 @@ def _ensure_ready(stub, metadata=()) -> bool:
 
 
 def run_estop(address: str, shm_name: str, trials: int, label: str,
-              decision_server: bool = False, stop_address: str | None = None) -> dict:
+              decision_server: bool = False, stop_address: str | None = None,
+              lease_id: str | None = None) -> dict:
     """`trials` emergency stops of a moving arm; the scenario's summary and raw latencies.
     With `decision_server`, `address` is the DecisionServer's: the calls go through its
     ProxyRobot facade, with a control lease for the moves and resets. With `stop_address`
-    (the emergency-stop band's), the stops go there and everything else to `address`."""
+    (the emergency-stop band's), the stops go there and everything else to `address`. With
+    `lease_id`, that lease (a plaintext station's, shared with a load worker) is used and kept
+    instead of one of its own."""
     channel = grpc.insecure_channel(address)
     stub = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
     stop_channel = (grpc.insecure_channel(stop_address)
@@ -73,7 +76,9 @@ def run_estop(address: str, shm_name: str, trials: int, label: str,
     grpc.channel_ready_future(stop_channel).result(timeout=CALL_TIMEOUT_S)
     metadata: tuple = ()
     lease = decision = None
-    if decision_server:
+    if lease_id:
+        metadata = (("telerobot-lease-id", lease_id),)
+    elif decision_server:
         from bench.command import acquire_control
         from telerobot.v1 import decision_server_pb2_grpc
 
@@ -150,14 +155,15 @@ def run_estop(address: str, shm_name: str, trials: int, label: str,
 
 
 def run_load(address: str, concurrency: int, max_s: float, ready,
-             target: str = "proxy_robot") -> dict:
-    """`concurrency` GetState calls (RunAction BusyWork when `target` is "decision_server") on
-    the low lane, re-issued as each returns, until SIGTERM or max_s. Calls ready() after the
-    first `concurrency` completions."""
-    return asyncio.run(_load(address, concurrency, max_s, ready, target))
+             target: str = "proxy_robot", lease_id: str = "") -> dict:
+    """`concurrency` GetState calls (RunAction BusyWork when `target` is "decision_server",
+    which needs the control lease `lease_id`) on the low lane, re-issued as each returns,
+    until SIGTERM or max_s. Calls ready() after the first `concurrency` completions."""
+    return asyncio.run(_load(address, concurrency, max_s, ready, target, lease_id))
 
 
-async def _load(address: str, concurrency: int, max_s: float, ready, target: str) -> dict:
+async def _load(address: str, concurrency: int, max_s: float, ready, target: str,
+                lease_id: str) -> dict:
     stop = asyncio.Event()
     loop = asyncio.get_running_loop()
     loop.add_signal_handler(signal.SIGTERM, stop.set)
@@ -166,11 +172,13 @@ async def _load(address: str, concurrency: int, max_s: float, ready, target: str
     announced = False
     started = time.monotonic()
 
+    metadata = LOW_LANE + ((("telerobot-lease-id", lease_id),) if lease_id else ())
+
     async def caller(call, request):
         nonlocal completed, announced
         while not stop.is_set():
             try:
-                await call(request, metadata=LOW_LANE, timeout=CALL_TIMEOUT_S)
+                await call(request, metadata=metadata, timeout=CALL_TIMEOUT_S)
                 codes["OK"] += 1
             except grpc.aio.AioRpcError as error:
                 codes[error.code().name] += 1

@@ -85,14 +85,14 @@ def _estop(p: dict) -> dict:
     from bench.estop import run_estop
 
     return run_estop(p["address"], p["shm"], p["trials"], p["label"],
-                     p.get("decision_server", False), p.get("stop_address"))
+                     p.get("decision_server", False), p.get("stop_address"), p.get("lease_id"))
 
 
 def _load(p: dict) -> dict:
     from bench.estop import run_load
 
     return run_load(p["address"], p["concurrency"], p["max_s"], _ready,
-                    p.get("target", "proxy_robot"))
+                    p.get("target", "proxy_robot"), p.get("lease_id", ""))
 
 
 def _closed_loop(p: dict) -> dict:

@@ -7,11 +7,15 @@ from __future__ import annotations
 
 import sys
 
+import grpc
+
+from bench.command import acquire_control, release_control
 from bench.groups.estop import add_load, under_load
 from bench.plan import Plan
 from bench.procs import ChildFailed
 from bench.session import Session
 from bench.station import OPERATOR_IDENTITY, Station
+from telerobot.v1 import decision_server_pb2_grpc
 
 
 def steps(plan: Plan) -> int:
@@ -122,13 +126,21 @@ def _estop_ds(bench: Session, address: str) -> None:
         bench.fail(["estop_ds_idle"], error)
     bench.progress.step(f"estop_ds_busywork: the same with {plan.load_concurrency} "
                         "concurrent RunAction BusyWork (20 ms each) on the low lane")
-    try:
-        result, load = under_load(bench, {
-            "address": address, "target": "decision_server",
-            "concurrency": plan.load_concurrency, "max_s": timeout + 30},
-            lambda: bench.worker("estop", {**params, "label": "ds busywork"}, timeout))
-    except ChildFailed as error:
-        return bench.fail(["estop_ds_busywork"], error)
+    # BusyWork needs the control lease: one lease for both workers (a plaintext station's
+    # lease is not bound to an identity).
+    with grpc.insecure_channel(address) as channel:
+        decision = decision_server_pb2_grpc.DecisionServerStub(channel)
+        lease = acquire_control(decision)
+        try:
+            result, load = under_load(bench, {
+                "address": address, "target": "decision_server", "lease_id": lease,
+                "concurrency": plan.load_concurrency, "max_s": timeout + 30},
+                lambda: bench.worker("estop", {**params, "label": "ds busywork",
+                                               "lease_id": lease}, timeout))
+        except ChildFailed as error:
+            return bench.fail(["estop_ds_busywork"], error)
+        finally:
+            release_control(decision, lease)
     add_load(result, load, "200 concurrent DecisionServer.RunAction BusyWork (20 ms), "
              "telerobot-lane: low", bench.results.get("estop_ds_idle", {}))
     bench.record("estop_ds_busywork", result)
