@@ -266,10 +266,12 @@ class DecisionServerServicer:
         """StopRecording ends the recording and saves it to disk. Like StartRecording it needs the
         control lock: the holder decides what is recorded, so a recording whose starter released
         control is stopped by whoever holds it next, and nobody without it can cut one short.
+        A recording whose writer fell behind is saved, with Recording.error saying how many
+        increments it lost.
         Errors: FAILED_PRECONDITION without the control lock (reason NO_CONTROL), when not
-        recording, or (reason RECORDING_FAILED) when an MCAP
-        recording had stopped by itself because its file could not be written (a full disk): the
-        message says why, nothing was saved, and the next StartRecording starts afresh.
+        recording, or (reason RECORDING_FAILED) when a recording had stopped by itself because its
+        file could not be written (a full disk): the message says why, nothing was saved, and the
+        next StartRecording starts afresh.
         Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
@@ -299,7 +301,9 @@ class DecisionServerServicer:
         Errors: NOT_FOUND for an unknown name; FAILED_PRECONDITION without the control lock, while
         teleoperating or replaying, when the arm is not READY, or (reason CORRUPT_RECORDING) for a
         file that cannot be read (truncated, corrupt): the request is fine, the stored file is
-        not; INVALID_ARGUMENT for a speed outside 0.1..10.
+        not, or (reason INCOMPLETE_RECORDING) for a recording that lost increments while its
+        writer was behind (kept, but a replay would not retrace the path); INVALID_ARGUMENT for a
+        speed outside 0.1..10.
         Lane: medium. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)

@@ -1332,8 +1332,8 @@ export type Recording = Message<"telerobot.v1.Recording"> & {
   format: RecordingFormat;
 
   /**
-   * Set when its file cannot be read (truncated, corrupt): why. A replay of it answers
-   * FAILED_PRECONDITION.
+   * Set when its file cannot be read (truncated, corrupt), or when it lost increments while
+   * its writer was behind: why. A replay of it answers FAILED_PRECONDITION.
    *
    * @generated from field: string error = 6;
    */
@@ -1713,7 +1713,7 @@ export const StreamEventsResponseSchema: GenMessage<StreamEventsResponse> = /*@_
 
 /**
  * RecordingFailedEvent says a recording stopped by itself, without StopRecording: its file
- * could not be written (a full disk) or its writer fell behind. Its partial file is deleted;
+ * could not be written (a full disk). Its partial file is deleted;
  * the next StopRecording answers FAILED_PRECONDITION (RECORDING_FAILED) with the same reason.
  *
  * @generated from message telerobot.v1.RecordingFailedEvent
@@ -2330,7 +2330,10 @@ export enum RecordingFormat {
 
   /**
    * <name>.jsonl: a header line, then one JSON line per applied increment (offset, frame,
-   * deltas, the tool target it led to). Written whole when the recording stops.
+   * deltas, the tool target it led to). Written as the recording runs (off the command path)
+   * to <name>.jsonl.partial, flushed every 10 ms, fsynced and renamed when it stops; a server
+   * restarted after a crash keeps what the partial file holds as the recording. A writer that
+   * fell behind leaves a line {"gap": {"first_ns", "last_ns", "dropped": {channel: count}}}.
    *
    * @generated from enum value: RECORDING_FORMAT_JSONL = 1;
    */
@@ -2346,7 +2349,10 @@ export enum RecordingFormat {
    *   /decision_server/events  StreamEventsResponse: control, watchdog holds, assistance
    *                         changes, replays, sessions, dependencies (not state samples)
    * and a metadata record "recording" (name, create_time_ns, duration_s, command_count, the
-   * count per channel). No stereo pairs: make teleop --mcap records those at the station.
+   * count per channel). A writer that fell behind drops new messages until it catches up: each
+   * gap is a "recording_gap" metadata record (first_ns, last_ns, dropped: JSON counts by
+   * channel), and the "recording" metadata gets "dropped" (the totals). No stereo pairs:
+   * make teleop --mcap records those at the station.
    *
    * @generated from enum value: RECORDING_FORMAT_MCAP = 2;
    */
@@ -2819,10 +2825,12 @@ export const DecisionServer: GenService<{
    * StopRecording ends the recording and saves it to disk. Like StartRecording it needs the
    * control lock: the holder decides what is recorded, so a recording whose starter released
    * control is stopped by whoever holds it next, and nobody without it can cut one short.
+   * A recording whose writer fell behind is saved, with Recording.error saying how many
+   * increments it lost.
    * Errors: FAILED_PRECONDITION without the control lock (reason NO_CONTROL), when not
-   * recording, or (reason RECORDING_FAILED) when an MCAP
-   * recording had stopped by itself because its file could not be written (a full disk): the
-   * message says why, nothing was saved, and the next StartRecording starts afresh.
+   * recording, or (reason RECORDING_FAILED) when a recording had stopped by itself because its
+   * file could not be written (a full disk): the message says why, nothing was saved, and the
+   * next StartRecording starts afresh.
    * Lane: medium. Role: operator.
    *
    * @generated from rpc telerobot.v1.DecisionServer.StopRecording
@@ -2861,7 +2869,9 @@ export const DecisionServer: GenService<{
    * Errors: NOT_FOUND for an unknown name; FAILED_PRECONDITION without the control lock, while
    * teleoperating or replaying, when the arm is not READY, or (reason CORRUPT_RECORDING) for a
    * file that cannot be read (truncated, corrupt): the request is fine, the stored file is
-   * not; INVALID_ARGUMENT for a speed outside 0.1..10.
+   * not, or (reason INCOMPLETE_RECORDING) for a recording that lost increments while its
+   * writer was behind (kept, but a replay would not retrace the path); INVALID_ARGUMENT for a
+   * speed outside 0.1..10.
    * Lane: medium. Role: operator.
    *
    * @generated from rpc telerobot.v1.DecisionServer.StartReplay
