@@ -25,6 +25,7 @@ import signal
 import threading
 from collections import Counter
 
+import grpc
 import numpy as np
 import pytest
 
@@ -36,7 +37,7 @@ from telerobot.v1 import decision_server_pb2 as ds
 from telerobot.v1 import decision_server_pb2_grpc, proxy_robot_pb2, proxy_robot_pb2_grpc
 from tests.conftest import wait_for
 from tests.processes import start_process, station_env
-from wire.tls import ChannelSecurity, open_channel
+from wire.tls import ChannelSecurity
 
 pytestmark = pytest.mark.e2e
 
@@ -131,8 +132,11 @@ class Flood:
 
     async def _start(self, address: str, pki) -> None:
         self._never = asyncio.Event()
-        self._channel = open_channel(address, security=ChannelSecurity(pki, "observer"),
-                                     aio=True)
+        # Without the station clients' 250 ms keepalive pings: a flooder does not care to
+        # learn quickly that its connection is gone, and its pings, queued behind its own
+        # flood, would time it out on a busy machine.
+        self._channel = grpc.aio.secure_channel(
+            address, ChannelSecurity(pki, "observer").credentials())
         decisions = decision_server_pb2_grpc.DecisionServerStub(self._channel)
         robot = proxy_robot_pb2_grpc.ProxyRobotStub(self._channel)
         headers_only = self._channel.stream_unary(GET_CONTROL_STATE)
@@ -196,11 +200,11 @@ def test_a_flood_from_one_identity_does_not_starve_the_lease_holder(station):
         wait_for(lambda: len(driver.acks) >= 50 or driver.errors, SETTLE_S,
                  "the operator teleoperating")
         flood = Flood(address, pki)
-        # Everything past the observer's share is refused; its share stays open, held.
+        # Everything past the observer's share is refused; what it got stays open, held.
         wait_for(lambda: (flood.ended["streams"] >= STREAMS - STREAMS_PER_CALLER
                           and flood.ended["headers_only"] >= HEADERS_ONLY - CALLS_PER_CALLER)
                  or driver.errors, SETTLE_S, "the flood refused")
-        # The operator goes on while the observer holds its share: a second of commands and
+        # The operator goes on while the observer holds what it got: a second of commands and
         # a few renewals more.
         acked, renewed = len(driver.acks), driver.renewals
         wait_for(lambda: (len(driver.acks) >= acked + 100 and driver.renewals >= renewed + 3)
@@ -220,13 +224,11 @@ def test_a_flood_from_one_identity_does_not_starve_the_lease_holder(station):
         operator.renew_control()  # the same lease, still held
         assert operator.lease.lease_id == lease.lease_id
         # Every call past the observer's share, which the server held meanwhile, was refused:
-        # RESOURCE_EXHAUSTED by its caps, or, for streams past its connection's share (which
-        # gRPC narrows for a connection that keeps resetting streams), REFUSED_STREAM, which
-        # the client reports UNAVAILABLE.
+        # RESOURCE_EXHAUSTED by the caps; or UNAVAILABLE, for streams past its connection's
+        # share (which gRPC narrows for a connection that keeps resetting streams: its
+        # REFUSED_STREAM), or if the server's keepalive gave up on its swamped connection.
         for kind in ("streams", "headers_only"):
-            assert set(codes[kind]) <= {"RESOURCE_EXHAUSTED", "UNAVAILABLE"}, codes
-        assert all(code == "RESOURCE_EXHAUSTED" or "error code 7" in detail
-                   for code, detail in details), details
+            assert set(codes[kind]) <= {"RESOURCE_EXHAUSTED", "UNAVAILABLE"}, (codes, details)
         messages = [detail for code, detail in details if code == "RESOURCE_EXHAUSTED"]
         assert any(f"already holds {STREAMS_PER_CALLER} streams" in m for m in messages)
         assert any(f"already has {CALLS_PER_CALLER} calls in flight" in m for m in messages)
