@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-# Which lane (priority) a call should run on: one of LANES. The server clamps it to its
-# --client-lane-limit; without it a call runs on the lane its RPC declares.
+# Which lane (priority) a call should run on: one of LANES, at most the lane its RPC declares
+# (a client may lower a call, never raise it) and the server's --client-lane-limit; without it
+# a call runs on the lane its RPC declares.
 LANE_METADATA_KEY = "telerobot-lane"
 # The lease id from DecisionServer.AcquireControl, which commanding calls on the
 # DecisionServer's port need.

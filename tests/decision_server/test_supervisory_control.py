@@ -71,29 +71,30 @@ def _starts(*replies) -> list[int]:
 
 
 def test_parma_precedence_without_and_with_cobegin(fake_station):
-    """A medium action reaching the server first runs first without cobegin; with cobegin
-    the batch waits for the high-priority action, which then runs first (no inversion)."""
+    """A low-priority action reaching the server first runs first without cobegin; with
+    cobegin the batch waits for the higher-priority one, which then runs first (no inversion).
+    (A client may lower a call's lane, never raise it: RunAction's own is medium.)"""
     station, _ = fake_station
     _, metadata = station.acquire()
-    medium = busy(station, metadata, 60, "medium", action_id="medium")
-    wait_for(lambda: station.server.executor.counters()[Lane.MEDIUM].running >= 1,
-             what="the medium action to start")
-    high = busy(station, metadata, 60, "high", action_id="high")
-    medium, high = medium.result(), high.result()
-    assert medium.lane == options_pb2.LANE_MEDIUM and high.lane == options_pb2.LANE_HIGH
-    start_medium, start_high = _starts(medium, high)
-    assert start_medium < start_high
+    low = busy(station, metadata, 60, "low", action_id="low")
+    wait_for(lambda: station.server.executor.counters()[Lane.LOW].running >= 1,
+             what="the low action to start")
+    higher = busy(station, metadata, 60, "medium", action_id="medium")
+    low, higher = low.result(), higher.result()
+    assert low.lane == options_pb2.LANE_LOW and higher.lane == options_pb2.LANE_MEDIUM
+    start_low, start_higher = _starts(low, higher)
+    assert start_low < start_higher
 
     cobegin = station.decisions.BeginCobegin(pb.BeginCobeginRequest(action_count=2)).cobegin_id
-    medium = busy(station, metadata, 60, "medium", cobegin, "medium")
+    low = busy(station, metadata, 60, "low", cobegin, "low")
     wait_for(lambda: station.core.barriers.arrived(cobegin) == 1,
-             what="the medium action at the barrier")
-    high = busy(station, metadata, 60, "high", cobegin, "high")
-    medium, high = medium.result(), high.result()
-    start_medium, start_high = _starts(medium, high)
-    assert start_high < start_medium
-    assert high.end_time.ToNanoseconds() < medium.end_time.ToNanoseconds()
-    assert medium.arrive_time.ToNanoseconds() < high.arrive_time.ToNanoseconds()
+             what="the low action at the barrier")
+    higher = busy(station, metadata, 60, "medium", cobegin, "medium")
+    low, higher = low.result(), higher.result()
+    start_low, start_higher = _starts(low, higher)
+    assert start_higher < start_low
+    assert higher.end_time.ToNanoseconds() < low.end_time.ToNanoseconds()
+    assert low.arrive_time.ToNanoseconds() < higher.arrive_time.ToNanoseconds()
 
 
 def test_a_cobegin_that_never_fills_fails_every_action(fake_station):

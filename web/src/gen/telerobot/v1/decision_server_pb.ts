@@ -2907,8 +2907,8 @@ export const DecisionServer: GenService<{
     output: typeof BeginCobeginResponseSchema;
   },
   /**
-   * RunAction runs one action on the lane the client asks for (metadata `telerobot-lane`),
-   * at once, or at the barrier of its cobegin. It returns when the action ends. Every action
+   * RunAction runs one action on its lane (medium, or a lower one the client asks for with
+   * the metadata `telerobot-lane`), at once, or at the barrier of its cobegin. It returns when the action ends. Every action
    * needs the control lock, busy_work too (it holds a lane thread and the processor).
    * Errors: INVALID_ARGUMENT for a malformed action (checked first); FAILED_PRECONDITION
    * without the control lock (reason NO_CONTROL, checked before the barrier);
