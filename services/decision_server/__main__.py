@@ -61,7 +61,8 @@ class DecisionService(Service):
         # A window of about one pair: the forward then reads a pair only as its client takes
         # one, so it holds no backlog of its own (wire/stereo.py).
         self._stereo_channel = open_channel(self.args.stereo_camera_address,
-                                            [*RECONNECT_OPTIONS, *LOW_LATENCY_OPTIONS], security)
+                                            [*RECONNECT_OPTIONS, *LOW_LATENCY_OPTIONS], security,
+                                            service="stereo_camera")
         slave.watch_health("stereo_camera", self._stereo_channel)
         self._slave = slave
         # Each dependency's state, from its health and the launcher's state file; every change

@@ -117,8 +117,11 @@ def main(argv: list[str] | None = None) -> int:
             return 2
 
     security = station_channel_security(args.tls_dir or None, NAME)
-    upstream = [open_channel(address, security=security)
-                for address in (args.proxy_robot, args.force_sensor, args.stereo_camera)]
+    # Over TLS each service's certificate must name that service (wire.tls).
+    upstream = [open_channel(address, security=security, service=service)
+                for address, service in ((args.proxy_robot, "proxy_robot"),
+                                         (args.force_sensor, "force_sensor"),
+                                         (args.stereo_camera, "stereo_camera"))]
     context = Context()
     channels = LiveChannels(context)
     viewers = _Viewers()
