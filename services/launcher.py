@@ -63,6 +63,7 @@ from services.runtime.supervisor_state import (
     write_state,
 )
 from services.runtime.tls import station_channel_security
+from services.web_console.https import certificate_files
 from wire.addresses import env_name
 from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
@@ -324,11 +325,23 @@ def _is_serving(address: str, security: ChannelSecurity, service: str) -> bool:
         return False
 
 
-def _http_serving(address: str, _security: ChannelSecurity, _service: str) -> bool:
+def _http_serving(address: str, security: ChannelSecurity, _service: str) -> bool:
+    """Whether the web console answers /healthz: over HTTPS when the TLS directory has its
+    certificate (as the console itself decides), else HTTP."""
+    https = security.secure and certificate_files(security.tls_dir) is not None
+    context = None
+    if https:
+        # Its chain is checked (the station's CA, or one this host trusts), not its names: the
+        # launcher dials the address its own child reported, by IP, which a certificate for
+        # browsers' names need not carry.
+        context = ssl.create_default_context(cafile=str(security.tls_dir / "ca.pem"))
+        context.load_default_certs()
+        context.check_hostname = False
+    url = f"{'https' if https else 'http'}://{dialable(address)}/healthz"
     try:
-        with urllib.request.urlopen(f"http://{address}/healthz", timeout=1.0) as reply:
+        with urllib.request.urlopen(url, timeout=1.0, context=context) as reply:
             return reply.status == 200
-    except OSError:
+    except OSError:  # (ssl.SSLError and urllib's URLError are)
         return False
 
 
@@ -368,10 +381,15 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
     lines += [f"  {c.name:<{width}}  {c.address}  (pid {c.pid})" for c in station]
     lines += [f"  {name:<{width}}  {address}  (bearer tokens)" for name, address in extra_ports]
     if metrics:
-        lines += ["", "Prometheus metrics (set TELEROBOT_<NAME>_METRICS_ADDRESS to fix a port):"]
+        lines += ["", "Prometheus metrics (scrape these; TELEROBOT_<NAME>_METRICS_ADDRESS moves "
+                      "one):"]
         lines += [f"  {name:<{width}}  http://{address}/metrics" for name, address in metrics]
     console = next((c.address for c in station if c.name == "web_console"), None)
-    if console:
+    if console and certificate_files(tls_dir) is not None:
+        lines += ["", f"The web console: https://{dialable(console)}/ (a browser that trusts "
+                      f"{tls_dir.rstrip('/')}/ca.pem; sign in with a token from `python -m "
+                      "services.security.tokens issue`)"]
+    elif console:
         lines += ["", f"The web console: http://{console}/ (in any browser on this host)"]
     live = next((c.address for c in station if c.name == "foxglove"), None)
     if live:

@@ -23,17 +23,62 @@ from wire.tls import TLS_DIR_ENV
 PLAINTEXT_ENV = "TELEROBOT_ALLOW_PLAINTEXT_NETWORK"
 
 DEFAULT_GRACE_S = 2.0
-# Each service serves Prometheus metrics (plain HTTP, read-only) here unless its
-# TELEROBOT_<NAME>_METRICS_ADDRESS or --metrics-address says otherwise ("off": none).
-DEFAULT_METRICS_ADDRESS = f"{DEFAULT_HOST}:0"
+# Each gRPC service serves Prometheus metrics (plain HTTP, read-only) on loopback at a port of
+# its own, fixed so that Prometheus can scrape it (the gRPC port's last two digits after 94),
+# unless its TELEROBOT_<NAME>_METRICS_ADDRESS or --metrics-address says otherwise ("off": none).
+# A service whose own port is 0 (a free one: the tests' many stations at once) serves its
+# metrics on a free port too (FREE_METRICS_ADDRESS).
+DEFAULT_METRICS_PORTS = {
+    "world": 9450,
+    "decision_server": 9451,
+    "proxy_robot": 9452,
+    "force_sensor": 9453,
+    "stereo_camera": 9454,
+    "emergency_stop": 9455,
+}
+FREE_METRICS_ADDRESS = f"{DEFAULT_HOST}:0"
 METRICS_OFF = "off"
 # Set to 1: a service may serve its metrics beyond loopback (plain HTTP, no authentication).
 METRICS_NETWORK_ENV = "TELEROBOT_ALLOW_METRICS_NETWORK"
 
 
+def default_metrics_address(service: str) -> str:
+    """Where `service` serves its metrics unless told otherwise: its fixed port on loopback."""
+    return f"{DEFAULT_HOST}:{DEFAULT_METRICS_PORTS.get(service, 0)}"
+
+
+def metrics_address_for(service: str, address: str) -> str:
+    """Where `service`, listening on `address`, serves its metrics when neither its flag nor
+    its variable says: its fixed port on loopback, or a free port on loopback when `address`'s
+    own port is 0 (so that stations on free ports, many at once, never collide)."""
+    if address.rsplit(":", 1)[-1] == "0":
+        return FREE_METRICS_ADDRESS
+    return default_metrics_address(service)
+
+
+class _UnsetMetricsAddress(str):
+    """--metrics-address's default when its variable is unset: replaced once the arguments are
+    parsed by what `metrics_address_for` says for the service's --address."""
+
+
+class ServiceParser(argparse.ArgumentParser):
+    """A service's parser: after parsing, a --metrics-address neither given nor set in the
+    environment follows --address (a free port when it is port 0)."""
+
+    service = ""
+
+    def parse_known_args(self, args=None, namespace=None):
+        namespace, extras = super().parse_known_args(args, namespace)
+        chosen = getattr(namespace, "metrics_address", None)
+        if isinstance(chosen, _UnsetMetricsAddress) and hasattr(namespace, "address"):
+            namespace.metrics_address = metrics_address_for(self.service, namespace.address)
+        return namespace, extras
+
+
 def base_parser(service: str, description: str) -> argparse.ArgumentParser:
     """Flags every service process takes; each default comes from the environment first."""
-    parser = argparse.ArgumentParser(prog=f"python -m services.{service}", description=description)
+    parser = ServiceParser(prog=f"python -m services.{service}", description=description)
+    parser.service = service
     parser.add_argument(
         "--address", default=address_for(service),
         help=f"host:port to listen on (env {env_name(service, 'address')}); "
@@ -66,10 +111,12 @@ def base_parser(service: str, description: str) -> argparse.ArgumentParser:
     )
     parser.add_argument(
         "--metrics-address",
-        default=os.environ.get(env_name(service, "metrics_address"), DEFAULT_METRICS_ADDRESS),
+        default=os.environ.get(env_name(service, "metrics_address"),
+                               _UnsetMetricsAddress(default_metrics_address(service))),
         help="host:port to serve Prometheus metrics on, at /metrics (env "
-             f"{env_name(service, 'metrics_address')}; default {DEFAULT_METRICS_ADDRESS}, a "
-             f"free port on loopback; {METRICS_OFF!r}: none)",
+             f"{env_name(service, 'metrics_address')}; default "
+             f"{default_metrics_address(service)}, or a free port on loopback when --address's "
+             f"port is 0; {METRICS_OFF!r}: none)",
     )
     parser.add_argument(
         "--allow-metrics-network", action="store_true",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import functools
 import logging
 import os
 import sys
@@ -15,10 +16,11 @@ from uvicorn.protocols.http.h11_impl import H11Protocol
 
 from services.runtime.config import PLAINTEXT_ENV, configure_logging
 from services.runtime.process import watch_parent
-from services.runtime.server import PlaintextRefused, check_plaintext
+from services.runtime.server import PlaintextRefused
 from services.web_console.app import ConsoleApp
 from services.web_console.bridge import Upstream
-from wire.addresses import address_for, env_name
+from services.web_console.https import RenewingCertificate, certificate_files, issue_command
+from wire.addresses import address_for, env_name, is_loopback
 from wire.processes import dump_stacks_on_signal, ready_line
 from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import KEEPALIVE_OPTIONS, TLS_DIR_ENV
@@ -31,6 +33,7 @@ ALLOWED_HOSTS_ENV = env_name(NAME, "allowed_hosts")
 # What one client may hold of the console before it is authenticated, if ever:
 MAX_CONNECTIONS = 64  # open at once; a request beyond them gets 503 (uvicorn's limit_concurrency)
 HEAD_TIMEOUT_S = 10.0  # from a connection's opening (or its last response) to a whole request head
+HANDSHAKE_TIMEOUT_S = 10.0  # over HTTPS, from a connection's opening to its TLS handshake's end
 KEEP_ALIVE_S = 5  # an idle connection's life after a response
 MAX_HEAD_BYTES = 16 * 1024  # a request line and headers; larger: 400, and closed
 
@@ -48,10 +51,12 @@ def main(argv: list[str] | None = None) -> int:
                              f"browsers' tokens are forwarded (env {TOKEN_ADDRESS_ENV})")
     parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
                         help=f"the station's TLS directory (env {TLS_DIR_ENV}): its ca.pem "
-                             "verifies the token port")
+                             "verifies the token port, and with web_console.pem and "
+                             "web_console.key in it the console serves HTTPS, on any address")
     parser.add_argument("--allow-plaintext-network", action="store_true",
                         default=os.environ.get(PLAINTEXT_ENV) == "1",
-                        help="listen beyond loopback without TLS (the console serves HTTP only)")
+                        help="DANGEROUS: serve HTTP beyond loopback (without the console's "
+                             "certificate in --tls-dir)")
     parser.add_argument("--allowed-host", action="append", dest="allowed_hosts",
                         default=[h for h in os.environ.get(ALLOWED_HOSTS_ENV, "").split(",")
                                  if h],
@@ -63,13 +68,41 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     configure_logging(NAME, args.log_level)
     dump_stacks_on_signal()
+    files = certificate_files(args.tls_dir)
     try:
-        # The console itself serves plain HTTP: beyond loopback only when told so explicitly.
-        check_plaintext(args.address, False, args.allow_plaintext_network)
+        check_listening(args.address, args.tls_dir, files is not None,
+                        args.allow_plaintext_network)
+        certificate = RenewingCertificate(*files) if files else None
     except PlaintextRefused as refused:
         print(f"web_console: {refused}", file=sys.stderr)
         return 2
-    return asyncio.run(_serve(args))
+    except (OSError, ValueError) as error:  # ssl.SSLError is an OSError
+        print(f"web_console: cannot serve HTTPS with {files[0]} and {files[1]}: {error}",
+              file=sys.stderr)
+        return 2
+    if args.tls_dir and certificate is None:
+        log.warning("serving HTTP, not HTTPS: the TLS directory has no %s.pem and .key (%s)",
+                    NAME, issue_command(args.tls_dir))
+    return asyncio.run(_serve(args, certificate))
+
+
+def check_listening(address: str, tls_dir: str, https: bool, allow_plaintext_network: bool
+                    ) -> None:
+    """PlaintextRefused for HTTP beyond loopback unless allowed (then a warning). Over HTTPS
+    the console may listen anywhere: browsers sign in with tokens (a TLS station's console
+    forwards only to the token port, and refuses every call without one)."""
+    if https or is_loopback(address):
+        return
+    if not allow_plaintext_network:
+        how = (f"issue the console's certificate into {tls_dir} ({issue_command(tls_dir)})"
+               if tls_dir else "run the station with TLS (`make certs`, TELEROBOT_TLS_DIR) and "
+               "the console's certificate in that directory")
+        raise PlaintextRefused(
+            f"refusing to serve the console on {address} over plain HTTP: anyone on that "
+            f"network could take the lock and move the arm. To serve HTTPS, {how}; or listen "
+            "on 127.0.0.1, or pass --allow-plaintext-network")
+    log.warning("PLAINTEXT beyond loopback on %s: the console serves HTTP. Anyone who reaches "
+                "this port can command the arm.", address)
 
 
 def _channels(args) -> tuple[Upstream, str]:
@@ -96,11 +129,12 @@ def _channels(args) -> tuple[Upstream, str]:
         needs_token=True), "token"
 
 
-async def _serve(args) -> int:
+async def _serve(args, certificate: RenewingCertificate | None) -> int:
     upstream, auth = _channels(args)
     host, port = args.address.rsplit(":", 1)
     app = ConsoleApp(upstream, auth, args.allowed_hosts)
-    server = uvicorn.Server(server_config(app, host.strip("[]"), int(port)))
+    server = ConsoleServer(server_config(app, host.strip("[]"), int(port),
+                                         certificate=certificate))
     watch_parent(lambda: setattr(server, "should_exit", True))
     serving = asyncio.ensure_future(server.serve())
     while not server.started:
@@ -109,7 +143,8 @@ async def _serve(args) -> int:
         await asyncio.sleep(0.01)
     bound = server.servers[0].sockets[0].getsockname()
     address = f"{bound[0]}:{bound[1]}"
-    log.info("serving the console on http://%s/ for the DecisionServer at %s", address,
+    log.info("serving the console on %s://%s/ for the DecisionServer at %s",
+             "https" if certificate else "http", address,
              args.token_address if auth == "token" else args.decision_server)
     print(ready_line(NAME, address), flush=True)
     await serving
@@ -119,14 +154,43 @@ async def _serve(args) -> int:
 
 
 def server_config(app, host: str, port: int, *, max_connections: int = MAX_CONNECTIONS,
-                  head_timeout_s: float = HEAD_TIMEOUT_S) -> uvicorn.Config:
-    """uvicorn's configuration of the console, with its limits on unauthenticated clients."""
+                  head_timeout_s: float = HEAD_TIMEOUT_S,
+                  certificate: RenewingCertificate | None = None) -> uvicorn.Config:
+    """uvicorn's configuration of the console, with its limits on unauthenticated clients;
+    HTTPS with `certificate`."""
     protocol = type("HeadTimeoutH11", (HeadTimeoutH11,), {"head_timeout_s": head_timeout_s})
+    tls = {} if certificate is None else {
+        "ssl_context_factory": lambda _config, _default: certificate.context}
     return uvicorn.Config(app, host=host, port=port, log_level="warning", access_log=False,
                           lifespan="on", http=protocol, ws_max_size=1 << 16,
                           limit_concurrency=max_connections, timeout_keep_alive=KEEP_ALIVE_S,
                           h11_max_incomplete_event_size=MAX_HEAD_BYTES,
-                          timeout_graceful_shutdown=2)
+                          timeout_graceful_shutdown=2, **tls)
+
+
+class ConsoleServer(uvicorn.Server):
+    """uvicorn's server, whose TLS handshakes must end within `handshake_timeout_s` of the
+    connection: uvicorn gives asyncio no handshake timeout, so its default (60 s) would apply,
+    and a connection is counted against the connection limit, and its head timed, only once
+    its handshake is done."""
+
+    def __init__(self, config: uvicorn.Config, handshake_timeout_s: float = HANDSHAKE_TIMEOUT_S):
+        super().__init__(config)
+        self.handshake_timeout_s = handshake_timeout_s
+
+    async def startup(self, sockets=None) -> None:
+        if not self.config.is_ssl:
+            return await super().startup(sockets)
+        # uvicorn creates its listeners with loop.create_server, here while startup runs: they
+        # get the timeout through it (an attribute of this loop that shadows the method, and
+        # goes after).
+        loop = asyncio.get_running_loop()
+        loop.create_server = functools.partial(loop.create_server,
+                                               ssl_handshake_timeout=self.handshake_timeout_s)
+        try:
+            await super().startup(sockets)
+        finally:
+            del loop.create_server
 
 
 class HeadTimeoutH11(H11Protocol):
