@@ -12,7 +12,8 @@ What `init` (the default) writes into the directory:
   127.0.0.1, ::1, this host's name and every --host) and also a client certificate, which the
   DecisionServer presents on its inner links;
 - `admin`, `operator` and `observer`: client certificates with those roles, and `launcher`
-  (role STATION), which `make serve` presents to ask each service for its health.
+  (role STATION), which `make serve` presents to ask each service for its health;
+- `web_console`: a server certificate only (no client identity), for the console's HTTPS.
 
 An identity is the subject's common name (CN); its role is the subject's organizational unit
 (OU). A real CA works the same way: issue certificates with those two fields, put its
@@ -50,6 +51,9 @@ STATION_SERVICES = ("world", "emergency_stop", "proxy_robot", "force_sensor", "s
                     "decision_server")
 # Station services that only read: the live view (services.foxglove) watches as an observer.
 VIEWER_SERVICES = ("foxglove",)
+# Servers that are no client of the station: the web console's HTTPS (a server certificate
+# only, so its key speaks for no identity at the gRPC ports).
+WEB_SERVICES = ("web_console",)
 CLIENT_IDENTITIES = {"admin": Role.ADMIN, "operator": Role.OPERATOR, "observer": Role.OBSERVER,
                      "launcher": Role.STATION}  # the launcher asks each service for its health
 LOOPBACK_NAMES = ("localhost", "127.0.0.1", "::1")
@@ -91,22 +95,25 @@ def init(directory: Path, hosts: Iterable[str] = (), force: bool = False) -> lis
         written += issue(directory, service, Role.STATION, server_names)
     for service in VIEWER_SERVICES:
         written += issue(directory, service, Role.OBSERVER, server_names)
+    for service in WEB_SERVICES:
+        written += issue(directory, service, Role.OBSERVER, server_names, client=False)
     for identity, role in CLIENT_IDENTITIES.items():
         written += issue(directory, identity, role)
     return written
 
 
 def issue(directory: Path, name: str, role: Role, server_names: Iterable[str] = (),
-          days: int = LEAF_DAYS) -> list[Path]:
+          days: int = LEAF_DAYS, client: bool = True) -> list[Path]:
     """Sign `<name>.pem`/`.key` with the directory's CA: a client certificate for identity
-    `name` with `role`, and also, when `server_names` are given, a server certificate for
-    them and for `name`'s own server name (`server_name(name)`, first)."""
+    `name` with `role` (unless not `client`), and also, when `server_names` are given, a
+    server certificate for them and for `name`'s own server name (`server_name(name)`,
+    first)."""
     ca_cert = x509.load_pem_x509_certificate((directory / "ca.pem").read_bytes())
     ca_key = serialization.load_pem_private_key((directory / "ca.key").read_bytes(), None)
     key = ec.generate_private_key(ec.SECP256R1())
     subject = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, name),
                          x509.NameAttribute(NameOID.ORGANIZATIONAL_UNIT_NAME, role.label)])
-    usages = [ExtendedKeyUsageOID.CLIENT_AUTH]
+    usages = [ExtendedKeyUsageOID.CLIENT_AUTH] if client else []
     now = _now()
     builder = (x509.CertificateBuilder().subject_name(subject).issuer_name(ca_cert.subject)
                .public_key(key.public_key()).serial_number(x509.random_serial_number())

@@ -32,9 +32,9 @@ def certificate_files(tls_dir: str | os.PathLike | None) -> tuple[Path, Path] | 
 
 
 def issue_command(tls_dir: str | os.PathLike) -> str:
-    """The command that issues the console's certificate from the development CA in `tls_dir`."""
-    return (f"python -m services.security.pki --dir {tls_dir} issue {CERTIFICATE_NAME} "
-            "--role observer --host localhost --host 127.0.0.1 --host <each name or address "
+    """The command that issues the console's certificate (with every other, keeping the CA)
+    from the development CA in `tls_dir`."""
+    return (f"python -m services.security.pki --dir {tls_dir} --host <each name or address "
             "browsers use>")
 
 

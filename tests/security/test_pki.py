@@ -47,6 +47,14 @@ def test_identities_and_roles_come_from_cn_and_ou(pki):
     assert identity_of((pki / "proxy_robot.pem").read_bytes()).role is Role.STATION
 
 
+def test_the_consoles_certificate_serves_https_and_is_no_client(pki):
+    certificate = x509.load_pem_x509_certificate((pki / "web_console.pem").read_bytes())
+    usages = certificate.extensions.get_extension_for_class(x509.ExtendedKeyUsage).value
+    assert list(usages) == [x509.ExtendedKeyUsageOID.SERVER_AUTH]
+    names = certificate.extensions.get_extension_for_class(x509.SubjectAlternativeName).value
+    assert "127.0.0.1" in {str(ip) for ip in names.get_values_for_type(x509.IPAddress)}
+
+
 def test_service_certificates_name_every_address_they_answer_on(pki):
     cert = x509.load_pem_x509_certificate((pki / "decision_server.pem").read_bytes())
     names = cert.extensions.get_extension_for_class(x509.SubjectAlternativeName).value

@@ -53,9 +53,9 @@ _TIMEOUT_S = 10.0
 
 
 def issue_console_certificate(pki: Path) -> None:
-    """The console's certificate, as `python -m services.security.pki issue web_console` makes
-    it: a server certificate of the station's CA for the loopback names."""
-    issue(pki, "web_console", Role.OBSERVER, LOOPBACK_NAMES)
+    """The console's certificate again, as `make certs` issues it: a server certificate of
+    the station's CA for the loopback names, and no client identity."""
+    issue(pki, "web_console", Role.OBSERVER, LOOPBACK_NAMES, client=False)
 
 
 def verifying(pki: Path) -> ssl.SSLContext:
@@ -95,8 +95,7 @@ def served_certificate(port: int, pki: Path) -> x509.Certificate:
 def https_station(tmp_path_factory):
     root = tmp_path_factory.mktemp("https-console")
     pki = root / "pki"
-    init_pki(pki)
-    issue_console_certificate(pki)
+    init_pki(pki)  # the console's certificate among the others
     operator = TokenStore(root / "tokens.json").issue("web-operator", Role.OPERATOR, 3600)
     launcher = start_station(station_env(
         TELEROBOT_TLS_DIR=str(pki), TELEROBOT_TOKENS_FILE=str(root / "tokens.json"),
@@ -238,7 +237,6 @@ def test_chromium_signs_in_over_https_takes_the_lock_and_drives(https_station, c
 def pki(tmp_path_factory) -> Path:
     directory = tmp_path_factory.mktemp("pki") / "pki"
     init_pki(directory)
-    issue_console_certificate(directory)
     return directory
 
 
@@ -306,10 +304,11 @@ def test_a_tls_handshake_that_does_not_come_ends_the_connection(pki):
 def test_http_beyond_loopback_is_refused_without_the_consoles_certificate(tmp_path):
     bare = tmp_path / "pki"  # the station's PKI without the console's certificate
     init_pki(bare)
+    (bare / "web_console.pem").unlink()
     assert certificate_files(bare) is None
     with pytest.raises(PlaintextRefused, match="over plain HTTP") as refused:
         check_listening("0.0.0.0:50080", str(bare), https=False, allow_plaintext_network=False)
-    assert f"--dir {bare} issue web_console" in str(refused.value)  # how to get one
+    assert f"pki --dir {bare} --host" in str(refused.value)  # how to get one
     with pytest.raises(PlaintextRefused, match="make certs"):
         check_listening("10.0.0.2:50080", "", https=False, allow_plaintext_network=False)
     check_listening("0.0.0.0:50080", str(bare), https=True, allow_plaintext_network=False)

@@ -25,6 +25,7 @@ pytestmark = [pytest.mark.e2e, pytest.mark.slow]
 def tls_console(tmp_path_factory):
     root = tmp_path_factory.mktemp("tls-console")
     init_pki(root / "pki")
+    (root / "pki" / "web_console.pem").unlink()  # this console serves plain HTTP on loopback
     store = TokenStore(root / "tokens.json")
     tokens = {role: store.issue(f"web-{role.name.lower()}", role, 3600)
               for role in (Role.OBSERVER, Role.OPERATOR)}
