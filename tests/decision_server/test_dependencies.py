@@ -272,8 +272,9 @@ def test_a_killed_sensor_is_not_serving_then_restarting_then_serving(world, back
                                   pb.DEPENDENCY_STATE_RESTARTING and d, 10, "restarting")
             assert restarting.reason == f"restarting after it {KILLED}; restart 1"
 
+            # (its metrics on a free port: its address is fixed, the default one may be taken)
             started.append(start_service("force_sensor", "--address", sensor.address,
-                                         env=sensor_env))
+                                         "--metrics-address", "127.0.0.1:0", env=sensor_env))
             write_state(state_file, {"force_sensor": ChildState(RUNNING, 1, KILLED,
                                                                  time.time())})
             back = wait_for(lambda: (d := _dependencies(stub)["force_sensor"]).state ==
