@@ -23,7 +23,7 @@ from services.web_console.https import RenewingCertificate, certificate_files, i
 from wire.addresses import address_for, env_name, is_loopback
 from wire.processes import dump_stacks_on_signal, ready_line
 from wire.stereo import LOW_LATENCY_OPTIONS
-from wire.tls import KEEPALIVE_OPTIONS, TLS_DIR_ENV
+from wire.tls import KEEPALIVE_OPTIONS, TLS_DIR_ENV, server_name_options
 
 log = logging.getLogger("web_console")
 
@@ -122,6 +122,8 @@ def _channels(args) -> tuple[Upstream, str]:
     # Server authentication only: each call carries the browser's own token, so the
     # DecisionServer checks the browser's identity and role and audits it under that name.
     credentials = grpc.ssl_channel_credentials((Path(args.tls_dir) / "ca.pem").read_bytes())
+    # The token port's certificate must be the DecisionServer's (wire.tls).
+    options = [*options, *server_name_options("decision_server")]
     return Upstream(
         grpc.aio.secure_channel(args.token_address, credentials, options=options),
         grpc.aio.secure_channel(args.token_address, credentials,
