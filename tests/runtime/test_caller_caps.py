@@ -21,7 +21,7 @@ import pytest
 from google.rpc import error_details_pb2
 from grpc_status import rpc_status
 
-from services.runtime.lanes import Lane, LaneConfig, current_lane
+from services.runtime.lanes import current_lane
 from services.runtime.rpc import (
     DEFAULT_MAX_STREAMS,
     STATION_OWN_STREAMS,
@@ -41,14 +41,9 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
 )
 from tests.conftest import wait_for
+from tests.runtime.test_server import LANES
 from wire.tls import ChannelSecurity
 
-LANES = {
-    Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=1, queue_capacity=2),
-    Lane.HIGH: LaneConfig(static_threads=1, max_threads=2, queue_capacity=4),
-    Lane.MEDIUM: LaneConfig(static_threads=1, max_threads=1, queue_capacity=4),
-    Lane.LOW: LaneConfig(static_threads=1, max_threads=2, queue_capacity=4),
-}
 GET_STATUS = "/telerobot.v1.ProxyRobot/GetStatus"
 GET_CONTROL_STATE = "/telerobot.v1.DecisionServer/GetControlState"
 
