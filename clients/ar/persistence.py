@@ -28,8 +28,6 @@ from __future__ import annotations
 import datetime
 import json
 import math
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -40,6 +38,7 @@ from clients.ar.identification import (
     ProjectionKind,
     StereoIdentification,
 )
+from wire.files import replace_file
 
 FORMAT = "telerobot.ar.camera_identification"
 VERSION = 1
@@ -65,16 +64,7 @@ def save_identification(identification: StereoIdentification, path: Path | str) 
     }
     text = json.dumps(document, indent=2) + "\n"
     path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w") as file:
-            file.write(text)
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    replace_file(path, text.encode("utf-8"))
     return path
 
 

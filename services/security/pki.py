@@ -41,8 +41,8 @@ from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.x509.oid import ExtendedKeyUsageOID, NameOID
 
-from services.security.files import replace_file
 from services.security.roles import Role
+from wire.files import replace_file
 from wire.tls import server_name
 
 DEFAULT_PKI_DIR = "var/pki"

@@ -33,7 +33,6 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from services.security.files import replace_file
 from services.security.roles import Role
 from wire.errors import (
     FailedPreconditionError,
@@ -41,6 +40,7 @@ from wire.errors import (
     TelerobotError,
     UnauthenticatedError,
 )
+from wire.files import replace_file
 
 DEFAULT_TOKENS_FILE = "var/tokens.json"
 TOKENS_FILE_ENV = "TELEROBOT_TOKENS_FILE"

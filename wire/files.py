@@ -1,4 +1,5 @@
-"""Writing a secret's file so that nobody reads it half-written or before its mode is set."""
+"""Writing a file so that nobody reads it half-written or before its mode is set (secrets,
+the operator's saved camera identification)."""
 
 from __future__ import annotations
 
