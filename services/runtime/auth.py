@@ -6,12 +6,20 @@ With TLS on, every call but Health is authenticated and authorized before its ha
 - the caller's role must reach the RPC's declared `min_role` (services.security.roles), else
   PERMISSION_DENIED naming the role needed; no credentials or a bad token: UNAUTHENTICATED;
 - every command-class call (any RPC that needs the operator role or more, and EmergencyStop)
-  is written to the audit log with its outcome, except the station's own calls on its inner
-  ports (see `station_internal`); a command-class stream (Teleoperate) also as it starts
-  (outcome STARTED), so a session that moves the arm is on record while it runs;
-- a refused call (no credentials, a bad token, a role too low, no room: REFUSALS) is counted in
-  the audit log's summary of refusals per source instead (services.security.audit), so a
-  flood of them cannot rotate the commands' records out.
+  is written to the audit log with its outcome; a command-class stream (Teleoperate) also as
+  it starts (outcome STARTED), so a session that moves the arm is on record while it runs.
+  The station's own calls on its inner ports (the DecisionServer's moves, up to 1 kHz) are
+  summarized instead (see `summarizes`): per source, host and method, a minute's calls are
+  one line, with the first of each outcome in full;
+- a refused call (no credentials, a bad token, a role too low, no room: REFUSALS, and the
+  calls the per-caller caps refuse before any of this: `refused_for_room`) is counted in the
+  audit log's summary of refusals per source instead (services.security.audit), so a flood
+  of them cannot rotate the commands' records out.
+
+Without TLS (`authenticates` False) a server may still keep an audit log: nothing is checked
+(every caller may call anything, as in plaintext), and command-class calls are recorded with an
+empty identity, the role UNAUTHENTICATED_ROLE and the peer's address; on an inner port, where
+the station's calls cannot be told from others', every caller's are summarized.
 """
 
 from __future__ import annotations
@@ -39,23 +47,31 @@ _BEARER = "bearer "
 # its start was.
 REFUSALS = frozenset({"UNAUTHENTICATED", "PERMISSION_DENIED", "RESOURCE_EXHAUSTED"})
 STARTED = "STARTED"
+# The role of a call's record on a server without TLS: nobody was authenticated.
+UNAUTHENTICATED_ROLE = "unauthenticated"
 
 
 @dataclass
 class CallSecurity:
     """A server's rules for its calls. `tokens`: the port takes bearer tokens (and only
-    them: it asks for no certificate). `inner_port`: the station's inside (see roles)."""
+    them: it asks for no certificate). `inner_port`: the station's inside (see roles).
+    `authenticates`: False on a plaintext server, which checks nobody and only audits."""
 
     inner_port: bool
     tokens: TokenStore | None = None
     audit: AuditLog | None = None
+    authenticates: bool = True
 
     def admit(self, method: str, context: grpc.ServicerContext) -> Caller | None:
         """The authenticated caller, allowed to call `method`; None for an open method
         (Health). Raises UnauthenticatedError or PermissionDeniedError; an audited method's refusal
         is counted in the audit log's refusals (with the identity, when it is known), and an
-        audited stream's start is recorded."""
+        audited stream's start is recorded. Without TLS: None, every call allowed."""
         if required_role(method, self.inner_port) is None:
+            return None
+        if not self.authenticates:
+            if streams(method) and self.audited(method):
+                self.record(method, None, context, STARTED)
             return None
         caller = None
         try:
@@ -68,7 +84,7 @@ class CallSecurity:
                                    outcome=error.status_name, peer=context.peer(),
                                    detail=error.message)
             raise
-        if streams(method) and self.audited(method) and not self.station_internal(caller):
+        if streams(method) and self.audited(method):
             self.record(method, caller, context, STARTED)  # its end is recorded as it ends
         return caller
 
@@ -107,23 +123,46 @@ class CallSecurity:
         return self.audit is not None and (
             declared_lane(method) == Lane.EMERGENCY or (role is not None and role >= Role.OPERATOR))
 
-    def station_internal(self, caller: Caller | None) -> bool:
-        """A call between the station's own services: not audited on the inner ports. The
-        DecisionServer's audit already holds the operator's command behind it, and its moves
-        reach ProxyRobot at up to 1 kHz. (Refusals are audited whoever asked.)"""
-        return self.inner_port and caller is not None and caller.role is Role.STATION
+    def summarizes(self, caller: Caller | None) -> bool:
+        """Whether a command of `caller` is summarized instead of written in full: a call
+        between the station's own services on an inner port (the DecisionServer's audit holds
+        the operator's command behind it, and its moves reach ProxyRobot at up to 1 kHz), or,
+        without TLS, any call on an inner port (the station's cannot be told from others').
+        So a leaked station key still leaves a trace: its first call of each outcome a minute
+        in full, the peers it came from, and its count."""
+        return self.inner_port and (not self.authenticates or (
+            caller is not None and caller.role is Role.STATION))
 
     def record(self, method: str, caller: Caller | None, context: grpc.ServicerContext,
                outcome: str, detail: str = "") -> None:
         """Audit how a call ended (or that a stream started): a refusal (REFUSALS, but not a
-        stream's end) in the summary of refusals, anything else in full."""
+        stream's end) in the summary of refusals, the station's own on an inner port in the
+        commands' summaries (`summarizes`), anything else in full."""
         if self.audit is None:
             return
-        write = (self.audit.refused if outcome in REFUSALS and not streams(method)
-                 else self.audit.record)
-        write(identity=caller.identity if caller else "",
-              role=caller.role.label if caller else "", method=method, outcome=outcome,
-              peer=context.peer(), detail=detail)
+        if outcome in REFUSALS and not streams(method):
+            write = self.audit.refused
+        elif self.summarizes(caller):
+            write = self.audit.summarized
+        else:
+            write = self.audit.record
+        write(identity=caller.identity if caller else "", role=self._role(caller),
+              method=method, outcome=outcome, peer=context.peer(), detail=detail)
+
+    def refused_for_room(self, method: str, caller: Caller | None,
+                         context: grpc.ServicerContext, reason: str, message: str) -> None:
+        """Count a call a cap refused (RESOURCE_EXHAUSTED `reason`, before it was authorized)
+        in the summary of refusals, whatever its method: a flood of them is on record."""
+        if self.audit is None:
+            return
+        self.audit.refused(identity=caller.identity if caller else "", role=self._role(caller),
+                           method=method, outcome="RESOURCE_EXHAUSTED", peer=context.peer(),
+                           detail=f"{reason}: {message}")
+
+    def _role(self, caller: Caller | None) -> str:
+        if caller is not None:
+            return caller.role.label
+        return "" if self.authenticates else UNAUTHENTICATED_ROLE
 
 
 @functools.lru_cache(maxsize=1024)  # looked up for every call: cached (methods are few)

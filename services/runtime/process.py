@@ -31,7 +31,7 @@ from services.runtime.server import (
     create_server,
 )
 from services.runtime.service import Service
-from services.security.audit import audit_log_for
+from services.security.audit import AUDIT_DIR_ENV, AuditLog, audit_log_for
 from services.security.tokens import TokenStore, tokens_file
 from wire.addresses import env_name, is_loopback
 from wire.errors import TelerobotError
@@ -104,6 +104,8 @@ def run_service(
         metrics = ServiceMetrics(name)
     service = build(args)
     security = server_security(args, name, inner_port=not service.operator_door)
+    plaintext_audit = plaintext_audit_log(args, name)
+    audit = security.audit if security else plaintext_audit
     try:
         server, port = create_server(
             args.address, service.bindings(), client_lane_limit=args.client_lane_limit,
@@ -111,10 +113,13 @@ def run_service(
             security=security, allow_plaintext_network=args.allow_plaintext_network,
             metrics=metrics,
             aio=service.aio_server,
+            inner_port=not service.operator_door,
+            audit=plaintext_audit,
         )
     except (PlaintextRefused, OSError, ValueError) as error:  # a port, or TLS files, refused
         log.error("not starting: %s", error)
         service.close()
+        _close_audit(audit)
         return 2
     metrics_address = None
     if metrics is not None:
@@ -126,6 +131,7 @@ def run_service(
                       error)
             server.stop(0)
             service.close()
+            _close_audit(audit)
             return 2
     service.configure(lambda service_name, serving: server.health.set(
         service_name, health_pb2.HealthCheckResponse.SERVING if serving
@@ -137,17 +143,21 @@ def run_service(
         log.error("start-up failed: %s", error.message)
         server.stop(0)
         service.close()
+        _close_audit(audit)
         return 1
     except Exception:
         log.exception("start-up failed; stopping")
         server.stop(0)
         service.close()
+        _close_audit(audit)
         return 1
     server.set_serving()
     host = args.address.rsplit(":", 1)[0]
     log.info("serving %s on %s:%d%s%s", ", ".join(server.service_names) or "health only",
              host, port, " with mutual TLS" if security else " in plaintext",
              " (grpc.aio)" if server.aio else "")
+    if audit is not None:
+        log.info("audit log: %s", audit.path)
     if server.token_port:
         token_address = f"{security.token_address.rsplit(':', 1)[0]}:{server.token_port}"
         log.info("bearer tokens from %s are taken on %s (TLS, no client certificate)",
@@ -165,8 +175,7 @@ def run_service(
     service.close()
     if metrics is not None:
         metrics.close()
-    if security and security.audit:
-        security.audit.close()
+    _close_audit(audit)
     log.info("stopped")
     return 0
 
@@ -204,6 +213,20 @@ def server_security(args: argparse.Namespace, name: str, inner_port: bool
         Path(args.tls_dir), name, inner_port, token_address,
         tokens=TokenStore(tokens_file()) if token_address else None,
         audit=audit_log_for(name))
+
+
+def plaintext_audit_log(args: argparse.Namespace, name: str) -> AuditLog | None:
+    """The audit log of the service `name` without TLS: kept when TELEROBOT_AUDIT_DIR names
+    a directory (with TLS one is always kept, in var/audit by default). Nobody is
+    authenticated, so its records name the caller by its address."""
+    if args.tls_dir or not os.environ.get(AUDIT_DIR_ENV):
+        return None
+    return audit_log_for(name)
+
+
+def _close_audit(audit: AuditLog | None) -> None:
+    if audit is not None:
+        audit.close()
 
 
 def wait_for_stop(stop: threading.Event) -> None:

@@ -11,7 +11,8 @@
   caller without one, its peer's address; unary calls in flight are capped per caller too.
   On a station's inner port the station's own streams (the DecisionServer's forwards) have room
   of their own, and no per-caller cap. Over a cap: RESOURCE_EXHAUSTED with an ErrorInfo reason
-  (STREAMS_EXHAUSTED, CALLER_STREAMS_EXHAUSTED, CALLER_CALLS_EXHAUSTED);
+  (STREAMS_EXHAUSTED, CALLER_STREAMS_EXHAUSTED, CALLER_CALLS_EXHAUSTED), counted in the audit
+  log's refusals (when the server keeps one) and said in the log (at most once a minute);
 - on a sync server (`read_first`) each unary call takes its slot before its request arrives:
   its handler is served as a client stream whose one message it reads itself, so a call that
   sends its headers and never its body holds one of its caller's slots, and a caller over its
@@ -30,7 +31,8 @@
   decoded, runs as its caller (services.security.caller), and command-class calls are audited
   (services/runtime/auth.py). The early stop needs no check on a port that requires client
   certificates: the handshake already proved the caller is the station's. On a token port it
-  fires only for a call that carries a valid token;
+  fires only for a call that carries a valid token. A plaintext server may audit too (its
+  `security` then authenticates nobody: services/runtime/auth.py);
 - with `metrics` (services.runtime.metrics), every call is counted by method and status code
   as it ends, and a unary call's time in the server goes into a latency histogram. A metric
   that fails never fails the call.
@@ -88,17 +90,21 @@ CALLS_PER_CALLER = 32
 # others' streams never refuse the station's.
 STATION_OWN_STREAMS = 16
 STATION_STREAMS = DEFAULT_MAX_STREAMS + STATION_OWN_STREAMS
+# Calls refused for room are said in the log at most this often (their count since the last).
+REFUSAL_WARNING_INTERVAL_S = 60.0
 
 
 @dataclass(frozen=True)
 class Holder:
     """Whose slots a call takes. `key` the caller's (None: no per-caller cap, as for the
     station on its inner port and for loopback in plaintext); `station`: the station's own room
-    on an inner port; `name` says who in a refusal."""
+    on an inner port; `name` says who in a refusal; `caller`: the authenticated caller, if
+    any (for the audit of a refusal)."""
 
     key: str | None
     name: str
     station: bool = False
+    caller: Caller | None = None
 
 
 class SlotRefused(Exception):
@@ -199,6 +205,31 @@ def _caller_refusal(name: str, cap: int, stream: bool) -> tuple[str, str]:
             "may: wait for one to end", "CALLER_CALLS_EXHAUSTED")
 
 
+class RefusalWarnings:
+    """Says in the log that calls are refused for room: the first at once, then at most once
+    per `interval_s`, with how many were refused since the last warning (a flood must not
+    flood the log too)."""
+
+    def __init__(self, interval_s: float = REFUSAL_WARNING_INTERVAL_S,
+                 clock: Callable[[], float] = time.monotonic):
+        self._interval_s = interval_s
+        self._clock = clock
+        self._lock = threading.Lock()
+        self._unsaid = 0
+        self._next = -float("inf")
+
+    def refused(self, method: str, who: str, reason: str) -> None:
+        with self._lock:
+            self._unsaid += 1
+            now = self._clock()
+            if now < self._next:
+                return
+            count, self._unsaid, self._next = self._unsaid, 0, now + self._interval_s
+        log.warning("refused %d call(s) for room since the last warning, the latest %s from %s "
+                    "(%s); the audit log's refusals count them by caller", count, method, who,
+                    reason)
+
+
 def peer_host(peer: str) -> str:
     """The host of a gRPC peer string ("ipv4:127.0.0.1:5000", "ipv6:[::1]:5000"), without
     its port: a caller that opens many connections is still one address."""
@@ -247,6 +278,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
         self._client_lane_limit = client_lane_limit
         self.slots = slots if slots is not None else CallSlots(max_streams)
         self._read_first = read_first
+        self.refusal_warnings = RefusalWarnings()
 
     @property
     def open_streams(self) -> int:
@@ -297,7 +329,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
         """Whose slots the call takes: its authenticated identity, else its peer's address."""
         security = self._security
         peer = context.peer() or ""
-        if security is not None:
+        if security is not None and security.authenticates:
             try:
                 caller = security.authenticate(context)
             except TelerobotError:  # refused later, by admit(), where the method needs it
@@ -305,8 +337,10 @@ class LaneInterceptor(grpc.ServerInterceptor):
                 return Holder(f"peer {host}", f"unauthenticated callers from {host}")
             if security.inner_port and caller.role is Role.STATION:
                 # The DecisionServer (and the launcher): bounded by its own caps at its door.
-                return Holder(None, f"the station ({caller.identity})", station=True)
-            return Holder(f"identity {caller.identity}", f"identity {caller.identity!r}")
+                return Holder(None, f"the station ({caller.identity})", station=True,
+                              caller=caller)
+            return Holder(f"identity {caller.identity}", f"identity {caller.identity!r}",
+                          caller=caller)
         host = peer_host(peer)
         if peer.startswith("unix:") or is_loopback(f"{host}:0"):
             # Plaintext on loopback: every process of the host is one address (the station's
@@ -315,18 +349,29 @@ class LaneInterceptor(grpc.ServerInterceptor):
         return Holder(f"peer {host}", f"peer {host}")
 
     @contextlib.contextmanager
-    def _slot(self, context, stream: bool) -> Iterator[None]:
+    def _slot(self, context, method: str, stream: bool) -> Iterator[None]:
         """Hold the call's slot for the `with` block; RESOURCE_EXHAUSTED when there is no
-        room."""
+        room, counted in the audit log's refusals and said in the log."""
         holder = self._holder(context)
         try:
             self.slots.take(holder, stream)
         except SlotRefused as refused:
+            self._refused_for_room(method, holder, context, refused)
             abort(context, grpc.StatusCode.RESOURCE_EXHAUSTED, refused.message, refused.reason)
         try:
             yield
         finally:
             self.slots.give(holder, stream)
+
+    def _refused_for_room(self, method: str, holder: Holder, context,
+                          refused: SlotRefused) -> None:
+        try:  # a failed audit or warning never changes the answer
+            if self._security is not None:
+                self._security.refused_for_room(method, holder.caller, context, refused.reason,
+                                                refused.message)
+            self.refusal_warnings.refused(method, holder.name, refused.reason)
+        except Exception:  # noqa: BLE001
+            log.exception("cannot record a refusal of %s", method)
 
     def _wrap(self, handler: grpc.RpcMethodHandler, method: str, requested: str | None):
         decode = handler.request_deserializer or (lambda raw: raw)
@@ -345,7 +390,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
                 abort_with_error(context, error)
 
         def audit(caller: Caller | None, context):
-            if not audited or security.station_internal(caller):
+            if not audited:
                 return contextlib.nullcontext()
             return _audited_call(security, method, caller, context)
 
@@ -364,7 +409,8 @@ class LaneInterceptor(grpc.ServerInterceptor):
 
         def call_slot(context):
             # A stop is never refused for room either.
-            return contextlib.nullcontext() if emergency else self._slot(context, stream=False)
+            return (contextlib.nullcontext() if emergency
+                    else self._slot(context, method, stream=False))
 
         if handler.unary_unary:
             behavior = handler.unary_unary
@@ -386,7 +432,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
             behavior = handler.unary_stream
 
             def unary_stream(raw, context):
-                with self._slot(context, stream=True):
+                with self._slot(context, method, stream=True):
                     raw = first(raw, context)
                     resolve_lane(context)
                     caller = admit(context)
@@ -402,7 +448,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
             behavior = handler.stream_unary
 
             def stream_unary(raw_iterator, context):
-                with self._slot(context, stream=True):
+                with self._slot(context, method, stream=True):
                     resolve_lane(context)
                     caller = admit(context)
                     with audit(caller, context):
@@ -414,7 +460,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
         behavior = handler.stream_stream
 
         def stream_stream(raw_iterator, context):
-            with self._slot(context, stream=True):
+            with self._slot(context, method, stream=True):
                 resolve_lane(context)
                 caller = admit(context)
                 with audit(caller, context):

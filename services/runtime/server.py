@@ -5,6 +5,9 @@ Security (see docs/security.md):
   caller explicitly allows plaintext there (`--allow-plaintext-network`), and then it warns;
 - with TLS (`ServerSecurity`) its port requires a client certificate from the station's CA,
   and every call is authorized by role (services/runtime/auth.py);
+- the audit log (services.security.audit) is TLS's (`ServerSecurity.audit`), or, without TLS,
+  `audit`: a plaintext server checks nobody, but records its command-class calls with the
+  peer's address as the caller (services/runtime/auth.py);
 - a server with a `token_address` also listens there with TLS but without client
   certificates, for callers with bearer tokens. That port is a second grpc.Server on the same
   servicers and lanes, so that its interceptor knows every caller on it came without a
@@ -171,6 +174,7 @@ def create_server(
     allow_plaintext_network: bool = False,
     metrics: ServiceMetrics | None = None,
     aio: bool = False,
+    audit: AuditLog | None = None,
 ) -> tuple[TelerobotServer, int]:
     """Build a server bound to `address` (port 0 picks one); returns it and the bound port.
 
@@ -181,6 +185,7 @@ def create_server(
     them over HTTP is the caller's: `metrics.serve(address)`). With `aio`, calls arrive on a
     grpc.aio server's event loop instead of grpcio's sync polling thread, and the same
     servicers and interceptor run on a thread pool (services/runtime/aio_server.py).
+    `audit`: the audit log of a server without TLS (with TLS it is `security.audit`).
 
     Streams: `max_streams` open on the server (its ports together), `streams_per_caller` and
     `calls_per_caller` (unary calls in flight) for each caller (services/runtime/rpc.py). An
@@ -190,6 +195,8 @@ def create_server(
     added to `max_streams` for everyone.
     """
     check_plaintext(address, security is not None, allow_plaintext_network)
+    if security is not None and audit is not None:
+        raise ValueError("with TLS, the audit log is security.audit")
     executor = LaneExecutor(
         lanes, name="rpc",
         on_wait=(lambda lane, wait_s: metrics.lane_waited(lane.name.lower(), wait_s))
@@ -246,8 +253,12 @@ def create_server(
             [*names, health.SERVICE_NAME, reflection.SERVICE_NAME]), grpc_server)
         return server, interceptor
 
-    main_security = (CallSecurity(security.inner_port, None, security.audit)
-                     if security else None)
+    if security is not None:
+        main_security = CallSecurity(security.inner_port, None, security.audit)
+    elif audit is not None:  # plaintext: nobody is checked, command-class calls are recorded
+        main_security = CallSecurity(inner_port, None, audit, authenticates=False)
+    else:
+        main_security = None
     server, interceptor = build(main_security)
     servers = [server]
     try:

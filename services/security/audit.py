@@ -4,17 +4,24 @@ config, recording) saying when, who, with what role, which method and how it end
 Each service writes its own files (rotated by size through the standard RotatingFileHandler,
 since rotation is safe only with one writing process per file):
 
-- <audit dir>/<service>.jsonl holds the commands, every one in full;
+- <audit dir>/<service>.jsonl holds the commands: every one in full (`record`), except the
+  calls that come at up to 1 kHz from one source, which are summarized (`summarized`): the
+  station's own calls on its inner ports (the DecisionServer's moves to ProxyRobot), and, in
+  plaintext, where the station cannot be told from anyone else, every caller's on those ports.
+  These are counted per source (identity, or the peer's address when it has none), the peer's
+  host, method and interval (SUMMARY_INTERVAL_S from the first call): the first call of each
+  outcome is written in full at once, and the interval's calls as one summary line when it
+  ends (the count, the method, the outcomes, a few peers, the first and last time);
 - <audit dir>/<service>.refusals.jsonl holds the refused calls (no credentials, a bad token, a
-  role too low, no room), summarized per source (its identity, or its address when it has
-  none) and interval (SUMMARY_INTERVAL_S from the source's first refusal): the first refusal of
-  each kind (method and outcome) is written in full at once, up to MAX_KINDS kinds; the
-  interval's refusals are counted and written as one summary line when it ends (the count, the
-  methods, the outcomes, a few peers, the first and last time).
+  role too low, no room), summarized per source and interval the same way (`refused`): the
+  first refusal of each kind (method and outcome) is written in full at once, up to MAX_KINDS
+  kinds, then one summary line (the count, the methods, the outcomes, a few peers, the first
+  and last time).
 
 A flood of refusals so never rotates a command out: it has its own files, and it writes at most
 MAX_KINDS + 1 lines per source per interval, from at most MAX_SOURCES sources (the others are
-summed as one).
+summed as one). Summarized calls write at most MAX_KINDS + 1 lines per source, host and method
+per interval, from at most MAX_SOURCES of them.
 
 Writing never raises: a full disk must not fail a stop, so a failed write is logged as a
 warning instead, once per run of failures.
@@ -162,9 +169,11 @@ class _File:
 
 @dataclass
 class _Window:
-    """The refusals of one source in one interval."""
+    """The calls of one source (and, for summarized commands, one host and method) in one
+    interval."""
 
     first: float
+    source: str
     identity: str
     role: str
     last: float = 0.0
@@ -176,7 +185,7 @@ class _Window:
     kinds: set[tuple[str, str]] = field(default_factory=set)  # (method, outcome) in full
 
     def first_of_its_kind(self, method: str, outcome: str) -> bool:
-        """Whether a refusal of this (method, outcome) is to be written in full."""
+        """Whether a call of this (method, outcome) is to be written in full."""
         if (method, outcome) in self.kinds or len(self.kinds) >= MAX_KINDS:
             return False
         self.kinds.add((method, outcome))
@@ -190,9 +199,67 @@ class _Window:
         else:
             self.methods[OTHER_METHODS] += 1
         self.outcomes[outcome[:MAX_DETAIL_CHARS]] += 1
-        if peer and peer not in self.peers and len(self.peers) < MAX_PEERS:
+        if peer and len(self.peers) < MAX_PEERS and peer not in self.peers:
             self.peers.append(peer[:MAX_DETAIL_CHARS])
         self.detail = detail
+
+
+class _Summaries:
+    """Calls counted per key and interval (a key's interval starts at its first call), and the
+    lines they make: the first call of each kind (method, outcome) of a key's interval in full,
+    then one summary line when the interval ends (none when every call was in full). At most
+    `max_keys` keys an interval; the calls of any further ones are summed as OTHER_SOURCES.
+
+    Thread-safe: summarized commands are counted on their calls' own threads (at 1 kHz, a
+    hand-over to the writer per call would cost more than the count), refusals on the
+    writer's."""
+
+    def __init__(self, interval_s: float, max_keys: int):
+        self._interval_s = interval_s
+        self._max_keys = max_keys
+        self._lock = threading.Lock()
+        self._windows: collections.OrderedDict[tuple, _Window] = collections.OrderedDict()
+
+    def __bool__(self) -> bool:  # whether a summary is open
+        return bool(self._windows)
+
+    def count(self, when: float, key: tuple, source: str, identity, role, method, outcome,
+              peer, detail) -> list[str]:
+        """The lines one call makes: the summaries it ends, and itself in full when it is the
+        first of its kind in its key's interval."""
+        method, outcome, peer, detail = str(method), str(outcome), str(peer), str(detail)
+        with self._lock:
+            lines = self._expire(when)
+            window = self._windows.get(key)
+            if window is None and len(self._windows) >= self._max_keys:
+                key = (OTHER_SOURCES,)
+                window = self._windows.get(key)
+            if window is None:
+                if key == (OTHER_SOURCES,):
+                    window = _Window(when, OTHER_SOURCES, "", "")
+                else:
+                    window = _Window(when, source, str(identity), str(role))
+                self._windows[key] = window
+            if window.first_of_its_kind(method, outcome):
+                lines += _line(when, identity, role, method, outcome, peer, detail)
+            window.add(when, method, outcome, peer, detail)
+        return lines
+
+    def expire(self, now: float) -> list[str]:
+        """The summaries of the intervals that ended by `now`, which are then closed."""
+        with self._lock:
+            return self._expire(now)
+
+    def _expire(self, now: float) -> list[str]:
+        lines = []
+        while self._windows:
+            key, window = next(iter(self._windows.items()))
+            if window.first + self._interval_s > now:
+                break
+            del self._windows[key]
+            if window.count > len(window.kinds):  # else every one is already in full
+                lines += _summary(window)
+        return lines
 
 
 class AuditLog:
@@ -201,8 +268,9 @@ class AuditLog:
     calls (a stat and a seek for rotation, the write, the flush) each give the interpreter lock
     away and cost a command about 0.3 ms of round trip when done on the call's own thread
     (measured at 1 kHz on ProxyRobot). The writer gathers the records of GATHER_S and writes
-    them together. `flush()` waits until everything recorded so far is written (and the
-    summaries whose interval has ended by `clock`).
+    them together. A summarized call is only counted on its own thread; the writer hears of it
+    only when it makes a line. `flush()` waits until everything recorded so far is written
+    (and the summaries whose interval has ended by `clock`).
 
     `clock` gives the records' times (wall-clock seconds) and ends the summaries' intervals."""
 
@@ -218,14 +286,14 @@ class AuditLog:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         self._clock = clock
-        self._interval_s = summary_interval_s
-        self._max_sources = max_sources
         self._commands = _File(path, max_bytes, backups, delay=False)
         # Opened at the first refusal: a station nobody knocks at has no refusals file.
         self._refusals = _File(refusals_path_for(path), max_bytes, backups, delay=True)
         self._handler = self._commands.handler
-        # The open summaries, by source, oldest first (the writer thread's alone).
-        self._windows: collections.OrderedDict[str, _Window] = collections.OrderedDict()
+        # The open summaries: of refusals (the writer thread's alone), and of summarized
+        # commands (counted on the calls' threads).
+        self._refused = _Summaries(summary_interval_s, max_sources)
+        self._summarized = _Summaries(summary_interval_s, max_sources)
         self._pending: queue.SimpleQueue = queue.SimpleQueue()
         self._closed = False
         self._writer = threading.Thread(target=self._write_records, daemon=True,
@@ -245,8 +313,27 @@ class AuditLog:
         """Append one command record, in full (on the writer thread). Never raises: auditing
         must not fail the call it records."""
         if not self._closed:
-            self._pending.put((True, self._clock(), identity, role, method, outcome, peer,
+            self._pending.put((_RECORD, self._clock(), identity, role, method, outcome, peer,
                                detail))
+
+    def summarized(self, *, identity: str, role: str, method: str, outcome: str,
+                   peer: str = "", detail: str = "") -> None:
+        """Count one command in the commands' summary of its source (its identity, or its
+        peer's address when it has none), its peer's host and its method; the first of each
+        outcome in the interval is also written in full. For calls that come at up to 1 kHz
+        from one source (the station's own). Never raises."""
+        if self._closed:
+            return
+        try:
+            host = _host(str(peer))
+            source = str(identity) or host or "(unknown)"
+            lines = self._summarized.count(self._clock(), (source, host, str(method)), source,
+                                           identity, role, method, outcome, peer, detail)
+        except Exception:
+            _log.warning("cannot count a call of %r", method, exc_info=True)
+            return
+        if lines:
+            self._pending.put((_LINES, lines))
 
     def refused(self, *, identity: str, role: str, method: str, outcome: str, peer: str = "",
                 detail: str = "") -> None:
@@ -254,7 +341,7 @@ class AuditLog:
         when it has none); the first of its kind (method, outcome) in the source's interval is
         also written in full. Never raises."""
         if not self._closed:
-            self._pending.put((False, self._clock(), identity, role, method, outcome, peer,
+            self._pending.put((_REFUSED, self._clock(), identity, role, method, outcome, peer,
                                detail))
 
     def flush(self, timeout_s: float = 5.0) -> None:
@@ -278,9 +365,12 @@ class AuditLog:
     def _write_records(self) -> None:
         while True:
             try:
-                first = self._pending.get(timeout=POLL_S if self._windows else None)
+                first = self._pending.get(
+                    timeout=POLL_S if self._refused or self._summarized else None)
             except queue.Empty:  # quiet: the summaries whose interval ended are due
-                self._refusals.write(self._expire(self._clock()))
+                now = self._clock()
+                self._commands.write(self._summarized.expire(now))
+                self._refusals.write(self._refused.expire(now))
                 continue
             if isinstance(first, tuple):
                 time.sleep(GATHER_S)  # let the calls meanwhile join this write
@@ -288,13 +378,17 @@ class AuditLog:
             refusals: list[str] = []
             for item in [first, *queued_now(self._pending)]:
                 if isinstance(item, tuple):
-                    if item[0]:
-                        commands += self._line(*item[1:])
-                    else:
+                    if item[0] is _RECORD:
+                        commands += _line(*item[1:])
+                    elif item[0] is _REFUSED:
                         refusals += self._refusal(*item[1:])
+                    else:  # _LINES: made on a call's thread
+                        commands += item[1]
                     continue
                 # what came before a flush or the close is written first
-                refusals += self._expire(math.inf if item is None else self._clock())
+                now = math.inf if item is None else self._clock()
+                commands += self._summarized.expire(now)
+                refusals += self._refused.expire(now)
                 self._commands.write(commands)
                 self._refusals.write(refusals)
                 commands, refusals = [], []
@@ -308,61 +402,44 @@ class AuditLog:
         """The lines one refusal makes: the summaries it ends, and itself in full when it is the
         first of its kind in its source's interval."""
         try:
-            lines = self._expire(when)
             source = str(identity) or _host(str(peer)) or "(unknown)"
-            window = self._windows.get(source)
-            if window is None and len(self._windows) >= self._max_sources:
-                source = OTHER_SOURCES
-                window = self._windows.get(source)
-            if window is None:
-                other = source == OTHER_SOURCES
-                window = _Window(when, "" if other else str(identity), "" if other else str(role))
-                self._windows[source] = window
-            if window.first_of_its_kind(str(method), str(outcome)):
-                lines += self._line(when, identity, role, method, outcome, peer, detail)
-            window.add(when, str(method), str(outcome), str(peer), str(detail))
-            return lines
+            return self._refused.count(when, (source,), source, identity, role, method,
+                                       outcome, peer, detail)
         except Exception:
             _log.warning("cannot count a refusal of %r", method, exc_info=True)
             return []
 
-    def _expire(self, now: float) -> list[str]:
-        """The summaries of the intervals that ended by `now` (each source's interval starts at
-        its first refusal), which are then closed."""
-        lines = []
-        while self._windows:
-            source, window = next(iter(self._windows.items()))
-            if window.first + self._interval_s > now:
-                break
-            del self._windows[source]
-            if window.count > len(window.kinds):  # else every one is already in full
-                lines += self._summary(source, window)
-        return lines
 
-    @staticmethod
-    def _summary(source: str, window: _Window) -> list[str]:
-        try:
-            return [json.dumps({
-                "first": _iso(window.first), "last": _iso(window.last),
-                "source": source[:MAX_DETAIL_CHARS], "identity": window.identity[:MAX_DETAIL_CHARS],
-                "role": window.role, "count": window.count, "methods": dict(window.methods),
-                "outcomes": dict(window.outcomes), "peers": window.peers,
-                "detail": window.detail[:MAX_DETAIL_CHARS],
-            })]
-        except Exception:
-            _log.warning("cannot make the refusals summary of %r", source, exc_info=True)
-            return []
+# What the writer's queue carries: a record to write in full, a refusal to count, or lines
+# made on a call's thread (a summarized call's).
+_RECORD, _REFUSED, _LINES = "record", "refused", "lines"
 
-    @staticmethod
-    def _line(when, identity, role, method, outcome, peer, detail) -> list[str]:
-        """One record as its JSON line ([] if it cannot be made: said as a warning)."""
-        try:
-            return [json.dumps({
-                "time": _iso(when),
-                "identity": str(identity), "role": str(role), "method": str(method),
-                "outcome": str(outcome), "peer": str(peer),
-                "detail": str(detail)[:MAX_DETAIL_CHARS],
-            })]  # json escapes newlines and quotes, so a client's string cannot forge a line
-        except Exception:
-            _log.warning("cannot make an audit record for %r", method, exc_info=True)
-            return []
+
+def _summary(window: _Window) -> list[str]:
+    """An interval's summary as its JSON line ([] if it cannot be made: said as a warning)."""
+    try:
+        return [json.dumps({
+            "first": _iso(window.first), "last": _iso(window.last),
+            "source": window.source[:MAX_DETAIL_CHARS],
+            "identity": window.identity[:MAX_DETAIL_CHARS], "role": window.role,
+            "count": window.count, "methods": dict(window.methods),
+            "outcomes": dict(window.outcomes), "peers": window.peers,
+            "detail": window.detail[:MAX_DETAIL_CHARS],
+        })]
+    except Exception:
+        _log.warning("cannot make the summary of %r", window.source, exc_info=True)
+        return []
+
+
+def _line(when, identity, role, method, outcome, peer, detail) -> list[str]:
+    """One record as its JSON line ([] if it cannot be made: said as a warning)."""
+    try:
+        return [json.dumps({
+            "time": _iso(when),
+            "identity": str(identity), "role": str(role), "method": str(method),
+            "outcome": str(outcome), "peer": str(peer),
+            "detail": str(detail)[:MAX_DETAIL_CHARS],
+        })]  # json escapes newlines and quotes, so a client's string cannot forge a line
+    except Exception:
+        _log.warning("cannot make an audit record for %r", method, exc_info=True)
+        return []

@@ -8,17 +8,21 @@
   and never a body are refused once the caller holds its share, instead of each keeping a
   thread;
 - a server accepts only as many calls as it has threads (RESOURCE_EXHAUSTED beyond), and one
-  connection never takes all of them.
+  connection never takes all of them;
+- a call refused for room is counted in the audit log's refusals and said in the log.
 
 The servicers are fixtures; the interceptor, lanes, TLS and caps are the runtime's own."""
 
 from __future__ import annotations
 
+import json
+import logging
 import threading
 
 import grpc
 import pytest
 from google.rpc import error_details_pb2
+from grpc_health.v1 import health_pb2, health_pb2_grpc
 from grpc_status import rpc_status
 
 from services.runtime.lanes import current_lane
@@ -27,10 +31,12 @@ from services.runtime.rpc import (
     STATION_OWN_STREAMS,
     CallSlots,
     Holder,
+    RefusalWarnings,
     SlotRefused,
     peer_host,
 )
 from services.runtime.server import ServerSecurity, binding, create_server
+from services.security.audit import AuditLog
 from services.security.pki import init
 from services.security.roles import Role
 from services.security.tokens import TokenStore
@@ -46,6 +52,8 @@ from wire.tls import ChannelSecurity
 
 GET_STATUS = "/telerobot.v1.ProxyRobot/GetStatus"
 GET_CONTROL_STATE = "/telerobot.v1.DecisionServer/GetControlState"
+STREAM_EVENTS = "/telerobot.v1.DecisionServer/StreamEvents"
+HEALTH_WATCH = "/grpc.health.v1.Health/Watch"
 
 
 class Robot(proxy_robot_pb2_grpc.ProxyRobotServicer):
@@ -424,3 +432,88 @@ def test_call_slots_count_by_caller_and_forget_callers_that_hold_nothing():
                                        ("unix:/tmp/socket", "unix:/tmp/socket")])
 def test_a_peer_is_its_host_whatever_its_port(peer, host):
     assert peer_host(peer) == host
+
+
+# -- refusals for room are on record -----------------------------------------------------------
+
+def test_refusals_for_room_are_counted_in_the_audit_logs_refusals(pki, tmp_path, aio, caplog):
+    """Refused before authorization, by the caller's caps: each caller's refusals counted in
+    its summary (the first of each method in full), whatever the method (a flood of reads or
+    of Health watches too), and said in the log."""
+    tokens = TokenStore(tmp_path / "tokens.json")
+    log = AuditLog(tmp_path / "audit" / "decision_server.jsonl")
+    blocker = threading.Event()
+
+    class Slow(Decisions):
+        def GetControlState(self, request, context):
+            blocker.wait(20)
+            return decision_server_pb2.GetControlStateResponse()
+
+    security = ServerSecurity(pki, "decision_server", inner_port=False,
+                              token_address="127.0.0.1:0", tokens=tokens, audit=log)
+    server, port = create_server(
+        "127.0.0.1:0", [binding(decision_server_pb2_grpc, "DecisionServer", Slow())],
+        lanes=LANES, security=security, streams_per_caller=1, calls_per_caller=1, aio=aio)
+    server.start()
+    observer = tls_channel(pki, port, "observer")
+    anonymous = grpc.secure_channel(
+        f"127.0.0.1:{server.token_port}",
+        grpc.ssl_channel_credentials((pki / "ca.pem").read_bytes()),
+        options=[("grpc.ssl_target_name_override", "localhost")])
+    caplog.set_level(logging.WARNING, logger="services.runtime.rpc")
+    try:
+        held = open_streams(observer, 1)
+        for _ in range(2):
+            assert reason_of(refused_stream(observer)) == "CALLER_STREAMS_EXHAUSTED"
+        stub = decision_server_pb2_grpc.DecisionServerStub(observer)
+        request = decision_server_pb2.GetControlStateRequest()
+        slow = stub.GetControlState.future(request, timeout=30)
+        wait_for(lambda: server.interceptor.slots.held_by("identity observer") == (1, 1),
+                 what="the observer's call in the servicer")
+        with pytest.raises(grpc.RpcError) as error:
+            stub.GetControlState(request, timeout=10)
+        assert reason_of(error.value) == "CALLER_CALLS_EXHAUSTED"
+        health = health_pb2_grpc.HealthStub(anonymous)  # needs nothing, holds a slot
+        watches = [health.Watch(health_pb2.HealthCheckRequest(), timeout=30)]
+        next(watches[0])
+        for _ in range(2):
+            with pytest.raises(grpc.RpcError) as error:
+                next(health.Watch(health_pb2.HealthCheckRequest(), timeout=30))
+            assert reason_of(error.value) == "CALLER_STREAMS_EXHAUSTED"
+        blocker.set()
+        slow.result(timeout=10)
+        for stream in held + watches:
+            stream.cancel()
+    finally:
+        blocker.set()
+        observer.close()
+        anonymous.close()
+        server.stop(0)
+        log.close()
+    assert not log.path.exists() or log.path.read_text() == ""  # no command: reads only
+    refusals = [json.loads(line) for line in log.refusals_path.read_text().splitlines()]
+    in_full = {(r["identity"], r["method"], r["detail"].split(":")[0]) for r in refusals
+               if "time" in r}
+    assert in_full == {("observer", STREAM_EVENTS, "CALLER_STREAMS_EXHAUSTED"),
+                       ("observer", GET_CONTROL_STATE, "CALLER_CALLS_EXHAUSTED"),
+                       ("", HEALTH_WATCH, "CALLER_STREAMS_EXHAUSTED")}
+    assert all(r["outcome"] == "RESOURCE_EXHAUSTED" for r in refusals if "time" in r)
+    counted = {r["source"]: (r["count"], r["methods"]) for r in refusals if "count" in r}
+    assert counted == {"observer": (3, {STREAM_EVENTS: 2, GET_CONTROL_STATE: 1}),
+                       "ipv4:127.0.0.1": (2, {HEALTH_WATCH: 2})}
+    warned = [r.getMessage() for r in caplog.records if "for room" in r.getMessage()]
+    assert warned and "CALLER_STREAMS_EXHAUSTED" in warned[0]
+
+
+def test_refusals_for_room_are_said_in_the_log_at_most_once_a_minute(caplog):
+    now = [100.0]
+    warnings = RefusalWarnings(interval_s=60.0, clock=lambda: now[0])
+    caplog.set_level(logging.WARNING, logger="services.runtime.rpc")
+    for step in range(600):  # ten refusals a second for a minute
+        warnings.refused(GET_STATUS, "identity 'flood'", "CALLER_CALLS_EXHAUSTED")
+        now[0] = 100.0 + (step + 1) / 10
+    said = [r.getMessage() for r in caplog.records]
+    assert len(said) == 1 and said[0].startswith("refused 1 call(s)")
+    warnings.refused(GET_STATUS, "identity 'flood'", "CALLER_CALLS_EXHAUSTED")
+    assert len(caplog.records) == 2
+    assert caplog.records[1].getMessage().startswith("refused 600 call(s)")
