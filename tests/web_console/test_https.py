@@ -160,18 +160,15 @@ def test_names_and_origins_are_checked_with_https_origins(https_station):
 
 
 @pytest.fixture
-def chromium(tmp_path):
-    if not Path(CHROMIUM).exists():
-        pytest.fail(f"{CHROMIUM} is missing: `make test` installs Debian's chromium package")
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as driver:
-        def launch(*extra: str):
-            return driver.chromium.launch_persistent_context(
-                str(tmp_path / f"profile-{len(extra)}"), executable_path=CHROMIUM,
-                args=[*CHROMIUM_ARGS, *extra], headless=True,
-                viewport={"width": 1400, "height": 1000})
-        yield launch
+def chromium(playwright_driver, tmp_path):
+    """Launches a Chromium with extra flags, on the session's one Playwright driver (a second
+    sync driver in the same thread finds the first one's event loop running)."""
+    def launch(*extra: str):
+        return playwright_driver.chromium.launch_persistent_context(
+            str(tmp_path / f"profile-{len(extra)}"), executable_path=CHROMIUM,
+            args=[*CHROMIUM_ARGS, *extra], headless=True,
+            viewport={"width": 1400, "height": 1000})
+    return launch
 
 
 @pytest.mark.e2e
