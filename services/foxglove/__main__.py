@@ -29,13 +29,8 @@ import foxglove
 from foxglove import Context, StatusLevel
 
 from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
-from services.foxglove.live import (
-    DEFAULT_ORIGINS,
-    Demand,
-    LiveChannels,
-    OriginGate,
-    loopback_certificate,
-)
+from services.foxglove.live import Demand, LiveChannels
+from services.foxglove.origin_gate import DEFAULT_ORIGINS, OriginGate, loopback_certificate
 from services.runtime.config import configure_logging
 from services.runtime.process import wait_for_stop, watch_parent
 from services.runtime.tls import station_channel_security

@@ -15,12 +15,8 @@ import foxglove
 import pytest
 from websockets.exceptions import InvalidHandshake, InvalidStatus
 
-from services.foxglove.live import (
-    DEFAULT_ORIGINS,
-    LiveChannels,
-    OriginGate,
-    loopback_certificate,
-)
+from services.foxglove.live import LiveChannels
+from services.foxglove.origin_gate import DEFAULT_ORIGINS, OriginGate, loopback_certificate
 from tests.conftest import wait_for
 from tests.foxglove.ws_client import FoxgloveClient
 from tests.processes import refused_address, start_service
