@@ -295,31 +295,30 @@ class PegInHole:
                 self._felt(np.array([0.0, 0.0, BACK_OFF_STEP_M / SCALE]))
             time.sleep(period)
 
-    def _hold(self, session, period: float, seconds: float,
-              done: Callable[[], bool] = lambda: False) -> None:
-        """Heartbeats only: the operator holds still while the arm settles, for `seconds` or
-        until `done()`."""
+    def _hold(self, session, period: float, seconds: float) -> None:
+        """Heartbeats only: the operator holds still while the arm settles."""
         deadline = time.monotonic() + seconds
         while time.monotonic() < deadline:
             session.heartbeat_nowait()  # (sends nothing while the link is down)
             self._show(False)
-            if done():
-                return
             time.sleep(period)
 
-    def _settled(self) -> Callable[[], bool]:
-        """Whether the contact force has stayed within SETTLED_N of the desired for SETTLE_S,
-        asked once a control step: the operator watches the contact, not a clock."""
-        since: list[float] = []  # when the force last came within SETTLED_N, if it stays
-
-        def settled() -> bool:
+    def _hold_until_settled(self, session, period: float, limit_s: float) -> None:
+        """Heartbeats until the contact force has stayed within SETTLED_N of the desired for
+        SETTLE_S (or `limit_s` has passed): the operator watches the contact, not a clock."""
+        deadline = time.monotonic() + limit_s
+        settled_since = None
+        while time.monotonic() < deadline:
+            session.heartbeat_nowait()
+            self._show(False)
+            now = time.monotonic()
             if abs(self._contact_force() - DESIRED_FORCE_N) > SETTLED_N:
-                since.clear()
-                return False
-            if not since:
-                since.append(time.monotonic())
-            return time.monotonic() - since[0] >= SETTLE_S
-        return settled
+                settled_since = None
+            elif settled_since is None:
+                settled_since = now
+            elif now - settled_since >= SETTLE_S:
+                return
+            time.sleep(period)
 
     def _comply(self, session, period: float) -> None:
         """Server-side force control along the peg until the floor pushes back as desired."""
@@ -332,8 +331,7 @@ class PegInHole:
             # Approach at A·F = 1.5 mm/s over the rest of the hole, then settle on the floor.
             rest = HOLE_DEPTH_M - HAND_INSERT_M
             approach_s = rest / (COMPLIANCE_GAIN_M_PER_N_S * DESIRED_FORCE_N)
-            self._hold(session, period, APPROACH_SLACK * approach_s + SETTLE_S,
-                       done=self._settled())
+            self._hold_until_settled(session, period, APPROACH_SLACK * approach_s + SETTLE_S)
         finally:
             self.client.set_assistance(pb.AssistanceConfig())
 
