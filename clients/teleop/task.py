@@ -17,6 +17,10 @@ approach. Then:
   operator holds still and the DecisionServer's force control pushes along the peg to
   DESIRED_FORCE_N and holds it.
 
+The operator watches where the tool goes, not only the plan: a loaded station refuses commands
+that waited too long (it holds the arm rather than move it late), and when the planned strokes
+leave the tool short, the operator strokes again, as far as it is short.
+
 Success: the peg's tip reaches the hole's floor (its depth below the mouth within 5 mm of the
 hole's depth), inside the hole.
 
@@ -65,6 +69,8 @@ OVERREACH_M = 0.01  # the feedback operator aims past the floor and stops when i
 BACK_OFF_STEP_M = 0.0002  # then raises the peg this much per command
 BACK_OFF_TICKS = 100
 HAND_INSERT_M = 0.03  # the compliance operator's own share of the 40 mm insertion
+MAX_EXTRA_STROKES = 4  # strokes the operator adds when it sees the tool short of its aim
+ACKED_WAIT_S = 5.0  # how long it waits for the arm to catch up before it looks
 HOLE_DEPTH_M = workspace.FIXTURE_HEIGHT
 MOUTH_Z = workspace.TABLE_TOP_Z + workspace.FIXTURE_HEIGHT
 # Oscillation at contact: swings of the contact force (between successive turning points) of
@@ -121,29 +127,42 @@ def ready_the_arm(client: DecisionClient) -> None:
 
 
 class StrokingHand:
-    """Down strokes of the master's handle with the clutch engaged on the way back up."""
+    """Down strokes of the master's handle with the clutch engaged on the way back up. Each
+    stroke takes the same time; an operator who sees the tool short of its goal adds one."""
 
     def __init__(self, hand_rest: pin.SE3, strokes: int):
         self.rest = hand_rest
-        self.strokes = strokes
         self.period = STROKE_S + RETURN_S
+        self._strokes = [(i * self.period, STROKE_M) for i in range(strokes)]  # (start, length)
+
+    def add(self, start_s: float, length_m: float) -> None:
+        """One more stroke of `length_m` (master) from `start_s` on, the hand at rest then."""
+        self._strokes.append((max(start_s, self.duration()), length_m))
+
+    def _stroke(self, t: float) -> tuple[float, float] | None:
+        """(phase, length) of the stroke under way at `t`, or None while the hand rests."""
+        for start, length in self._strokes:
+            if start <= t < start + self.period:
+                return t - start, length
+        return None
 
     def pose(self, t: float) -> pin.SE3:
-        stroke, phase = divmod(t, self.period)
-        if stroke >= self.strokes:
-            return self.rest  # done: the hand rests
+        stroke = self._stroke(t)
+        if stroke is None:
+            return self.rest
+        phase, length = stroke
         if phase < STROKE_S:
-            depth = STROKE_M * phase / STROKE_S
+            depth = length * phase / STROKE_S
         else:
-            depth = STROKE_M * (1 - (phase - STROKE_S) / RETURN_S)
+            depth = length * (1 - (phase - STROKE_S) / RETURN_S)
         return pin.SE3(self.rest.rotation, self.rest.translation - [0, 0, depth])
 
     def clutch(self, t: float) -> bool:
-        stroke, phase = divmod(t, self.period)
-        return stroke < self.strokes and phase >= STROKE_S
+        stroke = self._stroke(t)
+        return stroke is not None and stroke[0] >= STROKE_S
 
     def duration(self) -> float:
-        return self.strokes * self.period
+        return max((start + self.period for start, _ in self._strokes), default=0.0)
 
 
 class PegInHole:
@@ -229,33 +248,22 @@ class PegInHole:
         if self._recorder is not None:  # every command and heartbeat, as sent
             session.on_request = self._recorder.request
         period = 1.0 / COMMAND_RATE_HZ
-        script_time, felt = 0.0, False
-        next_tick = time.monotonic()
+        # The depth that will do: in feedback mode none short of feeling the floor; in
+        # compliance mode the hand's share of the insertion, the rest left to force control.
+        enough = insert if self.mode == "feedback" else HAND_INSERT_M - 0.002
+        script_time, extra = 0.0, 0
         try:
-            while script_time < script.duration() + 0.5:
-                next_tick += period
-                if session.interrupted:  # the operator holds still until the link is back
-                    self._show(arm.indexing)
-                    time.sleep(period)
-                    next_tick = time.monotonic()
-                    continue
-                arm.clutch = script.clutch(script_time)
-                reference = arm.reference
-                increment = arm.update(script_time)
-                if self.mode == "feedback" and self._felt() > FEEL_N:
-                    felt = True  # the operator feels the floor and stops pushing
-                if increment is None or felt:
-                    session.heartbeat_nowait()
-                elif self._send(increment.delta_position, increment.delta_rotation):
-                    self._commands += 1
-                else:  # the link broke just now: this motion goes out with the next command
-                    arm.reference = reference
-                    continue
-                self._show(arm.indexing)
-                script_time += period
-                time.sleep(max(0.0, next_tick - time.monotonic()))
-                if felt:
+            while True:
+                script_time, felt = self._stroke(script, arm, session, script_time, period)
+                if felt or extra >= MAX_EXTRA_STROKES:
                     break
+                # A station that held the arm (stale commands are refused, not applied late)
+                # left the tool short: the operator sees that and strokes again, as far as it is.
+                depth = MOUTH_Z - self._tool_z_once_acked(session, period)
+                if depth >= enough:
+                    break
+                script.add(script_time, min(STROKE_M, (insert - depth) / SCALE))
+                extra += 1
             if self.mode == "compliance":
                 self._comply(session, period)
             else:
@@ -264,6 +272,47 @@ class PegInHole:
         finally:
             session.close()
         return self._result(start)
+
+    def _stroke(self, script: StrokingHand, arm: MasterArm, session, script_time: float,
+                period: float) -> tuple[float, bool]:
+        """Command the hand's strokes from `script_time` until they are done (and the hand has
+        rested half a second) or, in feedback mode, the operator feels the floor: (the script's
+        time then, whether it was felt)."""
+        felt = False
+        next_tick = time.monotonic()
+        while script_time < script.duration() + 0.5 and not felt:
+            next_tick += period
+            if session.interrupted:  # the operator holds still until the link is back
+                self._show(arm.indexing)
+                time.sleep(period)
+                next_tick = time.monotonic()
+                continue
+            arm.clutch = script.clutch(script_time)
+            reference = arm.reference
+            increment = arm.update(script_time)
+            if self.mode == "feedback" and self._felt() > FEEL_N:
+                felt = True  # the operator feels the floor and stops pushing
+            if increment is None or felt:
+                session.heartbeat_nowait()
+            elif self._send(increment.delta_position, increment.delta_rotation):
+                self._commands += 1
+            else:  # the link broke just now: this motion goes out with the next command
+                arm.reference = reference
+                continue
+            self._show(arm.indexing)
+            script_time += period
+            time.sleep(max(0.0, next_tick - time.monotonic()))
+        return script_time, felt
+
+    def _tool_z_once_acked(self, session, period: float) -> float:
+        """The tool's height once every command sent has been acked (heartbeats meanwhile, up
+        to ACKED_WAIT_S): where the arm went, not where it is on its way."""
+        deadline = time.monotonic() + ACKED_WAIT_S
+        while session.unacked and time.monotonic() < deadline:
+            session.heartbeat_nowait()
+            self._show(False)
+            time.sleep(period)
+        return float(self.client.robot.get_state().tool_pose.translation[2])
 
     def _send(self, delta_position, delta_rotation=None) -> bool:
         """Send one increment and predict it into the model; False when the link is down."""
