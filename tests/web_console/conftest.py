@@ -22,6 +22,20 @@ CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic"
 SHOTS_ENV = "TELEROBOT_WEB_CONSOLE_SHOTS"
 
 
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_makereport(item, call):
+    """A failed browser test shows the station's last log lines: what the station saw (a
+    refusal, a lost link, a restart) is what the page's text rarely says."""
+    report = yield
+    if report.when == "call" and report.failed:
+        for name in ("console_station", "https_station"):
+            station = item.funcargs.get(name)
+            launcher = station[0] if isinstance(station, tuple) else station
+            if launcher is not None:
+                report.sections.append((f"{name}'s last lines", launcher.describe(80)))
+    return report
+
+
 @pytest.fixture(scope="session")
 def console_station(tmp_path_factory):
     """The station, started by the launcher like `make serve`; `.ready` has every address.
