@@ -13,11 +13,13 @@ sequence and the bytes received so far) tell it, one round trip late. From them 
 - **the target rate** (delay-based, after WebRTC's congestion control): a queue above
   OVERUSE_S means the path is full, and the target drops to DECREASE of what was delivered,
   then waits for receipts of frames sent after the drop before it judges again; what was
-  delivered then is the path's capacity as last seen, if the encoder had filled its target. A
-  queue below UNDERUSE_S lets the target grow: by INCREASE_PER_S a second while it is well
-  below that capacity (or none is known), near it by only NEAR_INCREASE_PER_S of the capacity
-  a second, so that a long round trip, which shows an overshoot late, overshoots little; past
-  FORGET_CAPACITY x the capacity with no queue the path has widened and the fast growth resumes.
+  delivered then is the path's capacity as last seen (a queue built, so the path set the pace).
+  A queue below UNDERUSE_S lets the target grow: by INCREASE_PER_S a second while the target
+  and what is sent are well below that capacity (or none is known), near it by only
+  NEAR_INCREASE_PER_S of the capacity a second, so that a long round trip, which shows an
+  overshoot late, overshoots little; once more than FORGET_CAPACITY x the capacity is *sent*
+  with no queue, the path has widened and the fast growth resumes. (What is sent, not the
+  target: an encoder that makes less than its target keeps the target above the path.)
   Above the start rate, never above GROWTH_CAP x what was delivered: an encoder that needs
   less than its target does not inflate it (x264 makes about half its target at the lowest
   rates, so below the start rate the target grows regardless).
@@ -197,10 +199,13 @@ class StreamPacer:
                               limits.max_kbit * 1e3)
 
     def _increase(self, dt_s: float, delivery: float | None) -> None:
-        capacity = self._capacity_bps
-        if capacity is not None and self.target_bps > FORGET_CAPACITY * capacity:
+        # The path has widened only once more than it carried went through without a queue:
+        # judged by what is sent, since an encoder that makes less than its target keeps its
+        # target above the path for good. Near it, by either.
+        capacity, sending = self._capacity_bps, self.sending_bps() or 0.0
+        if capacity is not None and sending > FORGET_CAPACITY * capacity:
             self._capacity_bps = capacity = None  # the path widened: probe fast again
-        if capacity is not None and self.target_bps >= NEAR_CAPACITY * capacity:
+        if capacity is not None and max(sending, self.target_bps) >= NEAR_CAPACITY * capacity:
             grown = self.target_bps + NEAR_INCREASE_PER_S * capacity * max(0.0, dt_s)
         else:
             grown = self.target_bps * (1.0 + INCREASE_PER_S * max(0.0, dt_s))
@@ -213,10 +218,7 @@ class StreamPacer:
         """To DECREASE of what arrives. The frames in flight were sent at the old rate: the next
         decision waits for receipts of frames sent after this one."""
         self._judged_after = self._sent[-1][0] if self._sent else self.acked_sequence
-        # What arrived is the path's capacity only if the sender filled the target; an encoder
-        # that made less says nothing of the path.
-        sending = self.sending_bps() or 0.0
-        self._capacity_bps = delivery if sending >= NEAR_CAPACITY * self.target_bps else None
+        self._capacity_bps = delivery  # a queue built: the path, not the encoder, set the pace
         self.target_bps = DECREASE * min(delivery, self.target_bps)
 
 
