@@ -82,3 +82,52 @@ def test_h264_video_through_a_183_ms_link(browser, video_console):
     first, _, last = result["age_ms_p95_thirds"]
     assert last <= first + 20, result  # no growing backlog
     assert page.errors == []
+
+
+def test_without_webcodecs_the_page_polls_jpeg_snapshots(browser, video_console):
+    """An insecure context has no VideoDecoder: the page shows snapshots instead."""
+    page = browser.new_page()
+    page.add_init_script("delete window.VideoDecoder")
+    page.goto(f"http://{video_console}/")
+    wait_for(lambda: page.evaluate("() => window.videoStats.frames") >= 10, timeout_s=30,
+             what="snapshots shown")
+    stats = page.evaluate("() => ({codec: videoStats.codec, decoder: videoStats.decoder, "
+                          "fallback: videoStats.fallbackReason})")
+    assert stats["codec"] == "jpeg" and stats["decoder"] == "snapshots", stats
+    assert "VideoDecoder" in stats["fallback"], stats
+    assert int(page.locator("#left-eye").get_attribute("data-sequence")) > 0
+
+
+# Closes the decoder on every 20th frame it is given, as a decoder that fails would be.
+FAILING_DECODER = """(() => {
+  const decode = VideoDecoder.prototype.decode;
+  let given = 0;
+  VideoDecoder.prototype.decode = function (chunk) {
+    if (++given % 20 === 0) { this.close(); return; }
+    return decode.call(this, chunk);
+  };
+})()"""
+
+
+def test_a_failing_decoder_asks_for_key_frames_then_falls_back(browser, video_console):
+    """A decode error: a receipt asks for a key frame and the video resumes from it; the third
+    error within 30 s: JPEG snapshots for good."""
+    page = browser.new_page()
+    page.add_init_script(FAILING_DECODER)
+    page.goto(f"http://{video_console}/")
+
+    def stats():
+        return page.evaluate("() => ({frames: videoStats.frames, errors: videoStats.decodeErrors,"
+                             " keyframes: videoStats.keyframeRequests, decoder: videoStats.decoder,"
+                             " fallback: videoStats.fallbackReason})")
+
+    failed = wait_for(lambda: (s := stats())["errors"] >= 1 and s, timeout_s=30,
+                      what="the first decode error")
+    resumed = wait_for(lambda: (s := stats())["frames"] > failed["frames"] + 5 and s,
+                       timeout_s=30, what="frames after the first decode error")
+    assert resumed["keyframes"] >= 1, resumed
+    done = wait_for(lambda: (s := stats())["decoder"] == "snapshots" and s, timeout_s=30,
+                    what="the fallback to snapshots")
+    assert done["errors"] == 3 and "failed 3 times" in done["fallback"], done
+    frames = done["frames"]
+    wait_for(lambda: stats()["frames"] > frames + 5, timeout_s=30, what="snapshots shown")

@@ -45,6 +45,7 @@ export class VideoStats {
   receipts = 0;
   receiptsBySocket = 0;  // of which went on the receipts WebSocket (the rest as Connect calls)
   skipped = 0;  // decoded frames never drawn: a newer one came while the last was being drawn
+  decoderWaits = 0;  // times the page stopped reading the stream while its decoder caught up
   samples: VideoSample[] = [];
 
   shown(sample: Omit<VideoSample, "shownMs" | "ageMs">, captureMs: number): void {
@@ -244,6 +245,10 @@ export interface VideoOptions {
 // JPEG snapshots for good.
 const MAX_DECODE_ERRORS = 3;
 const DECODE_ERROR_WINDOW_MS = 30_000;
+// Frames the decoder may hold waiting before the page stops reading the stream (about 70 ms
+// at 30 fps), and how often it looks again where the decoder has no "dequeue" event.
+const MAX_DECODE_QUEUE = 2;
+const DEQUEUE_POLL_MS = 10;
 // Snapshots: at most ~15 pairs/s; each is asked for once the last one is drawn, so a slow
 // browser or link always gets the newest pair.
 const SNAPSHOT_MIN_INTERVAL_MS = 66;
@@ -363,6 +368,23 @@ export function startVideo(o: VideoOptions): VideoStats {
           }));
         } catch (e) {
           lost(String(e));
+        }
+        // A decoder that falls behind (a busy machine) would queue frames without end, unseen
+        // by the sender: the receipts left as the frames arrived. Read the next pair only once
+        // it has room, so that pairs wait in the transport instead, their receipts come later
+        // and the sender paces the stream to what this page decodes.
+        const d = decoder;
+        while (d && d === decoder && d.state === "configured" && d.decodeQueueSize > MAX_DECODE_QUEUE) {
+          stats.decoderWaits++;
+          await new Promise<void>((dequeued) => {
+            const done = () => {
+              d.removeEventListener("dequeue", done);
+              clearTimeout(timer);
+              dequeued();
+            };
+            const timer = setTimeout(done, DEQUEUE_POLL_MS);  // a browser without the event
+            d.addEventListener("dequeue", done);
+          });
         }
       }
     } catch (err) {
