@@ -5,6 +5,7 @@ the console, from a pattern camera (640x480 per eye, 30 fps) behind a DecisionSe
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -45,11 +46,23 @@ def summary(samples: list[dict], skip_s: float) -> dict:
         "age_ms_p95": round(float(np.percentile(ages, 95)), 1),
         "age_ms_p95_thirds": [round(float(np.percentile(t, 95)), 1)
                               for t in np.array_split(ages, 3)],
-        "received_age_ms_p50": round(float(np.percentile(
-            [s["receivedAgeMs"] for s in kept], 50)), 1),
+        # Where the age comes from when it is too old: the path (capture to the page's reading
+        # it), or the page (its decoder, its drawing).
+        "received_age_ms_p95_thirds": [round(float(np.percentile(t, 95)), 1) for t in
+                                       np.array_split([s["receivedAgeMs"] for s in kept], 3)],
+        "decode_ms_p95": round(float(np.percentile([s["decodeMs"] for s in kept], 95)), 1),
+        "draw_ms_p95": round(float(np.percentile([s["drawMs"] for s in kept], 95)), 1),
+        "ticks_skipped": kept[-1]["sequence"] - kept[0]["sequence"] - (len(kept) - 1),
         "kbit_per_s": round(sum(s["bytes"] for s in kept[1:]) * 8 / 1e3 / span_s, 1),
         "target_kbit_per_s": kept[-1]["targetKbit"],
     }
+
+
+def cpu_ticks() -> tuple[int, int]:
+    """(busy, total) CPU ticks of the whole machine so far, from /proc/stat."""
+    fields = [int(v) for v in Path("/proc/stat").read_text().split("\n")[0].split()[1:]]
+    idle = fields[3] + fields[4]  # idle, iowait
+    return sum(fields) - idle, sum(fields)
 
 
 def test_h264_video_through_a_183_ms_link(browser, video_console):
@@ -59,7 +72,10 @@ def test_h264_video_through_a_183_ms_link(browser, video_console):
         page = open_console(browser, f"http://{proxy.address}/")
         wait_for(lambda: page.evaluate("() => window.videoStats?.frames ?? 0") > 0,
                  timeout_s=30, what="a first frame shown")
-        time.sleep(WARM_UP_S + MEASURE_S)
+        time.sleep(WARM_UP_S)
+        before = cpu_ticks()
+        time.sleep(MEASURE_S)
+        after = cpu_ticks()
         stats = page.evaluate("""() => ({codec: videoStats.codec, decoder: videoStats.decoder,
             fallback: videoStats.fallbackReason, errors: videoStats.decodeErrors,
             keyframes: videoStats.keyframeRequests, receipts: videoStats.receipts,
@@ -68,6 +84,10 @@ def test_h264_video_through_a_183_ms_link(browser, video_console):
         figures = {key: shown.get_attribute(f"data-{key}")
                    for key in ("codec", "decoder", "fps", "age-p95", "kbit-per-s")}
     result = summary(stats["samples"], WARM_UP_S)
+    # The goals need about three quarters of this 2-core machine (the world's simulation, the
+    # camera's x264, Chromium's software decoding and compositing): when other work takes the
+    # rest, frames wait for a CPU on every hop. Printed, to tell that from a fault.
+    result["machine_busy"] = round((after[0] - before[0]) / max(1, after[1] - before[1]), 2)
     print("video through 183 ms:", result, "page:", figures, "decode errors:", stats["errors"],
           "key frames asked:", stats["keyframes"], "receipts:", stats["receipts"],
           "on the WebSocket:", stats["bySocket"])
