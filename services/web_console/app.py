@@ -50,15 +50,16 @@ class TransportBoundProtocol(H11Protocol):
     (seconds of low-bitrate video, minutes of arm states) for a browser or link that reads
     slowly; here it pauses as soon as the kernel's socket buffer is full, so the next message
     is read from the DecisionServer only once the client's transport has taken the last one.
-    Over HTTPS the same holds for the TLS layer's buffer (asyncio pauses a TLS transport at or
-    above its mark, a TCP one above it: a mark of 0 would pause TLS for good, so there it is 1);
-    the TCP transport under the TLS layer keeps asyncio's 64 KiB.
+    Over HTTPS the connection keeps asyncio's buffers: its TLS transport pauses at or above its
+    mark (a TCP one above it), so a mark of 0 pauses every response for good, and one of 1
+    stalled some WebSocket upgrades (tests/web_console/test_https.py).
     """
 
     def connection_made(self, transport) -> None:
         super().connection_made(transport)
         tls = transport.get_extra_info("sslcontext") is not None
-        transport.set_write_buffer_limits(high=1 if tls else 0)
+        if not tls:
+            transport.set_write_buffer_limits(high=0)
 
 
 def _assets() -> dict[str, Path]:
