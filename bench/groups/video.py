@@ -67,9 +67,12 @@ def run(bench: Session) -> None:
     records, console = [], None
     try:
         with bench.decision_server(bench.station, camera_address) as address:
-            # The web console in front of the DecisionServer, for the page's cells.
-            console, console_address = procs.run_service(
-                "web_console", ["--decision-server", address])
+            # The web console in front of the DecisionServer, for the page's cells (an HTTP
+            # gateway: no --grace-s, so not run_service).
+            console = procs.start("web_console", [
+                "-m", "services.web_console", "--address", "127.0.0.1:0",
+                "--decision-server", address])
+            console_address = console.wait_ready("web_console", timeout_s=60)
             bench.progress.done(f"camera at {camera_address}, the operator's address {address}, "
                                 f"the console at {console_address}")
             for cell in grid:
