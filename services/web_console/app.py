@@ -12,7 +12,7 @@ from urllib.parse import urlsplit
 
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
-from services.web_console import receipts, teleoperate
+from services.web_console import receipts, sockets, teleoperate
 from services.web_console.bridge import BODY_MAX_BYTES, ConnectBridge, Upstream
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
@@ -135,7 +135,7 @@ class ConsoleApp:
             serve = _SOCKETS.get(path)
             if serve is None or not same_origin(scope) or refused_host is not None:
                 await receive()
-                await send({"type": "websocket.close", "code": teleoperate.CLOSE_POLICY})
+                await send({"type": "websocket.close", "code": sockets.CLOSE_POLICY})
                 return
             if self.open_sockets >= self.max_sockets:
                 await receive()

@@ -26,13 +26,12 @@ import grpc
 from google.protobuf.message import DecodeError
 
 from services.web_console.bridge import Upstream
-from services.web_console.teleoperate import (
-    CLOSE_POLICY,
+from services.web_console.sockets import (
     CLOSE_TOO_BIG,
     CLOSE_UNSUPPORTED_DATA,
-    TOKEN_SUBPROTOCOL_PREFIX,
-    _reason,
+    accept,
     close_code,
+    reason,
 )
 from telerobot.v1 import stereo_camera_pb2 as pb
 
@@ -53,24 +52,8 @@ _FATAL = (grpc.StatusCode.UNAUTHENTICATED, grpc.StatusCode.PERMISSION_DENIED,
 
 async def serve(scope, receive, send, upstream: Upstream) -> None:
     """One browser's receipts, an ASGI websocket scope."""
-    message = await receive()
-    if message["type"] != "websocket.connect":
-        return
-    offered = list(scope.get("subprotocols") or ())
-    if SUBPROTOCOL not in offered:
-        await send({"type": "websocket.close", "code": CLOSE_POLICY})
-        return
-    tokens = [p[len(TOKEN_SUBPROTOCOL_PREFIX):] for p in offered
-              if p.startswith(TOKEN_SUBPROTOCOL_PREFIX)]
-    metadata = [("authorization", f"Bearer {tokens[0]}")] if tokens else []
-    await send({"type": "websocket.accept", "subprotocol": SUBPROTOCOL})
-    refusal = upstream.refusal or (
-        "no bearer token: offer the subprotocol bearer.<token>"
-        if upstream.needs_token and not tokens else "")
-    if refusal:
-        await send({"type": "websocket.close",
-                    "code": close_code(grpc.StatusCode.UNAUTHENTICATED),
-                    "reason": _reason(refusal)})
+    metadata = await accept(scope, receive, send, upstream, SUBPROTOCOL)
+    if metadata is None:
         return
     call = upstream.stereo_channel.unary_unary(
         METHOD, request_serializer=pb.ReportReceiptRequest.SerializeToString,
@@ -116,7 +99,7 @@ async def serve(scope, receive, send, upstream: Upstream) -> None:
         close = fatal.result() if fatal.done() else reading.result()
         if close is not None:
             await send({"type": "websocket.close", "code": close[0],
-                        "reason": _reason(close[1])})
+                        "reason": reason(close[1])})
     finally:
         reading.cancel()
         for task in pending:
