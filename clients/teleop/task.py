@@ -260,7 +260,7 @@ class PegInHole:
                 # A station that held the arm (stale commands are refused, not applied late)
                 # left the tool short: the operator sees that and strokes again, as far as it is.
                 depth = MOUTH_Z - self._tool_z_once_acked(session, period)
-                if depth >= enough:
+                if depth >= enough or self._blocked():
                     break
                 script.add(script_time, min(STROKE_M, (insert - depth) / SCALE))
                 extra += 1
@@ -303,6 +303,12 @@ class PegInHole:
             script_time += period
             time.sleep(max(0.0, next_tick - time.monotonic()))
         return script_time, felt
+
+    def _blocked(self) -> bool:
+        """In compliance mode, whether the peg already pushes on something (the hole's floor, or
+        the fixture beside it): force control takes over from there, and more strokes would
+        only press harder. (In feedback mode feeling it ends the strokes.)"""
+        return self.mode == "compliance" and self._contact_force() > CONTACT_N
 
     def _tool_z_once_acked(self, session, period: float) -> float:
         """The tool's height once every command sent has been acked (heartbeats meanwhile, up

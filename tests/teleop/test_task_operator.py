@@ -1,9 +1,11 @@
 """The scripted operator watches the tool, not a plan: when the station holds the arm (stale
 commands are refused, never applied late), it strokes again until the tool gets where it aims.
 
-The station here is a fake of the DecisionClient port with honest physics: the tool moves by
-each applied increment, and a floor at the hole's depth pushes back with a stiff contact. It
-refuses the commands that arrive inside a window, as a station starved past a backlog does."""
+The station here is a fake of the DecisionClient port with honest physics: a stiff position-
+controlled arm, whose target moves by each applied increment; the tool follows it down to what
+it meets (the hole's floor, or the fixture's top), which stops it and pushes back in proportion
+to how far the target lies beyond. It refuses the commands that arrive inside a window, as a
+station starved past a backlog does."""
 
 from __future__ import annotations
 
@@ -28,21 +30,29 @@ PEG_DOWN = np.diag([1.0, -1.0, -1.0])  # the tool's z runs down the peg
 class HeldStation:
     """A station whose arm is held (each command REJECTED) for commands `held` (sequences)."""
 
-    def __init__(self, start_z: float, held: range):
-        self.tool = np.array([*task.workspace.FIXTURE_CENTER_XY, start_z])
+    def __init__(self, start_z: float, held: range, floor_z: float = FLOOR_Z):
+        self.target = np.array([*task.workspace.FIXTURE_CENTER_XY, start_z])
         self.held = held
+        self.floor_z = floor_z  # what the peg meets: the hole's floor, or the fixture's top
         self.refused = 0
+        self.assistance = []
         self.robot = SimpleNamespace(get_state=lambda: SimpleNamespace(tool_pose=self.pose()))
 
     def pose(self) -> Pose:
-        return Pose(PEG_DOWN, self.tool.copy())
+        tool = self.target.copy()
+        tool[2] = max(tool[2], self.floor_z)  # stopped by what it meets
+        return Pose(PEG_DOWN, tool)
 
     def force(self) -> np.ndarray:
         # The floor pushes up the peg: along the tool's −z.
-        return np.array([0.0, 0.0, -FLOOR_STIFFNESS_N_PER_M * max(0.0, FLOOR_Z - self.tool[2])])
+        return np.array([0.0, 0.0,
+                         -FLOOR_STIFFNESS_N_PER_M * max(0.0, self.floor_z - self.target[2])])
 
     def teleoperate(self, *args, on_ack, **kwargs):
         return HeldSession(self, on_ack)
+
+    def set_assistance(self, config) -> None:
+        self.assistance.append(config)  # (force control is the station's: not simulated)
 
 
 class HeldSession:
@@ -60,7 +70,7 @@ class HeldSession:
         if held:
             self.station.refused += 1
         else:
-            self.station.tool = self.station.tool + np.asarray(delta_position, dtype=float)
+            self.station.target = self.station.target + np.asarray(delta_position, dtype=float)
             self.commands_applied += 1
         self.commands_acked += 1
         self._ack(self.sequence, CommandOutcome.REJECTED if held else CommandOutcome.APPLIED)
@@ -108,9 +118,26 @@ def test_an_operator_whose_every_command_was_applied_adds_no_stroke(quick_stroke
     result = run_feedback(station)
     assert result.success, result
     # Six planned strokes of 5 cm bring it to the floor: none of them more.
-    strokes = int(np.ceil((0.21 + task.HOLE_DEPTH_M + task.OVERREACH_M)
-                          / (task.STROKE_M * task.SCALE)))
-    assert result.commands <= strokes * task.STROKE_S * task.COMMAND_RATE_HZ + strokes
+    assert result.commands <= nominal_commands(task.HOLE_DEPTH_M + task.OVERREACH_M)
+
+
+def nominal_commands(insert_m: float) -> float:
+    """At most the commands of the planned strokes: one per tick of each (the way back up, the
+    clutch held, included)."""
+    strokes = int(np.ceil((0.21 + insert_m) / (task.STROKE_M * task.SCALE)))
+    return strokes * (task.STROKE_S + task.RETURN_S) * task.COMMAND_RATE_HZ + strokes
+
+
+def test_a_compliance_operator_whose_peg_meets_the_fixture_adds_no_stroke(quick_strokes,
+                                                                          monkeypatch):
+    """Beside the hole the peg meets the fixture's top: the operator hands over to force
+    control rather than press on with more strokes."""
+    monkeypatch.setattr(task, "APPROACH_SLACK", 0.0)  # (the station's force loop is not here)
+    station = HeldStation(task.MOUTH_Z + 0.21, held=range(0), floor_z=task.MOUTH_Z)
+    result = task.PegInHole(station, "compliance", RobotModel(station.pose())).run()
+    assert not result.success and result.peak_force_n > task.CONTACT_N
+    assert result.commands <= nominal_commands(task.HAND_INSERT_M)
+    assert len(station.assistance) == 2  # force control on, then off
 
 
 def test_a_stroke_added_starts_from_the_rest_after_the_last():
