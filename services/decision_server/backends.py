@@ -17,7 +17,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from grpc_status import rpc_status
 
 from services.common import se3
-from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
+from services.decision_server.slave import MoveResult, SensorActivity, SlaveState, SlaveWrench
 from telerobot.v1 import (
     force_sensor_pb2,
     force_sensor_pb2_grpc,
@@ -162,14 +162,16 @@ class GrpcSlave:
     def hold(self, reason: str) -> None:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
 
-    def sensor_is_reading(self, timeout_s: float) -> bool:
+    def sensor_activity(self, timeout_s: float) -> SensorActivity:
         try:
             reply = call(self.sensor.GetSensorConfig, force_sensor_pb2.GetSensorConfigRequest(),
                          timeout=timeout_s)
         except DeadlineExceededError:
             raise UnavailableError(f"no answer within {timeout_s * 1e3:.0f} ms",
                                    reason="SENSOR_SILENT") from None
-        return reply.config.reading
+        config = reply.config
+        return SensorActivity(config.reading, every_sample=(
+            config.threshold_force_n == 0.0 and config.threshold_torque_nm == 0.0))
 
     def emergency_stop(self, reason: str) -> str:
         """Latch through the band and through ProxyRobot at once: the band is fast under any
