@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import platform
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
 import numpy as np
@@ -70,22 +70,26 @@ class SeqlockRecord:
         self._bytes[:] = source
         self._sequence[0] = sequence + 1
 
-    def read(self, timeout_s: float) -> np.ndarray:
+    def read(self, timeout_s: float, monotonic: Callable[[], float] = time.monotonic
+             ) -> np.ndarray:
         """A consistent copy of the record (shape (1,), the caller's to keep). TornRead when
-        none could be taken within ``timeout_s``."""
+        none could be taken within ``timeout_s``: only once an attempt that started after the
+        deadline failed too, so a reader preempted for longer than that (a loaded machine)
+        takes its copy when it runs again instead of blaming the writer."""
         deadline = None
         attempts = 0
         while True:
+            late = deadline is not None and monotonic() > deadline
             before = int(self._sequence[0])
             if not before & 1:
                 copy = self._record.copy()
                 if int(self._sequence[0]) == before:
                     return copy
+            if late:
+                raise TornRead(f"record still being written after {timeout_s * 1e3:.0f} ms")
             attempts += 1
             if deadline is None:
-                deadline = time.monotonic() + timeout_s
-            elif time.monotonic() > deadline:
-                raise TornRead(f"record still being written after {timeout_s * 1e3:.0f} ms")
+                deadline = monotonic() + timeout_s
             if attempts > SPIN_ATTEMPTS:
                 time.sleep(0)  # the writer was preempted mid-write: give its core back
 

@@ -247,7 +247,7 @@ class _WorldConnection:
             if problem:
                 raise UnavailableError(f"shared memory {self.name!r} is not usable: {problem}",
                                        reason="WORLD_SEGMENT_INVALID")
-            self.check_alive(self.segment.heartbeat_ns)
+            self.check_alive()
         except UnavailableError:
             self.close()
             raise
@@ -258,8 +258,14 @@ class _WorldConnection:
                                    reason="LINK_CLOSED")
         return self.segment
 
-    def check_alive(self, heartbeat_ns: int) -> None:
+    def check_alive(self) -> None:
         """Unavailable unless the world is running and stepped within stale_after_s."""
+        now_ns = self._clock.monotonic_ns()
+        self._check_alive(self.require().heartbeat_ns, now_ns)
+
+    def _check_alive(self, heartbeat_ns: int, now_ns: int) -> None:
+        """As check_alive, for a heartbeat read after `now_ns` was: the clock is read first, so
+        a reader preempted in between sees the world younger, never older, than it is."""
         segment = self.require()
         status = segment.status
         if status == STATUS_CLOSED:
@@ -269,7 +275,7 @@ class _WorldConnection:
         if status != STATUS_RUNNING:
             raise UnavailableError(f"the world (pid {segment.world_pid}) is starting; try again",
                                    reason="WORLD_STARTING")
-        age_ns = self._clock.monotonic_ns() - heartbeat_ns
+        age_ns = now_ns - heartbeat_ns
         if age_ns > self._stale_after_ns:
             raise UnavailableError(
                 f"the world (pid {segment.world_pid}) has not stepped for {age_ns / 1e6:.0f} ms "
@@ -279,13 +285,14 @@ class _WorldConnection:
     def read_state(self) -> np.void:
         """A consistent copy of the latest state record, from a live world."""
         segment = self.require()
+        now_ns = self._clock.monotonic_ns()
         try:
             record = segment.state.read(TORN_READ_TIMEOUT_S)[0]
         except TornRead:
             raise UnavailableError(
                 f"the world (pid {segment.world_pid}) stopped in the middle of publishing a "
                 "sample: it is stuck or gone", reason="WORLD_STALE") from None
-        self.check_alive(int(record["heartbeat_ns"]))
+        self._check_alive(int(record["heartbeat_ns"]), now_ns)
         return record
 
     def close(self) -> None:
@@ -393,7 +400,7 @@ class SharedMemoryArmLink:
         with self._command_lock:
             connection = self._connection
             segment = connection.require()
-            connection.check_alive(segment.heartbeat_ns)
+            connection.check_alive()
             number = self._issued + 1
             with segment.command.writing() as record:
                 # Payload first, numbers last: a driver killed in between leaves no new number.
@@ -427,7 +434,7 @@ class SharedMemoryEmergencyStop:
         with self._lock:
             connection = self._connection
             segment = connection.require()
-            connection.check_alive(segment.heartbeat_ns)
+            connection.check_alive()
             # Strictly new, even within one clock tick, so the world always sees a change.
             requested = max(time.time_ns(), self._last_request_ns + 1)
             segment.emergency["stop_request_ns"] = requested

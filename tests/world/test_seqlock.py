@@ -91,3 +91,22 @@ def test_a_new_writer_recovers_from_one_that_died_mid_write(segment) -> None:
     assert record.sequence % 2 == 0
     assert record.read(timeout_s=0.01)["counter"][0] == 7
     record.release()
+
+
+def test_a_reader_preempted_while_it_retried_takes_its_copy_when_it_runs_again(segment) -> None:
+    """The writer was mid-write; the reader lost its core for longer than its timeout, and the
+    writer finished meanwhile. Only a try that starts after the deadline and fails too means a
+    stuck writer."""
+    record = SeqlockRecord(segment.buf, 0, DTYPE)
+    writing = record.writing()
+    writing.__enter__()
+    times = iter([0.0, 0.2])  # the deadline is set at 0.0; the reader next runs at 0.2
+
+    def preempted_clock() -> float:
+        now = next(times)
+        if now > 0.0:
+            writing.__exit__(None, None, None)  # the writer ran while the reader was off its core
+        return now
+
+    copy = record.read(timeout_s=0.05, monotonic=preempted_clock)
+    assert record.sequence % 2 == 0 and copy.shape == (1,)

@@ -279,6 +279,26 @@ def test_a_world_that_stops_stepping_is_unavailable(paused_publisher, clock,
 
 
 @pytest.mark.e2e
+def test_a_reader_preempted_mid_read_does_not_take_the_world_for_stale(paused_publisher, clock,
+                                                                      sim: ArmSim) -> None:
+    """The link's clock is read before the record: a reader that lost its core in between (a
+    loaded machine) sees a world that stepped just now, not one that stopped."""
+    link = SharedMemoryArmLink(paused_publisher.name, stale_after_s=0.05, clock=clock)
+    state = link._connection.segment.state
+    read = state.read
+
+    def read_then_lose_the_core(timeout_s):
+        copy = read(timeout_s)
+        clock.advance(0.2)  # off the core for 200 ms; the world stepped meanwhile
+        paused_publisher.publish(sim.arm_sample(), sim.wrench_sample())
+        return copy
+
+    state.read = read_then_lose_the_core
+    link.read_arm()
+    link.close()
+
+
+@pytest.mark.e2e
 def test_a_closed_world_is_unavailable_and_its_segment_gone(sim: ArmSim) -> None:
     world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
     world.publish(sim.arm_sample(), sim.wrench_sample())
