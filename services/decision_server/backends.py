@@ -17,7 +17,7 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from grpc_status import rpc_status
 
 from services.common import se3
-from services.decision_server.slave import MoveResult, SensorActivity, SlaveState, SlaveWrench
+from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
 from telerobot.v1 import (
     force_sensor_pb2,
     force_sensor_pb2_grpc,
@@ -162,16 +162,14 @@ class GrpcSlave:
     def hold(self, reason: str) -> None:
         call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
 
-    def sensor_activity(self, timeout_s: float) -> SensorActivity:
+    def sensor_is_reading(self, timeout_s: float) -> bool:
         try:
             reply = call(self.sensor.GetSensorConfig, force_sensor_pb2.GetSensorConfigRequest(),
                          timeout=timeout_s)
         except DeadlineExceededError:
             raise UnavailableError(f"no answer within {timeout_s * 1e3:.0f} ms",
                                    reason="SENSOR_SILENT") from None
-        config = reply.config
-        return SensorActivity(config.reading, every_sample=(
-            config.threshold_force_n == 0.0 and config.threshold_torque_nm == 0.0))
+        return reply.config.reading
 
     def emergency_stop(self, reason: str) -> str:
         """Latch through the band and through ProxyRobot at once: the band is fast under any

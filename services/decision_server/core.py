@@ -61,13 +61,12 @@ from wire.errors import (
 
 log = logging.getLogger(__name__)
 
-# The sensor's wrench reaches the DecisionServer at 100 Hz. After 30 ms without one from a
-# sensor that streams every sample, the session's watchdog holds the arm at once (a segment in
-# flight would carry it on for up to 50 ms), and the next command asks the sensor whether it
-# is alive, which may take 40 ms (see sensor_lost). A shorter answer time refused about 1
-# command in 2,400 as "silent" on a loaded 2-core machine (load 12, the 10-minute soak) while
-# the sensor was only slow; on such a machine a sensor 70 ms late is no feedback to move by
-# either, and the ack says why.
+# The sensor's wrench reaches the DecisionServer at 100 Hz: after 30 ms without one the
+# sensor is asked whether it is alive, and may take 40 ms to answer (see sensor_lost). So a
+# hung sensor holds the arm within about 30 + 40 ms plus one command period. A shorter answer
+# time refused about 1 command in 2,400 as "silent" on a loaded 2-core machine (load 12, the
+# 10-minute soak) while the sensor was only slow; on such a machine a sensor 70 ms late is
+# no feedback to move by either, and the ack says why.
 SENSOR_QUIET_NS = 30_000_000
 SENSOR_PROBE_S = 0.04
 SENSOR_ALIVE_S = 0.1  # a quiet sensor that answered (a change threshold) is asked this often
@@ -146,8 +145,6 @@ class DecisionCore:
         self._indexing = False
         self._sensor_streamed = False  # a fresh wrench was seen (see sensor_lost)
         self._sensor_alive_until = 0.0
-        self._sensor_streams_changes = False  # it said it has a change threshold
-        self._newest_wrench_ns = 0  # the newest wrench's sample time
         # The arm's latest status, from state samples and from the answers of stop and reset;
         # an older sample never overrides a newer answer.
         self._state: SlaveState | None = None
@@ -228,40 +225,19 @@ class DecisionCore:
         health = self.slave.health().get("force_sensor", "ok")
         if health != "ok":
             return f"the force sensor is unavailable ({health}); the arm holds"
+        wrench = self.slave.wrench()
         now = self.clock.monotonic()
-        if self._wrench_fresh():
+        if wrench is not None and self.clock.time_ns() - wrench.sample_time_ns <= SENSOR_QUIET_NS:
             self._sensor_streamed, self._sensor_alive_until = True, 0.0
             return None
         if not self._sensor_streamed or now < self._sensor_alive_until:
             return None
         try:
-            activity = self.slave.sensor_activity(SENSOR_PROBE_S)
+            self._sensor_streamed = self.slave.sensor_is_reading(SENSOR_PROBE_S)
         except UnavailableError as error:
             return f"the force sensor went silent ({error.message}); the arm holds"
-        self._sensor_streamed = activity.reading
-        self._sensor_streams_changes = not activity.every_sample
         self._sensor_alive_until = now + SENSOR_ALIVE_S  # quiet but alive: ask again later
         return None
-
-    def wrench_overdue_in_s(self) -> tuple[int, float] | None:
-        """For a sensor that streams every sample: (the newest wrench's sample time, seconds
-        until it is overdue, <= 0 once it is). None when its silence means nothing: it never
-        streamed, or it answered that it stopped reading, or that it streams only changes (a
-        change threshold). Asks nothing of the sensor: a session's
-        watchdog holds the arm on it before sensor_lost's question is answered."""
-        self._wrench_fresh()
-        if not self._sensor_streamed or self._sensor_streams_changes:
-            return None
-        due_ns = self._newest_wrench_ns + SENSOR_QUIET_NS - self.clock.time_ns()
-        return self._newest_wrench_ns, due_ns / 1e9
-
-    def _wrench_fresh(self) -> bool:
-        """Whether the newest wrench is under SENSOR_QUIET_NS old; notes its sample time."""
-        wrench = self.slave.wrench()
-        if wrench is None:
-            return False
-        self._newest_wrench_ns = max(self._newest_wrench_ns, wrench.sample_time_ns)
-        return self.clock.time_ns() - wrench.sample_time_ns <= SENSOR_QUIET_NS
 
     # -- the arm's status: one source of truth ----------------------------------------------
 

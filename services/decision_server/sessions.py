@@ -102,10 +102,6 @@ class SessionHost(Protocol):
     def sensor_lost(self) -> str | None:
         """Why the force sensor is lost, or None."""
 
-    def wrench_overdue_in_s(self) -> tuple[int, float] | None:
-        """(the newest wrench's sample time, seconds until its silence holds the arm), or None
-        when the sensor's silence means nothing."""
-
     def wrench(self) -> SlaveWrench | None:
         """The latest wrench, or None."""
 
@@ -262,7 +258,6 @@ class OperatorSession:
         self._last_activity = self._clock.monotonic()
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
         self._held = False
-        self._held_on_wrench = 0  # sample time of the wrench whose silence held the arm last
         self._sensor_was_lost = False
         self._closed = threading.Event()
         self._activity = threading.Event()
@@ -564,44 +559,29 @@ class OperatorSession:
         self._activity.set()
 
     def _watch(self) -> None:
-        """Holds the arm when the operator goes quiet, or the force sensor does (the operator
-        moves by what it feels); closes the session when it stays detached past its resume
-        window."""
+        """Holds the arm when the operator goes quiet; closes the session when it stays
+        detached past its resume window."""
         while not self._closed.is_set():
             # Clear before reading the state, so a command or a close that lands in between
             # still wakes the wait below instead of being missed.
             self._activity.clear()
-            overdue = self.core.wrench_overdue_in_s()
-            why = None
             with self._lock:
-                now = self._clock.monotonic()
                 if self._detached_at is not None:
                     deadline = self._detached_at + self.resume_window_s
-                    expire = deadline <= now
-                    due = False
+                    expire = deadline <= self._clock.monotonic()
+                    fire = due = False
                 else:
                     deadline = self._last_activity + self.watchdog_s
-                    due = deadline <= now
+                    due = deadline <= self._clock.monotonic()
+                    fire = due and not self._held and not self._closed.is_set()
                     expire = False
-                    moving = not self._held and not self._closed.is_set()
-                    if moving and due:
-                        why = "watchdog timeout: no command or heartbeat"
-                    elif moving and overdue is not None and overdue[0] != self._held_on_wrench:
-                        sample_ns, overdue_in_s = overdue
-                        if overdue_in_s > 0:
-                            deadline = min(deadline, now + overdue_in_s)
-                        else:
-                            age_ms = (self._clock.time_ns() - sample_ns) / 1e6
-                            why = (f"the force sensor's newest wrench is {age_ms:.0f} ms old; "
-                                   "the arm holds until the sensor is heard from")
-                            self._held_on_wrench = sample_ns  # once per silence
-                    if why:
-                        self._held = True
+                if fire:
+                    self._held = True
             if expire:
                 self.close(f"not resumed within {self.resume_window_s:.0f} s")
                 return
-            if why:
-                self._hold(why)
+            if fire:
+                self._hold("watchdog timeout: no command or heartbeat")
             self._clock.wait_until(self._activity, None if due else deadline)
 
     def _hold(self, reason: str) -> None:

@@ -33,14 +33,6 @@ class SlaveWrench:
 
 
 @dataclass(frozen=True)
-class SensorActivity:
-    """What the sensor answers of itself."""
-
-    reading: bool  # its sampling thread runs
-    every_sample: bool  # it streams every sample (no change threshold)
-
-
-@dataclass(frozen=True)
 class MoveResult:
     target_tool_pose: pin.SE3
     applied_fraction: float
@@ -74,9 +66,9 @@ class Slave(Protocol):
     def hold(self, reason: str) -> None:
         """A controlled stop without a latch."""
 
-    def sensor_activity(self, timeout_s: float) -> SensorActivity:
-        """Whether the sensor is sampling and what it streams, asked of the sensor itself;
-        Unavailable when it does not answer within `timeout_s` (down, or hung)."""
+    def sensor_is_reading(self, timeout_s: float) -> bool:
+        """Whether the sensor is sampling, asked of the sensor itself; Unavailable when it does
+        not answer within `timeout_s` (down, or hung)."""
 
     def emergency_stop(self, reason: str) -> str:
         """Latch a stop at the hardware; returns the status after it (ESTOPPED)."""

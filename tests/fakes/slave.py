@@ -22,7 +22,7 @@ import pinocchio as pin
 from domain.robot_model.ik import solve_ik
 from domain.robot_model.kinematics import PumaKinematics
 from domain.robot_model.puma560 import HOME_Q
-from services.decision_server.slave import MoveResult, SensorActivity, SlaveState, SlaveWrench
+from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
 from tests.fakes.clock import FakeClock
 from wire.errors import FailedPreconditionError, OutOfRangeError, UnavailableError
 
@@ -109,7 +109,6 @@ class FakeSlave:
         self.sensor_flange_to_tool = self.kinematics.flange_T_tool
         self.sensor_reading = True
         self.sensor_hung = False  # a hung sensor process: no samples, no answers
-        self.sensor_threshold_n = 0.0  # streams only changes larger than this (0: every sample)
         self.wrench_delay_s = 0.0  # how late samples arrive (a backlog on a loaded machine)
         self.publish_state = True  # False: the state stream lags (samples held back)
         self.reachable = True
@@ -207,12 +206,12 @@ class FakeSlave:
             self.q_target = self.q.copy()
             self.commands.append(Command("hold", reason))
 
-    def sensor_activity(self, timeout_s: float) -> SensorActivity:
+    def sensor_is_reading(self, timeout_s: float) -> bool:
         self._check_reachable()
         if self.sensor_hung:
             raise UnavailableError(f"no answer within {timeout_s * 1e3:.0f} ms",
                                    reason="SENSOR_SILENT")
-        return SensorActivity(self.sensor_reading, every_sample=self.sensor_threshold_n == 0.0)
+        return self.sensor_reading
 
     def emergency_stop(self, reason: str) -> str:
         self._check_reachable()
