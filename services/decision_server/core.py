@@ -22,6 +22,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import logging
+import math
 import threading
 from dataclasses import dataclass
 
@@ -62,11 +63,12 @@ from wire.errors import (
 log = logging.getLogger(__name__)
 
 # The sensor's wrench reaches the DecisionServer at 100 Hz: after 30 ms without one the
-# sensor is asked whether it is alive, and may take 40 ms to answer (see sensor_lost). So a
-# hung sensor holds the arm within about 30 + 40 ms plus one command period. A shorter answer
-# time refused about 1 command in 2,400 as "silent" on a loaded 2-core machine (load 12, the
-# 10-minute soak) while the sensor was only slow; on such a machine a sensor 70 ms late is
-# no feedback to move by either, and the ack says why.
+# sensor is asked whether it is alive, and may take 40 ms to answer (see sensor_lost). A
+# session's watchdog asks at that moment, without waiting for a command, so a hung sensor holds
+# the arm about 30 + 40 ms after its last wrench, cutting the segment the last command started.
+# A shorter answer time refused about 1 command in 2,400 as "silent" on a loaded 2-core machine
+# (load 12, the 10-minute soak) while the sensor was only slow; on such a machine a sensor 70 ms
+# late is no feedback to move by either, and the ack says why.
 SENSOR_QUIET_NS = 30_000_000
 SENSOR_PROBE_S = 0.04
 SENSOR_ALIVE_S = 0.1  # a quiet sensor that answered (a change threshold) is asked this often
@@ -145,6 +147,8 @@ class DecisionCore:
         self._indexing = False
         self._sensor_streamed = False  # a fresh wrench was seen (see sensor_lost)
         self._sensor_alive_until = 0.0
+        # One question to the sensor at a time: a command waits for a watchdog's answer.
+        self._sensor_lock = threading.Lock()
         # The arm's latest status, from state samples and from the answers of stop and reset;
         # an older sample never overrides a newer answer.
         self._state: SlaveState | None = None
@@ -225,19 +229,34 @@ class DecisionCore:
         health = self.slave.health().get("force_sensor", "ok")
         if health != "ok":
             return f"the force sensor is unavailable ({health}); the arm holds"
+        with self._sensor_lock:
+            now = self.clock.monotonic()
+            if self._wrench_age_ns() <= SENSOR_QUIET_NS:
+                self._sensor_streamed, self._sensor_alive_until = True, 0.0
+                return None
+            if not self._sensor_streamed or now < self._sensor_alive_until:
+                return None
+            try:
+                self._sensor_streamed = self.slave.sensor_is_reading(SENSOR_PROBE_S)
+            except UnavailableError as error:
+                return f"the force sensor went silent ({error.message}); the arm holds"
+            self._sensor_alive_until = now + SENSOR_ALIVE_S  # quiet but alive: ask again later
+            return None
+
+    def sensor_check_due_in_s(self) -> float | None:
+        """Seconds until sensor_lost would ask the sensor whether it is alive (<= 0: it would
+        now), or None while nothing but a fresh wrench could make it ask (the sensor never
+        streamed, or it answered that it stopped reading)."""
+        if not self._sensor_streamed:
+            return None
+        quiet_in_s = (SENSOR_QUIET_NS - self._wrench_age_ns()) / 1e9
+        return max(quiet_in_s, self._sensor_alive_until - self.clock.monotonic())
+
+    def _wrench_age_ns(self) -> float:
+        """How old the latest wrench is; infinite when there is none (the slave says nothing
+        of a wrench that stalled)."""
         wrench = self.slave.wrench()
-        now = self.clock.monotonic()
-        if wrench is not None and self.clock.time_ns() - wrench.sample_time_ns <= SENSOR_QUIET_NS:
-            self._sensor_streamed, self._sensor_alive_until = True, 0.0
-            return None
-        if not self._sensor_streamed or now < self._sensor_alive_until:
-            return None
-        try:
-            self._sensor_streamed = self.slave.sensor_is_reading(SENSOR_PROBE_S)
-        except UnavailableError as error:
-            return f"the force sensor went silent ({error.message}); the arm holds"
-        self._sensor_alive_until = now + SENSOR_ALIVE_S  # quiet but alive: ask again later
-        return None
+        return math.inf if wrench is None else self.clock.time_ns() - wrench.sample_time_ns
 
     # -- the arm's status: one source of truth ----------------------------------------------
 

@@ -259,6 +259,7 @@ class OperatorSession:
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
         self._held = False
         self._sensor_was_lost = False
+        self._sensor_checking = threading.Lock()
         self._closed = threading.Event()
         self._activity = threading.Event()
         self._watchdog = threading.Thread(target=self._watch, name=f"watchdog-{self.session_id}",
@@ -429,18 +430,20 @@ class OperatorSession:
     def _sensor_check(self) -> str | None:
         """Why the sensor is lost (see DecisionCore.sensor_lost); the first time, the arm is
         told to hold, so a move in flight stops too. Once it is back, the next move starts from
-        the arm's measured pose."""
-        lost = self.core.sensor_lost()
-        if lost and not self._sensor_was_lost:
-            log.warning("session %s: %s", self.session_id, lost)
-            with self._moving:
-                try:
-                    self.core.slave.hold(lost)
-                except TelerobotError as error:  # the arm's own watchdogs hold it anyway
-                    log.warning("could not hold the arm: %s", error.message)
-            self._target = None
-        self._sensor_was_lost = bool(lost)
-        return lost
+        the arm's measured pose. Called for each batch of commands, and by the watchdog when
+        the wrench goes quiet between them; one at a time."""
+        with self._sensor_checking:
+            lost = self.core.sensor_lost()
+            if lost and not self._sensor_was_lost:
+                log.warning("session %s: %s", self.session_id, lost)
+                with self._moving:
+                    try:
+                        self.core.slave.hold(lost)
+                    except TelerobotError as error:  # the arm's own watchdogs hold it anyway
+                        log.warning("could not hold the arm: %s", error.message)
+                self._target = None
+            self._sensor_was_lost = bool(lost)
+            return lost
 
     def _move(self, assistance: Assistance, group: list[MasterIncrement], stream: int
               ) -> list[CommandResult]:
@@ -559,22 +562,29 @@ class OperatorSession:
         self._activity.set()
 
     def _watch(self) -> None:
-        """Holds the arm when the operator goes quiet; closes the session when it stays
-        detached past its resume window."""
+        """Holds the arm when the operator goes quiet, or when the force sensor's wrench does
+        and the sensor does not answer (the operator moves by what it feels); closes the
+        session when it stays detached past its resume window."""
         while not self._closed.is_set():
             # Clear before reading the state, so a command or a close that lands in between
             # still wakes the wait below instead of being missed.
             self._activity.clear()
+            sensor_due_in_s = self.core.sensor_check_due_in_s()
             with self._lock:
+                now = self._clock.monotonic()
+                check_sensor = False
                 if self._detached_at is not None:
                     deadline = self._detached_at + self.resume_window_s
-                    expire = deadline <= self._clock.monotonic()
+                    expire = deadline <= now
                     fire = due = False
                 else:
                     deadline = self._last_activity + self.watchdog_s
-                    due = deadline <= self._clock.monotonic()
+                    due = deadline <= now
                     fire = due and not self._held and not self._closed.is_set()
                     expire = False
+                    if not due and not self._held and sensor_due_in_s is not None:
+                        check_sensor = sensor_due_in_s <= 0
+                        deadline = min(deadline, now + max(sensor_due_in_s, 0.0))
                 if fire:
                     self._held = True
             if expire:
@@ -582,6 +592,10 @@ class OperatorSession:
                 return
             if fire:
                 self._hold("watchdog timeout: no command or heartbeat")
+            elif check_sensor and self._sensor_check():
+                with self._lock:
+                    self._held = True  # held by the check; the next command asks again
+                continue
             self._clock.wait_until(self._activity, None if due else deadline)
 
     def _hold(self, reason: str) -> None:

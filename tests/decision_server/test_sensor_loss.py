@@ -4,7 +4,9 @@ it streams again. A sensor stopped on purpose, or never started, stops nothing."
 
 from __future__ import annotations
 
+from services.decision_server.core import SENSOR_QUIET_NS
 from telerobot.v1 import decision_server_pb2 as pb
+from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
 
 STEP = (0, 0, 0.001)
@@ -32,6 +34,42 @@ def test_a_hung_sensor_holds_the_arm_until_it_streams_again(fake_station):
     slave.sensor_hung = False
     slave.step(0.001)
     assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
+    operator.close()
+
+
+def _holds(slave) -> list[str]:
+    return [c.detail for c in slave.commands if c.kind == "hold"]
+
+
+def test_a_sensor_gone_quiet_between_commands_holds_the_arm_without_waiting_for_one(
+        fake_station):
+    """The segment the last command started would carry the arm on: the session's watchdog asks
+    the sensor as soon as its wrench is SENSOR_QUIET_NS old, and holds the arm on no answer."""
+    station, slave = fake_station
+    operator = _streaming(station, slave)  # its watchdog: 0.5 s, far off
+    slave.sensor_hung = True
+    slave.clock.advance(SENSOR_QUIET_NS / 1e9 + 0.001)
+    wait_for(lambda: _holds(slave), timeout_s=5, what="the watchdog holding the arm")
+    assert "went silent" in _holds(slave)[0], _holds(slave)
+    refused = operator.move(STEP)  # asked again: still no answer
+    assert refused.outcome == pb.COMMAND_OUTCOME_REJECTED and "went silent" in refused.detail
+    assert len(_holds(slave)) == 1, _holds(slave)
+    slave.sensor_hung = False
+    slave.step(0.001)
+    assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
+    operator.close()
+
+
+def test_a_quiet_sensor_that_answers_holds_nothing(fake_station):
+    """A sensor that reads but streams nothing new (a change threshold) is asked, answers, and
+    the arm moves on; it is asked again only SENSOR_ALIVE_S later."""
+    station, slave = fake_station
+    operator = _streaming(station, slave)
+    slave.sensor_is_reading_calls = 0
+    slave.clock.advance(SENSOR_QUIET_NS / 1e9 + 0.001)  # quiet, but alive
+    wait_for(lambda: slave.sensor_is_reading_calls, timeout_s=5, what="the sensor asked")
+    assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
+    assert _holds(slave) == [] and slave.sensor_is_reading_calls == 1
     operator.close()
 
 

@@ -109,6 +109,7 @@ class FakeSlave:
         self.sensor_flange_to_tool = self.kinematics.flange_T_tool
         self.sensor_reading = True
         self.sensor_hung = False  # a hung sensor process: no samples, no answers
+        self.sensor_is_reading_calls = 0
         self.wrench_delay_s = 0.0  # how late samples arrive (a backlog on a loaded machine)
         self.publish_state = True  # False: the state stream lags (samples held back)
         self.reachable = True
@@ -207,6 +208,7 @@ class FakeSlave:
             self.commands.append(Command("hold", reason))
 
     def sensor_is_reading(self, timeout_s: float) -> bool:
+        self.sensor_is_reading_calls += 1
         self._check_reachable()
         if self.sensor_hung:
             raise UnavailableError(f"no answer within {timeout_s * 1e3:.0f} ms",
