@@ -83,7 +83,7 @@ certs: $(VENV)/.installed
 
 # ONLY="group ..." runs only those groups of bench/plan.py (e.g. ONLY=network, ONLY=soak:
 # not in the default run, they take minutes).
-bench: $(VENV)/.installed
+bench: $(VENV)/.installed /usr/bin/chromium
 	@test $(VENV)/.installed-bench -nt pyproject.toml || { \
 		$(PY) -m pip install --quiet -e '.[dev,bench]' && touch $(VENV)/.installed-bench; }
 	$(PY) -m bench $(if $(filter-out 0,$(QUICK)),--quick) $(if $(ONLY),--only $(ONLY))

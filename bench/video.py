@@ -16,7 +16,10 @@ worker process of its own):
 
 Each probe streams for `Plan.video_s` (10 s; 4 with --quick) after SKIP_S of start-up. Then
 one LONG_S run (60 s; 20 with --quick) of H.264 at LONG_CELL (the campus routes' round trip
-through the narrowest bottleneck) for the backlog check.
+through the narrowest bottleneck) for the backlog check. Then, at each of CONSOLE_CELLS, the
+web console's page in headless Chromium (`console`: H.264 decoded by WebCodecs, receipts on
+their WebSocket), the link in front of the console, timed by the page itself (window.videoStats)
+and summarized as the probe's meter summarizes (clients/python/video_meter.py).
 
 Each H.264 run is judged against the issue's goals (`judge`): at least MIN_FPS frames a second
 shown, the age's p95 (captured -> both eyes decoded at the client) within the link's one-way
@@ -51,6 +54,13 @@ QUICK_ROUND_TRIPS_MS = (0.0, 183.0)
 QUICK_BOTTLENECKS_MBIT = (None, 2.0)
 CAMPUS_RTT_MS = 183.0  # MTDF paper, section V (as bench/network.py)
 LONG_CELL = (CAMPUS_RTT_MS, 2.0)  # (round trip ms, bottleneck Mbit/s) of the long run
+# (round trip ms, bottleneck Mbit/s) of the console's runs in Chromium: the campus route,
+# open and through the narrowest bottleneck.
+CONSOLE_CELLS = ((CAMPUS_RTT_MS, None), (CAMPUS_RTT_MS, 2.0))
+QUICK_CONSOLE_CELLS = ((CAMPUS_RTT_MS, 2.0),)
+CHROMIUM = "/usr/bin/chromium"  # Debian's (Playwright cannot download its own here)
+CHROMIUM_ARGS = ("--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update")
 PROBE_S, QUICK_PROBE_S = 10.0, 4.0  # each probe, after SKIP_S
 LONG_S, QUICK_LONG_S = 60.0, 20.0
 SKIP_S = 2.0  # the probe's start-up, left out of its figures
@@ -58,6 +68,7 @@ SOURCE = "sim"  # --video-source pattern: a test card that costs next to nothing
 SOURCES = ("sim", "pattern")
 WIDTH_PX, HEIGHT_PX, SOURCE_FPS = 640, 480, 30.0  # per eye; both side by side in one picture
 CODECS = ("h264", "jpeg")  # the operator's stream, then the baseline
+CONSOLE = "console"  # the console's page: H.264 with receipts, WebCodecs
 # Issue #27's goals for the H.264 stream at every cell.
 MIN_FPS = 25.0
 AGE_SLACK_MS = 80.0  # the age's p95 within the one-way delay plus this
@@ -76,11 +87,13 @@ class Cell:
     bottleneck_mbit: float | None
     seconds: float
     long: bool = False
+    console: bool = False  # the console's page in Chromium, not the probe
 
     @property
     def name(self) -> str:
         cap = "open" if self.bottleneck_mbit is None else f"{self.bottleneck_mbit:g}mbit"
-        return f"{self.round_trip_ms:g}ms_{cap}" + ("_long" if self.long else "")
+        return (f"{self.round_trip_ms:g}ms_{cap}" + ("_long" if self.long else "")
+                + ("_console" if self.console else ""))
 
     @property
     def one_way_ms(self) -> float:
@@ -93,7 +106,8 @@ class Cell:
 
     @property
     def codecs(self) -> tuple[str, ...]:
-        return ("h264",) if self.long else CODECS
+        """What runs at the cell, the judged one first."""
+        return (CONSOLE,) if self.console else ("h264",) if self.long else CODECS
 
 
 def cells(quick: bool, seconds: float | None = None,
@@ -104,8 +118,10 @@ def cells(quick: bool, seconds: float | None = None,
     trips = QUICK_ROUND_TRIPS_MS if quick else ROUND_TRIPS_MS
     caps = QUICK_BOTTLENECKS_MBIT if quick else BOTTLENECKS_MBIT
     grid = [Cell(trip, cap, seconds) for trip in trips for cap in caps]
+    consoles = [Cell(trip, cap, seconds, console=True)
+                for trip, cap in (QUICK_CONSOLE_CELLS if quick else CONSOLE_CELLS)]
     return [*grid, Cell(*LONG_CELL, long_seconds or (QUICK_LONG_S if quick else LONG_S),
-                        long=True)]
+                        long=True), *consoles]
 
 
 def link_profiles(cell: Cell) -> tuple[LinkProfile, LinkProfile]:
@@ -176,6 +192,43 @@ def measure(params: dict) -> dict:
     return result
 
 
+def measure_console(params: dict) -> dict:
+    """The console's page at `params["url"]` in headless Chromium: the frames it showed over
+    `seconds` after `skip_s` (its own timing, window.videoStats), summarized by the probe's
+    meter; the decoder it used; and the CPU of `watch_pids` meanwhile (Chromium's own shows in
+    the machine's share)."""
+    from playwright.sync_api import sync_playwright
+
+    from bench.cpu import CpuWindow
+    from clients.python.video_meter import VideoMeter
+
+    if not Path(CHROMIUM).exists():
+        return {"status": "pending", "reason": f"{CHROMIUM} is missing (make test installs it)"}
+    window = CpuWindow(params.get("watch_pids") or {})
+    with sync_playwright() as driver:
+        browser = driver.chromium.launch(executable_path=CHROMIUM, args=list(CHROMIUM_ARGS))
+        try:
+            page = browser.new_page(viewport={"width": 1400, "height": 1000})
+            page.goto(params["url"])
+            page.wait_for_function("() => (window.videoStats?.frames ?? 0) > 0",
+                                   timeout=PROBE_TIMEOUT_S * 1e3)
+            page.wait_for_timeout((params["skip_s"] + params["seconds"]) * 1e3)
+            stats = page.evaluate("""() => ({codec: videoStats.codec,
+                decoder: videoStats.decoder, fallback: videoStats.fallbackReason,
+                errors: videoStats.decodeErrors, samples: videoStats.samples})""")
+        finally:
+            browser.close()
+    meter = VideoMeter()
+    for sample in stats["samples"]:
+        meter.record(round(sample["shownMs"] * 1e6), sample["ageMs"], sample["bytes"],
+                     sample["targetKbit"])
+    result = meter.summary(params["skip_s"])
+    result.update(codec=stats["codec"], decoder=stats["decoder"],
+                  fallback=stats["fallback"], decode_errors=stats["errors"],
+                  cpu=window.stop())
+    return result
+
+
 # -- text -----------------------------------------------------------------------------------------
 
 def _num(value, digits: int = 1) -> str:
@@ -190,6 +243,17 @@ def _link_text(record: dict) -> tuple[str, str]:
     trip = f"{record['round_trip_ms']:g} ms"
     cap = record.get("bottleneck_mbit")
     return trip, "none" if cap is None else f"{cap:g} Mbit/s"
+
+
+def judged(record: dict) -> dict:
+    """The judged run of a cell: the H.264 probe's, or the console page's."""
+    return record.get("h264") or record.get(CONSOLE) or {}
+
+
+def _records(result: dict) -> list[dict]:
+    """Every cell's record: the grid, the long run, the console's."""
+    return [*result.get("cells", []), *([result["long"]] if result.get("long") else []),
+            *result.get("console", [])]
 
 
 def _figures(result: dict | None) -> tuple[str, str, str]:
@@ -228,12 +292,13 @@ HEADER = ("round trip", "bottleneck", "H.264 fps", "age p50 / p95 ms", "p95 by t
 def table_rows(result: dict) -> list[tuple[str, ...]]:
     """A tuple per cell (HEADER), then the long run's."""
     rows = []
-    records = [*result.get("cells", []), *([result["long"]] if result.get("long") else [])]
-    for record in records:
+    for record in _records(result):
         trip, cap = _link_text(record)
         if record.get("long"):
             cap += f", {record['seconds']:g} s"
-        h264, jpeg = record.get("h264") or {}, record.get("jpeg")
+        if record.get("console"):
+            cap += ", the console in Chromium"
+        h264, jpeg = judged(record), record.get("jpeg")
         fps, age, _ = _figures(h264)
         target = h264.get("target_kbit_per_s")
         kbit = (f"{_num(h264.get('kbit_per_s'), 0)} ({target})" if "kbit_per_s" in h264
@@ -246,9 +311,10 @@ def table_rows(result: dict) -> list[tuple[str, ...]]:
 
 def cell_text(record: dict) -> str:
     """A cell's figures on one line (the progress line)."""
-    h264, jpeg = record.get("h264") or {}, record.get("jpeg")
+    h264, jpeg = judged(record), record.get("jpeg")
     fps, age, kbit = _figures(h264)
-    text = (f"H.264 {fps} fps, age p50/p95 {age} ms (thirds {_thirds(h264)}), {kbit} kbit/s"
+    what = "console (WebCodecs)" if record.get("console") else "H.264"
+    text = (f"{what} {fps} fps, age p50/p95 {age} ms (thirds {_thirds(h264)}), {kbit} kbit/s"
             f" [{'PASS' if record['pass'] else 'FAIL (' + '; '.join(record['misses']) + ')'}]")
     if jpeg is not None:
         jpeg_fps, jpeg_age, jpeg_kbit = _figures(jpeg)
@@ -267,8 +333,8 @@ def terminal_lines(result: dict) -> list[str]:
     lines += ["    " + "  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)
                                  ).rstrip() for row in rows]
     lines += ["  video: CPU while each H.264 probe ran (% of one core; machine % of all cores)"]
-    records = [*result.get("cells", []), *([result["long"]] if result.get("long") else [])]
-    lines += [f"    {record['name']}: {cpu_text(record.get('h264'))}"
+    records = _records(result)
+    lines += [f"    {record['name']}: {cpu_text(judged(record))}"
               + (f" (load average {record['load_avg_at_start']:g} at its start)"
                  if record.get("load_avg_at_start") is not None else "")
               for record in records]
@@ -345,6 +411,14 @@ def markdown(result: dict, source: str = "bench/results/latest.json") -> str:
                                   for m in long["misses"])
                         else f" (no growing backlog: the last third within {BACKLOG_MS:g} ms of "
                              "the first)") + ".")
+    for record in result.get("console", []):
+        page = judged(record)
+        lines.append("")
+        lines.append(f"The console's page in headless Chromium ({page.get('decoder', '?')}, "
+                     f"{page.get('codec', '?')}), the link in front of the console, "
+                     f"{_link_text(record)[0]} / {_link_text(record)[1]}: {_figures(page)[0]} "
+                     f"fps, age p50 / p95 {_figures(page)[1]} ms, p95 by thirds "
+                     f"{_thirds(page)} ms: {_verdict(record)}.")
     return "\n".join(lines) + "\n"
 
 
@@ -410,14 +484,15 @@ def plot(result: dict, path: Path) -> Path:
     import numpy as np
     from matplotlib.ticker import FuncFormatter
 
-    records = [*result.get("cells", []), *([result["long"]] if result.get("long") else [])]
+    records = _records(result)
     figure, (ages, rates) = plt.subplots(2, 1, figsize=(14, 8.5), sharex=True)
     x = np.arange(len(records))
     width = 0.38
     colors = {"h264": "tab:blue", "jpeg": "tab:orange"}
     names = {"h264": "H.264 with receipts", "jpeg": "JPEG as it was (no receipts)"}
     for offset, codec in ((-width / 2, "h264"), (width / 2, "jpeg")):
-        values = [(r.get(codec) or {}) for r in records]
+        # The console's page stands in the H.264 slot (its stream is the same).
+        values = [judged(r) if codec == "h264" else (r.get(codec) or {}) for r in records]
         age = [v.get("age_ms_p95") or np.nan for v in values]
         fps = [v.get("fps") if v.get("fps") is not None else np.nan for v in values]
         ages.bar(x + offset, age, width, color=colors[codec], label=names[codec])
@@ -442,7 +517,7 @@ def plot(result: dict, path: Path) -> Path:
     for record in records:
         trip, cap = _link_text(record)
         labels.append(f"{trip}\n{cap}" + (f"\n{record['seconds']:g} s" if record.get("long")
-                                          else ""))
+                                          else "\nconsole" if record.get("console") else ""))
     rates.set_xticks(x, labels, fontsize=7)
     rates.set_xlabel("round trip / bottleneck (both ways)")
     for axis in (ages, rates):

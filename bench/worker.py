@@ -134,9 +134,16 @@ def _video(p: dict) -> dict:
     return measure(p)  # clients.video_probe through the link, and the CPU meanwhile
 
 
+def _video_console(p: dict) -> dict:
+    from bench.video import measure_console
+
+    return measure_console(p)  # the console's page in Chromium through the link
+
+
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
          "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo,
-         "events": _events, "overload": _overload, "network": _network, "video": _video}
+         "events": _events, "overload": _overload, "network": _network, "video": _video,
+         "video_console": _video_console}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -18,6 +18,7 @@ from bench.video import (
     BACKLOG_MS,
     BOTTLENECKS_MBIT,
     CAMPUS_RTT_MS,
+    CONSOLE,
     HEIGHT_PX,
     MIN_FPS,
     NAME,
@@ -63,19 +64,30 @@ def run(bench: Session) -> None:
             "--fps", str(SOURCE_FPS)])
     except ChildFailed as error:
         return bench.fail([NAME], error)
-    records = []
+    records, console = [], None
     try:
         with bench.decision_server(bench.station, camera_address) as address:
-            bench.progress.done(f"camera at {camera_address}, the operator's address {address}")
+            # The web console in front of the DecisionServer, for the page's cells (an HTTP
+            # gateway: no --grace-s, so not run_service).
+            console = procs.start("web_console", [
+                "-m", "services.web_console", "--address", "127.0.0.1:0",
+                "--decision-server", address])
+            console_address = console.wait_ready("web_console", timeout_s=60)
+            bench.progress.done(f"camera at {camera_address}, the operator's address {address}, "
+                                f"the console at {console_address}")
             for cell in grid:
-                records.append(_run_cell(bench, address, cell))
-    except ChildFailed as error:  # the DecisionServer did not start
+                target = console_address if cell.console else address
+                records.append(_run_cell(bench, target, cell, console))
+    except ChildFailed as error:  # the DecisionServer or the console did not start
         return bench.fail([NAME], error)
     finally:
+        if console is not None:
+            procs.stop(console)
         procs.stop(camera)
-    grid_records = [record for record in records if not record["long"]]
+    grid_records = [r for r in records if not r["long"] and not r["console"]]
     result = {
         "cells": grid_records, "long": next((r for r in records if r["long"]), None),
+        "console": [r for r in records if r["console"]],
         "round_trips_ms": sorted({cell.round_trip_ms for cell in grid if not cell.long}),
         "bottlenecks_mbit": [cap for cap in (QUICK_BOTTLENECKS_MBIT if plan.quick
                                              else BOTTLENECKS_MBIT)],
@@ -93,20 +105,23 @@ def run(bench: Session) -> None:
     bench.record(NAME, result)
 
 
-def _run_cell(bench: Session, address: str, cell: Cell) -> dict:
+def _run_cell(bench: Session, address: str, cell: Cell, console) -> dict:
     cap = "no bottleneck" if cell.bottleneck_mbit is None else \
         f"{cell.bottleneck_mbit:g} Mbit/s bottleneck"
-    what = "H.264 with receipts" if cell.long else "H.264 with receipts, then JPEG as it was"
+    what = ("the console's page in Chromium (H.264, WebCodecs)" if cell.console
+            else "H.264 with receipts" if cell.long
+            else "H.264 with receipts, then JPEG as it was")
     bench.progress.step(f"video {cell.name}: round trip {cell.round_trip_ms:g} ms, {cap}; "
                         f"{what}, {cell.seconds:g} s each after {SKIP_S:g} s")
     record = {"name": cell.name, "round_trip_ms": cell.round_trip_ms,
               "one_way_delay_ms": cell.one_way_ms, "bottleneck_mbit": cell.bottleneck_mbit,
               "seconds": cell.seconds, "skip_s": SKIP_S, "long": cell.long,
+              "console": cell.console,
               "age_bound_ms": cell.age_bound_ms,
               "load_avg_at_start": round(os.getloadavg()[0], 2)}  # others' work shows here
     for codec in cell.codecs:
-        record[codec] = _probe(bench, address, cell, codec)
-    record["misses"] = judge(record["h264"], cell)
+        record[codec] = _probe(bench, address, cell, codec, console)
+    record["misses"] = judge(record[cell.codecs[0]], cell)
     record["pass"] = not record["misses"]
     if "jpeg" in record:
         record["vs_jpeg"] = ratios(record["h264"], record["jpeg"])
@@ -115,19 +130,26 @@ def _run_cell(bench: Session, address: str, cell: Cell) -> dict:
     return record
 
 
-def _probe(bench: Session, address: str, cell: Cell, codec: str) -> dict:
-    """One probe through a fresh link of its own (its bytes queue behind nobody's)."""
+def _probe(bench: Session, address: str, cell: Cell, codec: str, console) -> dict:
+    """One probe (or the console's page) through a fresh link of its own (its bytes queue
+    behind nobody's)."""
     up, down = link_profiles(cell)
     events: list[str] = []
     watched = {name: pid for name in WATCHED if (pid := bench.pid(name)) is not None}
     watched["link (bench)"] = os.getpid()
+    if codec == CONSOLE:
+        watched["web_console"] = console.pid
     with ImpairmentProxy("127.0.0.1:0", address, up=up, down=down,
                          report=events.append) as proxy:
+        params = {"seconds": cell.seconds, "skip_s": SKIP_S, "watch_pids": watched}
+        if codec == CONSOLE:
+            kind, params["url"] = "video_console", f"http://{proxy.address}/"
+        else:
+            kind = NAME
+            params.update(address=proxy.address, encoding=codec, receipts=codec == "h264")
         try:
-            result = bench.procs.run_worker(NAME, {
-                "address": proxy.address, "encoding": codec, "receipts": codec == "h264",
-                "seconds": cell.seconds, "skip_s": SKIP_S, "watch_pids": watched},
-                PROBE_TIMEOUT_S + SKIP_S + cell.seconds, name=f"video_{codec}")
+            result = bench.procs.run_worker(kind, params, PROBE_TIMEOUT_S + SKIP_S
+                                            + cell.seconds, name=f"video_{codec}")
         except ChildFailed as error:
             result = {"status": "failed", "reason": reason(error)}
         stats = dataclasses.asdict(proxy.stats)

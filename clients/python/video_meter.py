@@ -49,9 +49,14 @@ class VideoMeter:
         shown_ns = time.time_ns() if shown_ns is None else shown_ns
         pair = frame.pair
         self.codec = CODECS.get(frame.header.encoding, str(frame.header.encoding))
-        sample = _Sample(shown_ns, (shown_ns - _capture_ns(frame)) / 1e6,
-                         len(pair.left_image) + len(pair.right_image) + len(pair.video_frame),
-                         pair.target_kbit_per_s)
+        self.record(shown_ns, (shown_ns - _capture_ns(frame)) / 1e6,
+                    len(pair.left_image) + len(pair.right_image) + len(pair.video_frame),
+                    pair.target_kbit_per_s)
+
+    def record(self, shown_ns: int, age_ms: float, size_bytes: int, target_kbit: int) -> None:
+        """A frame shown at `shown_ns` (wall clock), `age_ms` after its capture, of
+        `size_bytes`: from a client that timed it itself (the console's page)."""
+        sample = _Sample(shown_ns, age_ms, size_bytes, target_kbit)
         self._samples.append(sample)
         self._recent.append(sample)
         while self._recent and self._recent[0].shown_ns < shown_ns - self._window_ns:

@@ -12,12 +12,11 @@ from pathlib import Path
 
 import grpc
 import uvicorn
-from uvicorn.protocols.http.h11_impl import H11Protocol
 
 from services.runtime.config import PLAINTEXT_ENV, configure_logging
 from services.runtime.process import watch_parent
 from services.runtime.server import PlaintextRefused
-from services.web_console.app import ConsoleApp
+from services.web_console.app import ConsoleApp, TransportBoundProtocol
 from services.web_console.bridge import Upstream
 from services.web_console.https import RenewingCertificate, certificate_files, issue_command
 from wire.addresses import address_for, env_name, is_loopback
@@ -195,7 +194,7 @@ class ConsoleServer(uvicorn.Server):
             del loop.create_server
 
 
-class HeadTimeoutH11(H11Protocol):
+class HeadTimeoutH11(TransportBoundProtocol):
     """uvicorn's HTTP/1.1 protocol, which also closes a connection whose request head has not
     come whole within `head_timeout_s` of the connection's opening or of its last response.
     uvicorn has no such timeout: its keep-alive timer starts only after a response and stops at

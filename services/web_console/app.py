@@ -1,5 +1,5 @@
 """The console's ASGI application: the page and its assets, the Connect bridge, the
-Teleoperate WebSocket, and /healthz for the launcher."""
+Teleoperate and receipts WebSockets, and /healthz for the launcher."""
 
 from __future__ import annotations
 
@@ -10,7 +10,9 @@ from collections.abc import Iterable
 from pathlib import Path
 from urllib.parse import urlsplit
 
-from services.web_console import teleoperate
+from uvicorn.protocols.http.h11_impl import H11Protocol
+
+from services.web_console import receipts, sockets, teleoperate
 from services.web_console.bridge import BODY_MAX_BYTES, ConnectBridge, Upstream
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
@@ -34,6 +36,30 @@ _SECURITY_HEADERS = [
     (b"x-content-type-options", b"nosniff"),
     (b"cache-control", b"no-cache"),
 ]
+
+# The WebSockets: Teleoperate, and the video's receipts (receipts.py says why not Connect).
+_SOCKETS = {teleoperate.PATH: teleoperate.serve, receipts.PATH: receipts.serve}
+
+
+class TransportBoundProtocol(H11Protocol):
+    """uvicorn's HTTP/1.1 protocol, holding nothing of a response beyond what the socket took.
+
+    A server stream's messages go to the browser as the bridge reads them (bridge.py reads one
+    message from the DecisionServer, sends it, then reads the next), and a send waits while the
+    connection's write buffer is paused. asyncio lets that buffer hold 64 KiB before it pauses
+    (seconds of low-bitrate video, minutes of arm states) for a browser or link that reads
+    slowly; here it pauses as soon as the kernel's socket buffer is full, so the next message
+    is read from the DecisionServer only once the client's transport has taken the last one.
+    Over HTTPS the connection keeps asyncio's buffers: its TLS transport pauses at or above its
+    mark (a TCP one above it), so a mark of 0 pauses every response for good, and one of 1
+    stalled some WebSocket upgrades (tests/web_console/test_https.py).
+    """
+
+    def connection_made(self, transport) -> None:
+        super().connection_made(transport)
+        tls = transport.get_extra_info("sslcontext") is not None
+        if not tls:
+            transport.set_write_buffer_limits(high=0)
 
 
 def _assets() -> dict[str, Path]:
@@ -84,7 +110,8 @@ class HostCheck:
 
 
 class ConsoleApp:
-    """Routes: /telerobot.v1.* (Connect), /ws/teleoperate (WebSocket), /healthz, assets."""
+    """Routes: /telerobot.v1.* (Connect), /ws/teleoperate and /ws/receipts (WebSockets),
+    /healthz, assets."""
 
     def __init__(self, upstream: Upstream, auth: str, allowed_hosts: Iterable[str] = (),
                  max_body_bytes: int = BODY_MAX_BYTES, max_sockets: int = MAX_SOCKETS,
@@ -105,9 +132,10 @@ class ConsoleApp:
         path = scope["path"]
         refused_host = self.hosts.refuses(scope)
         if scope["type"] == "websocket":
-            if path != teleoperate.PATH or not same_origin(scope) or refused_host is not None:
+            serve = _SOCKETS.get(path)
+            if serve is None or not same_origin(scope) or refused_host is not None:
                 await receive()
-                await send({"type": "websocket.close", "code": teleoperate.CLOSE_POLICY})
+                await send({"type": "websocket.close", "code": sockets.CLOSE_POLICY})
                 return
             if self.open_sockets >= self.max_sockets:
                 await receive()
@@ -115,7 +143,7 @@ class ConsoleApp:
                 return
             self.open_sockets += 1
             try:
-                return await teleoperate.serve(scope, receive, send, self.upstream)
+                return await serve(scope, receive, send, self.upstream)
             finally:
                 self.open_sockets -= 1
         if refused_host is not None:

@@ -19,61 +19,30 @@ import logging
 import grpc
 
 from services.web_console.bridge import Upstream
+from services.web_console.sockets import (
+    CLOSE_NORMAL,
+    CLOSE_TOO_BIG,
+    CLOSE_UNSUPPORTED_DATA,
+    accept,
+    close_code,
+    reason,
+)
 
 log = logging.getLogger(__name__)
 
 PATH = "/ws/teleoperate"
 METHOD = "/telerobot.v1.DecisionServer/Teleoperate"
-SUBPROTOCOL = "telerobot.v1.teleoperate"
-# A browser cannot set headers on a WebSocket: its bearer token rides as a second offered
-# subprotocol, "bearer.<token>" (never echoed back), and its lease in the init message.
-TOKEN_SUBPROTOCOL_PREFIX = "bearer."
+SUBPROTOCOL = "telerobot.v1.teleoperate"  # the lease rides in the init message
 MAX_MESSAGE_BYTES = 64 * 1024
-CLOSE_NORMAL = 1000
-CLOSE_UNSUPPORTED_DATA = 1003
-CLOSE_POLICY = 1008
-CLOSE_TOO_BIG = 1009
-CLOSE_GRPC_BASE = 4000  # + the gRPC status code
 # A session the browser ended itself has this long to end at the DecisionServer, then it is
 # cancelled.
 CLEAN_END_TIMEOUT_S = 2.0
-_MAX_REASON_BYTES = 120  # a close frame's reason holds 123 bytes
-
-
-def close_code(code: grpc.StatusCode) -> int:
-    """The WebSocket close code that reports a gRPC status."""
-    return CLOSE_NORMAL if code is grpc.StatusCode.OK else CLOSE_GRPC_BASE + code.value[0]
-
-
-def _reason(text: str) -> str:
-    data = text.encode()[:_MAX_REASON_BYTES]
-    return data.decode(errors="ignore")
 
 
 async def serve(scope, receive, send, upstream: Upstream) -> None:
     """One browser's Teleoperate session, an ASGI websocket scope."""
-    message = await receive()
-    if message["type"] != "websocket.connect":
-        return
-    offered = list(scope.get("subprotocols") or ())
-    if SUBPROTOCOL not in offered:
-        # Refused before the handshake completes: the browser sees a failed connection (403).
-        await send({"type": "websocket.close", "code": CLOSE_POLICY})
-        return
-    tokens = [p[len(TOKEN_SUBPROTOCOL_PREFIX):] for p in offered
-              if p.startswith(TOKEN_SUBPROTOCOL_PREFIX)]
-    metadata = [("authorization", f"Bearer {tokens[0]}")] if tokens else []
-    await send({"type": "websocket.accept", "subprotocol": SUBPROTOCOL})
-    refusal = upstream.refusal
-    if upstream.needs_token and not tokens:
-        # Said here rather than by the DecisionServer: its refusal of a call with no
-        # credentials comes before it reads a message, and grpc.aio reports a write racing
-        # that refusal as INTERNAL ("Internal error from Core"), not UNAUTHENTICATED.
-        refusal = "no bearer token: offer the subprotocol bearer.<token> (the page's token field)"
-    if refusal:
-        await send({"type": "websocket.close",
-                    "code": close_code(grpc.StatusCode.UNAUTHENTICATED),
-                    "reason": _reason(refusal)})
+    metadata = await accept(scope, receive, send, upstream, SUBPROTOCOL)
+    if metadata is None:
         return
     call = upstream.channel.stream_stream(METHOD)(metadata=metadata)
     peer = scope.get("client")
@@ -121,15 +90,15 @@ async def serve(scope, receive, send, upstream: Upstream) -> None:
             outbound.cancel()
             if close is not None:
                 await send({"type": "websocket.close", "code": close[0],
-                            "reason": _reason(close[1])})
+                            "reason": reason(close[1])})
             log.info("teleoperate from %s ended by the browser%s", peer,
                      f" ({close[1]})" if close else "")
         else:
-            code, reason = outbound.result()
+            code, why = outbound.result()
             inbound.cancel()
             with contextlib.suppress(Exception):  # the browser may be gone already
-                await send({"type": "websocket.close", "code": code, "reason": _reason(reason)})
-            log.info("teleoperate from %s ended by the station: %d %s", peer, code, reason)
+                await send({"type": "websocket.close", "code": code, "reason": reason(why)})
+            log.info("teleoperate from %s ended by the station: %d %s", peer, code, why)
     finally:
         call.cancel()
         for task in (inbound, outbound):

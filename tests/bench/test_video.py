@@ -25,14 +25,17 @@ def _probe(fps=29.5, p50=40.0, p95=60.0, thirds=(60.0, 58.0, 61.0), kbit=900.0, 
                     "cpu_pct": {"stereo_camera": 70.0, "world": 33.0, "probe": 12.0}}}
 
 
-def _record(trip, cap, h264=None, jpeg=None, long=False, seconds=10.0, load=1.5):
-    cell = video.Cell(trip, cap, seconds, long)
+def _record(trip, cap, h264=None, jpeg=None, long=False, seconds=10.0, load=1.5,
+            console=False):
+    cell = video.Cell(trip, cap, seconds, long, console)
     h264 = h264 if h264 is not None else _probe(p50=trip / 2 + 30, p95=trip / 2 + 50)
     record = {"name": cell.name, "round_trip_ms": trip, "one_way_delay_ms": cell.one_way_ms,
               "bottleneck_mbit": cap, "seconds": seconds, "skip_s": video.SKIP_S,
-              "long": long, "age_bound_ms": cell.age_bound_ms, "h264": h264,
-              "load_avg_at_start": load}
-    if not long:
+              "long": long, "console": console, "age_bound_ms": cell.age_bound_ms,
+              cell.codecs[0]: h264, "load_avg_at_start": load}
+    if console:
+        h264.update(decoder="webcodecs", codec="h264 (avc1.42C01F)")
+    elif not long:
         record["jpeg"] = jpeg if jpeg is not None else _probe(
             fps=12.0, p50=trip / 2 + 200, p95=trip / 2 + 400, kbit=6000.0, codec="jpeg")
         record["vs_jpeg"] = video.ratios(record["h264"], record["jpeg"])
@@ -47,6 +50,8 @@ RESULT = {
               _record(183.0, 2.0, h264=_probe(fps=18.0, p50=150.0, p95=260.0,
                                               thirds=(200.0, 240.0, 300.0)))],
     "long": _record(183.0, 2.0, long=True, seconds=60.0, load=4.25),
+    "console": [_record(183.0, 2.0, h264=_probe(fps=26.0, p50=140.0, p95=160.0,
+                                                thirds=(150.0, 160.0, 158.0)), console=True)],
     "round_trips_ms": [0.0, 183.0], "bottlenecks_mbit": [None, 2.0],
     "camera": {"source": "sim", "width_px": 640, "height_px": 480, "fps": 30.0},
     "goals": {"min_fps": 25.0, "age_slack_ms": 80.0, "backlog_ms": 20.0},
@@ -62,24 +67,34 @@ RESULT = {
 
 def test_a_full_run_has_every_round_trip_through_every_bottleneck_then_the_long_run():
     cells = video.cells(quick=False)
-    grid = [cell for cell in cells if not cell.long]
+    grid = [cell for cell in cells if not cell.long and not cell.console]
     assert {(c.round_trip_ms, c.bottleneck_mbit) for c in grid} == {
         (trip, cap) for trip in (0, 50, 183, 400) for cap in (None, 8, 4, 2)}
     assert len(grid) == 16 and all(c.seconds == 10.0 for c in grid)
-    assert cells[-1] == video.Cell(183.0, 2.0, 60.0, long=True)
-    assert cells[-1].codecs == ("h264",) and grid[0].codecs == ("h264", "jpeg")
+    (long,) = [cell for cell in cells if cell.long]
+    assert long == video.Cell(183.0, 2.0, 60.0, long=True) and cells.index(long) == 16
+    assert long.codecs == ("h264",) and grid[0].codecs == ("h264", "jpeg")
+    # Then the console's page in Chromium, on the campus route, open and through 2 Mbit/s.
+    consoles = cells[17:]
+    assert [(c.round_trip_ms, c.bottleneck_mbit) for c in consoles] == [(183.0, None),
+                                                                       (183.0, 2.0)]
+    assert all(c.console and c.codecs == ("console",) and c.seconds == 10.0 for c in consoles)
     assert len({c.name for c in cells}) == len(cells)
-    assert grid[0].name == "0ms_open" and cells[-1].name == "183ms_2mbit_long"
+    assert grid[0].name == "0ms_open" and long.name == "183ms_2mbit_long"
+    assert consoles[1].name == "183ms_2mbit_console"
 
 
 def test_quick_runs_fewer_shorter_cells_and_the_lengths_can_be_set():
     quick = video.cells(quick=True)
     assert len(quick) < len(video.cells(quick=False))
     assert all(c.seconds < 10.0 for c in quick if not c.long)
-    assert quick[-1].long and quick[-1].seconds < 60.0
+    (long,) = [c for c in quick if c.long]
+    assert long.seconds < 60.0 and [c.name for c in quick if c.console] == [
+        "183ms_2mbit_console"]
     chosen = video.cells(quick=False, seconds=3.0, long_seconds=7.0)
-    assert {c.seconds for c in chosen if not c.long} == {3.0} and chosen[-1].seconds == 7.0
-    assert video.step_count(Plan(quick=False)) == 1 + 17
+    assert {c.seconds for c in chosen if not c.long} == {3.0}
+    assert [c.seconds for c in chosen if c.long] == [7.0]
+    assert video.step_count(Plan(quick=False)) == 1 + 17 + 2
 
 
 def test_the_link_puts_half_the_round_trip_each_way_and_the_bottleneck_both_ways():
@@ -130,7 +145,7 @@ def test_ratios_are_h264_over_jpeg():
 
 def test_the_table_has_a_row_per_cell_and_the_long_run_with_the_jpeg_baseline_beside():
     rows = video.table_rows(RESULT)
-    assert len(rows) == 5 and all(len(row) == len(video.HEADER) for row in rows)
+    assert len(rows) == 6 and all(len(row) == len(video.HEADER) for row in rows)
     first = dict(zip(video.HEADER, rows[0], strict=True))
     assert first["round trip"] == "0 ms" and first["bottleneck"] == "none"
     assert first["H.264 fps"] == "29.5" and first["age p50 / p95 ms"] == "30 / 50"
@@ -142,12 +157,16 @@ def test_the_table_has_a_row_per_cell_and_the_long_run_with_the_jpeg_baseline_be
     assert missed["p95 by thirds ms"] == "200 → 240 → 300"
     long = dict(zip(video.HEADER, rows[4], strict=True))
     assert long["bottleneck"] == "2 Mbit/s, 60 s" and long["JPEG fps"] == "–"
+    page = dict(zip(video.HEADER, rows[5], strict=True))
+    assert page["bottleneck"] == "2 Mbit/s, the console in Chromium"
+    assert page["H.264 fps"] == "26.0" and page["age p50 / p95 ms"] == "140 / 160"
+    assert page["result"] == "PASS" and page["JPEG fps"] == "–"
 
 
 def test_the_terminal_lines_and_the_bench_report_show_the_cells_and_the_cpu():
     lines = video.terminal_lines(RESULT)
     assert "4 of 5 H.264 runs passed" in lines[0]
-    assert len([line for line in lines if line.startswith("    ")]) == 1 + 5 + 5
+    assert len([line for line in lines if line.startswith("    ")]) == 1 + 6 + 6
     assert any("183ms_2mbit_long: machine 95 %; stereo_camera 70, world 33, probe 12" in line
                for line in lines)
     text = report_text({"video": {**RESULT, "goal": "no goal", "pass": None}})
@@ -157,7 +176,7 @@ def test_the_terminal_lines_and_the_bench_report_show_the_cells_and_the_cpu():
 def test_the_fragment_has_the_run_the_table_the_misses_and_the_long_run():
     text = video.markdown(RESULT, "bench/results/latest.json")
     table = [line for line in text.splitlines() if line.startswith("| ")]
-    assert table[0] == "| " + " | ".join(video.HEADER) + " |" and len(table) == 1 + 5
+    assert table[0] == "| " + " | ".join(video.HEADER) + " |" and len(table) == 1 + 6
     assert "from `bench/results/latest.json`" in text and "load average 0.5 → 2.0" in text
     assert ("H.264 met every goal in 3 of 4 cells (missed in 183ms_2mbit); ≥ 25 fps in 3, the "
             "age's p95 bound in 3, no growing backlog in 3.") in text
@@ -166,6 +185,9 @@ def test_the_fragment_has_the_run_the_table_the_misses_and_the_long_run():
     assert "Long run, 183 ms / 2 Mbit/s, 60 s: 29.5 fps" in text
     assert ": PASS (no growing backlog: the last third within 20 ms of the first)." in text
     assert "640×480 per eye" in text and "load average at the cells' starts 1.5–4.2" in text
+    assert ("The console's page in headless Chromium (webcodecs, h264 (avc1.42C01F)), the link "
+            "in front of the console, 183 ms / 2 Mbit/s: 26.0 fps, age p50 / p95 140 / 160 ms, "
+            "p95 by thirds 150 → 160 → 158 ms: PASS.") in text
 
 
 def test_goal_counts_count_each_goal_met_and_a_failed_probe_meets_none():

@@ -13,6 +13,7 @@ import pytest
 
 from telerobot.v1 import decision_server_pb2_grpc, proxy_robot_pb2, proxy_robot_pb2_grpc
 from tests.processes import start_station, station_env
+from tests.video.conftest import video_station  # noqa: F401 (a fixture: a pattern camera's station)
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",

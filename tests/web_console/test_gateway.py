@@ -1,5 +1,5 @@
 """The console's gateway without a browser: the Connect protocol's status codes for bad input,
-the contracts' errors carried through, and the Teleoperate WebSocket's rules."""
+the contracts' errors carried through, and the Teleoperate and receipts WebSockets' rules."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ from websockets.sync.client import connect
 
 from telerobot.v1 import decision_server_pb2 as ds
 from telerobot.v1 import types_pb2
+from telerobot.v1.stereo_camera_pb2 import ReportReceiptRequest
 
 pytestmark = pytest.mark.e2e
 
@@ -126,3 +127,29 @@ def test_teleoperate_socket_rules(console_url):
                 socket.recv(timeout=10)
         assert socket.close_code == 4000 + 9, (socket.close_code, socket.close_reason)
         assert socket.close_reason
+
+
+def receipts_url(console_url: str) -> str:
+    return console_url.replace("http://", "ws://") + "/ws/receipts"
+
+
+def test_receipts_socket_rules(console_url):
+    with pytest.raises(InvalidStatus) as refused:
+        connect(receipts_url(console_url), origin="http://evil.example",
+                subprotocols=["telerobot.v1.receipts"], open_timeout=10)
+    assert refused.value.response.status_code == 403
+    with pytest.raises(InvalidStatus):  # its subprotocol is required
+        connect(receipts_url(console_url), origin=console_url, open_timeout=10)
+    with connect(receipts_url(console_url), origin=console_url,
+                 subprotocols=["telerobot.v1.receipts"], open_timeout=10) as socket:
+        assert socket.subprotocol == "telerobot.v1.receipts"
+        # A receipt for a stream that has ended (NOT_FOUND upstream) is dropped, and the
+        # socket stays open for the next: fire and forget, nothing comes back.
+        socket.send(ReportReceiptRequest(stream_id="ended", sequence=1,
+                                         received_bytes=10).SerializeToString())
+        with pytest.raises(TimeoutError):
+            socket.recv(timeout=1)
+        socket.send("not a receipt")
+        with pytest.raises(ConnectionClosed):
+            socket.recv(timeout=10)
+        assert socket.close_code == 1003

@@ -9,7 +9,7 @@ import concurrent.futures
 
 import pytest
 
-from services.web_console import teleoperate
+from services.web_console import sockets, teleoperate
 from services.web_console.app import ConsoleApp
 from services.web_console.bridge import Upstream
 
@@ -81,7 +81,7 @@ def test_a_rebound_name_is_refused_on_every_http_route(path, method):
 
 def test_a_rebound_name_cannot_open_the_teleoperate_socket():
     sent = call(console(), "websocket", teleoperate.PATH, EVIL, f"http://{EVIL}")
-    assert sent == [{"type": "websocket.close", "code": teleoperate.CLOSE_POLICY}]
+    assert sent == [{"type": "websocket.close", "code": sockets.CLOSE_POLICY}]
 
 
 @pytest.mark.parametrize("host", [f"127.0.0.1:{PORT}", f"localhost:{PORT}", f"[::1]:{PORT}",

@@ -15,6 +15,7 @@ from services.security.pki import init as init_pki
 from services.security.roles import Role
 from services.security.tokens import TokenStore
 from telerobot.v1 import decision_server_pb2 as ds
+from telerobot.v1.stereo_camera_pb2 import ReportReceiptRequest
 from tests.processes import start_station, station_env
 from tests.web_console.test_gateway import get, post
 
@@ -109,3 +110,26 @@ def test_the_socket_without_a_token_is_refused(tls_console):
             socket.recv(timeout=10)
         assert socket.close_code == 4000 + 16, socket.close_reason  # UNAUTHENTICATED
         assert "token" in socket.close_reason
+
+
+def test_the_receipts_socket_forwards_the_token(tls_console):
+    url, tokens, _ = tls_console
+    receipts = url.replace("http://", "ws://") + "/ws/receipts"
+    receipt = ReportReceiptRequest(stream_id="ended", sequence=1, received_bytes=1)
+    with connect(receipts, origin=url, subprotocols=["telerobot.v1.receipts"],
+                 open_timeout=10) as socket:  # no token: refused at once
+        with pytest.raises(ConnectionClosed):
+            socket.recv(timeout=10)
+        assert socket.close_code == 4000 + 16, socket.close_reason
+    with connect(receipts, origin=url, subprotocols=["telerobot.v1.receipts", "bearer.trb_forged"],
+                 open_timeout=10) as socket:  # the DecisionServer refuses a forged one
+        socket.send(receipt.SerializeToString())
+        with pytest.raises(ConnectionClosed):
+            socket.recv(timeout=10)
+        assert socket.close_code == 4000 + 16, socket.close_reason
+    with connect(receipts, origin=url,
+                 subprotocols=["telerobot.v1.receipts", f"bearer.{tokens[Role.OBSERVER]}"],
+                 open_timeout=10) as socket:  # an observer's: NOT_FOUND, dropped, still open
+        socket.send(receipt.SerializeToString())
+        with pytest.raises(TimeoutError):
+            socket.recv(timeout=1)

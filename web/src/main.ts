@@ -13,8 +13,9 @@ import {
 } from "./gen/telerobot/v1/decision_server_pb";
 import { ForceSensor } from "./gen/telerobot/v1/force_sensor_pb";
 import { ProxyRobot } from "./gen/telerobot/v1/proxy_robot_pb";
-import { ImageEncoding, StereoCamera } from "./gen/telerobot/v1/stereo_camera_pb";
+import { ReportReceiptRequestSchema, StereoCamera } from "./gen/telerobot/v1/stereo_camera_pb";
 import { ReferenceFrame, type RobotState, RobotStatus } from "./gen/telerobot/v1/types_pb";
+import { type Point, type Receipt, startVideo } from "./video";
 
 const $ = <T extends HTMLElement = HTMLElement>(id: string) => document.getElementById(id) as T;
 
@@ -56,11 +57,17 @@ async function act(what: string, call: () => Promise<unknown>) {
   }
 }
 
-/** A server stream kept open: reopened after a second when it ends or fails. */
+/** A server stream kept open: reopened when it ends or fails, after a back-off that starts at
+ * half a second and doubles to two while the stream keeps failing at once. */
+const REOPEN_MIN_MS = 500;
+const REOPEN_MAX_MS = 2000;
+const HEALTHY_MS = 10_000;  // a stream that lasted this long failed for a new reason: start over
 function follow(name: string, open: (signal: AbortSignal) => Promise<void>) {
   const loop = async () => {
+    let backoff = REOPEN_MIN_MS;
     for (;;) {
       const ctl = new AbortController();
+      const opened = performance.now();
       try {
         await open(ctl.signal);
       } catch (err) {
@@ -71,7 +78,10 @@ function follow(name: string, open: (signal: AbortSignal) => Promise<void>) {
           setLink(false, `${name}: ${explain(err)}`);
         }
       }
-      await new Promise((r) => setTimeout(r, 1000));
+      ctl.abort();
+      if (performance.now() - opened > HEALTHY_MS) backoff = REOPEN_MIN_MS;
+      await new Promise((r) => setTimeout(r, backoff));
+      backoff = Math.min(2 * backoff, REOPEN_MAX_MS);
     }
   };
   void loop();
@@ -87,8 +97,25 @@ function setLink(ok: boolean, text: string) {
 let lastState: RobotState | undefined;
 const statusName = (s: RobotStatus) => RobotStatus[s] ?? String(s);
 
+// The tool point over the last few seconds, so that a frame gets its ball where the tool was
+// when the frame was captured (station's clock).
+const TOOL_HISTORY_MS = 3000;
+const toolHistory: { t: number; p: Point }[] = [];
+
+function toolPointAt(timeMs: number): Point | undefined {
+  let best: { t: number; p: Point } | undefined;
+  for (const s of toolHistory) if (!best || Math.abs(s.t - timeMs) < Math.abs(best.t - timeMs)) best = s;
+  return best?.p ?? lastState?.toolPose?.positionM;
+}
+
 function showState(state: RobotState) {
   lastState = state;
+  const tool = state.toolPose?.positionM;
+  if (tool && state.sampleTime) {
+    const t = timestampMs(state.sampleTime);
+    toolHistory.push({ t, p: { x: tool.x, y: tool.y, z: tool.z } });
+    while (toolHistory.length && toolHistory[0].t < t - TOOL_HISTORY_MS) toolHistory.shift();
+  }
   $("status-reason").textContent = "";
   const status = $("status");
   status.textContent = statusName(state.status);
@@ -117,68 +144,59 @@ follow("state", async (signal) => {
 });
 
 // ---- stereo video with the AR ball -----------------------------------------------------------
-let frames = 0;
-let fpsSince = performance.now();
+// Receipts go out as each pair arrives, without waiting for the answer (video.ts), on a
+// WebSocket of their own: as Connect calls they would wait for one of HTTP/1.1's six
+// connections to the console, which the page's streams mostly hold (services/web_console/
+// receipts.py). Until the socket is open, or when it is refused, they go as Connect calls.
+let receiptSocket: WebSocket | undefined;
+let receiptBackoff = REOPEN_MIN_MS;
+function openReceiptSocket() {
+  const url = `${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/ws/receipts`;
+  const s = new WebSocket(url, ["telerobot.v1.receipts", ...(token ? [`bearer.${token}`] : [])]);
+  s.binaryType = "arraybuffer";
+  s.onopen = () => { receiptSocket = s; receiptBackoff = REOPEN_MIN_MS; };
+  s.onclose = () => {
+    if (receiptSocket === s) receiptSocket = undefined;
+    setTimeout(openReceiptSocket, receiptBackoff);
+    receiptBackoff = Math.min(2 * receiptBackoff, REOPEN_MAX_MS);
+  };
+}
+openReceiptSocket();
 
-function project(P: number[], x: number, y: number, z: number): [number, number] | undefined {
-  if (P.length !== 12) return undefined;
-  const u = P[0] * x + P[1] * y + P[2] * z + P[3];
-  const v = P[4] * x + P[5] * y + P[6] * z + P[7];
-  const w = P[8] * x + P[9] * y + P[10] * z + P[11];
-  return w > 1e-6 ? [u / w, v / w] : undefined;
+function sendReceipt(r: Receipt) {
+  if (receiptSocket?.readyState === WebSocket.OPEN) {
+    receiptSocket.send(toBinary(ReportReceiptRequestSchema, create(ReportReceiptRequestSchema, r)));
+    video.receiptsBySocket++;
+  } else {
+    camera.reportReceipt(r).catch(() => undefined);  // NOT_FOUND: the stream ended meanwhile
+  }
 }
 
-async function drawEye(canvas: HTMLCanvasElement, data: Uint8Array, P: number[], sequence: bigint) {
-  const bitmap = await createImageBitmap(new Blob([data as Uint8Array<ArrayBuffer>], { type: "image/jpeg" }));
-  canvas.width = bitmap.width;
-  canvas.height = bitmap.height;
-  const ctx = canvas.getContext("2d")!;
-  ctx.drawImage(bitmap, 0, 0);
-  bitmap.close();
-  const p = lastState?.toolPose?.positionM;
-  const uv = p && project(P, p.x, p.y, p.z);
-  if (uv) {  // the AR ball at the tool point, as the station measures it
-    ctx.beginPath();
-    ctx.arc(uv[0], uv[1], Math.max(4, canvas.width / 60), 0, 2 * Math.PI);
-    ctx.fillStyle = "rgba(255, 200, 0, 0.8)";
-    ctx.fill();
-    ctx.strokeStyle = "#000";
-    ctx.stroke();
-  }
-  canvas.dataset.sequence = String(sequence);
-}
-
-// Request a picture: the next pair is asked for once the last one is drawn, so a slow browser
-// or link always gets the newest pair and never a backlog (a server stream would queue pairs
-// in the sockets' buffers: measured here, a second and more behind).
-const VIDEO_MIN_INTERVAL_MS = 66;  // at most ~15 pairs/s
-follow("video", async (signal) => {
-  for (;;) {
-    const asked = performance.now();
-    const r = await camera.getSnapshot({ encoding: ImageEncoding.JPEG, jpegQuality: 70 }, { signal });
-    const header = r.header;
-    const pair = r.pair;
-    if (!header || !pair) continue;
-    setLink(true, "station connected");
-    $("video-info").textContent = `${header.widthPx}×${header.heightPx} per eye, ${header.source}`;
-    await Promise.all([
-      drawEye($("left-eye"), pair.leftImage, header.left?.projection ?? [], pair.sequence),
-      drawEye($("right-eye"), pair.rightImage, header.right?.projection ?? [], pair.sequence),
-    ]);
-    if (pair.leftCaptureTime) {  // captured -> drawn, on the station's and this host's clocks
-      $("video-age").textContent = (Date.now() - timestampMs(pair.leftCaptureTime)).toFixed(0);
-    }
-    frames++;
-    const now = performance.now();
-    if (now - fpsSince > 1000) {
-      $("fps").textContent = (frames * 1000 / (now - fpsSince)).toFixed(1);
-      frames = 0;
-      fpsSince = now;
-    }
-    const wait = VIDEO_MIN_INTERVAL_MS - (performance.now() - asked);
-    if (wait > 0) await new Promise((done) => setTimeout(done, wait));
-  }
+const video = startVideo({
+  camera, follow, sendReceipt, toolPointAt,
+  connected: () => setLink(true, "station connected"),
+  left: $<HTMLCanvasElement>("left-eye"), right: $<HTMLCanvasElement>("right-eye"),
+  info: $("video-info"),
 });
+
+// The figures, twice a second: on the page, and as data-* attributes of #video-stats.
+setInterval(() => {
+  const live = video.live();
+  const shown = (v: number, digits = 0) => (Number.isFinite(v) ? v.toFixed(digits) : "–");
+  $("video-age").textContent = shown(live.ageP50);
+  $("video-age-p95").textContent = shown(live.ageP95);
+  $("fps").textContent = shown(live.fps, 1);
+  $("video-kbit").textContent = shown(live.kbitPerS);
+  $("video-target").textContent = live.targetKbit ? String(live.targetKbit) : "–";
+  $("video-codec").textContent = video.decoder ? `${video.codec}, ${video.decoder}` : "–";
+  const el = $("video-stats");
+  Object.assign(el.dataset, {
+    codec: video.codec, decoder: video.decoder, frames: String(video.frames),
+    fps: live.fps.toFixed(1), ageP50: shown(live.ageP50, 1), ageP95: shown(live.ageP95, 1),
+    kbitPerS: live.kbitPerS.toFixed(0), targetKbitPerS: String(live.targetKbit),
+    decodeErrors: String(video.decodeErrors), fallback: video.fallbackReason,
+  });
+}, 500);
 
 // ---- force plot -------------------------------------------------------------------------------
 const forceWindowMs = 10_000;
@@ -209,9 +227,12 @@ function plotForces() {
     });
     ctx.stroke();
   });
-  requestAnimationFrame(plotForces);
 }
-requestAnimationFrame(plotForces);
+// Ten times a second, on an animation frame: a 10 s plot moves a pixel or so per redraw, and a
+// redraw on every animation frame (60/s) would make the browser composite the page 60 times a
+// second, which costs the video its CPU on a small machine.
+const PLOT_INTERVAL_MS = 100;
+setInterval(() => requestAnimationFrame(plotForces), PLOT_INTERVAL_MS);
 
 follow("force", async (signal) => {
   // 50 Hz, 5 samples a message: plenty for a plot, light on the browser.
