@@ -90,6 +90,7 @@ function follow(name: string, open: (signal: AbortSignal) => Promise<void>) {
 function setLink(ok: boolean, text: string) {
   const el = $("link");
   el.textContent = text;
+  el.title = text;
   el.className = `pill ${ok ? "ok" : "bad"}`;
 }
 
