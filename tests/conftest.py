@@ -45,14 +45,14 @@ from tests.processes import (  # noqa: E402
 
 def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
     """Poll `predicate` every 5 ms until it returns something true, and return that; fail the
-    test after `timeout_s`."""
+    test after `timeout_s`, saying `what` (or what `what()` says then)."""
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
         value = predicate()
         if value:
             return value
         time.sleep(0.005)
-    raise AssertionError(f"timed out waiting for {what}")
+    raise AssertionError(f"timed out waiting for {what() if callable(what) else what}")
 
 
 # -- the guard: tests not marked e2e start no process ---------------------------------------

@@ -155,11 +155,11 @@ class ConsoleApp:
             if foreign_origin(scope):
                 return await _respond(send, 403, b"a page of another site may not call the "
                                       b"station through this console\n")
-            receive = await _bounded_body(scope, receive, send, self.max_body_bytes,
-                                          self.body_timeout_s)
-            if receive is None:
+            body = await _bounded_body(scope, receive, send, self.max_body_bytes,
+                                       self.body_timeout_s)
+            if body is None:
                 return  # refused: too large or too slow
-            return await self.bridge(scope, receive, send)
+            return await _until_client_leaves(self.bridge, scope, body, receive, send)
         if scope["method"] not in ("GET", "HEAD"):
             return await _respond(send, 405, b"method not allowed\n",
                                   extra=[(b"allow", b"GET, HEAD")])
@@ -217,6 +217,38 @@ async def _bounded_body(scope, receive, send, limit: int, timeout_s: float):
         return None
     return _replay([{"type": "http.request", "body": b"".join(chunks), "more_body": False}],
                    receive)
+
+
+async def _until_client_leaves(app, scope, body, receive, send) -> None:
+    """Run `app` on a request whose body was read (`body` gives it again), and cancel it when
+    the client leaves before its response ended. uvicorn hands a send to a gone client nothing
+    and says nothing, and connect-python looks for the client only between a stream's messages:
+    a quiet stream (events, or video paced to a reader that stopped sending receipts) would keep
+    its upstream call, and the camera rendering for it, until the station stops."""
+    ended = False
+
+    async def tracked_send(message) -> None:
+        nonlocal ended
+        if message["type"] == "http.response.body" and not message.get("more_body", False):
+            ended = True
+        await send(message)
+
+    call = asyncio.ensure_future(app(scope, body, tracked_send))
+
+    async def watch() -> None:
+        while (await receive())["type"] != "http.disconnect":
+            pass
+        if not ended:
+            call.cancel()
+
+    watcher = asyncio.ensure_future(watch())
+    try:
+        await call
+    except asyncio.CancelledError:
+        if not call.cancelled() or not watcher.done():
+            raise  # this request itself was cancelled (the server stopping)
+    finally:
+        watcher.cancel()
 
 
 def _replay(messages: list, receive):

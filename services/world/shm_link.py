@@ -58,7 +58,9 @@ log = logging.getLogger(__name__)
 # A world that has not stepped for this long counts as gone. Long enough that a busy 2-core
 # machine's scheduling stalls (tens of ms seen) are not taken for a dead world.
 STALE_AFTER_S = 0.25
-TORN_READ_TIMEOUT_S = 0.05  # how long a reader waits for a writer stuck mid-write
+# How long a new driver waits for the command record a previous driver may have died writing.
+# (A world preempted mid-publish is waited for as long as one that has not stepped.)
+TORN_READ_TIMEOUT_S = 0.05
 # A stale segment (its world killed) is replaced; one whose world stepped this recently, or whose
 # pid is alive, belongs to a running world and is left alone.
 REPLACE_AFTER_S = 1.0
@@ -287,11 +289,15 @@ class _WorldConnection:
         segment = self.require()
         now_ns = self._clock.monotonic_ns()
         try:
-            record = segment.state.read(TORN_READ_TIMEOUT_S)[0]
+            # A world preempted mid-publish (the GIL or the scheduler, on a loaded machine) is
+            # one that has not stepped yet: it gets the same time before it counts as gone.
+            record = segment.state.read(self._stale_after_ns / 1e9,
+                                        monotonic=self._clock.monotonic)[0]
         except TornRead:
             raise UnavailableError(
                 f"the world (pid {segment.world_pid}) stopped in the middle of publishing a "
-                "sample: it is stuck or gone", reason="WORLD_STALE") from None
+                f"sample for {self._stale_after_ns / 1e6:.0f} ms: it is stuck or gone",
+                reason="WORLD_STALE") from None
         self._check_alive(int(record["heartbeat_ns"]), now_ns)
         return record
 

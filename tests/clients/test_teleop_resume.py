@@ -109,7 +109,11 @@ def test_ack_order_survives_a_resume(linked):
     proxy.cut(1.5, "stall")
     wait_for(lambda: session.interrupted, 5, "the session to notice the cut")
     wait_for(lambda: not session.interrupted, 15, "the session to resume")
-    assert [state for state, _ in links] == ["lost", "reconnecting", "resumed"], links
+    # Lost, tries (the first may end while the link is still cut: how many is the machine's
+    # timing, not the session's), resumed.
+    states = [state for state, _ in links]
+    assert states[0] == "lost" and states[-1] == "resumed", links
+    assert set(states[1:-1]) == {"reconnecting"}, links
     acks = [session.send(UP) for _ in range(3)]
     assert [first.sequence, *(a.sequence for a in acks)] == [1, 2, 3, 4]
     assert np.isclose(applied_z(slave), 4 * STEP_M)

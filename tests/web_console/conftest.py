@@ -19,6 +19,10 @@ CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                  "--no-first-run", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync"]
+# The stations' sim camera renders 10 pairs a second: at its own rate (a 640x480 pair takes
+# about 85 ms) it takes a whole core of a 2-core machine while a page is open, and these tests
+# need the video shown, not fast (`make bench ONLY=video` measures that).
+CAMERA_SETTINGS = {"TELEROBOT_STEREO_CAMERA_FPS": "10"}
 # Screenshots go here when set (docs/ for the README's), else to the test's tmp_path.
 SHOTS_ENV = "TELEROBOT_WEB_CONSOLE_SHOTS"
 
@@ -42,7 +46,8 @@ def console_station(tmp_path_factory):
     """The station, started by the launcher like `make serve`; `.ready` has every address.
     Its recordings go to a directory of its own."""
     recordings = tmp_path_factory.mktemp("recordings")
-    launcher = start_station(station_env(TELEROBOT_RECORDINGS_DIR=str(recordings)))
+    launcher = start_station(station_env(TELEROBOT_RECORDINGS_DIR=str(recordings),
+                                         **CAMERA_SETTINGS))
     yield launcher
     launcher.stop(signal.SIGINT)
 

@@ -29,9 +29,11 @@ CLIENT_RCVBUF = 16 * 1024
 
 
 class _Stream:
-    """An upstream server stream that always has a message: it counts what the gateway takes."""
+    """An upstream server stream that always has a message (or, `quiet`, never one: events,
+    or video paced to a reader that sends no receipts): it counts what the gateway takes."""
 
-    def __init__(self):
+    def __init__(self, quiet: bool = False):
+        self.quiet = quiet
         self.taken = 0
         self.cancelled = False
 
@@ -41,6 +43,8 @@ class _Stream:
     async def __anext__(self):
         if self.cancelled:
             raise StopAsyncIteration
+        if self.quiet:
+            await asyncio.Event().wait()  # until the gateway's task is cancelled
         self.taken += 1
         await asyncio.sleep(0)
         return MESSAGE
@@ -54,6 +58,7 @@ class _Channel:
 
     def __init__(self):
         self.streams: list[_Stream] = []
+        self.quiet = False  # the streams it opens
 
     def unary_unary(self, path, **_):
         async def call(request, **_):
@@ -62,7 +67,7 @@ class _Channel:
 
     def unary_stream(self, path, **_):
         def call(request, **_):
-            self.streams.append(_Stream())
+            self.streams.append(_Stream(self.quiet))
             return self.streams[-1]
         return call
 
@@ -151,3 +156,17 @@ def test_a_client_that_stops_reading_leaves_the_backlog_in_the_sockets(console):
     finally:
         client.close()
     wait_for(lambda: stream.cancelled, timeout_s=10, what="the upstream stream cancelled")
+
+
+def test_a_client_that_leaves_a_quiet_stream_ends_it_upstream(console):
+    """A stream with nothing to send (connect-python looks for the client only between
+    messages) still ends upstream when its client leaves: no camera renders for a closed tab."""
+    address, channel = console
+    channel.quiet = True
+    client = _open_stream(address)
+    try:
+        wait_for(lambda: channel.streams, timeout_s=10, what="the upstream stream")
+    finally:
+        client.close()
+    wait_for(lambda: channel.streams[0].cancelled, timeout_s=10,
+             what="the quiet upstream stream cancelled")

@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import signal
 import threading
+import urllib.request
 import uuid
 from pathlib import Path
 
@@ -96,6 +98,29 @@ def test_the_page_shows_live_stereo_video(browser, console_url, robot, shots):
     assert page.locator("#estop").is_visible()
     assert page.errors == []
     page.screenshot(path=str(shots / "web_console_video.png"))
+
+
+def open_streams(metrics_address: str) -> int:
+    """The streams open on a service, from its Prometheus metrics."""
+    with urllib.request.urlopen(f"http://{metrics_address}/metrics", timeout=5) as reply:
+        metrics = reply.read().decode()
+    return int(float(re.search(r"^telerobot_open_streams (\S+)$", metrics, re.M).group(1)))
+
+
+def test_a_closed_tab_leaves_no_stream_open(browser, console_station, console_url):
+    """The page's streams (state, wrench, events, video) end at the station when its tab
+    closes, quiet ones too: nothing renders, encodes or forwards for a tab that is gone."""
+    services = ("decision_server", "stereo_camera")
+    metrics = {name: console_station.ready[f"{name}_metrics"] for name in services}
+    before = {name: open_streams(address) for name, address in metrics.items()}
+    page = open_console(browser, console_url)
+    wait_for(lambda: int(page.locator("#left-eye").get_attribute("data-sequence")) or None,
+             timeout_s=30, what="a first stereo pair drawn")
+    assert open_streams(metrics["decision_server"]) > before["decision_server"]
+    page.close()
+    wait_for(lambda: all(open_streams(metrics[name]) <= before[name] for name in services),
+             timeout_s=DEADLINE_S, what=lambda: f"the streams open before the tab, {before}; "
+             f"open: { {name: open_streams(address) for name, address in metrics.items()} }")
 
 
 def test_take_the_lock_drive_with_keys_and_stop(browser, console_url, robot, decision, shots):

@@ -43,7 +43,7 @@ from services.web_console.https import RenewingCertificate, certificate_files
 from telerobot.v1 import proxy_robot_pb2_grpc
 from tests.conftest import starts_processes, wait_for
 from tests.processes import start_station, station_env
-from tests.web_console.conftest import CHROMIUM, CHROMIUM_ARGS
+from tests.web_console.conftest import CAMERA_SETTINGS, CHROMIUM, CHROMIUM_ARGS
 from tests.web_console.test_limits import console
 from wire.tls import ChannelSecurity, open_channel
 
@@ -101,7 +101,7 @@ def https_station(tmp_path_factory):
         TELEROBOT_AUDIT_DIR=str(root / "audit"),
         TELEROBOT_RECORDINGS_DIR=str(root / "recordings"),
         TELEROBOT_WEB_CONSOLE_ADDRESS="0.0.0.0:0",  # beyond loopback, with no plaintext flag
-        TELEROBOT_ALLOW_PLAINTEXT_NETWORK="0"))
+        TELEROBOT_ALLOW_PLAINTEXT_NETWORK="0", **CAMERA_SETTINGS))
     port = int(launcher.ready["web_console"].rsplit(":", 1)[1])
     yield launcher, f"https://127.0.0.1:{port}", port, pki, operator
     launcher.stop(signal.SIGINT)

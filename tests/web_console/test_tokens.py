@@ -17,6 +17,7 @@ from services.security.tokens import TokenStore
 from telerobot.v1 import decision_server_pb2 as ds
 from telerobot.v1.stereo_camera_pb2 import ReportReceiptRequest
 from tests.processes import start_station, station_env
+from tests.web_console.conftest import CAMERA_SETTINGS
 from tests.web_console.test_gateway import get, post
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow]
@@ -33,7 +34,7 @@ def tls_console(tmp_path_factory):
     launcher = start_station(station_env(
         TELEROBOT_TLS_DIR=str(root / "pki"), TELEROBOT_TOKENS_FILE=str(root / "tokens.json"),
         TELEROBOT_DECISION_SERVER_TOKEN_ADDRESS="127.0.0.1:0",
-        TELEROBOT_AUDIT_DIR=str(root / "audit")))
+        TELEROBOT_AUDIT_DIR=str(root / "audit"), **CAMERA_SETTINGS))
     yield f"http://{launcher.ready['web_console']}", tokens, root / "audit"
     launcher.stop(signal.SIGINT)
 

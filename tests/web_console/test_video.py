@@ -68,7 +68,7 @@ def test_without_webcodecs_the_page_polls_jpeg_snapshots(browser, video_console)
     page.add_init_script("delete window.VideoDecoder")
     page.goto(f"http://{video_console}/")
     wait_for(lambda: page.evaluate("() => window.videoStats.frames") >= 10, timeout_s=30,
-             what="snapshots shown")
+             what=lambda: f"snapshots shown; the page's video: {video_stats(page)}")
     stats = page.evaluate("() => ({codec: videoStats.codec, decoder: videoStats.decoder, "
                           "fallback: videoStats.fallbackReason})")
     assert stats["codec"] == "jpeg" and stats["decoder"] == "snapshots", stats
@@ -100,12 +100,13 @@ def test_a_failing_decoder_asks_for_key_frames_then_falls_back(browser, video_co
                              " fallback: videoStats.fallbackReason})")
 
     failed = wait_for(lambda: (s := stats())["errors"] >= 1 and s, timeout_s=30,
-                      what="the first decode error")
+                      what=lambda: f"the first decode error; the page's video: {stats()}")
     resumed = wait_for(lambda: (s := stats())["frames"] > failed["frames"] + 5 and s,
-                       timeout_s=30, what="frames after the first decode error")
+                       timeout_s=30, what=lambda: f"frames after the first decode error; {stats()}")
     assert resumed["keyframes"] >= 1, resumed
     done = wait_for(lambda: (s := stats())["decoder"] == "snapshots" and s, timeout_s=30,
-                    what="the fallback to snapshots")
+                    what=lambda: f"the fallback to snapshots; {stats()}")
     assert done["errors"] == 3 and "failed 3 times" in done["fallback"], done
     frames = done["frames"]
-    wait_for(lambda: stats()["frames"] > frames + 5, timeout_s=30, what="snapshots shown")
+    wait_for(lambda: stats()["frames"] > frames + 5, timeout_s=30,
+             what=lambda: f"snapshots shown; {stats()}")

@@ -287,14 +287,74 @@ def test_a_reader_preempted_mid_read_does_not_take_the_world_for_stale(paused_pu
     state = link._connection.segment.state
     read = state.read
 
-    def read_then_lose_the_core(timeout_s):
-        copy = read(timeout_s)
+    def read_then_lose_the_core(timeout_s, **options):
+        copy = read(timeout_s, **options)
         clock.advance(0.2)  # off the core for 200 ms; the world stepped meanwhile
         paused_publisher.publish(sim.arm_sample(), sim.wrench_sample())
         return copy
 
     state.read = read_then_lose_the_core
     link.read_arm()
+    link.close()
+
+
+class TickingClock(FakeClock):
+    """Time moves 10 ms each time it is read, so a reader spinning on a record meets its
+    deadline; `on_read(now_ns)` is called at each reading."""
+
+    def __init__(self):
+        super().__init__()
+        self.on_read = lambda now_ns: None
+
+    def monotonic_ns(self) -> int:
+        self.advance(0.01)
+        now_ns = super().monotonic_ns()
+        self.on_read(now_ns)
+        return now_ns
+
+
+@pytest.fixture
+def ticking_world(sim: ArmSim):
+    """A world stamped by a TickingClock, and its state record as a writer sees it."""
+    clock = TickingClock()
+    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name(),
+                           clock=clock)
+    world.publish(sim.arm_sample(), sim.wrench_sample())
+    segment = WorldSegment(attach_untracked(world.name))
+    yield world, clock, segment.state
+    segment.close()
+    world.close()
+
+
+@pytest.mark.e2e
+def test_a_world_preempted_mid_publish_is_waited_for_as_long_as_a_silent_one(ticking_world):
+    """The world's thread lost its core (or the GIL) between the two halves of a publish for
+    150 ms, under the 250 ms a world may go without stepping: the reader waits and reads."""
+    world, clock, state = ticking_world
+    link = SharedMemoryArmLink(world.name, stale_after_s=0.25, clock=clock)
+    publishing = state.writing()
+    publishing.__enter__()
+    resume_at_ns = clock.monotonic_ns() + 150_000_000
+
+    def resume(now_ns: int) -> None:
+        if now_ns >= resume_at_ns:
+            clock.on_read = lambda now_ns: None
+            publishing.__exit__(None, None, None)
+
+    clock.on_read = resume
+    link.read_arm()
+    link.close()
+
+
+@pytest.mark.e2e
+def test_a_world_stuck_mid_publish_is_stale_after_the_same_time(ticking_world):
+    world, clock, state = ticking_world
+    link = SharedMemoryArmLink(world.name, stale_after_s=0.25, clock=clock)
+    state.writing().__enter__()  # never finished
+    start_ns = clock.monotonic_ns()
+    with pytest.raises(UnavailableError, match="middle of publishing a sample for 250 ms"):
+        link.read_arm()
+    assert clock.monotonic_ns() - start_ns >= 250_000_000
     link.close()
 
 
