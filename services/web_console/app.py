@@ -225,7 +225,7 @@ async def _until_client_leaves(app, scope, body, receive, send) -> None:
     and says nothing, and connect-python looks for the client only between a stream's messages:
     a quiet stream (events, or video paced to a reader that stopped sending receipts) would keep
     its upstream call, and the camera rendering for it, until the station stops."""
-    ended = False
+    ended = left = False
 
     async def tracked_send(message) -> None:
         nonlocal ended
@@ -236,17 +236,21 @@ async def _until_client_leaves(app, scope, body, receive, send) -> None:
     call = asyncio.ensure_future(app(scope, body, tracked_send))
 
     async def watch() -> None:
+        nonlocal left
         while (await receive())["type"] != "http.disconnect":
             pass
         if not ended:
+            left = True
             call.cancel()
 
     watcher = asyncio.ensure_future(watch())
     try:
         await call
-    except asyncio.CancelledError:
-        if not call.cancelled() or not watcher.done():
-            raise  # this request itself was cancelled (the server stopping)
+    except BaseException:
+        # What the cancel made (connect-python raises it as a CANCELED ConnectError) has no one
+        # to go to; anything else (the server stopping, a failure) goes on.
+        if not left or not call.done():
+            raise
     finally:
         watcher.cancel()
 

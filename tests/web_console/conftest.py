@@ -19,10 +19,10 @@ CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                  "--no-first-run", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync"]
-# The stations' sim camera renders 10 pairs a second: at its own rate (a 640x480 pair takes
-# about 85 ms) it takes a whole core of a 2-core machine while a page is open, and these tests
+# The stations' sim camera renders 5 pairs a second: at its own rate (a 640x480 pair takes
+# 45-85 ms) it takes a whole core of a 2-core machine while a page is open, and these tests
 # need the video shown, not fast (`make bench ONLY=video` measures that).
-CAMERA_SETTINGS = {"TELEROBOT_STEREO_CAMERA_FPS": "10"}
+CAMERA_SETTINGS = {"TELEROBOT_STEREO_CAMERA_FPS": "5"}
 # Screenshots go here when set (docs/ for the README's), else to the test's tmp_path.
 SHOTS_ENV = "TELEROBOT_WEB_CONSOLE_SHOTS"
 
@@ -37,19 +37,37 @@ def pytest_runtest_makereport(item, call):
             station = item.funcargs.get(name)
             launcher = station[0] if isinstance(station, tuple) else station
             if launcher is not None:
-                report.sections.append((f"{name}'s last lines", launcher.describe(80)))
+                report.sections.append((f"{name}'s last lines", launcher.describe(200)))
     return report
+
+
+_console_stations = []  # the running console_station, for its last user to stop
 
 
 @pytest.fixture(scope="session")
 def console_station(tmp_path_factory):
     """The station, started by the launcher like `make serve`; `.ready` has every address.
-    Its recordings go to a directory of its own."""
+    Its recordings go to a directory of its own. It stops after the last test that uses it."""
     recordings = tmp_path_factory.mktemp("recordings")
     launcher = start_station(station_env(TELEROBOT_RECORDINGS_DIR=str(recordings),
                                          **CAMERA_SETTINGS))
+    _console_stations.append(launcher)
     yield launcher
+    _console_stations.remove(launcher)
     launcher.stop(signal.SIGINT)
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_runtest_teardown(item, nextitem):
+    """Stop the shared station once no later test uses it, not at the session's end: an idle
+    station's world steps at 1 kHz (a third of a core) under every test after it."""
+    if not _console_stations:
+        return
+    items = item.session.items
+    later = items[items.index(item) + 1:]
+    if not any("console_station" in other.fixturenames for other in later):
+        for launcher in _console_stations:
+            launcher.stop(signal.SIGINT)
 
 
 @pytest.fixture(scope="session")

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import asyncio
 import fcntl
+import logging
 import socket
 import struct
 import termios
@@ -98,6 +99,7 @@ def console():
     thread.start()
     wait_for(lambda: server.started, timeout_s=10, what="uvicorn to start")
     host, port = server.servers[0].sockets[0].getsockname()[:2]
+    channel.requests = server.server_state.tasks  # the requests being served
     yield f"{host}:{port}", channel
     server.should_exit = True
     thread.join(timeout=10)
@@ -158,9 +160,10 @@ def test_a_client_that_stops_reading_leaves_the_backlog_in_the_sockets(console):
     wait_for(lambda: stream.cancelled, timeout_s=10, what="the upstream stream cancelled")
 
 
-def test_a_client_that_leaves_a_quiet_stream_ends_it_upstream(console):
+def test_a_client_that_leaves_a_quiet_stream_ends_it_upstream(console, caplog):
     """A stream with nothing to send (connect-python looks for the client only between
-    messages) still ends upstream when its client leaves: no camera renders for a closed tab."""
+    messages) still ends upstream when its client leaves, quietly: no camera renders for a
+    closed tab, and the console's log has no error for it."""
     address, channel = console
     channel.quiet = True
     client = _open_stream(address)
@@ -170,3 +173,5 @@ def test_a_client_that_leaves_a_quiet_stream_ends_it_upstream(console):
         client.close()
     wait_for(lambda: channel.streams[0].cancelled, timeout_s=10,
              what="the quiet upstream stream cancelled")
+    wait_for(lambda: not channel.requests, timeout_s=10, what="the request's end")
+    assert [r.getMessage() for r in caplog.records if r.levelno >= logging.ERROR] == []
