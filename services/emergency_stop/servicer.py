@@ -6,11 +6,9 @@ import logging
 import threading
 from collections.abc import Callable
 
-from services.proxy_robot.servicer import status_to_proto
-from services.proxy_robot.status import RobotStatus
 from services.world.link import EmergencyStopLink
 from telerobot.v1 import proxy_robot_pb2 as pb
-from telerobot.v1 import proxy_robot_pb2_grpc
+from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
 from wire import convert
 from wire.addresses import address_for, env_name
 from wire.errors import UnavailableError, UnimplementedError
@@ -45,7 +43,7 @@ class EmergencyStopServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
                 self._drop_link()
                 stop_time_ns = self._stop()  # once more, on a fresh link; else the caller hears
         log.warning("emergency stop latched at the hardware: %s", request.reason or "no reason")
-        return pb.EmergencyStopResponse(status=status_to_proto(RobotStatus.ESTOPPED),
+        return pb.EmergencyStopResponse(status=types_pb2.ROBOT_STATUS_ESTOPPED,
                                         stop_time=convert.timestamp(stop_time_ns))
 
     def stop_now(self) -> None:

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import grpc
 import numpy as np
 import pytest
@@ -104,3 +107,14 @@ def test_a_stop_that_cannot_reach_the_arm_is_unavailable():
         assert "no world is running" in error.value.details()
     finally:
         band.stop()
+
+
+@pytest.mark.e2e
+def test_the_band_imports_no_robot_model():
+    """A killed band must be back within 5 s (#16), on a loaded machine too: it loads neither
+    Pinocchio nor MuJoCo, which took a second of its start-up (four under load)."""
+    loaded = subprocess.run(
+        [sys.executable, "-c", "import sys, services.emergency_stop.__main__; "
+         "print(sorted({'pinocchio', 'mujoco'} & set(sys.modules)))"],
+        check=True, capture_output=True, text=True, timeout=60).stdout.strip()
+    assert loaded == "[]", loaded
