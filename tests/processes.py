@@ -10,11 +10,13 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
+import urllib.request
 import uuid
 from dataclasses import dataclass
 from pathlib import Path
 
 import grpc
+from prometheus_client.parser import text_string_to_metric_families
 
 from services.runtime import children
 from services.runtime.children import Child
@@ -174,3 +176,12 @@ def restarted(launcher: Child, name: str, old_pid: int) -> int | None:
     if pid is None or pid == old_pid or not health_serving(launcher.ready[name]):
         return None
     return pid
+
+
+def scrape_metrics(address: str) -> dict[tuple[str, frozenset], float]:
+    """Every sample of a service's /metrics at `address`, parsed by prometheus_client's own
+    parser: (sample name, its labels) -> value."""
+    with urllib.request.urlopen(f"http://{address}/metrics", timeout=10) as reply:
+        text = reply.read().decode()
+    return {(sample.name, frozenset(sample.labels.items())): sample.value
+            for family in text_string_to_metric_families(text) for sample in family.samples}

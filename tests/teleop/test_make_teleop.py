@@ -9,17 +9,15 @@ import json
 import os
 import subprocess
 import sys
-import urllib.request
 
 import cv2
 import pytest
-from prometheus_client.parser import text_string_to_metric_families
 
 from clients.teleop.stack import local_station
 from services.launcher import GRPC_CHILDREN, STATION
 from services.runtime.process import metrics_port_name
 from services.security import pki
-from tests.processes import REPO, unique_shm_name
+from tests.processes import REPO, scrape_metrics, unique_shm_name
 
 pytestmark = pytest.mark.e2e
 
@@ -76,14 +74,6 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls)
             <= driven, driven
 
 
-def _scrape(address: str) -> dict[tuple[str, frozenset], float]:
-    """Every sample of a service's /metrics, parsed by prometheus_client's own parser."""
-    with urllib.request.urlopen(f"http://{address}/metrics", timeout=10) as reply:
-        text = reply.read().decode()
-    return {(sample.name, frozenset(sample.labels.items())): sample.value
-            for family in text_string_to_metric_families(text) for sample in family.samples}
-
-
 def _total(samples, name: str, **labels) -> float:
     wanted = set(labels.items())
     return sum(value for (sample, sample_labels), value in samples.items()
@@ -94,7 +84,7 @@ def _check_the_station_metrics_moved(addresses: dict[str, str]) -> None:
     """After a session, each service's /metrics parses and its counters moved with the
     session's traffic: calls, the commands' ages, the streams' lags, the world's steps."""
     grpc_services = set(GRPC_CHILDREN)
-    scraped = {name: _scrape(addresses[metrics_port_name(name)]) for name in grpc_services}
+    scraped = {name: scrape_metrics(addresses[metrics_port_name(name)]) for name in grpc_services}
     for name, samples in scraped.items():
         if name != "world":  # the world serves shared memory, no gRPC calls
             assert _total(samples, "telerobot_rpc_handled_total") > 0, name

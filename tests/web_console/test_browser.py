@@ -5,10 +5,8 @@ from __future__ import annotations
 
 import contextlib
 import os
-import re
 import signal
 import threading
-import urllib.request
 import uuid
 from pathlib import Path
 
@@ -17,6 +15,7 @@ import pytest
 
 from telerobot.v1 import decision_server_pb2, proxy_robot_pb2, types_pb2
 from tests.conftest import wait_for
+from tests.processes import scrape_metrics
 from tests.web_console.conftest import CHROMIUM, CHROMIUM_ARGS, arm_state
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow]
@@ -102,9 +101,7 @@ def test_the_page_shows_live_stereo_video(browser, console_url, robot, shots):
 
 def open_streams(metrics_address: str) -> int:
     """The streams open on a service, from its Prometheus metrics."""
-    with urllib.request.urlopen(f"http://{metrics_address}/metrics", timeout=5) as reply:
-        metrics = reply.read().decode()
-    return int(float(re.search(r"^telerobot_open_streams (\S+)$", metrics, re.M).group(1)))
+    return int(scrape_metrics(metrics_address)[("telerobot_open_streams", frozenset())])
 
 
 def test_a_closed_tab_leaves_no_stream_open(browser, console_station, console_url):
