@@ -56,6 +56,14 @@ class Inbox(Generic[T]):
                 self._ended = True
                 self._ready.notify()
 
+    def put(self, item: T) -> None:
+        """Hand the taker `item` as if it had arrived (a wake-up from another thread); nothing
+        once the messages ended."""
+        with self._ready:
+            if not self._ended:
+                self._items.append(item)
+                self._ready.notify()
+
     def close(self) -> None:
         """No more batches: take() returns [] once what arrived was taken (the reader thread
         ends with the stream)."""

@@ -24,6 +24,7 @@ import itertools
 import logging
 import math
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -218,14 +219,16 @@ class DecisionCore:
     def wrench(self) -> SlaveWrench | None:
         return self.slave.wrench()
 
-    def sensor_lost(self) -> str | None:
+    def sensor_lost(self, before_asking: Callable[[], None] | None = None) -> str | None:
         """Why the force sensor is lost, or None. The operator moves by what it feels, so
         without the sensor the arm must not move. Lost: its process is down, or its wrench
         went stale after it had been streaming and the sensor does not answer within
         SENSOR_PROBE_S (a hung process answers nothing, not even its health). A sensor that
         answers that it stopped reading (StopReading), or never streamed, is not lost; one
         that reads but streams nothing (a change threshold) is not either. A restarted sensor
-        resumes reading by itself, and motion with it."""
+        resumes reading by itself, and motion with it. `before_asking` runs when a wrench
+        that was fresh went stale, before the sensor is asked: the probe can take all of
+        SENSOR_PROBE_S, and the operator's feel is stale already."""
         health = self.slave.health().get("force_sensor", "ok")
         if health != "ok":
             return f"the force sensor is unavailable ({health}); the arm holds"
@@ -236,6 +239,8 @@ class DecisionCore:
                 return None
             if not self._sensor_streamed or now < self._sensor_alive_until:
                 return None
+            if before_asking is not None and not self._sensor_alive_until:
+                before_asking()  # (not for a sensor known to be quiet but alive)
             try:
                 self._sensor_streamed = self.slave.sensor_is_reading(SENSOR_PROBE_S)
             except UnavailableError as error:

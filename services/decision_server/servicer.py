@@ -340,6 +340,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             # Three threads (services/common/inbox.py): the inbox reads, the producer moves the
             # arm, this one writes the acks; the arm never waits for an ack to be written.
             inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
+            # (None, None): no message; the batch it ends is decided, late commands with it.
+            session.wake_server = lambda: inbox.put((None, None))
 
             grouped = first.init.grouped_acks
 

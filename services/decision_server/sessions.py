@@ -25,7 +25,7 @@ import logging
 import threading
 import uuid
 from collections import OrderedDict
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -253,10 +253,15 @@ class OperatorSession:
         self._late: list[MasterIncrement] = []
         self._late_since: tuple[int, int] = (0, 0)
         self._holds = 0
+        # Called after a hold the watchdog made, so the stream's serving thread answers the
+        # late commands it overtook (decide([])) without waiting for a command that may never
+        # come: a client that waits for each ack sends none. Set by the stream's server.
+        self.wake_server: Callable[[], None] | None = None
         self.stream = 1
         self._detached_at: float | None = None
         self._last_activity = self._clock.monotonic()
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
+        self._held_short_of: pin.SE3 | None = None  # the target a sensor check's stop cut
         self._held = False
         self._sensor_was_lost = False
         self._sensor_checking = threading.Lock()
@@ -317,7 +322,7 @@ class OperatorSession:
         one arm round trip instead of one per command, and the newest command reaches the arm
         soonest. Late commands (see the module's docstring) get their results later, with the
         fresh command they join; ones carried from earlier batches may come first here."""
-        if not increments:
+        if not increments and not self._late:
             return []
         with self._serving:
             self._require_stream(stream)
@@ -344,17 +349,15 @@ class OperatorSession:
 
     def _process(self, increments: list[MasterIncrement], stream: int
                  ) -> Iterator[tuple[list[MasterIncrement], list[CommandResult]]]:
-        """Each group of `increments` (see merge_groups) with its results, as it is done."""
+        """Each group of `increments` (see merge_groups) with its results, as it is done;
+        first, late commands a hold overtook (none left to join)."""
+        yield from self._refuse_overtaken(stream)
         if not increments:
             return
         self._touch()
         self.core.require_lease(self.lease.lease_id)  # FailedPreconditionError ends the stream
         assistance, indexing, latched = self.core.snapshot()
         sensor_lost = self._sensor_check()
-        if self._late and self._late_since != (stream, self._holds):
-            if self._late_since[0] == stream:  # a hold overtook them; (a new stream: resent)
-                yield self._refused(self._late, "the arm held before a fresh command came")
-            self._late = []
         for group in merge_groups(increments):
             first = group[0]
             if first.clutch_engaged or indexing:
@@ -417,6 +420,12 @@ class OperatorSession:
                 else result
                 for age, result in zip(ages, results, strict=True)]
 
+    def _refuse_overtaken(self, stream: int):
+        if self._late and self._late_since != (stream, self._holds):
+            if self._late_since[0] == stream:  # a hold overtook them; (a new stream: resent)
+                yield self._refused(self._late, "the arm held before a fresh command came")
+            self._late = []
+
     def _refuse_late(self, why: str):
         if self._late:
             late, self._late = self._late, []
@@ -433,17 +442,50 @@ class OperatorSession:
         the arm's measured pose. Called for each batch of commands, and by the watchdog when
         the wrench goes quiet between them; one at a time."""
         with self._sensor_checking:
-            lost = self.core.sensor_lost()
+            self._held_short_of = None
+            lost = self.core.sensor_lost(before_asking=self._hold_while_asking)
             if lost and not self._sensor_was_lost:
                 log.warning("session %s: %s", self.session_id, lost)
-                with self._moving:
-                    try:
-                        self.core.slave.hold(lost)
-                    except TelerobotError as error:  # the arm's own watchdogs hold it anyway
-                        log.warning("could not hold the arm: %s", error.message)
-                self._target = None
+                self._hold_for_sensor(lost)
+            elif not lost and self._held_short_of is not None:
+                self._finish_held_segment(self._held_short_of)
             self._sensor_was_lost = bool(lost)
             return lost
+
+    def _hold_while_asking(self) -> None:
+        """The wrench went stale: the arm stops where it can while the sensor is asked
+        whether it is alive (a hung one takes all of the probe's time to say nothing). If it
+        answers, the segment the stop cut is finished (_finish_held_segment)."""
+        if not self._sensor_was_lost:
+            target = self._target
+            self._hold_for_sensor("the force sensor's wrench went stale; asking the sensor")
+            self._held_short_of = target
+
+    def _hold_for_sensor(self, reason: str) -> None:
+        with self._moving:
+            try:
+                self.core.slave.hold(reason)
+            except TelerobotError as error:  # the arm's own watchdogs hold it anyway
+                log.warning("could not hold the arm: %s", error.message)
+        self._target = None
+
+    def _finish_held_segment(self, target: pin.SE3) -> None:
+        """The sensor answered after a stop while it was asked: the arm goes on to the target
+        the commands had given it, so the stop loses no motion. (Not recorded: the recorded
+        increments already lead there.)"""
+        here = self.core.slave.state().tool_pose
+        with self._moving:
+            if self._closed.is_set() or self._detached_at is not None:
+                return
+            try:
+                result = self.core.slave.move_cartesian(
+                    target.translation - here.translation,
+                    target.rotation @ here.rotation.T, "BASE")
+            except TelerobotError as error:
+                log.warning("could not finish the segment the sensor check cut: %s",
+                            error.message)
+                return
+        self._target = result.target_tool_pose
 
     def _move(self, assistance: Assistance, group: list[MasterIncrement], stream: int
               ) -> list[CommandResult]:
@@ -608,3 +650,5 @@ class OperatorSession:
         except TelerobotError as error:
             log.warning("session %s: hold failed: %s", self.session_id, error.message)
         self.core.emit(WatchdogHold(self.session_id, reason, silence))
+        if self._late and (wake := self.wake_server) is not None:
+            wake()

@@ -4,7 +4,9 @@ it streams again. A sensor stopped on purpose, or never started, stops nothing."
 
 from __future__ import annotations
 
-from services.decision_server.core import SENSOR_QUIET_NS
+import numpy as np
+
+from services.decision_server.core import SENSOR_ALIVE_S, SENSOR_QUIET_NS
 from telerobot.v1 import decision_server_pb2 as pb
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
@@ -27,10 +29,11 @@ def test_a_hung_sensor_holds_the_arm_until_it_streams_again(fake_station):
     refused = operator.move(STEP)
     assert refused.outcome == pb.COMMAND_OUTCOME_REJECTED
     assert "force sensor went silent" in refused.detail and "holds" in refused.detail
-    holds = [c for c in slave.commands if c.kind == "hold"]
-    assert len(holds) == 1  # held once, as the loss was noticed
+    # Held as the wrench was found stale (before the sensor was asked), and as it was lost.
+    assert [reason.split(";")[0] for reason in _holds(slave)] == [
+        "the force sensor's wrench went stale", refused.detail.split(";")[0]]
     assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_REJECTED
-    assert len([c for c in slave.commands if c.kind == "hold"]) == 1
+    assert len(_holds(slave)) == 2  # not again while it stays lost
     slave.sensor_hung = False
     slave.step(0.001)
     assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
@@ -49,27 +52,42 @@ def test_a_sensor_gone_quiet_between_commands_holds_the_arm_without_waiting_for_
     operator = _streaming(station, slave)  # its watchdog: 0.5 s, far off
     slave.sensor_hung = True
     slave.clock.advance(SENSOR_QUIET_NS / 1e9 + 0.001)
-    wait_for(lambda: _holds(slave), timeout_s=5, what="the watchdog holding the arm")
-    assert "went silent" in _holds(slave)[0], _holds(slave)
+    wait_for(lambda: len(_holds(slave)) == 2, timeout_s=5, what="the watchdog holding the arm")
+    assert "went stale" in _holds(slave)[0] and "went silent" in _holds(slave)[1], _holds(slave)
     refused = operator.move(STEP)  # asked again: still no answer
     assert refused.outcome == pb.COMMAND_OUTCOME_REJECTED and "went silent" in refused.detail
-    assert len(_holds(slave)) == 1, _holds(slave)
+    assert len(_holds(slave)) == 2, _holds(slave)
     slave.sensor_hung = False
     slave.step(0.001)
     assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
     operator.close()
 
 
-def test_a_quiet_sensor_that_answers_holds_nothing(fake_station):
-    """A sensor that reads but streams nothing new (a change threshold) is asked, answers, and
-    the arm moves on; it is asked again only SENSOR_ALIVE_S later."""
+def _target_position(slave) -> np.ndarray:
+    with slave._lock:
+        return slave.kinematics.tool_pose(slave.q_target).translation.copy()
+
+
+def test_a_quiet_sensor_that_answers_stops_the_arm_only_while_it_is_asked(fake_station):
+    """A sensor that reads but streams nothing new (a change threshold) is asked and answers;
+    the arm stopped while it was asked (the first time only), then finishes the segment the
+    stop cut, so no motion is lost. It is asked again SENSOR_ALIVE_S later, and the arm goes
+    on meanwhile."""
     station, slave = fake_station
-    operator = _streaming(station, slave)
+    operator = _streaming(station, slave)  # the arm on its way to the first STEP
+    commanded = _target_position(slave)
     slave.sensor_is_reading_calls = 0
     slave.clock.advance(SENSOR_QUIET_NS / 1e9 + 0.001)  # quiet, but alive
-    wait_for(lambda: slave.sensor_is_reading_calls, timeout_s=5, what="the sensor asked")
+    wait_for(lambda: [c.kind for c in slave.commands][-2:] == ["hold", "cartesian"],
+             timeout_s=5, what="the stop while asking, then the rest of the segment")
+    assert "asking the sensor" in _holds(slave)[0] and slave.sensor_is_reading_calls == 1
+    np.testing.assert_allclose(_target_position(slave), commanded, atol=1e-6)
     assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
-    assert _holds(slave) == [] and slave.sensor_is_reading_calls == 1
+    assert len(_holds(slave)) == 1
+    slave.clock.advance(SENSOR_ALIVE_S + 0.001)  # still quiet: asked again, without a stop
+    wait_for(lambda: slave.sensor_is_reading_calls == 2, timeout_s=5, what="asked again")
+    assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
+    assert len(_holds(slave)) == 1, _holds(slave)
     operator.close()
 
 

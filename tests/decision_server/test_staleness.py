@@ -150,48 +150,68 @@ def test_zero_max_command_age_means_fifty_ms(rig: Rig):
 
 # -- over the wire ------------------------------------------------------------------------------
 
+class WireSession:
+    """A Teleoperate stream to the fake station whose arm's first move waits for `release`,
+    so that commands wait behind it; `send(n)` returns once command n arrived."""
+
+    def __init__(self, fake_station, watchdog_s: float):
+        self.station, self.slave = fake_station
+        self.clock = self.station.core.clock
+        self.arrived: list[float] = []
+        self.station.servicer.on_command_age = self.arrived.append
+        self.entered, self.release = threading.Event(), threading.Event()
+        move = self.slave.move_cartesian
+
+        def slow_first_move(*args):
+            if not self.entered.is_set():
+                self.entered.set()
+                self.release.wait(10)
+            return move(*args)
+
+        self.slave.move_cartesian = slow_first_move
+        lease, _ = self.station.acquire()
+        self.requests: queue.Queue = queue.Queue()
+        self.requests.put(pb.TeleoperateRequest(init=pb.TeleoperateInit(
+            operator_id="tester", lease_id=lease, watchdog_timeout=convert.duration(watchdog_s),
+            max_command_age=convert.duration(MAX_AGE_S))))
+        self.replies = self.station.decisions.Teleoperate(iter(self.requests.get, None),
+                                                          timeout=60)
+
+    def send(self, sequence: int, receipt: pb.AckReceipt | None = None) -> None:
+        self.requests.put(pb.TeleoperateRequest(command=pb.MasterCommand(
+            sequence=sequence, send_time=convert.timestamp(self.clock.time_ns()),
+            delta_position_m=convert.vector3_to_proto(UP), ack_receipt=receipt)))
+        wait_for(lambda: len(self.arrived) >= sequence, what=f"command {sequence} to arrive")
+
+    def close(self) -> None:
+        self.release.set()
+        self.requests.put(pb.TeleoperateRequest(end=pb.TeleoperateEnd()))
+        self.requests.put(None)
+        for _ in self.replies:
+            pass
+
+
+def _outcomes(acks) -> list[tuple[int, str]]:
+    return [(a.sequence, pb.CommandOutcome.Name(a.outcome)) for a in acks]
+
+
 def test_over_the_wire_a_late_command_is_acked_merged_late_with_the_fresh_one(fake_station):
     """Command 2 arrives while command 1's move is slow and waits past the age; command 3
     comes fresh: 2 and 3 are one move, 2's ack MERGED_LATE, in order, and the Ready says the
     bound. A receipt for 3's ack then gives an offset estimate on the next ack."""
-    station, slave = fake_station
-    clock = station.core.clock
-    arrived: list[float] = []
-    station.servicer.on_command_age = arrived.append
-    entered, release = threading.Event(), threading.Event()
-    move = slave.move_cartesian
-
-    def slow_first_move(*args):
-        if not entered.is_set():
-            entered.set()
-            release.wait(10)
-        return move(*args)
-
-    slave.move_cartesian = slow_first_move
-    lease, _ = station.acquire()
-    requests: queue.Queue = queue.Queue()
-    requests.put(pb.TeleoperateRequest(init=pb.TeleoperateInit(
-        operator_id="tester", lease_id=lease, watchdog_timeout=convert.duration(1.0),
-        max_command_age=convert.duration(MAX_AGE_S))))
-    replies = station.decisions.Teleoperate(iter(requests.get, None), timeout=60)
+    wire = WireSession(fake_station, watchdog_s=1.0)
+    slave, clock, send, replies = wire.slave, wire.clock, wire.send, wire.replies
     try:
         ready = next(replies).ready
         assert convert.seconds(ready.max_command_age) == pytest.approx(MAX_AGE_S)
-
-        def send(sequence: int, receipt: pb.AckReceipt | None = None) -> None:
-            requests.put(pb.TeleoperateRequest(command=pb.MasterCommand(
-                sequence=sequence, send_time=convert.timestamp(clock.time_ns()),
-                delta_position_m=convert.vector3_to_proto(UP), ack_receipt=receipt)))
-            wait_for(lambda: len(arrived) >= sequence, what=f"command {sequence} to arrive")
-
         send(1)
-        assert entered.wait(10)
+        assert wire.entered.wait(10)
         send(2)
         clock.advance(0.06)  # 2 waits behind the slow move
         send(3)
-        release.set()
+        wire.release.set()
         acks = [next(replies).ack for _ in range(3)]
-        assert [(a.sequence, pb.CommandOutcome.Name(a.outcome)) for a in acks] == [
+        assert _outcomes(acks) == [
             (1, "COMMAND_OUTCOME_APPLIED"), (2, "COMMAND_OUTCOME_MERGED_LATE"),
             (3, "COMMAND_OUTCOME_APPLIED")]
         assert not acks[2].HasField("clock_offset")  # no receipt yet
@@ -207,8 +227,29 @@ def test_over_the_wire_a_late_command_is_acked_merged_late_with_the_fresh_one(fa
         error = fourth.clock_offset_error.ToNanoseconds()
         assert fourth.HasField("clock_offset") and abs(offset) <= error <= 2_000_000
     finally:
-        release.set()
-        requests.put(pb.TeleoperateRequest(end=pb.TeleoperateEnd()))
-        requests.put(None)
-        for _ in replies:
-            pass
+        wire.close()
+
+
+def test_over_the_wire_a_late_command_with_none_after_it_is_answered_when_the_arm_holds(
+        fake_station):
+    """A client that waits for each ack sends nothing after a late command: the watchdog's
+    hold overtakes it, and its ack (REJECTED) comes then, not with a command that never
+    comes."""
+    wire = WireSession(fake_station, watchdog_s=0.1)
+    try:
+        next(wire.replies)  # the Ready
+        wire.send(1)
+        assert wire.entered.wait(10)
+        wire.send(2)
+        wire.clock.advance(0.06)  # 2 waits behind the slow move, past the age
+        wire.release.set()
+        assert _outcomes([next(wire.replies).ack]) == [(1, "COMMAND_OUTCOME_APPLIED")]
+        (session,) = wire.station.core._sessions.values()
+        wait_for(lambda: session._late, what="command 2 carried, late")
+        wire.clock.advance(0.2)  # past the watchdog: it holds the arm
+        late = next(wire.replies).ack
+        assert _outcomes([late]) == [(2, "COMMAND_OUTCOME_REJECTED")]
+        assert "held before a fresh command came" in late.detail
+        assert len([c for c in wire.slave.commands if c.kind == "cartesian"]) == 1
+    finally:
+        wire.close()
