@@ -159,8 +159,10 @@ class GrpcSlave:
                          delta_joint_positions_rad=[float(v) for v in delta_joints_rad]))
         return MoveResult(se3.trusted_pose(reply.target_tool_pose), 1.0)
 
-    def hold(self, reason: str) -> None:
-        call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
+    def hold(self, reason: str) -> tuple[pin.SE3, pin.SE3]:
+        reply = call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))
+        return (se3.trusted_pose(reply.target_tool_pose),
+                se3.trusted_pose(reply.cut_target_tool_pose))
 
     def sensor_is_reading(self, timeout_s: float) -> bool:
         try:

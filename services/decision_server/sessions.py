@@ -261,7 +261,8 @@ class OperatorSession:
         self._detached_at: float | None = None
         self._last_activity = self._clock.monotonic()
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
-        self._held_short_of: pin.SE3 | None = None  # the target a sensor check's stop cut
+        # (where a sensor check's stop left the arm, where it was going)
+        self._held_short_of: tuple[pin.SE3, pin.SE3] | None = None
         self._held = False
         self._sensor_was_lost = False
         self._sensor_checking = threading.Lock()
@@ -355,6 +356,7 @@ class OperatorSession:
         if not increments:
             return
         self._touch()
+        holds = self._holds  # a hold from here on (the watchdog's) overtakes what this carries
         self.core.require_lease(self.lease.lease_id)  # FailedPreconditionError ends the stream
         assistance, indexing, latched = self.core.snapshot()
         sensor_lost = self._sensor_check()
@@ -371,7 +373,7 @@ class OperatorSession:
                 yield self._refused(group, why)
             elif self._is_late(group[-1]):
                 if not self._late:
-                    self._late_since = (stream, self._holds)
+                    self._late_since = (stream, holds)
                 self._late += group  # its results come with the fresh command it joins
             else:
                 group, self._late = self._late + group, []
@@ -380,10 +382,13 @@ class OperatorSession:
                 if backlog:
                     with self._moving:
                         self._hold(backlog)
+                    holds = self._holds  # (this batch's own hold: a later carry is not behind it)
                     yield self._refused(group, backlog)
                 else:
                     yield group, self._with_late(group, ages,
                                                  self._move(assistance, group, stream))
+        # A carry the watchdog overtook meanwhile (its wake-up came before the carry did).
+        yield from self._refuse_overtaken(stream)
 
     def _is_late(self, increment: MasterIncrement) -> bool:
         return self._age_s(increment) > self.max_command_age_s
@@ -448,7 +453,7 @@ class OperatorSession:
                 log.warning("session %s: %s", self.session_id, lost)
                 self._hold_for_sensor(lost)
             elif not lost and self._held_short_of is not None:
-                self._finish_held_segment(self._held_short_of)
+                self._finish_held_segment(*self._held_short_of)
             self._sensor_was_lost = bool(lost)
             return lost
 
@@ -457,23 +462,24 @@ class OperatorSession:
         whether it is alive (a hung one takes all of the probe's time to say nothing). If it
         answers, the segment the stop cut is finished (_finish_held_segment)."""
         if not self._sensor_was_lost:
-            target = self._target
-            self._hold_for_sensor("the force sensor's wrench went stale; asking the sensor")
-            self._held_short_of = target
+            self._held_short_of = self._hold_for_sensor(
+                "the force sensor's wrench went stale; asking the sensor")
 
-    def _hold_for_sensor(self, reason: str) -> None:
+    def _hold_for_sensor(self, reason: str) -> tuple[pin.SE3, pin.SE3] | None:
+        """Hold the arm: (where it stops, where it was going), or None if it could not be
+        told."""
+        self._target = None
         with self._moving:
             try:
-                self.core.slave.hold(reason)
+                return self.core.slave.hold(reason)
             except TelerobotError as error:  # the arm's own watchdogs hold it anyway
                 log.warning("could not hold the arm: %s", error.message)
-        self._target = None
+                return None
 
-    def _finish_held_segment(self, target: pin.SE3) -> None:
-        """The sensor answered after a stop while it was asked: the arm goes on to the target
-        the commands had given it, so the stop loses no motion. (Not recorded: the recorded
-        increments already lead there.)"""
-        here = self.core.slave.state().tool_pose
+    def _finish_held_segment(self, here: pin.SE3, target: pin.SE3) -> None:
+        """The sensor answered after a stop while it was asked: the arm goes on from where the
+        stop left it (`here`) to where it was going, so the stop loses no motion (whoever gave
+        it that target). Not recorded: the recorded increments already lead there."""
         with self._moving:
             if self._closed.is_set() or self._detached_at is not None:
                 return

@@ -63,8 +63,9 @@ class Slave(Protocol):
 
     def move_joints(self, delta_joints_rad: np.ndarray) -> MoveResult: ...
 
-    def hold(self, reason: str) -> None:
-        """A controlled stop without a latch."""
+    def hold(self, reason: str) -> tuple[pin.SE3, pin.SE3]:
+        """A controlled stop without a latch; returns the tool pose the arm stops at and the
+        one it was going to."""
 
     def sensor_is_reading(self, timeout_s: float) -> bool:
         """Whether the sensor is sampling, asked of the sensor itself; Unavailable when it does

@@ -419,10 +419,11 @@ class ProxyRobotCore:
             self._set_status(after, "reset; holding position")
             return self._status
 
-    def hold(self) -> np.ndarray:
+    def hold(self) -> tuple[np.ndarray, pin.SE3, pin.SE3]:
         """Stop where the arm can, without latching: the target becomes the point where braking
         at the servo's acceleration cap brings it to rest. Motion commands stay accepted.
-        Returns the new target."""
+        Returns the new target, its tool pose, and the tool pose at the target it replaced
+        (a caller that resumes goes on from one to the other)."""
         with self._lock:
             link = self._require_link()
             sample = link.read_arm()
@@ -431,8 +432,10 @@ class ProxyRobotCore:
             lower = self._move_kinematics.lower_limits
             upper = self._move_kinematics.upper_limits
             target = np.clip(sample.joint_positions_rad + braking, lower, upper)
+            cut = target if self._target_q is None else self._target_q
+            cut_tool = self._tool_pose(cut)
             self._hold_at(target)  # if MOVING, arrival there ends it with a moved event
-            return target.copy()
+            return target.copy(), self._tool_pose(target), cut_tool
 
     def _hold_at(self, target: np.ndarray) -> None:
         """Send the servo straight to `target`, dropping any segment in progress."""

@@ -141,7 +141,10 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
             target_tool_pose=convert.pose_to_proto(tool), applied_fraction=fraction)
 
     def Hold(self, request, context):
-        return pb.HoldResponse(target_joint_positions_rad=self._core.hold().tolist())
+        target, tool, cut = self._core.hold()
+        return pb.HoldResponse(target_joint_positions_rad=target.tolist(),
+                               target_tool_pose=convert.pose_to_proto(tool),
+                               cut_target_tool_pose=convert.pose_to_proto(cut))
 
     def StreamState(self, request, context):
         period_s = convert.seconds(request.period)

@@ -118,6 +118,33 @@ def test_a_watchdog_hold_overtakes_a_carry(rig):
         session.close("done")
 
 
+def test_a_carry_the_watchdog_overtook_while_its_batch_ran_is_refused_with_it(rig):
+    """The watchdog holds the arm while a batch is being decided (a slow station), before the
+    batch's late command is carried: nothing will overtake the carry after that, so it is
+    refused in that batch's answer, not left unanswered until a fresh command comes."""
+    armed = rig.clock.waiters()
+    session = rig.core.open_session("alice", rig.lease.lease_id, "BASE", 0.1,
+                                    max_command_age_s=MAX_AGE_S)
+    health = rig.slave.health
+
+    def slow_station():  # (asked as the batch is decided, before its commands are)
+        rig.slave.health = health
+        rig.clock.advance(0.2)
+        wait_for(lambda: holds(rig) == 1, what="the watchdog's hold")
+        return health()
+
+    try:
+        wait_for(lambda: rig.clock.waiters() > armed, what="the watchdog to arm")
+        rig.slave.health = slow_station
+        decided = session.decide([increment(rig, 1)])
+        assert outcomes(decided) == [(1, "REJECTED")]
+        assert "held before a fresh command" in decided[0][1].detail
+        assert rig.moves() == 0
+    finally:
+        rig.slave.health = health
+        session.close("done")
+
+
 def test_the_clutch_overtakes_a_carry(rig, session):
     assert session.decide([increment(rig, 1, age_s=0.06)]) == []
     decided = session.decide([increment(rig, 2, clutch=True)])

@@ -201,11 +201,13 @@ class FakeSlave:
             self.commands.append(Command("joints", deltas))
             return MoveResult(self.kinematics.tool_pose(self.q_target), 1.0)
 
-    def hold(self, reason: str) -> None:
+    def hold(self, reason: str) -> tuple[pin.SE3, pin.SE3]:
         self._check_reachable()
         with self._lock:
+            cut = self.kinematics.tool_pose(self.q_target)
             self.q_target = self.q.copy()
             self.commands.append(Command("hold", reason))
+            return self.kinematics.tool_pose(self.q_target), cut
 
     def sensor_is_reading(self, timeout_s: float) -> bool:
         self.sensor_is_reading_calls += 1

@@ -395,7 +395,9 @@ def test_hold_stops_without_latching(rig, ready):
     ready.move_joints([0.5, 0, 0, 0, 0, 0])
     rig.run(0.15)
     moving = ready.snapshot()
-    target = ready.hold()
+    going_to = ready._tool_pose(ready._target_q)
+    target, tool, cut = ready.hold()
+    assert tool.isApprox(ready._tool_pose(target)) and cut.isApprox(going_to)
     # Ahead of the arm by the braking distance at the servo's deceleration, no further.
     speed = moving.joint_velocities_rad_per_s[0]
     assert speed > 0.5

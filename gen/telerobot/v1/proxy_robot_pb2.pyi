@@ -143,10 +143,14 @@ class HoldRequest(_message.Message):
     def __init__(self, reason: _Optional[str] = ...) -> None: ...
 
 class HoldResponse(_message.Message):
-    __slots__ = ("target_joint_positions_rad",)
+    __slots__ = ("target_joint_positions_rad", "target_tool_pose", "cut_target_tool_pose")
     TARGET_JOINT_POSITIONS_RAD_FIELD_NUMBER: _ClassVar[int]
+    TARGET_TOOL_POSE_FIELD_NUMBER: _ClassVar[int]
+    CUT_TARGET_TOOL_POSE_FIELD_NUMBER: _ClassVar[int]
     target_joint_positions_rad: _containers.RepeatedScalarFieldContainer[float]
-    def __init__(self, target_joint_positions_rad: _Optional[_Iterable[float]] = ...) -> None: ...
+    target_tool_pose: _types_pb2.Pose
+    cut_target_tool_pose: _types_pb2.Pose
+    def __init__(self, target_joint_positions_rad: _Optional[_Iterable[float]] = ..., target_tool_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ..., cut_target_tool_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ...) -> None: ...
 
 class StreamStateRequest(_message.Message):
     __slots__ = ("period",)
