@@ -452,6 +452,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
                 yield self._ack(command.sequence, command.send_time_ns, result, session)
             increments = []
             if request is not None and request.WhichOneof("message") == "end":
+                for command, result in session.ending(stream):
+                    yield self._ack(command.sequence, command.send_time_ns, result, session)
                 yield _END_OF_SESSION  # what came after it is ignored
                 return
             if request is not None:

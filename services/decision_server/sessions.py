@@ -303,6 +303,18 @@ class OperatorSession:
             self.core.require_lease(self.lease.lease_id)
             return CommandResult("HEARTBEAT", "", now, now)
 
+    def ending(self, stream: int = 1) -> list[tuple[MasterIncrement, CommandResult]]:
+        """The operator ends the session on `stream`: the late commands it carries, which no
+        fresh command will join now, refused (every command the operator sent is answered)."""
+        with self._serving:
+            if stream != self.stream or not self._late:
+                return []
+            late, self._late = self._late, []
+            group, results = self._refused(late, "the operator ended the session before a "
+                                                 "fresh command came")
+            self._resends.record(group, results)
+            return list(zip(group, results, strict=True))
+
     def command(self, delta_position: np.ndarray, delta_rotation: np.ndarray,
                 clutch_engaged: bool) -> CommandResult:
         """One master command, received now."""

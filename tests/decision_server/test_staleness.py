@@ -280,3 +280,27 @@ def test_over_the_wire_a_late_command_with_none_after_it_is_answered_when_the_ar
         assert len([c for c in wire.slave.commands if c.kind == "cartesian"]) == 1
     finally:
         wire.close()
+
+
+def test_over_the_wire_the_operators_end_answers_the_carry(fake_station):
+    """The operator ends the session while a late command is carried: no fresh command will
+    come, so the carry is refused before the stream ends; every command sent is answered."""
+    wire = WireSession(fake_station, watchdog_s=1.0)
+    try:
+        next(wire.replies)  # the Ready
+        wire.send(1)
+        assert wire.entered.wait(10)
+        wire.send(2)
+        wire.clock.advance(0.06)  # 2 waits behind the slow move, past the age
+        wire.release.set()
+        assert _outcomes([next(wire.replies).ack]) == [(1, "COMMAND_OUTCOME_APPLIED")]
+        (session,) = wire.station.core._sessions.values()
+        wait_for(lambda: session._late, what="command 2 carried, late")
+        wire.requests.put(pb.TeleoperateRequest(end=pb.TeleoperateEnd()))
+        wire.requests.put(None)
+        rest = [reply.ack for reply in wire.replies]
+        assert _outcomes(rest) == [(2, "COMMAND_OUTCOME_REJECTED")]
+        assert "ended the session before a fresh command came" in rest[0].detail
+        assert len([c for c in wire.slave.commands if c.kind == "cartesian"]) == 1
+    finally:
+        wire.release.set()
