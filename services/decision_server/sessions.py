@@ -463,7 +463,8 @@ class OperatorSession:
             lost = self.core.sensor_lost(before_asking=self._hold_while_asking)
             if lost and not self._sensor_was_lost:
                 log.warning("session %s: %s", self.session_id, lost)
-                self._hold_for_sensor(lost)
+                with self._moving:
+                    self._hold(lost)  # (with a watchdog_hold event that says why)
             elif not lost and self._held_short_of is not None:
                 self._finish_held_segment(*self._held_short_of)
             self._sensor_was_lost = bool(lost)
@@ -473,20 +474,15 @@ class OperatorSession:
         """The wrench went stale: the arm stops where it can while the sensor is asked
         whether it is alive (a hung one takes all of the probe's time to say nothing). If it
         answers, the segment the stop cut is finished (_finish_held_segment)."""
-        if not self._sensor_was_lost:
-            self._held_short_of = self._hold_for_sensor(
-                "the force sensor's wrench went stale; asking the sensor")
-
-    def _hold_for_sensor(self, reason: str) -> tuple[pin.SE3, pin.SE3] | None:
-        """Hold the arm: (where it stops, where it was going), or None if it could not be
-        told."""
+        if self._sensor_was_lost:
+            return
         self._target = None
-        with self._moving:
+        with self._moving:  # (no event: the stop lasts one question, and is most often resumed)
             try:
-                return self.core.slave.hold(reason)
+                self._held_short_of = self.core.slave.hold(
+                    "the force sensor's wrench went stale; asking the sensor")
             except TelerobotError as error:  # the arm's own watchdogs hold it anyway
                 log.warning("could not hold the arm: %s", error.message)
-                return None
 
     def _finish_held_segment(self, here: pin.SE3, target: pin.SE3) -> None:
         """The sensor answered after a stop while it was asked: the arm goes on from where the

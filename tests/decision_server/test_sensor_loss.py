@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from services.decision_server.core import SENSOR_ALIVE_S, SENSOR_QUIET_NS
+from services.decision_server.sessions import WatchdogHold
 from telerobot.v1 import decision_server_pb2 as pb
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
@@ -25,10 +26,15 @@ def _streaming(station, slave):
 def test_a_hung_sensor_holds_the_arm_until_it_streams_again(fake_station):
     station, slave = fake_station
     operator = _streaming(station, slave)
+    events = station.core.events.subscribe(64)
     slave.sensor_hung = True  # no samples, and no answer when asked
     refused = operator.move(STEP)
     assert refused.outcome == pb.COMMAND_OUTCOME_REJECTED
     assert "force sensor went silent" in refused.detail and "holds" in refused.detail
+    hold = wait_for(lambda: next((e.payload for e in iter(lambda: events.get(0), None)
+                                  if isinstance(e.payload, WatchdogHold)), None),
+                    what="the hold event")  # observers hear why the arm holds
+    assert "force sensor went silent" in hold.reason
     # Held as the wrench was found stale (before the sensor was asked), and as it was lost.
     assert [reason.split(";")[0] for reason in _holds(slave)] == [
         "the force sensor's wrench went stale", refused.detail.split(";")[0]]

@@ -210,6 +210,18 @@ class WireSession:
             delta_position_m=convert.vector3_to_proto(UP), ack_receipt=receipt)))
         wait_for(lambda: len(self.arrived) >= sequence, what=f"command {sequence} to arrive")
 
+    def carry_a_late_command(self) -> None:
+        """Command 1 moves slowly; command 2 waits behind it past the age, and is carried."""
+        next(self.replies)  # the Ready
+        self.send(1)
+        assert self.entered.wait(10)
+        self.send(2)
+        self.clock.advance(0.06)
+        self.release.set()
+        assert _outcomes([next(self.replies).ack]) == [(1, "COMMAND_OUTCOME_APPLIED")]
+        (session,) = self.station.core._sessions.values()
+        wait_for(lambda: session._late, what="command 2 carried, late")
+
     def close(self) -> None:
         self.release.set()
         self.requests.put(pb.TeleoperateRequest(end=pb.TeleoperateEnd()))
@@ -264,15 +276,7 @@ def test_over_the_wire_a_late_command_with_none_after_it_is_answered_when_the_ar
     comes."""
     wire = WireSession(fake_station, watchdog_s=0.1)
     try:
-        next(wire.replies)  # the Ready
-        wire.send(1)
-        assert wire.entered.wait(10)
-        wire.send(2)
-        wire.clock.advance(0.06)  # 2 waits behind the slow move, past the age
-        wire.release.set()
-        assert _outcomes([next(wire.replies).ack]) == [(1, "COMMAND_OUTCOME_APPLIED")]
-        (session,) = wire.station.core._sessions.values()
-        wait_for(lambda: session._late, what="command 2 carried, late")
+        wire.carry_a_late_command()
         wire.clock.advance(0.2)  # past the watchdog: it holds the arm
         late = next(wire.replies).ack
         assert _outcomes([late]) == [(2, "COMMAND_OUTCOME_REJECTED")]
@@ -287,15 +291,7 @@ def test_over_the_wire_the_operators_end_answers_the_carry(fake_station):
     come, so the carry is refused before the stream ends; every command sent is answered."""
     wire = WireSession(fake_station, watchdog_s=1.0)
     try:
-        next(wire.replies)  # the Ready
-        wire.send(1)
-        assert wire.entered.wait(10)
-        wire.send(2)
-        wire.clock.advance(0.06)  # 2 waits behind the slow move, past the age
-        wire.release.set()
-        assert _outcomes([next(wire.replies).ack]) == [(1, "COMMAND_OUTCOME_APPLIED")]
-        (session,) = wire.station.core._sessions.values()
-        wait_for(lambda: session._late, what="command 2 carried, late")
+        wire.carry_a_late_command()
         wire.requests.put(pb.TeleoperateRequest(end=pb.TeleoperateEnd()))
         wire.requests.put(None)
         rest = [reply.ack for reply in wire.replies]
