@@ -164,10 +164,10 @@ def test_closing_the_tab_mid_drive_holds_the_arm(browser, console_url, robot, de
     take_lock(page)
     ready_arm(page, robot)
     start_driving(page)
-    drive_down(page, robot)  # F (-Z) stays down while the tab closes
-    assert status_of(robot) in ("ROBOT_STATUS_MOVING", "ROBOT_STATUS_READY")
-    watch = HoldWatch(decision)
+    watch = HoldWatch(decision)  # (from before the drive: see the lost link's test)
     try:
+        drive_down(page, robot)  # F (-Z) stays down while the tab closes
+        assert status_of(robot) in ("ROBOT_STATUS_MOVING", "ROBOT_STATUS_READY")
         page.close()
         ended = watch.wait_for_session_end("the tab closed")
         watch.wait_for_hold("the tab closed")
@@ -328,9 +328,11 @@ def test_a_lost_link_mid_drive_holds_the_arm(playwright_driver, tmp_path, consol
         take_lock(page)
         ready_arm(page, robot)
         start_driving(page)
-        drive_down(page, robot)
+        # Watched from before the drive: a station that stalled mid-drive may have held the
+        # arm for silence already, and then the stream's end holds nothing new.
         watch = HoldWatch(decision)
         try:
+            drive_down(page, robot)
             # The browser dies mid-drive: no end message, no close frame, the TCP link drops.
             for pid in browser_pids(profile):
                 os.kill(pid, signal.SIGKILL)
