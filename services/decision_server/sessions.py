@@ -386,6 +386,9 @@ class OperatorSession:
             elif self._is_late(group[-1]):
                 if not self._late:
                     self._late_since = (stream, holds)
+                    with self._lock:  # the watchdog watches for the fresh command it waits for
+                        self._held = False
+                    self._activity.set()
                 self._late += group  # its results come with the fresh command it joins
             else:
                 group, self._late = self._late + group, []
@@ -648,9 +651,13 @@ class OperatorSession:
                 return
             if fire:
                 self._hold("watchdog timeout: no command or heartbeat")
-            elif check_sensor and self._sensor_check():
+            elif check_sensor and (lost := self._sensor_check()):
                 with self._lock:
                     self._held = True  # held by the check; the next command asks again
+                    carried = bool(self._late)
+                if carried:  # (no command moves the arm while the sensor is lost: answer it)
+                    with self._moving:
+                        self._hold(lost)
                 continue
             self._clock.wait_until(self._activity, None if due else deadline)
 

@@ -4,13 +4,17 @@ it streams again. A sensor stopped on purpose, or never started, stops nothing."
 
 from __future__ import annotations
 
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 
 from services.decision_server.core import SENSOR_ALIVE_S, SENSOR_QUIET_NS
-from services.decision_server.sessions import WatchdogHold
+from services.decision_server.sessions import DEFAULT_MAX_COMMAND_AGE_S, WatchdogHold
 from telerobot.v1 import decision_server_pb2 as pb
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
+from wire.errors import UnavailableError
 
 STEP = (0, 0, 0.001)
 
@@ -115,4 +119,45 @@ def test_a_sensor_stopped_on_purpose_stops_nothing(fake_station):
     slave.sensor_reading = False  # StopReading: it answers that it does not read
     assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
     assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
+    operator.close()
+
+
+def test_a_command_that_comes_while_the_watchdog_asks_the_sensor_is_still_watched(fake_station):
+    """The sensor is lost, and the watchdog asks it again; a command comes meanwhile and waits
+    for the question past its age, so it is carried, and the sensor then answers it. The
+    watchdog must still watch that command's silence: its hold answers the carry, which would
+    otherwise wait for a command the operator never sends (it waits for this one's ack)."""
+    station, slave = fake_station
+    operator = _streaming(station, slave)  # its watchdog: 0.5 s
+    (session,) = station.core._sessions.values()
+    slave.sensor_hung = True
+    assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_REJECTED  # lost
+    asked, release, taken = threading.Event(), threading.Event(), threading.Event()
+
+    def probe(timeout_s: float) -> bool:  # the watchdog's question: no answer; others: alive
+        if threading.current_thread().name.startswith("watchdog-"):
+            asked.set()
+            release.wait(10)
+            raise UnavailableError("no answer within 40 ms", reason="SENSOR_SILENT")
+        return True
+
+    snapshot = station.core.snapshot
+
+    def after_the_watchdog_asks():  # (the command's batch reads it just before its own check)
+        taken.set()
+        assert asked.wait(10)
+        return snapshot()
+
+    slave.sensor_is_reading, station.core.snapshot = probe, after_the_watchdog_asks
+    with ThreadPoolExecutor(1) as pool:
+        ack = pool.submit(operator.move, STEP)
+        assert taken.wait(10)
+        assert asked.wait(10)  # the command woke the watchdog, which asks the sensor
+        slave.clock.advance(DEFAULT_MAX_COMMAND_AGE_S + 0.01)  # it waits past its age
+        release.set()
+        wait_for(lambda: session._late or ack.done(), what="the command carried")
+        slave.clock.advance(0.6)  # past the watchdog's timeout
+        refused = ack.result(timeout=10)
+    assert refused.outcome == pb.COMMAND_OUTCOME_REJECTED
+    assert "held before a fresh command came" in refused.detail
     operator.close()
