@@ -384,12 +384,14 @@ class OperatorSession:
                 yield from self._refuse_late(why)
                 yield self._refused(group, why)
             elif self._is_late(group[-1]):
-                if not self._late:
+                first = not self._late
+                if first:
                     self._late_since = (stream, holds)
-                    with self._lock:  # the watchdog watches for the fresh command it waits for
+                self._late += group  # its results come with the fresh command it joins
+                if first:  # the watchdog watches for that command (after the carry exists)
+                    with self._lock:
                         self._held = False
                     self._activity.set()
-                self._late += group  # its results come with the fresh command it joins
             else:
                 group, self._late = self._late + group, []
                 ages = [self._age_s(i) for i in group]
