@@ -67,7 +67,7 @@ test-fast: $(VENV)/.installed
 
 # The slave station: every service in its own process, until Ctrl-C.
 serve: $(VENV)/.installed
-	$(PY) -m services.launcher
+	$(PY) -m services.launcher $(if $(ARM),--arm $(ARM))
 
 # A scripted peg-in-hole session, with and without server-side compliance; starts a local
 # station if none answers. Artifacts land in runs/teleop-<time>/.

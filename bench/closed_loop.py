@@ -32,7 +32,7 @@ import pinocchio as pin
 
 from bench.stats import summary
 from domain.robot_model.ik import solve_ik
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.workspace import FIXTURE_CENTER_XY, TABLE_TOP_Z
 from telerobot.v1 import force_sensor_pb2 as fpb
 from telerobot.v1 import force_sensor_pb2_grpc, proxy_robot_pb2_grpc, types_pb2
@@ -131,7 +131,7 @@ def _move_z(stub, dz_m: float) -> None:
 
 
 def run_closed_loop(proxy_address: str, force_address: str, trials: int) -> dict:
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     channel = grpc.insecure_channel(proxy_address)
     robot = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
     sensor_channel = grpc.insecure_channel(force_address)

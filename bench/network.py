@@ -126,9 +126,9 @@ def link_profiles(round_trip_ms: float, seed: int) -> tuple[LinkProfile, LinkPro
 def home_position() -> list[float]:
     """The tool's position at the world's home configuration, straight above the hole: where
     the task starts (make teleop starts where the arm is, which is home on a fresh station)."""
-    from domain.robot_model.kinematics import PumaKinematics
+    from domain.robot_model.kinematics import ArmKinematics
 
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     return [float(v) for v in kinematics.tool_pose(kinematics.home_q).translation]
 
 

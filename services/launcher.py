@@ -50,7 +50,12 @@ from grpc_health.v1 import health_pb2, health_pb2_grpc
 from discovery.advertise import ADVERTISE_ENV, advertised
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
-from services.runtime.config import DEFAULT_GRACE_S, configure_logging
+from services.runtime.config import (
+    DEFAULT_GRACE_S,
+    add_arm_argument,
+    configure_logging,
+    select_arm_from,
+)
 from services.runtime.process import metrics_port_name, token_port_name, watch_parent
 from services.runtime.restart import RestartPolicy, RestartTracker
 from services.runtime.supervisor_state import (
@@ -93,6 +98,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--grace-s", type=float, default=DEFAULT_GRACE_S,
                         help="how long each service may drain in-flight calls on stop")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
+    add_arm_argument(parser)
     parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
                         help=f"run every service with mutual TLS from this directory (env "
                              f"{TLS_DIR_ENV}; `make certs` writes var/pki)")
@@ -111,6 +117,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="do not advertise the station")
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
+    if not select_arm_from(args, log):  # every child inherits the choice
+        return 2
     dump_stacks_on_signal()
     health_security = station_channel_security(args.tls_dir or None, "launcher")
 

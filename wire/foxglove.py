@@ -41,8 +41,9 @@ from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
 from foxglove_schemas_protobuf.Vector3_pb2 import Vector3
 from google.protobuf.timestamp_pb2 import Timestamp
 
-from domain.robot_model import puma560 as p
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model import names
+from domain.robot_model.description import arm_description
+from domain.robot_model.kinematics import ArmKinematics
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 
@@ -69,7 +70,6 @@ FOXGLOVE_TOPICS: dict[str, type] = {
 }
 
 BASE_FRAME = "base"
-LINK_FRAMES = ("link1", "link2", "link3", "link4", "link5", "link6")
 FLANGE_FRAME = "flange"
 TOOL_FRAME = "tool"
 LEFT_CAMERA_FRAME = "camera_left"
@@ -125,11 +125,12 @@ class ArmTransforms:
     """The arm's frames at a joint configuration, as a Foxglove FrameTransforms (see the module
     docstring for the tree). Not thread-safe (one Pinocchio data): one per thread."""
 
-    def __init__(self, kinematics: PumaKinematics | None = None) -> None:
-        self.kinematics = kinematics or PumaKinematics()
+    def __init__(self, kinematics: ArmKinematics | None = None) -> None:
+        self.kinematics = kinematics or ArmKinematics()
         model = self.kinematics.model
-        self._links = [model.getFrameId(name) for name in LINK_FRAMES]
-        self._flange = self.kinematics.frame_id(p.FLANGE_SITE)
+        self.link_frames = _link_frames(model)
+        self._links = [model.getFrameId(name) for name in self.link_frames]
+        self._flange = self.kinematics.frame_id(names.FLANGE_SITE)
         self.joint_names = tuple(model.names[1:])
         self.cameras: list[FrameTransform] = []  # the eyes' frames, from set_cameras()
 
@@ -149,7 +150,7 @@ class ArmTransforms:
         stamp = _stamp(stamp_ns)
         out = FrameTransforms()
         parent, world_T_parent = BASE_FRAME, pin.SE3.Identity()
-        for name, frame in zip(LINK_FRAMES, self._links, strict=True):
+        for name, frame in zip(self.link_frames, self._links, strict=True):
             world_T_link = data.oMf[frame]
             out.transforms.append(
                 _transform(parent, name, world_T_parent.actInv(world_T_link), stamp))
@@ -175,20 +176,28 @@ class ArmTransforms:
                                tool)
 
 
-JOINT_NAMES = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
+def _link_frames(model: pin.Model) -> tuple[str, ...]:
+    """The body each joint moves (its first body frame), in joint order."""
+    bodies: dict[int, str] = {}
+    for frame in model.frames:
+        if frame.type == pin.FrameType.BODY and frame.parentJoint > 0:
+            bodies.setdefault(frame.parentJoint, frame.name)
+    return tuple(bodies[joint] for joint in range(1, model.njoints))
 
 
-def joint_states(state: types_pb2.RobotState) -> JointStates:
-    """The state's joint angles (rad) and rates (rad/s), named joint1..joint6, at its sample
-    time."""
-    if len(state.joint_positions_rad) != len(JOINT_NAMES):
-        raise ValueError(f"a RobotState has {len(JOINT_NAMES)} joint positions, "
+def joint_states(state: types_pb2.RobotState,
+                 joint_names: Sequence[str] | None = None) -> JointStates:
+    """The state's joint angles (rad) and rates (rad/s), named as the arm's file names them
+    (default: the selected arm's), at its sample time."""
+    joint_names = joint_names or arm_description().joint_names
+    if len(state.joint_positions_rad) != len(joint_names):
+        raise ValueError(f"a RobotState has {len(joint_names)} joint positions, "
                          f"not {len(state.joint_positions_rad)}")
     rates = list(state.joint_velocities_rad_per_s)
     joints = []
-    for i, name in enumerate(JOINT_NAMES):
+    for i, name in enumerate(joint_names):
         joint = JointState(name=name, position=float(state.joint_positions_rad[i]))
-        if len(rates) == len(JOINT_NAMES):
+        if len(rates) == len(joint_names):
             joint.velocity = float(rates[i])
         joints.append(joint)
     return JointStates(timestamp=state.sample_time, joints=joints)

@@ -9,7 +9,7 @@ import time
 import numpy as np
 
 from domain.robot_model.puma560 import HOME_Q
-from services.world.link import JOINT_COUNT, ArmSample
+from services.world.link import ArmSample
 
 
 class RestingArm:
@@ -24,7 +24,7 @@ class RestingArm:
 
     def read_arm(self) -> ArmSample:
         self._sequence += 1
-        return ArmSample(self._sequence, time.time_ns(), self._q.copy(), np.zeros(JOINT_COUNT),
+        return ArmSample(self._sequence, time.time_ns(), self._q.copy(), np.zeros_like(self._q),
                          self._target.copy(), self._latched, "")
 
     def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:

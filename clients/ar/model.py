@@ -298,9 +298,9 @@ def puma_forward_kinematics(flange_to_tool=None) -> ForwardKinematics:
     tool or `flange_to_tool` (4x4 or pin.SE3). Not thread-safe: one per thread."""
     import pinocchio as pin
 
-    from domain.robot_model.kinematics import PumaKinematics
+    from domain.robot_model.kinematics import ArmKinematics
 
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     if flange_to_tool is not None:
         offset = as_pose(flange_to_tool)
         kinematics.flange_T_tool = pin.SE3(offset[:3, :3], offset[:3, 3])

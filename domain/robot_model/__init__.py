@@ -6,13 +6,13 @@ Pure domain code (no transport). Modules, one job each:
 * ``workspace``   -- layout of the work cell (table, peg-in-hole fixture, stereo cameras)
 * ``mjcf``        -- generates ``puma560.xml`` and ``scene.xml`` from the two modules above
 * ``loader``      -- loads the MuJoCo / Pinocchio models and resolves MuJoCo ids by name
-* ``kinematics``  -- ``PumaKinematics``: poses, Jacobians, D(q), C(q, qd), G(q), RNEA
+* ``kinematics``  -- ``ArmKinematics``: poses, Jacobians, D(q), C(q, qd), G(q), RNEA
 * ``ik``          -- damped least-squares inverse kinematics within the joint limits
 * ``singularity`` -- distance-to-singularity measures for Cartesian motion
 """
 
 from domain.robot_model.ik import IkResult, solve_ik
-from domain.robot_model.kinematics import TOOL_FRAME, JacobianFrame, PumaKinematics
+from domain.robot_model.kinematics import TOOL_FRAME, ArmKinematics, JacobianFrame
 from domain.robot_model.loader import (
     MujocoIds,
     load_mujoco_model,
@@ -26,7 +26,7 @@ __all__ = [
     "IkResult",
     "JacobianFrame",
     "MujocoIds",
-    "PumaKinematics",
+    "ArmKinematics",
     "SingularityMeasures",
     "load_mujoco_model",
     "load_pinocchio_model",

@@ -2,8 +2,11 @@
 
 Each iteration linearises the pose error ``log6(current^-1 * target)`` (expressed in the current
 tool frame), takes a damped Gauss-Newton step, limits its size, applies it with ``pin.integrate``
-and clamps to the joint limits. Non-convergence is reported in the result, never raised: the
-caller decides whether to use, retry or reject the answer.
+and clamps to the joint limits. An arm with more joints than the six a pose needs (the FR3's
+seven) spends the spare motion in the task's null space: toward its home pose, and away from a
+limit it comes near, so the elbow does not wander as the tool is driven. Non-convergence is
+reported in the result, never raised: the caller decides whether to use, retry or reject the
+answer.
 """
 
 from __future__ import annotations
@@ -13,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from domain.robot_model.kinematics import TOOL_FRAME, PumaKinematics
+from domain.robot_model.kinematics import TOOL_FRAME, ArmKinematics
 
 # Damping lambda^2 added to J J^T (Sugihara 2011): a floor that keeps steps finite at singularities
 # plus a part growing with the squared pose error, so far from the target the solver takes cautious
@@ -24,6 +27,10 @@ IK_MAX_ITERATIONS = 100
 IK_POSITION_TOLERANCE = 1e-6  # m
 IK_ROTATION_TOLERANCE = 1e-6  # rad
 IK_MAX_STEP = 0.5  # rad, largest joint change per iteration (a trust region for far-away targets)
+TASK_DIMENSION = 6  # a pose: joints beyond these are redundant
+POSTURE_GAIN = 0.1  # per iteration, of the way back to home, in the null space
+LIMIT_GAIN = 0.2  # rad per iteration, away from a limit the joint is at
+LIMIT_MARGIN = 0.8  # of a joint's half range from its middle, before the limit push starts
 
 
 @dataclass(frozen=True)
@@ -43,7 +50,7 @@ def pose_errors(reached: pin.SE3, target: pin.SE3) -> tuple[float, float]:
 
 
 def solve_ik(
-    kinematics: PumaKinematics,
+    kinematics: ArmKinematics,
     target: pin.SE3,
     q_seed: np.ndarray,
     *,
@@ -84,11 +91,29 @@ def solve_ik(
         blocked = ((q <= lower) & (step < 0.0)) | ((q >= upper) & (step > 0.0))
         if blocked.any():
             step = _damped_step(error_jacobian * ~blocked, error, step_damping)
+        if model.nq > TASK_DIMENSION:
+            step += _null_space(error_jacobian, step_damping) @ _posture_step(
+                q, kinematics.home_q, lower, upper)
         largest = np.max(np.abs(step))
         if largest > IK_MAX_STEP:
             step *= IK_MAX_STEP / largest
         q = np.clip(pin.integrate(model, q, step), lower, upper)
         iteration += 1
+
+
+def _posture_step(q: np.ndarray, home: np.ndarray, lower: np.ndarray,
+                  upper: np.ndarray) -> np.ndarray:
+    """Where spare joint motion should go: back toward home, and away from a near limit."""
+    middle, half = (upper + lower) / 2.0, (upper - lower) / 2.0
+    offset = (q - middle) / half  # -1 at the lower limit, 1 at the upper
+    nearness = np.clip((np.abs(offset) - LIMIT_MARGIN) / (1.0 - LIMIT_MARGIN), 0.0, 1.0)
+    return POSTURE_GAIN * (home - q) - LIMIT_GAIN * nearness * np.sign(offset)
+
+
+def _null_space(jacobian: np.ndarray, damping: float) -> np.ndarray:
+    """Projector onto joint motions that (to first order) leave the task where it is."""
+    gram = jacobian @ jacobian.T + damping * np.eye(jacobian.shape[0])
+    return np.eye(jacobian.shape[1]) - jacobian.T @ np.linalg.solve(gram, jacobian)
 
 
 def _damped_step(jacobian: np.ndarray, error: np.ndarray, damping: float) -> np.ndarray:

@@ -1,8 +1,8 @@
-"""Kinematics and rigid-body dynamics of the PUMA 560 on top of Pinocchio.
+"""Kinematics and rigid-body dynamics of an arm on top of Pinocchio.
 
 Units: joint angles rad, velocities rad/s, accelerations rad/s^2, torques N*m, lengths m.
 Poses are ``pin.SE3`` (``.homogeneous`` gives the 4x4 matrix) of a frame in the world frame,
-which is the robot base (DH frame 0). Spatial vectors are ordered ``[linear; angular]``.
+which is the robot base. Spatial vectors are ordered ``[linear; angular]``.
 """
 
 from __future__ import annotations
@@ -12,10 +12,11 @@ import enum
 import numpy as np
 import pinocchio as pin
 
-from domain.robot_model import puma560 as p
+from domain.robot_model import names as n
+from domain.robot_model.description import ArmDescription, arm_description
 from domain.robot_model.loader import load_pinocchio_model
 
-TOOL_FRAME = "tool_frame"  # frame added by PumaKinematics at flange * flange_T_tool
+TOOL_FRAME = "tool_frame"  # frame added by ArmKinematics at flange * flange_T_tool
 
 
 class JacobianFrame(enum.Enum):
@@ -36,14 +37,15 @@ def _frame_id(model: pin.Model, name: str) -> int:
 def _offset_from_flange(model: pin.Model, name: str) -> pin.SE3:
     """Pose of frame ``name`` relative to the flange; both must be rigid on the last link."""
     frame = model.frames[_frame_id(model, name)]
-    flange = model.frames[_frame_id(model, p.FLANGE_SITE)]
+    flange = model.frames[_frame_id(model, n.FLANGE_SITE)]
     if frame.parentJoint != flange.parentJoint:
         raise ValueError(f"frame {name!r} is not on the flange's link")
     return flange.placement.actInv(frame.placement)
 
 
-class PumaKinematics:
-    """Forward kinematics, Jacobians and dynamics for joint vectors ``q`` of shape (6,).
+class ArmKinematics:
+    """Forward kinematics, Jacobians and dynamics of one arm, for joint vectors ``q`` of shape
+    (nq,).
 
     Holds its own copy of the Pinocchio ``model`` (the description, plus the tool frame) and one
     ``data`` (scratch buffers). Every method recomputes what it needs from its arguments, so
@@ -51,14 +53,19 @@ class PumaKinematics:
     """
 
     def __init__(
-        self, model: pin.Model | None = None, flange_T_tool: pin.SE3 | None = None
+        self,
+        model: pin.Model | None = None,
+        flange_T_tool: pin.SE3 | None = None,
+        arm: ArmDescription | None = None,
     ) -> None:
-        """``model`` defaults to the committed MJCF, ``flange_T_tool`` to the tool_point site."""
-        model = pin.Model(load_pinocchio_model() if model is None else model)
-        self._flange = _frame_id(model, p.FLANGE_SITE)
+        """``arm`` defaults to the selected arm, ``model`` to its ``arm.xml``, ``flange_T_tool``
+        to its tool_point site."""
+        self.arm = arm or arm_description()
+        model = pin.Model(load_pinocchio_model(self.arm) if model is None else model)
+        self._flange = _frame_id(model, n.FLANGE_SITE)
         flange = model.frames[self._flange]
         if flange_T_tool is None:
-            flange_T_tool = _offset_from_flange(model, p.TOOL_SITE)
+            flange_T_tool = _offset_from_flange(model, n.TOOL_SITE)
         tool = pin.Frame(
             TOOL_FRAME,
             flange.parentJoint,
@@ -91,9 +98,14 @@ class PumaKinematics:
         return self.model.effortLimit.copy()
 
     @property
+    def velocity_limits(self) -> np.ndarray:
+        """Symmetric joint velocity limits (rad/s)."""
+        return self.model.velocityLimit.copy()
+
+    @property
     def home_q(self) -> np.ndarray:
         """The ``home`` keyframe of the MJCF (rad)."""
-        return self.model.referenceConfigurations[p.HOME_KEY].copy()
+        return self.model.referenceConfigurations[n.HOME_KEY].copy()
 
     def within_limits(self, q: np.ndarray, tolerance: float = 0.0) -> bool:
         """True when every joint is inside its limits widened by ``tolerance`` (rad)."""
@@ -110,7 +122,7 @@ class PumaKinematics:
     # --- tool definition ----------------------------------------------------------------------
     @property
     def flange_T_tool(self) -> pin.SE3:
-        """Tool frame relative to the flange (DH frame 6)."""
+        """Tool frame relative to the flange."""
         return self.model.frames[self._flange].placement.actInv(
             self.model.frames[self._tool].placement
         )
@@ -127,7 +139,7 @@ class PumaKinematics:
         return self._pose(q, self.frame_id(name))
 
     def flange_pose(self, q: np.ndarray) -> pin.SE3:
-        """World pose of the flange (DH frame 6)."""
+        """World pose of the flange."""
         return self._pose(q, self._flange)
 
     def tool_pose(self, q: np.ndarray) -> pin.SE3:
@@ -137,13 +149,13 @@ class PumaKinematics:
     def frame_jacobian(
         self, q: np.ndarray, name: str, expressed_in: JacobianFrame = JacobianFrame.WORLD
     ) -> np.ndarray:
-        """6x6 geometric Jacobian of a named frame: ``[v (m/s); w (rad/s)] = J @ qd``."""
+        """6 x nq geometric Jacobian of a named frame: ``[v (m/s); w (rad/s)] = J @ qd``."""
         return self._jacobian(q, self.frame_id(name), expressed_in)
 
     def tool_jacobian(
         self, q: np.ndarray, expressed_in: JacobianFrame = JacobianFrame.WORLD
     ) -> np.ndarray:
-        """6x6 geometric Jacobian of the tool point: ``[v (m/s); w (rad/s)] = J @ qd``."""
+        """6 x nq geometric Jacobian of the tool point: ``[v (m/s); w (rad/s)] = J @ qd``."""
         return self._jacobian(q, self._tool, expressed_in)
 
     def _jacobian(self, q: np.ndarray, frame: int, expressed_in: JacobianFrame) -> np.ndarray:

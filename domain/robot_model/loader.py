@@ -1,8 +1,8 @@
-"""Load the generated PUMA 560 models and resolve MuJoCo ids by name.
+"""Load an arm's models and resolve MuJoCo ids by name.
 
-MuJoCo loads ``scene.xml`` (arm + work cell); Pinocchio loads ``puma560.xml`` (the arm alone,
-which ``scene.xml`` includes). Both files come from ``mjcf.py``, so the two models share every
-kinematic and inertial number.
+MuJoCo loads the arm's ``scene.xml`` (arm + work cell); Pinocchio loads its ``arm.xml`` (the arm
+alone, which ``scene.xml`` includes), so the two models share every kinematic and inertial number.
+Every function defaults to the station's selected arm (``description.py``).
 """
 
 from __future__ import annotations
@@ -14,25 +14,27 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 
-from domain.robot_model import puma560 as p
+from domain.robot_model import names as n
 from domain.robot_model import workspace as ws
-from domain.robot_model.model_files import ROBOT_XML_PATH, SCENE_XML_PATH
+from domain.robot_model.description import ArmDescription, arm_description
 
 
-def load_mujoco_model(path: Path | str = SCENE_XML_PATH) -> mujoco.MjModel:
-    """Compile the MuJoCo work-cell model (defaults to the committed ``scene.xml``)."""
-    return mujoco.MjModel.from_xml_path(str(path))
+def load_mujoco_model(path: Path | str | None = None) -> mujoco.MjModel:
+    """Compile a MuJoCo model: ``path``, else the selected arm's work cell (``scene.xml``)."""
+    return mujoco.MjModel.from_xml_path(str(path or arm_description().scene_xml))
 
 
-def load_pinocchio_model(path: Path | str = ROBOT_XML_PATH) -> pin.Model:
-    """Build the Pinocchio model of the arm from the committed ``puma560.xml``.
+def load_pinocchio_model(arm: ArmDescription | None = None) -> pin.Model:
+    """Build the Pinocchio model of an arm (default: the selected one) from its ``arm.xml``.
 
-    The MJCF parser takes limits, armature and damping from the joints but ignores the motor
-    actuators, so the joint torque limits (N*m, the motors' ctrlrange) are filled in here from
-    the same parameter module.
+    The MJCF parser takes limits, armature and damping from the joints but ignores the motors and
+    custom data, so the torque bounds (the motors' ctrlrange) and velocity bounds are filled in
+    here from the same file's description.
     """
-    model = pin.buildModelFromMJCF(str(path))
-    model.effortLimit = p.MAX_TORQUE.copy()
+    arm = arm or arm_description()
+    model = pin.buildModelFromMJCF(str(arm.arm_xml))
+    model.effortLimit = arm.max_torque.copy()
+    model.velocityLimit = arm.max_velocity.copy()
     return model
 
 
@@ -53,7 +55,8 @@ def _sensor_slice(model: mujoco.MjModel, name: str) -> slice:
 
 @dataclass(frozen=True)
 class MujocoIds:
-    """Indices into a compiled work-cell model, resolved by name (arrays in joint order 1..6)."""
+    """Indices into a compiled work-cell model, resolved by name (arrays in the arm's joint
+    order)."""
 
     joints: np.ndarray  # joint ids
     qpos: np.ndarray  # addresses in data.qpos
@@ -71,26 +74,28 @@ class MujocoIds:
     home_key: int
 
 
-def mujoco_ids(model: mujoco.MjModel) -> MujocoIds:
-    """Resolve every joint, actuator, site, sensor, camera and keyframe the world uses.
+def mujoco_ids(model: mujoco.MjModel, arm: ArmDescription | None = None) -> MujocoIds:
+    """Resolve every joint, actuator, site, sensor, camera and keyframe the world uses, for
+    ``arm`` (default: the selected one).
 
     Raises ``KeyError`` naming the first missing element (e.g. when given the bare arm model).
     """
+    arm = arm or arm_description()
     obj = mujoco.mjtObj
-    joints = np.array([_id(model, obj.mjOBJ_JOINT, name) for name in p.JOINT_NAMES])
+    joints = np.array([_id(model, obj.mjOBJ_JOINT, name) for name in arm.joint_names])
     return MujocoIds(
         joints=joints,
         qpos=model.jnt_qposadr[joints].copy(),
         dofs=model.jnt_dofadr[joints].copy(),
-        actuators=np.array([_id(model, obj.mjOBJ_ACTUATOR, name) for name in p.ACTUATOR_NAMES]),
-        flange_site=_id(model, obj.mjOBJ_SITE, p.FLANGE_SITE),
-        ft_site=_id(model, obj.mjOBJ_SITE, p.FT_SITE),
-        tool_site=_id(model, obj.mjOBJ_SITE, p.TOOL_SITE),
+        actuators=np.array([_id(model, obj.mjOBJ_ACTUATOR, name) for name in arm.actuator_names]),
+        flange_site=_id(model, obj.mjOBJ_SITE, n.FLANGE_SITE),
+        ft_site=_id(model, obj.mjOBJ_SITE, n.FT_SITE),
+        tool_site=_id(model, obj.mjOBJ_SITE, n.TOOL_SITE),
         hole_entry_site=_id(model, obj.mjOBJ_SITE, ws.HOLE_ENTRY_SITE),
         hole_bottom_site=_id(model, obj.mjOBJ_SITE, ws.HOLE_BOTTOM_SITE),
-        wrist_force=_sensor_slice(model, p.FORCE_SENSOR),
-        wrist_torque=_sensor_slice(model, p.TORQUE_SENSOR),
+        wrist_force=_sensor_slice(model, n.FORCE_SENSOR),
+        wrist_torque=_sensor_slice(model, n.TORQUE_SENSOR),
         left_camera=_id(model, obj.mjOBJ_CAMERA, ws.LEFT_CAMERA),
         right_camera=_id(model, obj.mjOBJ_CAMERA, ws.RIGHT_CAMERA),
-        home_key=_id(model, obj.mjOBJ_KEY, p.HOME_KEY),
+        home_key=_id(model, obj.mjOBJ_KEY, n.HOME_KEY),
     )

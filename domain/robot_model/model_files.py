@@ -1,9 +1,23 @@
-"""Locations of the generated, committed MJCF files (written by ``mjcf.py``)."""
+"""Where each arm's description files live (written by ``mjcf.py``, committed).
+
+``arms/<arm>/arm.xml`` is the arm alone (Pinocchio loads it); ``arms/<arm>/scene.xml`` is the work
+cell including the arm (MuJoCo loads it).
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 MODEL_DIR = Path(__file__).resolve().parent
-ROBOT_XML_PATH = MODEL_DIR / "puma560.xml"  # the arm alone: Pinocchio loads this
-SCENE_XML_PATH = MODEL_DIR / "scene.xml"  # the work cell including the arm: MuJoCo loads this
+ARMS_DIR = MODEL_DIR / "arms"
+ARM_FILE = "arm.xml"
+SCENE_FILE = "scene.xml"
+DEFAULT_ARM = "puma560"
+
+
+def arm_xml_path(arm: str) -> Path:
+    return ARMS_DIR / arm / ARM_FILE
+
+
+def scene_xml_path(arm: str) -> Path:
+    return ARMS_DIR / arm / SCENE_FILE

@@ -23,6 +23,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+# The element names every arm file uses (re-exported: look things up by name, never by index)
+from domain.robot_model.names import (  # noqa: F401
+    BASE_BODY,
+    FLANGE_SITE,
+    FORCE_SENSOR,
+    FT_SITE,
+    HOME_KEY,
+    TOOL_BODY,
+    TOOL_SITE,
+    TORQUE_SENSOR,
+)
+
 Vec3 = tuple[float, float, float]
 
 
@@ -173,20 +185,12 @@ NUM_JOINTS = len(LINKS)
 JOINT_LOWER = np.array([link.drive.lower for link in LINKS])  # rad
 JOINT_UPPER = np.array([link.drive.upper for link in LINKS])  # rad
 MAX_TORQUE = np.array([link.drive.max_torque for link in LINKS])  # N*m
+# No published joint-speed figure: the bound is the simulated servo's own cap on every joint.
+MAX_VELOCITY = np.full(len(LINKS), 1.0)  # rad/s
 
 # --- Tool: a peg behind a wrist force/torque sensor -------------------------------------------
 # An aluminium-sized peg (20 mm diameter, 100 mm long); the sensor itself is treated as massless.
 TOOL = Tool(length=0.10, radius=0.010, mass=0.10)
-
-# --- Names shared with the world / kinematics (look things up by name, never by index) --------
-BASE_BODY = "base"
-TOOL_BODY = "tool"
-FLANGE_SITE = "flange"  # DH frame 6
-FT_SITE = "wrist_ft"  # force/torque sensor frame, on the tool body at the flange
-TOOL_SITE = "tool_point"  # peg tip, z axis along the peg
-FORCE_SENSOR = "wrist_force"
-TORQUE_SENSOR = "wrist_torque"
-HOME_KEY = "home"
 
 # Ready pose: elbow up, tool pointing straight down with its tip at (0.645, -0.150, 0.500) m,
 # 0.21 m above the hole of the peg-in-hole fixture. q2 + q3 + q5 = -180 deg with q4 = 0 keeps the

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from domain.robot_model.kinematics import JacobianFrame, PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics, JacobianFrame
 
 # Smallest tool-Jacobian singular value below which Cartesian motion should be refused (q5 within
 # about 2.3 deg of the wrist singularity), and below which it should be slowed down (about 10 deg).
@@ -49,7 +49,7 @@ def measures_from_jacobian(jacobian: np.ndarray) -> SingularityMeasures:
     )
 
 
-def singularity_measures(kinematics: PumaKinematics, q: np.ndarray) -> SingularityMeasures:
+def singularity_measures(kinematics: ArmKinematics, q: np.ndarray) -> SingularityMeasures:
     """Singularity measures of the world-frame tool Jacobian at ``q`` (rad).
 
     Singular values are frame-invariant, so WORLD and LOCAL Jacobians give the same numbers.

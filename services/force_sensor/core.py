@@ -42,8 +42,8 @@ from collections.abc import Callable
 import numpy as np
 import pinocchio as pin
 
-from domain.robot_model import puma560
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model import names, puma560
+from domain.robot_model.kinematics import ArmKinematics
 from services.common.fanout import Fanout
 from services.force_sensor.settings import SensorSettings, ThreadPriority
 from services.force_sensor.subscribers import (
@@ -92,12 +92,12 @@ class ForceSensorCore:
         self._wrench_link_factory = wrench_link_factory
         self._arm_link_factory = arm_link_factory
         self._payload = payload or default_payload()
-        self._kinematics = PumaKinematics()  # used by the sampling thread only
+        self._kinematics = ArmKinematics()  # used by the sampling thread only
         home = self._kinematics.home_q  # any configuration: both frames ride on the last link
         self._flange_to_sensor = self._kinematics.flange_pose(home).actInv(
-            self._kinematics.frame_pose(home, puma560.FT_SITE))
+            self._kinematics.frame_pose(home, names.FT_SITE))
         self._flange_to_tool = self._kinematics.flange_T_tool
-        self._sensor_frame = self._kinematics.frame_id(puma560.FT_SITE)
+        self._sensor_frame = self._kinematics.frame_id(names.FT_SITE)
         self._sensor_to_tool = self._flange_to_sensor.actInv(self._flange_to_tool)
         self._lock = threading.Lock()
         self._settings = SensorSettings()

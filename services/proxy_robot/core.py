@@ -29,9 +29,9 @@ import numpy as np
 import pinocchio as pin
 
 from domain.geometry import finite_vector, moved_by, rotation_angle
-from domain.robot_model import puma560
+from domain.robot_model import names
 from domain.robot_model.ik import solve_ik
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.singularity import singularity_measures
 from services.common.fanout import Fanout
 from services.proxy_robot.segment_timing import SegmentTiming
@@ -45,7 +45,7 @@ from services.proxy_robot.status import (
     StatusChanged,
 )
 from services.runtime.clock import SYSTEM_CLOCK, Clock
-from services.world.link import JOINT_COUNT, ArmLink, ArmSample
+from services.world.link import ArmLink, ArmSample
 from wire.errors import (
     FailedPreconditionError,
     InvalidArgumentError,
@@ -95,8 +95,8 @@ class ProxyRobotCore:
         self._threads = threads
         self._lock = threading.RLock()  # status, target, link, tool frame
         self._move_lock = threading.Lock()  # one move computation at a time (kinematics buffers)
-        self._move_kinematics = PumaKinematics()
-        self._monitor_kinematics = PumaKinematics()
+        self._move_kinematics = ArmKinematics()
+        self._monitor_kinematics = ArmKinematics()
         self._tool_frame = self._move_kinematics.flange_T_tool
         self._status = RobotStatus.NOT_CONNECTED
         self._reason = "not connected yet"
@@ -253,7 +253,7 @@ class ProxyRobotCore:
 
     def move_joints(self, delta_rad) -> tuple[np.ndarray, pin.SE3]:
         """Add a joint increment to the target. Returns (new target, its tool pose)."""
-        delta = finite_vector(delta_rad, JOINT_COUNT, "delta_joint_positions_rad")
+        delta = finite_vector(delta_rad, self._move_kinematics.nq, "delta_joint_positions_rad")
         largest = int(np.argmax(np.abs(delta)))
         if abs(delta[largest]) > MAX_JOINT_INCREMENT_RAD:
             raise OutOfRangeError(
@@ -311,7 +311,7 @@ class ProxyRobotCore:
         """Joint target for a tool pose; None when the step is too big (near a singularity);
         OutOfRangeError when the pose is unreachable or past the joint limits."""
         flange_goal = tool_goal * self._tool_frame.inverse()
-        result = solve_ik(self._move_kinematics, flange_goal, q_seed, frame=puma560.FLANGE_SITE)
+        result = solve_ik(self._move_kinematics, flange_goal, q_seed, frame=names.FLANGE_SITE)
         if not result.success:
             if not first_try:
                 return None
@@ -490,7 +490,7 @@ class ProxyRobotCore:
         self.states.publish(snapshot)
         return True
 
-    def _sample(self, link: ArmLink, kinematics: PumaKinematics) -> tuple[ArmSample,
+    def _sample(self, link: ArmLink, kinematics: ArmKinematics) -> tuple[ArmSample,
                                                                              RobotSnapshot]:
         arm = link.read_arm()
         flange = kinematics.flange_pose(arm.joint_positions_rad)

@@ -13,6 +13,15 @@ import logging
 import os
 import sys
 
+from domain.robot_model.description import (
+    ARM_ENV,
+    ArmDescriptionError,
+    UnknownArmError,
+    available_arms,
+    select_arm,
+    selected_arm_name,
+)
+from domain.robot_model.model_files import DEFAULT_ARM
 from services.runtime.lanes import Lane
 from wire.addresses import DEFAULT_HOST as DEFAULT_HOST  # re-exported
 from wire.addresses import DEFAULT_PORTS as DEFAULT_PORTS  # re-exported
@@ -75,6 +84,25 @@ class ServiceParser(argparse.ArgumentParser):
         return namespace, extras
 
 
+def add_arm_argument(parser: argparse.ArgumentParser) -> None:
+    """--arm: the arm the station drives, one of its description files (see select_arm_from)."""
+    parser.add_argument(
+        "--arm", default=selected_arm_name(),
+        help=f"the arm: {', '.join(available_arms())} (env {ARM_ENV}; default "
+             f"{DEFAULT_ARM})")
+
+
+def select_arm_from(args: argparse.Namespace, log: logging.Logger) -> bool:
+    """Make args.arm this process's arm (its children inherit it); False, with the reason
+    logged, when there is no such arm or its file is broken."""
+    try:
+        select_arm(args.arm)
+    except (UnknownArmError, ArmDescriptionError) as error:
+        log.error("not starting: %s", error)
+        return False
+    return True
+
+
 def base_parser(service: str, description: str) -> argparse.ArgumentParser:
     """Flags every service process takes; each default comes from the environment first."""
     parser = ServiceParser(prog=f"python -m services.{service}", description=description)
@@ -88,6 +116,7 @@ def base_parser(service: str, description: str) -> argparse.ArgumentParser:
         "--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"),
         help="DEBUG, INFO, WARNING or ERROR (env TELEROBOT_LOG_LEVEL)",
     )
+    add_arm_argument(parser)
     parser.add_argument(
         "--grace-s", type=float,
         default=float(os.environ.get("TELEROBOT_GRACE_S", DEFAULT_GRACE_S)),

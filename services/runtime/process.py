@@ -21,7 +21,12 @@ from pathlib import Path
 from grpc_health.v1 import health_pb2
 from prometheus_client import disable_created_metrics
 
-from services.runtime.config import METRICS_OFF, base_parser, configure_logging
+from services.runtime.config import (
+    METRICS_OFF,
+    base_parser,
+    configure_logging,
+    select_arm_from,
+)
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.priority import raise_thread_priority
 from services.runtime.server import (
@@ -79,6 +84,8 @@ def run_service(
         add_arguments(parser)
     args = parser.parse_args(argv)
     configure_logging(name, args.log_level)
+    if not select_arm_from(args, log):  # before anything loads a model
+        return 2
     if realtime_priority:  # first: the threads started from now on inherit it
         if args.rt_priority:
             raise_thread_priority(args.rt_priority, 0, what=f"{name}'s threads",

@@ -37,7 +37,6 @@ import numpy as np
 from domain.robot_model.loader import load_mujoco_model, mujoco_ids
 from services.stereo_camera.calibration import mujoco_stereo
 from services.stereo_camera.source import EyeFrame, SourceGeometry
-from services.world.link import JOINT_COUNT
 from services.world.shm_link import SharedMemoryArmLink
 from wire.errors import FailedPreconditionError, UnavailableError
 
@@ -139,7 +138,7 @@ class SimSource:
             raise UnavailableError("the sim cameras are not open", reason="SOURCE_CLOSED")
         q = np.asarray(self._joints(), dtype=float)
         state_time_ns = time.time_ns()
-        if q.shape != (JOINT_COUNT,) or not np.isfinite(q).all():
+        if q.shape != self._ids.qpos.shape or not np.isfinite(q).all():
             raise UnavailableError(f"the world sent joint positions that cannot be rendered: {q!r}",
                                    reason="BAD_JOINT_STATE")
         self._data.qpos[self._ids.qpos] = q

@@ -15,7 +15,6 @@ import numpy as np
 
 from wire.errors import InvalidArgumentError, OutOfRangeError
 
-JOINT_COUNT = 6
 # Targets may lie this far past a joint limit (the measured position of an arm pushed against
 # its limit stop, sent back as a hold target); the servo clips them onto the limit.
 LIMIT_TOLERANCE_RAD = 0.02
@@ -23,12 +22,14 @@ LIMIT_TOLERANCE_RAD = 0.02
 
 def checked_joint_target(joint_positions_rad, lower: np.ndarray,
                          upper: np.ndarray) -> np.ndarray:
-    """A joint target (6,) in rad, as every ArmLink takes it: InvalidArgumentError on a wrong shape
-    or NaN; OutOfRangeError past a joint limit by more than LIMIT_TOLERANCE_RAD."""
+    """A joint target (one angle per joint: the limits' length) in rad, as every ArmLink takes
+    it: InvalidArgumentError on a wrong shape or NaN; OutOfRangeError past a joint limit by more
+    than LIMIT_TOLERANCE_RAD."""
     target = np.asarray(joint_positions_rad, dtype=float)
-    if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
+    joints = len(lower)
+    if target.shape != (joints,) or not np.isfinite(target).all():
         raise InvalidArgumentError(
-            f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}",
+            f"a joint target needs {joints} finite angles in rad, got {target!r}",
             reason="BAD_TARGET")
     outside = np.flatnonzero((target < lower - LIMIT_TOLERANCE_RAD)
                              | (target > upper + LIMIT_TOLERANCE_RAD))
@@ -57,9 +58,10 @@ class ArmSample:
 
     sequence: int  # servo step counter; increases by one per servo period
     sample_time_ns: int  # wall clock (time.time_ns) when the sample was taken
-    joint_positions_rad: np.ndarray  # (6,)
-    joint_velocities_rad_per_s: np.ndarray  # (6,)
-    joint_targets_rad: np.ndarray  # (6,) the latest target (the end of its segment, if one runs)
+    joint_positions_rad: np.ndarray  # (joints,)
+    joint_velocities_rad_per_s: np.ndarray  # (joints,)
+    # (joints,) the latest target (the end of its segment, if one runs)
+    joint_targets_rad: np.ndarray
     hold_latched: bool  # a latched hold (emergency stop) is in force: targets are ignored
     fault: str  # empty when healthy; otherwise what the hardware reported
 

@@ -97,8 +97,8 @@ class WorldService(Service):
         self._previous_mujoco_warning = mujoco.get_mju_user_warning()
         mujoco.set_mju_user_warning(_log_mujoco_warning)
         sim = self.sim = self._sim_factory()
-        self.publisher = WorldPublisher(sim.joint_lower, sim.joint_upper, sim.period_s,
-                                        self._shm_name)
+        self.publisher = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper,
+                                        sim.period_s, self._shm_name)
         self.publisher.publish(sim.arm_sample(), sim.wrench_sample())  # readable at once
         self.loop = RealtimeLoop(self._step, period_s=sim.period_s)
         self._spawn("physics", self._run_physics)

@@ -28,16 +28,17 @@ from multiprocessing import resource_tracker, shared_memory
 
 import numpy as np
 
-from services.world.link import JOINT_COUNT
+from domain.robot_model.description import MAX_JOINTS
 from services.world.seqlock import SeqlockRecord
 
 SHM_NAME_ENV = "TELEROBOT_WORLD_SHM"
 DEFAULT_SHM_NAME = "telerobot_world"
 
 MAGIC = 0x5445_4C45_5752_4C44  # "TELEWRLD": set last at creation, so a half-made segment is seen
-LAYOUT_VERSION = 4
+LAYOUT_VERSION = 5
 CACHE_LINE = 64
 FAULT_BYTES = 240  # UTF-8, truncated
+ARM_NAME_BYTES = 32  # ASCII
 
 STATUS_STARTING = 0
 STATUS_RUNNING = 1
@@ -50,17 +51,19 @@ HEADER_DTYPE = np.dtype([
     ("status", "u8"),  # STATUS_*
     ("heartbeat_ns", "i8"),  # time.monotonic_ns() of the latest step (one aligned 8-byte word)
     ("period_ns", "i8"),  # servo period
-    ("joint_lower", "f8", (JOINT_COUNT,)),  # rad
-    ("joint_upper", "f8", (JOINT_COUNT,)),  # rad
+    ("arm", f"S{ARM_NAME_BYTES}"),  # the arm's name (its description file)
+    ("joint_count", "u8"),  # the arm's joints: the first joint_count slots of every array
+    ("joint_lower", "f8", (MAX_JOINTS,)),  # rad
+    ("joint_upper", "f8", (MAX_JOINTS,)),  # rad
 ], align=True)
 
 STATE_DTYPE = np.dtype([
     ("heartbeat_ns", "i8"),  # time.monotonic_ns() of this step
     ("arm_sequence", "u8"),
     ("arm_time_ns", "i8"),  # time.time_ns()
-    ("q", "f8", (JOINT_COUNT,)),  # rad
-    ("qd", "f8", (JOINT_COUNT,)),  # rad/s
-    ("target", "f8", (JOINT_COUNT,)),  # rad
+    ("q", "f8", (MAX_JOINTS,)),  # rad
+    ("qd", "f8", (MAX_JOINTS,)),  # rad/s
+    ("target", "f8", (MAX_JOINTS,)),  # rad
     ("hold_latched", "u8"),
     # arm_time_ns of the step the hold latched at (0: not latched): what an e-stop took, even
     # for a reader that did not see that step
@@ -81,7 +84,7 @@ STATE_DTYPE = np.dtype([
 COMMAND_DTYPE = np.dtype([
     ("command_sequence", "u8"),  # number of the latest command of any kind
     ("target_command", "u8"),  # number of the latest target (0: none yet)
-    ("target", "f8", (JOINT_COUNT,)),  # rad
+    ("target", "f8", (MAX_JOINTS,)),  # rad
     ("target_duration_s", "f8"),  # the straight segment to reach it over (0: at once)
     ("hold_command", "u8"),  # number of the latest hold (0: none yet)
     ("release_command", "u8"),  # number of the latest release (0: none yet)
@@ -138,6 +141,15 @@ class WorldSegment:
     @property
     def world_pid(self) -> int:
         return int(self.header["world_pid"][0])
+
+    @property
+    def arm(self) -> str:
+        """The name of the arm the world simulates."""
+        return bytes(self.header["arm"][0]).decode("ascii", "replace")
+
+    @property
+    def joint_count(self) -> int:
+        return int(self.header["joint_count"][0])
 
     def layout_problem(self) -> str:
         """Why this segment is not a usable world segment ("" when it is)."""

@@ -25,6 +25,7 @@ from multiprocessing import shared_memory
 
 import numpy as np
 
+from domain.robot_model.description import selected_arm_name
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from services.world.link import (
     ArmSample,
@@ -51,7 +52,7 @@ from services.world.shm_layout import (
     segment_name,
     unlink_segment,
 )
-from wire.errors import AlreadyExistsError, UnavailableError
+from wire.errors import AlreadyExistsError, FailedPreconditionError, UnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -85,8 +86,8 @@ class WorldPublisher:
     """The world's end of the link. Single-threaded: the servo thread calls everything.
     ``clock``'s monotonic time stamps the heartbeat."""
 
-    def __init__(self, joint_lower: np.ndarray, joint_upper: np.ndarray, period_s: float,
-                 name: str | None = None, clock: Clock = SYSTEM_CLOCK):
+    def __init__(self, arm: str, joint_lower: np.ndarray, joint_upper: np.ndarray,
+                 period_s: float, name: str | None = None, clock: Clock = SYSTEM_CLOCK):
         self.name = segment_name(name)
         self._clock = clock
         if not ORDERING_GUARANTEED:
@@ -99,8 +100,11 @@ class WorldPublisher:
         header["status"] = STATUS_STARTING  # RUNNING from the first publish on
         header["heartbeat_ns"] = clock.monotonic_ns()
         header["period_ns"] = round(period_s * 1e9)
-        header["joint_lower"] = joint_lower
-        header["joint_upper"] = joint_upper
+        self._joints = joints = len(joint_lower)
+        header["arm"] = arm.encode("ascii")
+        header["joint_count"] = joints
+        header["joint_lower"][0, :joints] = joint_lower
+        header["joint_upper"][0, :joints] = joint_upper
         header["magic"] = MAGIC  # last: the segment is complete
         self._applied = 0
         self._emergency_seen = 0  # the stop_request_ns already latched
@@ -116,9 +120,10 @@ class WorldPublisher:
         record["heartbeat_ns"] = now
         record["arm_sequence"] = arm.sequence
         record["arm_time_ns"] = arm.sample_time_ns
-        record["q"] = arm.joint_positions_rad
-        record["qd"] = arm.joint_velocities_rad_per_s
-        record["target"] = arm.joint_targets_rad
+        joints = self._joints
+        record["q"][0, :joints] = arm.joint_positions_rad
+        record["qd"][0, :joints] = arm.joint_velocities_rad_per_s
+        record["target"][0, :joints] = arm.joint_targets_rad
         record["hold_latched"] = arm.hold_latched
         if not arm.hold_latched:
             self._latched_ns = 0
@@ -164,7 +169,7 @@ class WorldPublisher:
             number = int(record[field])
             if number > self._applied:
                 if kind == _TARGET:
-                    commands.append(Command(number, kind, record["target"].copy(),
+                    commands.append(Command(number, kind, record["target"][:self._joints].copy(),
                                             float(record["target_duration_s"])))
                 else:
                     commands.append(Command(number, kind))
@@ -312,17 +317,25 @@ class SharedMemoryArmLink:
 
     UnavailableError on open and on every call when the world is not running, has shut down or has
     not stepped for ``stale_after_s`` (s) by ``clock``, which must be the one that stamps the
-    world's heartbeat. Thread-safe.
+    world's heartbeat. FailedPreconditionError on open when the world simulates another arm than
+    ``arm`` (default: this process's selected arm). Thread-safe.
     """
 
     def __init__(self, name: str | None = None, stale_after_s: float = STALE_AFTER_S,
-                 clock: Clock = SYSTEM_CLOCK):
+                 clock: Clock = SYSTEM_CLOCK, arm: str | None = None):
         self._state_lock = threading.Lock()
         self._command_lock = threading.Lock()
         self._connection = _WorldConnection(name, stale_after_s, clock)
         segment = self._connection.require()
-        self.joint_lower = segment.header["joint_lower"][0].copy()  # rad
-        self.joint_upper = segment.header["joint_upper"][0].copy()  # rad
+        self.arm = segment.arm
+        expected = arm or selected_arm_name()
+        if self.arm != expected:
+            raise FailedPreconditionError(
+                f"the world on {self.name!r} simulates the {self.arm}, and this process drives "
+                f"the {expected}: start every service with the same ARM", reason="WRONG_ARM")
+        self._joints = joints = segment.joint_count
+        self.joint_lower = segment.header["joint_lower"][0, :joints].copy()  # rad
+        self.joint_upper = segment.header["joint_upper"][0, :joints].copy()  # rad
         self._issued = self._adopt_command_record(segment)
 
     @property
@@ -351,16 +364,16 @@ class SharedMemoryArmLink:
         return ArmSample(
             sequence=int(record["arm_sequence"]),
             sample_time_ns=int(record["arm_time_ns"]),
-            joint_positions_rad=record["q"].copy(),
-            joint_velocities_rad_per_s=record["qd"].copy(),
-            joint_targets_rad=record["target"].copy(),
+            joint_positions_rad=record["q"][:self._joints].copy(),
+            joint_velocities_rad_per_s=record["qd"][:self._joints].copy(),
+            joint_targets_rad=record["target"][:self._joints].copy(),
             hold_latched=bool(record["hold_latched"]),
             fault=bytes(record["fault"]).decode("utf-8", "replace"),
         )
 
     def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
-        """Make the servo track a new joint target (6,) in rad, reached along a straight
-        joint-space segment of `duration_s`; the world ignores it while a hold is latched.
+        """Make the servo track a new joint target (one angle per joint) in rad, reached along a
+        straight joint-space segment of `duration_s`; the world ignores it while a hold is latched.
         InvalidArgumentError on a wrong shape or NaN; OutOfRangeError past a joint limit (by more
         than LIMIT_TOLERANCE_RAD; the world clips onto the limit)."""
         target = checked_joint_target(joint_positions_rad, self.joint_lower, self.joint_upper)
@@ -411,7 +424,7 @@ class SharedMemoryArmLink:
             with segment.command.writing() as record:
                 # Payload first, numbers last: a driver killed in between leaves no new number.
                 if kind == _TARGET:
-                    record["target"] = target
+                    record["target"][0, :self._joints] = target
                     record["target_duration_s"] = duration_s
                     record["target_command"] = number
                 elif kind == _HOLD:

@@ -1,4 +1,4 @@
-"""The simulated PUMA 560 and its joint servo: what the world process steps once per millisecond.
+"""The simulated arm and its joint servo: what the world process steps once per millisecond.
 
 Domain code only (no threads, no transport). Each ``step()``:
 
@@ -23,12 +23,14 @@ import time
 import mujoco
 import numpy as np
 
+from domain.robot_model.description import ArmDescription, arm_description
 from domain.robot_model.loader import load_mujoco_model, mujoco_ids
-from services.world.link import JOINT_COUNT, ArmSample, RawWrench
+from services.world.link import ArmSample, RawWrench
 from services.world.trajectory import JointReference
 from wire.errors import InvalidArgumentError
 
-MAX_JOINT_SPEED_RAD_PER_S = 1.0  # every joint; the reference never moves faster
+MAX_JOINT_SPEED_RAD_PER_S = 1.0  # every joint (or its own bound, if lower): the reference never
+# moves faster
 GOAL_SMOOTHING_S = 0.005  # absorbs jitter in streamed targets (see trajectory.py)
 MAX_JOINT_ACCEL_RAD_PER_S2 = 10.0  # every joint; from 1 rad/s a hold stops in 0.1 s and 0.05 rad
 # Servo tuning: each joint is a critically damped second-order loop around the reference with
@@ -47,14 +49,16 @@ _BAD_STATE_WARNINGS = (
 
 class ArmSim:
     """The MuJoCo work cell with a joint servo on the arm, starting at the ``home`` keyframe.
+    ``arm`` defaults to the selected arm, ``model`` to its work cell.
 
     Not thread-safe: one thread steps it and applies commands between steps.
     """
 
-    def __init__(self, model: mujoco.MjModel | None = None):
-        self.model = model if model is not None else load_mujoco_model()
+    def __init__(self, model: mujoco.MjModel | None = None, arm: ArmDescription | None = None):
+        self.arm = arm or arm_description()
+        self.model = model if model is not None else load_mujoco_model(self.arm.scene_xml)
         self.data = mujoco.MjData(self.model)
-        self.ids = mujoco_ids(self.model)
+        self.ids = mujoco_ids(self.model, self.arm)
         self.period_s = float(self.model.opt.timestep)
         mujoco.mj_resetDataKeyframe(self.model, self.data, self.ids.home_key)
         mujoco.mj_forward(self.model, self.data)
@@ -69,8 +73,8 @@ class ArmSim:
 
         self._reference = JointReference(
             self.joint_positions,
-            np.full(JOINT_COUNT, MAX_JOINT_SPEED_RAD_PER_S),
-            np.full(JOINT_COUNT, MAX_JOINT_ACCEL_RAD_PER_S2),
+            np.minimum(self.arm.max_velocity, MAX_JOINT_SPEED_RAD_PER_S),
+            np.full(self.arm.joint_count, MAX_JOINT_ACCEL_RAD_PER_S2),
             self.period_s,
             GOAL_SMOOTHING_S,
         )
@@ -146,9 +150,10 @@ class ArmSim:
         (and changes nothing) while a hold is latched. InvalidArgumentError on a wrong shape or
         NaN."""
         target = np.asarray(joint_positions_rad, dtype=float)
-        if target.shape != (JOINT_COUNT,) or not np.isfinite(target).all():
+        joints = self.arm.joint_count
+        if target.shape != (joints,) or not np.isfinite(target).all():
             raise InvalidArgumentError(
-                f"a joint target needs {JOINT_COUNT} finite angles in rad, got {target!r}")
+                f"a joint target needs {joints} finite angles in rad, got {target!r}")
         if self.hold_latched:
             return False
         self._reference.set_goal(np.clip(target, self.joint_lower, self.joint_upper), duration_s)

@@ -22,7 +22,7 @@ from clients.ar.model import (
     rotation_exp,
     rotation_log,
 )
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.puma560 import HOME_Q
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.servicer import event_to_proto, snapshot_to_proto
@@ -40,7 +40,7 @@ def _random_rotation(rng, max_angle=0.5) -> np.ndarray:
 
 
 def _home_pose() -> np.ndarray:
-    return np.array(PumaKinematics().tool_pose(HOME_Q).homogeneous)
+    return np.array(ArmKinematics().tool_pose(HOME_Q).homogeneous)
 
 
 class FakeServer:
@@ -175,7 +175,7 @@ def test_correcting_from_joint_angles_uses_the_robots_kinematics():
     q = HOME_Q + np.array([0.2, -0.1, 0.15, 0.3, 0.2, -0.4])
     model = RobotModel(_home_pose(), forward_kinematics=puma_forward_kinematics())
     model.correct_joints(q)
-    np.testing.assert_allclose(model.tool_pose, PumaKinematics().tool_pose(q).homogeneous,
+    np.testing.assert_allclose(model.tool_pose, ArmKinematics().tool_pose(q).homogeneous,
                                atol=1e-12)
     with pytest.raises(ValueError, match="no forward kinematics"):
         RobotModel(_home_pose()).correct_joints(q)

@@ -216,7 +216,7 @@ def test_the_live_view_streams_the_arm_force_and_cameras_to_a_foxglove_client(st
     from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
     from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
 
-    from domain.robot_model.kinematics import PumaKinematics
+    from domain.robot_model.kinematics import ArmKinematics
     from services.foxglove.live import LIVE_TOPICS
     from telerobot.v1 import force_sensor_pb2, force_sensor_pb2_grpc, types_pb2
     from tests.foxglove.test_channels import world_poses
@@ -237,7 +237,7 @@ def test_the_live_view_streams_the_arm_force_and_cameras_to_a_foxglove_client(st
     for topic, messages in client.received.items():
         stamps = [stamp for stamp, _ in messages]
         assert stamps == sorted(stamps), topic
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     states = {stamp: types_pb2.RobotState.FromString(data)
               for stamp, data in client.received[fx.ROBOT_STATE]}
     matched = 0

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from domain.robot_model.puma560 import HOME_Q, JOINT_LOWER, JOINT_UPPER
-from services.world.link import JOINT_COUNT, ArmSample, checked_duration, checked_joint_target
+from services.world.link import ArmSample, checked_duration, checked_joint_target
 from services.world.shm_link import STALE_AFTER_S
 from services.world.trajectory import SegmentedGoal
 from tests.fakes.clock import FakeClock
@@ -81,7 +81,7 @@ class FakeArm:
         self._max_step = max_speed_rad_per_s * period_s
         self._start_ns = clock.monotonic_ns()
         self._q = np.asarray(start_q, float).copy()
-        self._qd = np.zeros(JOINT_COUNT)
+        self._qd = np.zeros(len(self.joint_lower))
         self._goal = SegmentedGoal(self._q, period_s)
         self._latched = False
         self._fault = ""

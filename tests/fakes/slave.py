@@ -20,7 +20,7 @@ import numpy as np
 import pinocchio as pin
 
 from domain.robot_model.ik import solve_ik
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.puma560 import HOME_Q
 from services.decision_server.slave import MoveResult, SlaveState, SlaveWrench
 from tests.fakes.clock import FakeClock
@@ -98,7 +98,7 @@ class FakeSlave:
     def __init__(self, clock: FakeClock, floor_z: float = -np.inf,
                  stiffness_n_per_m: float = TABLE_STIFFNESS_N_PER_M):
         self.clock = clock
-        self.kinematics = PumaKinematics()
+        self.kinematics = ArmKinematics()
         self.q = HOME_Q.copy()
         self.q_target = HOME_Q.copy()
         self.status = "READY"

@@ -206,7 +206,7 @@ def test_the_service_process_reads_a_net_ft_when_configured(responder_factory, w
         # The tool's weight is removed and the result is in tool axes about the tool point:
         # compare with the same conversion of the responder's numbers at the arm's pose.
         from domain.robot_model import puma560
-        from domain.robot_model.kinematics import PumaKinematics
+        from domain.robot_model.kinematics import ArmKinematics
         from services.force_sensor.core import default_payload
         from services.force_sensor.wrench_model import contact_wrench
         from services.world.shm_link import SharedMemoryArmLink
@@ -214,7 +214,7 @@ def test_the_service_process_reads_a_net_ft_when_configured(responder_factory, w
         arm = SharedMemoryArmLink(world.shm_name)
         q = arm.read_arm().joint_positions_rad
         arm.close()
-        kinematics = PumaKinematics()
+        kinematics = ArmKinematics()
         sensor_pose = kinematics.frame_pose(q, puma560.FT_SITE)
         expected = contact_wrench(np.array([1.5, -2.0, 10.25]), np.array([0.1, 0.0, -0.05]),
                                   sensor_pose.rotation,

@@ -9,7 +9,7 @@ import pytest
 
 from domain.robot_model import puma560
 from domain.robot_model.ik import solve_ik
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from services.force_sensor.core import default_payload
 from services.force_sensor.wrench_model import ContactWrench, contact_wrench
 from services.world.sim import ArmSim
@@ -18,11 +18,11 @@ TOOL_DOWN = np.diag([1.0, -1.0, -1.0])
 
 
 @pytest.fixture(scope="module")
-def kinematics() -> PumaKinematics:
-    return PumaKinematics()
+def kinematics() -> ArmKinematics:
+    return ArmKinematics()
 
 
-def measured(sim: ArmSim, kinematics: PumaKinematics, bias=None) -> ContactWrench:
+def measured(sim: ArmSim, kinematics: ArmKinematics, bias=None) -> ContactWrench:
     raw = sim.wrench_sample()
     q = sim.joint_positions
     sensor = kinematics.frame_pose(q, puma560.FT_SITE)

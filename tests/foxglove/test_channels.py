@@ -11,7 +11,7 @@ import pytest
 from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
 
 from domain.robot_model import puma560 as p
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.loader import load_mujoco_model
 from services.stereo_camera.calibration import mujoco_stereo
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
@@ -43,7 +43,7 @@ def world_poses(message: FrameTransforms) -> dict[str, pin.SE3]:
     return {frame: pose(frame) for frame in by_child}
 
 
-def configurations(kinematics: PumaKinematics, count: int = 6) -> list[np.ndarray]:
+def configurations(kinematics: ArmKinematics, count: int = 6) -> list[np.ndarray]:
     rng = np.random.default_rng(17)
     lower, upper = kinematics.lower_limits, kinematics.upper_limits
     return [kinematics.home_q, np.zeros(6)] + [rng.uniform(lower, upper) for _ in range(count)]
@@ -64,14 +64,14 @@ def stereo_header(width: int = 64, height: int = 48) -> sc_pb.StereoHeader:
 
 
 def test_the_frames_compose_to_pinocchio_forward_kinematics():
-    kinematics = PumaKinematics()
-    arm = fx.ArmTransforms(PumaKinematics())
+    kinematics = ArmKinematics()
+    arm = fx.ArmTransforms(ArmKinematics())
     for q in configurations(kinematics):
         message = arm.transforms(q, T0)
         assert {t.timestamp.ToNanoseconds() for t in message.transforms} == {T0}
         poses = world_poses(message)
-        assert set(poses) == {*fx.LINK_FRAMES, fx.FLANGE_FRAME, fx.TOOL_FRAME}
-        expected = {name: kinematics.frame_pose(q, name) for name in fx.LINK_FRAMES}
+        assert set(poses) == {*arm.link_frames, fx.FLANGE_FRAME, fx.TOOL_FRAME}
+        expected = {name: kinematics.frame_pose(q, name) for name in arm.link_frames}
         expected[fx.FLANGE_FRAME] = kinematics.flange_pose(q)
         expected[fx.TOOL_FRAME] = kinematics.tool_pose(q)
         for frame, pose in poses.items():
@@ -85,7 +85,7 @@ def test_the_frames_compose_to_pinocchio_forward_kinematics():
 
 
 def test_a_robot_states_frames_use_its_own_tool_frame_and_sample_time():
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     arm = fx.ArmTransforms()
     q = configurations(kinematics)[3]
     flange = kinematics.flange_pose(q)
@@ -109,7 +109,8 @@ def test_joint_states_name_the_models_joints():
                                  joint_positions_rad=[0.1, 0.2, 0.3, 0.4, 0.5, 0.6],
                                  joint_velocities_rad_per_s=[1, 2, 3, 4, 5, 6])
     message = fx.joint_states(state)
-    assert tuple(j.name for j in message.joints) == arm.joint_names == fx.JOINT_NAMES
+    assert tuple(j.name for j in message.joints) == arm.joint_names == (
+        "joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
     assert [j.position for j in message.joints] == pytest.approx([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
     assert [j.velocity for j in message.joints] == [1, 2, 3, 4, 5, 6]
     assert message.timestamp.ToNanoseconds() == T0
@@ -169,7 +170,7 @@ def test_calibrations_and_camera_frames_reproduce_our_projection():
     arm = fx.ArmTransforms()
     arm.set_cameras(header)
     poses = world_poses(arm.transforms(np.zeros(6), T0))
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     points = [kinematics.tool_pose(q).translation for q in configurations(kinematics)]
     for calibration, eye, frame in zip(calibrations, (header.left, header.right),
                                        (fx.LEFT_CAMERA_FRAME, fx.RIGHT_CAMERA_FRAME),

@@ -15,7 +15,7 @@ import pytest
 from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
 from foxglove_schemas_protobuf.JointStates_pb2 import JointStates
 
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from services.foxglove.feeds import Feed
 from services.foxglove.live import (
     FEED_TOPICS,
@@ -79,7 +79,7 @@ def live():
 
 
 def state_at(q: np.ndarray, stamp_ns: int) -> types_pb2.RobotState:
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     return types_pb2.RobotState(
         sample_time=convert.timestamp(stamp_ns), joint_positions_rad=q.tolist(),
         joint_velocities_rad_per_s=[0.0] * 6,
@@ -89,7 +89,7 @@ def state_at(q: np.ndarray, stamp_ns: int) -> types_pb2.RobotState:
 
 def test_a_client_sees_every_channel_advertised_and_gets_what_it_subscribed_to(live):
     channels, changes, url = live
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     with FoxgloveClient(url) as client:
         client.wait_advertised(LIVE_TOPICS)
         for topic, message_class in LIVE_TOPICS.items():
@@ -132,7 +132,7 @@ def test_the_cameras_images_and_calibration_flow_and_their_frames_join_tf(live):
                  what="the subscriptions")
         channels.set_cameras(header)
         channels.stereo_pair(pair)
-        channels.robot_state(state_at(PumaKinematics().home_q, T0))
+        channels.robot_state(state_at(ArmKinematics().home_q, T0))
         client.collect(lambda got: all(t in got for t in topics), timeout_s=5)
     from foxglove_schemas_protobuf.CameraCalibration_pb2 import CameraCalibration
     from foxglove_schemas_protobuf.CompressedImage_pb2 import CompressedImage

@@ -5,7 +5,7 @@ from __future__ import annotations
 import mujoco
 import pytest
 
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.loader import MujocoIds, load_mujoco_model, mujoco_ids
 
 
@@ -25,5 +25,5 @@ def mj_data(mj_model: mujoco.MjModel) -> mujoco.MjData:
 
 
 @pytest.fixture
-def kin() -> PumaKinematics:
-    return PumaKinematics()
+def kin() -> ArmKinematics:
+    return ArmKinematics()

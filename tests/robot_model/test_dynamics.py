@@ -7,7 +7,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.loader import MujocoIds, load_mujoco_model
 
 # Armstrong, Khatib & Burdick (1986) in Corke's mdl_puma560 (standard DH frames), typed in here
@@ -40,7 +40,7 @@ INERTIA_OVERRIDES = {(0, 0): 0.35, (0, 2): 0.35, (2, 0): 0.0735}
 
 
 def random_state(
-    rng: np.random.Generator, kin: PumaKinematics
+    rng: np.random.Generator, kin: ArmKinematics
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     q = rng.uniform(kin.lower_limits, kin.upper_limits)
     return q, rng.normal(scale=2.0, size=6), rng.normal(scale=5.0, size=6)
@@ -56,7 +56,7 @@ def mujoco_dynamics(model, data, ids, q, qd) -> tuple[np.ndarray, np.ndarray]:
 
 
 def test_dynamics_match_mujoco(
-    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     rng = np.random.default_rng(11)
     for _ in range(50):
@@ -70,7 +70,7 @@ def test_dynamics_match_mujoco(
         np.testing.assert_allclose(kin.inverse_dynamics(q, qd, qdd), mass @ qdd + bias, atol=1e-9)
 
 
-def test_mass_matrix_is_symmetric_positive_definite(kin: PumaKinematics) -> None:
+def test_mass_matrix_is_symmetric_positive_definite(kin: ArmKinematics) -> None:
     rng = np.random.default_rng(12)
     for _ in range(20):
         mass = kin.mass_matrix(random_state(rng, kin)[0])
@@ -78,7 +78,7 @@ def test_mass_matrix_is_symmetric_positive_definite(kin: PumaKinematics) -> None
         assert np.linalg.eigvalsh(mass).min() > 0.0
 
 
-def test_coriolis_matrix_is_passive(kin: PumaKinematics) -> None:
+def test_coriolis_matrix_is_passive(kin: ArmKinematics) -> None:
     """D_dot - 2C is skew-symmetric (energy conservation of the Pinocchio C)."""
     rng = np.random.default_rng(13)
     q, qd, _ = random_state(rng, kin)
@@ -98,7 +98,7 @@ def test_inertial_parameters_are_the_published_ones(mj_model, link: int) -> None
     np.testing.assert_allclose(np.sort(mj_model.body_inertia[body]), np.sort(expected), atol=1e-12)
 
 
-def test_inertias_are_physical_in_both_engines(mj_model, kin: PumaKinematics) -> None:
+def test_inertias_are_physical_in_both_engines(mj_model, kin: ArmKinematics) -> None:
     for link, name in enumerate(LINK_BODIES, start=1):
         body = mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_BODY, name)
         moments = np.sort(mj_model.body_inertia[body])
@@ -109,7 +109,7 @@ def test_inertias_are_physical_in_both_engines(mj_model, kin: PumaKinematics) ->
         assert np.linalg.eigvalsh(inertia.inertia).min() > 0.0, name
 
 
-def test_centres_of_mass_are_the_published_ones(kin: PumaKinematics) -> None:
+def test_centres_of_mass_are_the_published_ones(kin: ArmKinematics) -> None:
     """COM of each link in its DH frame i equals the table (links 1-5; link 6 carries the tool)."""
     q = np.zeros(6)
     pin.forwardKinematics(kin.model, kin.data, q)
@@ -121,7 +121,7 @@ def test_centres_of_mass_are_the_published_ones(kin: PumaKinematics) -> None:
         np.testing.assert_allclose(dh_frame.actInv(com_world), COMS[link], atol=1e-12)
 
 
-def test_drive_parameters(mj_model, ids: MujocoIds, kin: PumaKinematics) -> None:
+def test_drive_parameters(mj_model, ids: MujocoIds, kin: ArmKinematics) -> None:
     armature = np.array(MOTOR_INERTIA) * np.array(GEAR_RATIO) ** 2
     np.testing.assert_allclose(mj_model.dof_armature[ids.dofs], armature, rtol=1e-12)
     np.testing.assert_allclose(kin.model.armature, armature, rtol=1e-12)
@@ -134,7 +134,7 @@ def test_drive_parameters(mj_model, ids: MujocoIds, kin: PumaKinematics) -> None
 
 
 def test_computed_torque_gives_the_requested_acceleration_in_mujoco(
-    ids: MujocoIds, kin: PumaKinematics
+    ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     """Feeding Pinocchio's RNEA torque (+ joint damping) to MuJoCo reproduces the acceleration."""
     model = load_mujoco_model()

@@ -9,7 +9,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from domain.robot_model.kinematics import JacobianFrame, PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics, JacobianFrame
 from domain.robot_model.loader import MujocoIds
 
 # Written out independently of domain.robot_model.puma560 on purpose (Corke mdl_puma560,
@@ -75,14 +75,14 @@ def mujoco_pose(pos: np.ndarray, xmat: np.ndarray) -> np.ndarray:
     return pose
 
 
-def test_model_limits_match_independent_table(kin: PumaKinematics) -> None:
+def test_model_limits_match_independent_table(kin: ArmKinematics) -> None:
     lower, upper = np.radians(LIMITS_DEG).T
     np.testing.assert_allclose(kin.lower_limits, lower, atol=1e-12)
     np.testing.assert_allclose(kin.upper_limits, upper, atol=1e-12)
 
 
 def test_forward_kinematics_agree(
-    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     tip = np.eye(4)
     tip[2, 3] = TOOL_LENGTH
@@ -120,7 +120,7 @@ def test_forward_kinematics_agree(
 
 
 def test_tool_jacobians_match_mujoco(
-    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     jacp, jacr = np.zeros((3, mj_model.nv)), np.zeros((3, mj_model.nv))
     for q in random_configurations(50, seed=2):
@@ -137,7 +137,7 @@ def test_tool_jacobians_match_mujoco(
         np.testing.assert_allclose(kin.frame_jacobian(q, "tool_point"), world, atol=1e-12)
 
 
-def test_jacobian_is_the_derivative_of_the_tool_position(kin: PumaKinematics) -> None:
+def test_jacobian_is_the_derivative_of_the_tool_position(kin: ArmKinematics) -> None:
     q = random_configurations(1, seed=3)[0]
     step = 1e-7
     numeric = np.empty((3, 6))
@@ -150,7 +150,7 @@ def test_jacobian_is_the_derivative_of_the_tool_position(kin: PumaKinematics) ->
     np.testing.assert_allclose(kin.tool_jacobian(q)[:3], numeric, atol=1e-7)
 
 
-def test_tool_transform_is_settable(kin: PumaKinematics) -> None:
+def test_tool_transform_is_settable(kin: ArmKinematics) -> None:
     q = random_configurations(1, seed=4)[0]
     default = kin.flange_T_tool
     np.testing.assert_allclose(default.rotation, np.eye(3), atol=1e-15)
@@ -164,6 +164,6 @@ def test_tool_transform_is_settable(kin: PumaKinematics) -> None:
     )
 
 
-def test_unknown_frame_names_raise(kin: PumaKinematics) -> None:
+def test_unknown_frame_names_raise(kin: ArmKinematics) -> None:
     with pytest.raises(KeyError):
         kin.frame_pose(np.zeros(6), "no_such_frame")

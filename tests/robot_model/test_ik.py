@@ -15,7 +15,7 @@ import numpy as np
 import pinocchio as pin
 
 from domain.robot_model.ik import IK_MAX_ITERATIONS, solve_ik
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.singularity import SINGULAR_REFUSE_SIGMA, singularity_measures
 
 NUM_TARGETS = 300
@@ -25,7 +25,7 @@ POSITION_TOLERANCE = 1e-5  # m
 ROTATION_TOLERANCE = 1e-4  # rad
 
 
-def test_ik_reaches_random_poses(kin: PumaKinematics) -> None:
+def test_ik_reaches_random_poses(kin: ArmKinematics) -> None:
     rng = np.random.default_rng(2024)
     lower, upper = kin.lower_limits, kin.upper_limits
     successes = 0
@@ -47,7 +47,7 @@ def test_ik_reaches_random_poses(kin: PumaKinematics) -> None:
     assert successes / NUM_TARGETS >= REQUIRED_SUCCESS_RATE, f"{successes}/{NUM_TARGETS} solved"
 
 
-def test_ik_from_home_to_a_pose_near_the_fixture(kin: PumaKinematics) -> None:
+def test_ik_from_home_to_a_pose_near_the_fixture(kin: ArmKinematics) -> None:
     home = kin.tool_pose(kin.home_q)
     target = pin.SE3(home.rotation, home.translation + np.array([0.05, 0.03, -0.15]))
     result = solve_ik(kin, target, kin.home_q)
@@ -55,7 +55,7 @@ def test_ik_from_home_to_a_pose_near_the_fixture(kin: PumaKinematics) -> None:
     np.testing.assert_allclose(kin.tool_pose(result.q).translation, target.translation, atol=1e-6)
 
 
-def test_ik_reports_failure_for_unreachable_targets_without_raising(kin: PumaKinematics) -> None:
+def test_ik_reports_failure_for_unreachable_targets_without_raising(kin: ArmKinematics) -> None:
     far_away = pin.SE3(np.eye(3), np.array([3.0, 0.0, 0.5]))
     result = solve_ik(kin, far_away, kin.home_q)
     assert not result.success
@@ -64,7 +64,7 @@ def test_ik_reports_failure_for_unreachable_targets_without_raising(kin: PumaKin
     assert kin.within_limits(result.q) and np.isfinite(result.q).all()
 
 
-def test_ik_clamps_seeds_outside_the_limits(kin: PumaKinematics) -> None:
+def test_ik_clamps_seeds_outside_the_limits(kin: ArmKinematics) -> None:
     target = kin.tool_pose(kin.home_q)
     seed = kin.home_q.copy()
     seed[4] = 3.0  # beyond the 100 deg wrist limit
@@ -72,7 +72,7 @@ def test_ik_clamps_seeds_outside_the_limits(kin: PumaKinematics) -> None:
     assert result.success and kin.within_limits(result.q)
 
 
-def test_singularity_measures(kin: PumaKinematics) -> None:
+def test_singularity_measures(kin: ArmKinematics) -> None:
     home = singularity_measures(kin, kin.home_q)
     assert not home.near_singular and home.speed_scale() == 1.0
     assert home.manipulability > 0.0 and np.isfinite(home.condition_number)

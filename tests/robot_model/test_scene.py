@@ -9,9 +9,9 @@ import pytest
 
 from domain.robot_model import mjcf
 from domain.robot_model.ik import solve_ik
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.loader import MujocoIds, load_mujoco_model, mujoco_ids
-from domain.robot_model.model_files import ROBOT_XML_PATH
+from domain.robot_model.model_files import DEFAULT_ARM, arm_xml_path
 from domain.robot_model.singularity import singularity_measures
 
 SIM_SECONDS = 10.0
@@ -40,13 +40,13 @@ def test_all_named_elements_resolve(mj_model: mujoco.MjModel, ids: MujocoIds) ->
 
 
 def test_missing_names_raise_key_error() -> None:
-    bare_arm = load_mujoco_model(ROBOT_XML_PATH)  # no cameras or fixture
+    bare_arm = load_mujoco_model(arm_xml_path(DEFAULT_ARM))  # no cameras or fixture
     with pytest.raises(KeyError, match="hole_entry"):
         mujoco_ids(bare_arm)
 
 
 def test_home_is_a_ready_pose(
-    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     home = mj_model.key_qpos[ids.home_key]
     np.testing.assert_array_equal(home[ids.qpos], kin.home_q)
@@ -63,7 +63,7 @@ def test_home_is_a_ready_pose(
 
 
 def test_gravity_compensated_arm_holds_home_for_ten_seconds(
-    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model: mujoco.MjModel, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     mujoco.mj_resetDataKeyframe(mj_model, mj_data, ids.home_key)
     home = mj_data.qpos.copy()
@@ -103,7 +103,7 @@ def _contact_bodies(model: mujoco.MjModel, data: mujoco.MjData) -> list[tuple[st
     return names
 
 
-def _place_tool_tip(mj_model, mj_data, ids, kin: PumaKinematics, tip: np.ndarray) -> None:
+def _place_tool_tip(mj_model, mj_data, ids, kin: ArmKinematics, tip: np.ndarray) -> None:
     result = solve_ik(kin, pin.SE3(TOOL_DOWN, tip), kin.home_q)
     assert result.success, f"tool tip {tip} not reachable pointing down"
     mj_data.qpos[ids.qpos] = result.q
@@ -111,7 +111,7 @@ def _place_tool_tip(mj_model, mj_data, ids, kin: PumaKinematics, tip: np.ndarray
 
 
 def test_peg_touches_the_table(
-    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     mujoco.mj_forward(mj_model, mj_data)
     # 2 mm below the table top, well clear of the fixture.
@@ -121,7 +121,7 @@ def test_peg_touches_the_table(
 
 
 def test_peg_fits_in_the_hole_with_clearance(
-    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     """26 mm square hole, 20 mm peg: 3 mm of play on each side."""
     mujoco.mj_forward(mj_model, mj_data)
@@ -140,7 +140,7 @@ def test_peg_fits_in_the_hole_with_clearance(
 
 
 def test_links_never_collide_with_each_other(
-    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: PumaKinematics
+    mj_model, mj_data: mujoco.MjData, ids: MujocoIds, kin: ArmKinematics
 ) -> None:
     rng = np.random.default_rng(5)
     for _ in range(200):

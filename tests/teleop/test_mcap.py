@@ -27,7 +27,7 @@ from clients.teleop import mcap_inspect
 from clients.teleop import mcap_log as channels
 from clients.teleop.mcap_log import SessionRecorder
 from clients.teleop.stack import local_station
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from services.launcher import STATION
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
@@ -111,7 +111,7 @@ def check_the_foxglove_channels(read: dict[str, list]) -> None:
         check_the_video(read, sizes)
     else:
         check_the_images(read, sizes)
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     states = {proto.sample_time.ToNanoseconds(): proto for *_, proto in read[channels.ROBOT_STATE]}
     joints = {proto.timestamp.ToNanoseconds(): proto for *_, proto in read[fox.JOINT_STATES]}
     assert len(states) == len(read[channels.ROBOT_STATE]) == len(read[fox.TF]) > 0
@@ -120,7 +120,7 @@ def check_the_foxglove_channels(read: dict[str, list]) -> None:
         q = np.array(states[stamp].joint_positions_rad)
         assert [j.position for j in joints[stamp].joints] == pytest.approx(q.tolist())
         poses = world_poses(tf)
-        for frame in fox.LINK_FRAMES:
+        for frame in fox.ArmTransforms(kinematics).link_frames:
             assert np.allclose(poses[frame].homogeneous,
                                kinematics.frame_pose(q, frame).homogeneous, atol=1e-9), frame
         assert np.allclose(poses[fox.FLANGE_FRAME].homogeneous,
@@ -144,7 +144,7 @@ def scripted_session(recorder: SessionRecorder) -> dict[str, list]:
     protos written per topic, in order."""
     written = defaultdict(list)
     header = stereo_header(32, 24)  # the simulation's cameras, with their poses
-    kinematics = PumaKinematics()
+    kinematics = ArmKinematics()
     event = pb.StreamEventsResponse(
         sequence=1, event_time=convert.timestamp(T0),
         teleop_session=pb.TeleopSessionEvent(session_id="s1", operator_id="teleop-script",

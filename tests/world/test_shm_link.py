@@ -11,6 +11,7 @@ import time
 import numpy as np
 import pytest
 
+from domain.robot_model.description import arm_description
 from services.world.realtime import LoopStats
 from services.world.shm_layout import STATUS_RUNNING, WorldSegment, attach_untracked
 from services.world.shm_link import (
@@ -23,7 +24,13 @@ from services.world.shm_link import (
 from services.world.sim import ArmSim
 from tests.fakes.clock import FakeClock
 from tests.processes import segment_exists, unique_shm_name
-from wire.errors import AlreadyExistsError, InvalidArgumentError, OutOfRangeError, UnavailableError
+from wire.errors import (
+    AlreadyExistsError,
+    FailedPreconditionError,
+    InvalidArgumentError,
+    OutOfRangeError,
+    UnavailableError,
+)
 
 PERIOD_S = 0.001
 
@@ -35,7 +42,8 @@ def sim() -> ArmSim:
 
 @pytest.fixture
 def publisher(sim: ArmSim):
-    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
+    world = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S,
+                           unique_shm_name())
     world.publish(sim.arm_sample(), sim.wrench_sample())
     yield world
     world.close()
@@ -56,8 +64,8 @@ def clock() -> FakeClock:
 @pytest.fixture
 def paused_publisher(sim: ArmSim, clock: FakeClock):
     """A world whose heartbeat comes from `clock`: it goes stale only when the test says so."""
-    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name(),
-                           clock=clock)
+    world = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S,
+                           unique_shm_name(), clock=clock)
     world.publish(sim.arm_sample(), sim.wrench_sample())
     yield world
     world.close()
@@ -217,7 +225,7 @@ def test_a_torn_target_from_a_dead_driver_is_never_applied(publisher, link, sim)
     segment = WorldSegment(attach_untracked(publisher.name))
     writing = segment.command.writing()
     record = writing.__enter__()  # a driver that dies half-way through a target
-    record["target"] = np.full(6, 0.5)
+    record["target"][0, :6] = np.full(6, 0.5)
     record["target_command"] = 99
     assert publisher.poll_commands() == []  # mid-write: nothing is taken
     recovered = SharedMemoryArmLink(publisher.name)
@@ -245,7 +253,8 @@ def test_targets_past_a_joint_limit_are_refused(link) -> None:
 
 @pytest.mark.e2e
 def test_a_world_that_has_not_published_yet_is_starting(sim: ArmSim) -> None:
-    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
+    world = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S,
+                           unique_shm_name())
     with pytest.raises(UnavailableError, match="starting"):
         SharedMemoryArmLink(world.name)
     world.publish(sim.arm_sample(), sim.wrench_sample())
@@ -317,8 +326,8 @@ class TickingClock(FakeClock):
 def ticking_world(sim: ArmSim):
     """A world stamped by a TickingClock, and its state record as a writer sees it."""
     clock = TickingClock()
-    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name(),
-                           clock=clock)
+    world = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S,
+                           unique_shm_name(), clock=clock)
     world.publish(sim.arm_sample(), sim.wrench_sample())
     segment = WorldSegment(attach_untracked(world.name))
     yield world, clock, segment.state
@@ -360,7 +369,8 @@ def test_a_world_stuck_mid_publish_is_stale_after_the_same_time(ticking_world):
 
 @pytest.mark.e2e
 def test_a_closed_world_is_unavailable_and_its_segment_gone(sim: ArmSim) -> None:
-    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, unique_shm_name())
+    world = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S,
+                           unique_shm_name())
     world.publish(sim.arm_sample(), sim.wrench_sample())
     link = SharedMemoryArmLink(world.name)
     world.close()
@@ -377,14 +387,14 @@ def test_a_closed_world_is_unavailable_and_its_segment_gone(sim: ArmSim) -> None
 @pytest.mark.e2e
 def test_a_second_world_on_a_live_segment_is_refused(publisher, sim: ArmSim) -> None:
     with pytest.raises(AlreadyExistsError, match=f"pid {os.getpid()}"):
-        WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, publisher.name)
+        WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S, publisher.name)
     SharedMemoryArmLink(publisher.name).close()  # the first is untouched
 
 
 @pytest.mark.e2e
 def test_a_stale_segment_from_a_killed_world_is_replaced(sim: ArmSim) -> None:
     name = unique_shm_name()
-    killed = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, name)
+    killed = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S, name)
     killed.publish(sim.arm_sample(), sim.wrench_sample())
     segment = killed._segment  # what a killed world leaves
     segment.header["world_pid"] = _dead_pid()
@@ -392,7 +402,7 @@ def test_a_stale_segment_from_a_killed_world_is_replaced(sim: ArmSim) -> None:
     assert segment.status == STATUS_RUNNING
     segment.close()  # abandoned: not unlinked
 
-    world = WorldPublisher(sim.joint_lower, sim.joint_upper, PERIOD_S, name)
+    world = WorldPublisher(sim.arm.name, sim.joint_lower, sim.joint_upper, PERIOD_S, name)
     world.publish(sim.arm_sample(), sim.wrench_sample())
     link = SharedMemoryArmLink(name)
     assert link.read_arm().sequence == sim.steps
@@ -405,3 +415,26 @@ def _dead_pid() -> int:
     process = subprocess.Popen([sys.executable, "-c", "pass"])
     process.wait()
     return process.pid
+
+
+@pytest.mark.e2e
+def test_a_seven_joint_arm_travels_whole_and_a_driver_for_another_arm_is_refused() -> None:
+    fr3 = ArmSim(arm=arm_description("fr3"))
+    world = WorldPublisher("fr3", fr3.joint_lower, fr3.joint_upper, PERIOD_S, unique_shm_name())
+    try:
+        world.publish(fr3.arm_sample(), fr3.wrench_sample())
+        with pytest.raises(FailedPreconditionError, match="simulates the fr3, and this process "
+                                                          "drives the puma560"):
+            SharedMemoryArmLink(world.name)
+        link = SharedMemoryArmLink(world.name, arm="fr3")
+        np.testing.assert_array_equal(link.read_arm().joint_positions_rad, fr3.joint_positions)
+        np.testing.assert_array_equal(link.joint_upper, fr3.joint_upper)
+        target = fr3.joint_positions + 0.1
+        link.write_target(target)
+        (command,) = world.poll_commands()
+        np.testing.assert_array_equal(command.target, target)
+        with pytest.raises(InvalidArgumentError, match="needs 7 finite angles"):
+            link.write_target(np.zeros(6))
+        link.close()
+    finally:
+        world.close()

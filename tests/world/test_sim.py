@@ -8,7 +8,7 @@ import pinocchio as pin
 import pytest
 
 from domain.robot_model.ik import solve_ik
-from domain.robot_model.kinematics import PumaKinematics
+from domain.robot_model.kinematics import ArmKinematics
 from services.world.sim import MAX_JOINT_ACCEL_RAD_PER_S2, MAX_JOINT_SPEED_RAD_PER_S, ArmSim
 from wire.errors import InvalidArgumentError
 
@@ -49,7 +49,7 @@ def assert_clean(sim: ArmSim) -> None:
 
 
 def test_starts_at_home_and_holds_it(sim: ArmSim) -> None:
-    home = PumaKinematics().home_q
+    home = ArmKinematics().home_q
     np.testing.assert_allclose(sim.joint_positions, home, atol=1e-12)
     run(sim, 1.0)
     np.testing.assert_allclose(sim.joint_positions, home, atol=TRACKING_TOLERANCE_RAD)
@@ -163,7 +163,7 @@ def test_ten_simulated_seconds_of_motion_stay_clean(sim: ArmSim) -> None:
 
 def test_stable_pressing_on_the_table() -> None:
     """Target 5 mm below the table top: the peg presses on the table and the arm settles."""
-    sim, kin = ArmSim(), PumaKinematics()
+    sim, kin = ArmSim(), ArmKinematics()
     beside_fixture = sim.data.site_xpos[sim.ids.hole_bottom_site] + np.array([-0.15, 0.10, 0.0])
     above = solve_ik(kin, pin.SE3(TOOL_DOWN, beside_fixture + [0, 0, 0.03]), kin.home_q)
     below = solve_ik(kin, pin.SE3(TOOL_DOWN, beside_fixture - [0, 0, 0.005]), above.q)
