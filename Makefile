@@ -72,7 +72,7 @@ serve: $(VENV)/.installed
 # A scripted peg-in-hole session, with and without server-side compliance; starts a local
 # station if none answers. Artifacts land in runs/teleop-<time>/.
 teleop: $(VENV)/.installed
-	$(PY) -m clients.teleop $(TELEOP_ARGS)
+	$(PY) -m clients.teleop $(if $(ARM),--arm $(ARM)) $(TELEOP_ARGS)
 
 # A development PKI in var/pki: a CA, a certificate per service and per identity (admin,
 # operator, observer). HOSTS="name 10.0.0.2" adds names the servers answer on; FORCE=1 makes a

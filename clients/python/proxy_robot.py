@@ -18,6 +18,7 @@ import numpy as np
 
 from clients.python.base import AsyncClient, SyncClient
 from clients.python.values import (
+    ArmInfo,
     MoveResult,
     ReferenceFrame,
     RobotState,
@@ -83,6 +84,12 @@ class _ProxyRobotMethods:
         """Latest joints, flange pose and tool pose."""
         return self._unary("GetState", pb.GetStateRequest(),
                            lambda r: RobotState.from_proto(r.state), timeout, lane)
+
+    def get_arm_info(self, *, timeout: float | None = None, lane: str | None = None
+                     ) -> ArmInfo:
+        """What arm this is: name, joints, limits, home pose and default tool frame."""
+        return self._unary("GetArmInfo", pb.GetArmInfoRequest(), ArmInfo.from_proto, timeout,
+                           lane)
 
     def get_tool_frame(self, *, timeout: float | None = None, lane: str | None = None
                        ) -> Pose:

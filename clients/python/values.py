@@ -63,14 +63,43 @@ class StatusInfo:
 
 
 @dataclass(frozen=True)
+class ArmInfo:
+    """What arm this is (ProxyRobot.GetArmInfo): every joint array in joint_names' order."""
+
+    name: str
+    joint_names: tuple[str, ...]
+    lower_limits: np.ndarray  # rad
+    upper_limits: np.ndarray  # rad
+    velocity_limits: np.ndarray  # rad/s
+    torque_limits: np.ndarray  # N*m
+    home: np.ndarray  # rad
+    default_flange_to_tool: Pose
+
+    @property
+    def joint_count(self) -> int:
+        return len(self.joint_names)
+
+    @classmethod
+    def from_proto(cls, info) -> ArmInfo:
+        def joints(values) -> np.ndarray:
+            return np.asarray(values, dtype=float)
+
+        return cls(info.name, tuple(info.joint_names), joints(info.joint_lower_limits_rad),
+                   joints(info.joint_upper_limits_rad),
+                   joints(info.joint_velocity_limits_rad_per_s),
+                   joints(info.joint_torque_limits_nm), joints(info.home_joint_positions_rad),
+                   pose_value(info.default_flange_to_tool))
+
+
+@dataclass(frozen=True)
 class RobotState:
     """One state sample of the arm (ProxyRobot.GetState / StreamState)."""
 
     sequence: int
     sample_time_ns: int
     status: RobotStatus
-    joint_positions: np.ndarray  # rad, (6,)
-    joint_velocities: np.ndarray  # rad/s, (6,)
+    joint_positions: np.ndarray  # rad, one per joint
+    joint_velocities: np.ndarray  # rad/s, one per joint
     flange_pose: Pose  # in the base frame
     tool_pose: Pose  # in the base frame
 
@@ -90,7 +119,7 @@ class MoveResult:
     ``applied_fraction`` is 1 for joint moves; below 1 when a Cartesian step was reduced near a
     singularity."""
 
-    target_joint_positions: np.ndarray  # rad, (6,)
+    target_joint_positions: np.ndarray  # rad, one per joint
     target_tool_pose: Pose
     applied_fraction: float = 1.0
 

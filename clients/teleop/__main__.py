@@ -37,6 +37,8 @@ from clients.teleop.stack import station_at
 from clients.teleop.task import PegInHole, Result, ready_the_arm
 from clients.teleop.video import StereoView
 from discovery import DiscoveryError, discovered_address
+from domain.robot_model import workspace
+from domain.robot_model.description import ArmDescriptionError, UnknownArmError, select_arm
 from wire.addresses import address_for
 from wire.errors import TelerobotError
 
@@ -179,8 +181,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--modes", nargs="+", choices=MODES, default=list(MODES))
     parser.add_argument("--out", type=Path, default=None,
                         help="artifacts folder (default runs/teleop-<time>)")
-    parser.add_argument("--calibration", type=Path, default=Path("var/cameras.json"),
-                        help="saved camera identification (made on the first run)")
+    parser.add_argument("--arm", default=None,
+                        help="the arm a local station is started with (env TELEROBOT_ARM; "
+                             "default puma560); a station that answers already must drive it")
+    parser.add_argument("--calibration", type=Path, default=None,
+                        help="saved camera identification (made on the first run; default "
+                             "var/cameras-<arm>.json)")
     parser.add_argument("--no-video", action="store_true", help="skip the stereo video")
     parser.add_argument("--no-passivity", action="store_true",
                         help="feedback mode without TDPA (on by default: it keeps the channel "
@@ -192,11 +198,13 @@ def main(argv: list[str] | None = None) -> int:
                              "python -m clients.teleop.mcap_inspect FILE summarizes it)")
     args = parser.parse_args(argv)
     try:
+        if args.arm is not None:
+            select_arm(args.arm)  # a local station inherits it
         if args.discover is not None:
             args.address = discovered_address(args.discover or None, DISCOVERY_TIMEOUT_S)
             print(f"teleop: found the slave station at {args.address}")
         return run(args)
-    except DiscoveryError as error:
+    except (DiscoveryError, UnknownArmError, ArmDescriptionError, WrongArm) as error:
         print(f"teleop: {error}", file=sys.stderr)
         return 3
     except TelerobotError as error:
@@ -207,24 +215,34 @@ def main(argv: list[str] | None = None) -> int:
         return 130
 
 
+class WrongArm(Exception):
+    """The station that answers drives another arm than --arm asked for."""
+
+
 def run(args: argparse.Namespace) -> int:
     out = args.out or Path("runs") / time.strftime("teleop-%Y%m%d-%H%M%S")
     out.mkdir(parents=True, exist_ok=True)
-    args.calibration.parent.mkdir(parents=True, exist_ok=True)
 
     recorder = SessionRecorder(out / "session.mcap") if args.mcap else None
     with station_at(args.address) as started, recorder or contextlib.nullcontext():
         client = DecisionClient(args.address, default_timeout=10.0)
         with client:
             client.acquire_control("teleop", lease_duration_s=30.0)
+            arm = client.robot.get_arm_info().name
+            if args.arm is not None and arm != args.arm:
+                raise WrongArm(f"the station at {args.address} drives the {arm}, not the "
+                               f"{args.arm}: stop it, or leave --arm out")
+            cell = workspace.cell_for(arm)
+            calibration = args.calibration or Path("var") / f"cameras-{arm}.json"
+            calibration.parent.mkdir(parents=True, exist_ok=True)
             ready_the_arm(client)
             client.sensor.tare(0.2)
             start = client.robot.get_state().tool_pose.translation.copy()
             model = RobotModel(client.robot.get_state().tool_pose)
             view = None
             if not args.no_video:
-                view = StereoView(client.camera, client.robot, model, out, args.calibration,
-                                  on_frame=recorder and recorder.stereo)
+                view = StereoView(client.camera, client.robot, model, out, calibration,
+                                  on_frame=recorder and recorder.stereo, cell=cell)
                 view.start()
             status, results, traces = StatusLine(), [], []
             status.video = view.status if view else None
@@ -242,7 +260,8 @@ def run(args: argparse.Namespace) -> int:
                     retract(client, start)
                     status.restart()
                     task = PegInHole(client, mode, model, status, on_link=LinkNotes(status.note),
-                                     recorder=recorder, passivity=not args.no_passivity)
+                                     recorder=recorder, passivity=not args.no_passivity,
+                                     cell=cell)
                     began = time.time_ns()
                     results.append(task.run())
                     if recorder is not None:
@@ -261,6 +280,7 @@ def run(args: argparse.Namespace) -> int:
     artifacts = plot(traces, out)
     summary = {
         "station": "started locally" if started else f"found at {args.address}",
+        "arm": arm,
         "runs": [dataclasses.asdict(result) for result in results],
         "video": str(out / "stereo.mp4") if view and view.recorder else None,
         "video_frames": view.recorder.frames if view and view.recorder else 0,

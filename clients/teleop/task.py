@@ -72,7 +72,14 @@ HAND_INSERT_M = 0.03  # the compliance operator's own share of the 40 mm inserti
 MAX_EXTRA_STROKES = 4  # strokes the operator adds when it sees the tool short of its aim
 ACKED_WAIT_S = 5.0  # how long it waits for the arm to catch up before it looks
 HOLE_DEPTH_M = workspace.FIXTURE_HEIGHT
-MOUTH_Z = workspace.TABLE_TOP_Z + workspace.FIXTURE_HEIGHT
+
+
+def mouth_z(cell: workspace.WorkCell) -> float:
+    """Height of the hole's mouth in a work cell (m)."""
+    return cell.table_top_z + workspace.FIXTURE_HEIGHT
+
+
+MOUTH_Z = mouth_z(workspace.PUMA560_CELL)  # the default arm's
 # Oscillation at contact: swings of the contact force (between successive turning points) of
 # more than SWING_N in the run's last FINAL_WINDOW_S; SUSTAINED_SWINGS or more is sustained.
 SWING_N = 2.0
@@ -166,12 +173,15 @@ class StrokingHand:
 
 
 class PegInHole:
-    """One run of the task, recording into `trace` and predicting the tool into `model`."""
+    """One run of the task, recording into `trace` and predicting the tool into `model`, in
+    `cell`: the work cell of the station's arm."""
 
     def __init__(self, client: DecisionClient, mode: str, model: RobotModel, status=None,
                  on_link: Callable[[str, str], None] | None = None, recorder=None,
-                 passivity: bool = True):
+                 passivity: bool = True, cell: workspace.WorkCell = workspace.PUMA560_CELL):
         self.client = client
+        self._cell = cell
+        self._mouth_z = mouth_z(cell)
         # TDPA's master port, in feedback mode (compliance closes its loop on the server).
         self._passivity = MasterPassivity() if passivity and mode == "feedback" else None
         self._arm: MasterArm | None = None
@@ -231,7 +241,7 @@ class PegInHole:
         robot = self.client.robot
         start = robot.get_state().tool_pose
         self.model.reset(start)
-        approach = start.translation[2] - MOUTH_Z  # to the hole's mouth
+        approach = start.translation[2] - self._mouth_z  # to the hole's mouth
         # Feedback: push past the floor until it is felt. Compliance: most of the way in by
         # hand, the rest under force control.
         insert = HOLE_DEPTH_M + OVERREACH_M if self.mode == "feedback" else HAND_INSERT_M
@@ -259,7 +269,7 @@ class PegInHole:
                     break
                 # A station that held the arm (stale commands are refused, not applied late)
                 # left the tool short: the operator sees that and strokes again, as far as it is.
-                depth = MOUTH_Z - self._tool_z_once_acked(session, period)
+                depth = self._mouth_z - self._tool_z_once_acked(session, period)
                 if depth >= enough or self._blocked():
                     break
                 script.add(script_time, min(STROKE_M, (insert - depth) / SCALE))
@@ -392,8 +402,8 @@ class PegInHole:
 
     def _result(self, start: Pose) -> Result:
         end = self.client.robot.get_state().tool_pose.translation
-        x, y = workspace.FIXTURE_CENTER_XY
-        depth = MOUTH_Z - end[2]
+        x, y = self._cell.fixture_center_xy
+        depth = self._mouth_z - end[2]
         lateral = float(np.hypot(end[0] - x, end[1] - y))
         forces = [-f[2] for f in self.trace.force_n] or [0.0]
         times = self.trace.force_time_s or [0.0]

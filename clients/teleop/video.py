@@ -47,11 +47,13 @@ FRAMES_LOG_COLUMNS = ("sequence", "capture_ns", "received_ns", "left_u", "left_v
                       "right_v")
 
 
-def reference_points() -> np.ndarray:
+def reference_points(cell: workspace.WorkCell) -> np.ndarray:
     """Eight well-spread points around the fixture and the tool's path (base frame, m): the
-    corners of a box from the table top to above home, for identifying the cameras."""
-    x, y = workspace.FIXTURE_CENTER_XY
-    xs, ys, zs = (x - 0.08, x + 0.08), (y - 0.08, y + 0.08), (workspace.TABLE_TOP_Z, 0.55)
+    corners of a box from the table top to 5 cm above the home tool tip, for identifying the
+    cameras."""
+    x, y = cell.fixture_center_xy
+    top = (cell.table_top_z + workspace.FIXTURE_HEIGHT + workspace.HOME_TIP_ABOVE_HOLE + 0.05)
+    xs, ys, zs = (x - 0.08, x + 0.08), (y - 0.08, y + 0.08), (cell.table_top_z, top)
     return np.array([(a, b, c) for a in xs for b in ys for c in zs])
 
 
@@ -92,8 +94,10 @@ class StereoView:
 
     def __init__(self, camera: StereoCameraClient, robot: ProxyRobotClient, model: RobotModel,
                  out: Path, calibration_path: Path,
-                 on_frame: Callable[[StereoFrame], Any] | None = None):
+                 on_frame: Callable[[StereoFrame], Any] | None = None,
+                 cell: workspace.WorkCell = workspace.PUMA560_CELL):
         self._camera = camera
+        self._cell = cell
         self._on_frame = on_frame  # every pair as it came (make teleop --mcap records them)
         self._model = model
         self._out = out
@@ -150,7 +154,7 @@ class StereoView:
             # The simulated cameras say where the reference points appear (a real rig: the
             # operator clicks them); identification then works as it would on real images.
             left, right = projections_from_header(header)
-            points = reference_points()
+            points = reference_points(self._cell)
             identification = identify_stereo(points, left.project(points),
                                              right.project(points), width, height,
                                              source="teleop: reference box")

@@ -31,12 +31,7 @@ from domain.robot_model import names as n
 from domain.robot_model import puma560 as p
 from domain.robot_model import workspace as ws
 from domain.robot_model.model_files import ARM_FILE, arm_xml_path, scene_xml_path
-from domain.robot_model.serial_chain import (
-    ChainLink,
-    SerialChain,
-    forward_kinematics,
-    pose_attributes,
-)
+from domain.robot_model.serial_chain import ChainLink, SerialChain, pose_attributes
 
 
 def _header(source: str) -> str:
@@ -408,19 +403,12 @@ def scene_tree(arm: str, cell: ws.WorkCell) -> ET.Element:
     return root
 
 
-def _home_tip(chain: SerialChain) -> tuple[float, float, float]:
-    """Where a chain's tool tip is at home (the peg runs along the flange's z axis)."""
-    flange = forward_kinematics(chain, chain.home_q)
-    tip = flange[:3, 3] + flange[:3, 2] * p.TOOL.length
-    return (float(tip[0]), float(tip[1]), float(tip[2]))
-
-
 def arm_trees() -> dict[str, tuple[ET.Element, ET.Element]]:
     """Arm name -> (arm tree, scene tree), for every arm the project describes."""
-    trees = {"puma560": (robot_tree(), scene_tree("puma560", ws.PUMA560_CELL))}
+    trees = {"puma560": (robot_tree(), scene_tree("puma560", ws.cell_for("puma560")))}
     for chain, source in ((fr3.CHAIN, "fr3.py"), (ur5e.CHAIN, "ur5e.py")):
-        cell = ws.cell_below(_home_tip(chain))
-        trees[chain.name] = (chain_tree(chain, source), scene_tree(chain.name, cell))
+        trees[chain.name] = (chain_tree(chain, source),
+                             scene_tree(chain.name, ws.cell_for(chain.name)))
     return trees
 
 

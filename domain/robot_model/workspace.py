@@ -10,7 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from domain.robot_model.puma560 import SHOULDER_OFFSET
+from domain.robot_model import fr3, ur5e
+from domain.robot_model.puma560 import SHOULDER_OFFSET, TOOL
+from domain.robot_model.serial_chain import SerialChain, forward_kinematics
 
 FIXTURE_HALF_WIDTH = 0.06  # outer block half side
 FIXTURE_HEIGHT = 0.04
@@ -51,6 +53,21 @@ PUMA560_CELL = WorkCell(
     camera_rig_center=(1.40, -SHOULDER_OFFSET, 0.90),
     camera_target=(0.645, -SHOULDER_OFFSET, 0.40),
 )
+
+
+def cell_for(arm: str) -> WorkCell:
+    """The cell of an arm the project describes, by name (KeyError for another)."""
+    if arm == "puma560":
+        return PUMA560_CELL
+    chain = {chain.name: chain for chain in (fr3.CHAIN, ur5e.CHAIN)}[arm]
+    return cell_below(home_tip(chain))
+
+
+def home_tip(chain: SerialChain) -> tuple[float, float, float]:
+    """Where a chain's tool tip is at home (the peg runs along the flange's z axis)."""
+    flange = forward_kinematics(chain, chain.home_q)
+    tip = flange[:3, 3] + flange[:3, 2] * TOOL.length
+    return (float(tip[0]), float(tip[1]), float(tip[2]))
 
 
 def cell_below(home_tip: tuple[float, float, float]) -> WorkCell:

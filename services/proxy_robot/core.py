@@ -30,6 +30,7 @@ import pinocchio as pin
 
 from domain.geometry import finite_vector, moved_by, rotation_angle
 from domain.robot_model import names
+from domain.robot_model.description import ArmDescription
 from domain.robot_model.ik import solve_ik
 from domain.robot_model.kinematics import ArmKinematics
 from domain.robot_model.singularity import singularity_measures
@@ -228,6 +229,11 @@ class ProxyRobotCore:
         with self._lock:
             self._require_link()
             return self._latest
+
+    @property
+    def arm(self) -> ArmDescription:
+        """The arm this driver drives, as its description file declares it."""
+        return self._move_kinematics.arm
 
     @property
     def tool_frame(self) -> pin.SE3:

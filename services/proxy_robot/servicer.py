@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import time
 
+import pinocchio as pin
+
 from services.common import se3
 from services.common.fanout import Fanout, Subscription
 from services.proxy_robot.core import ProxyRobotCore
@@ -117,6 +119,15 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
 
     def GetState(self, request, context):
         return pb.GetStateResponse(state=snapshot_to_proto(self._core.snapshot()))
+
+    def GetArmInfo(self, request, context):
+        arm = self._core.arm
+        return pb.GetArmInfoResponse(
+            name=arm.name, joint_names=arm.joint_names,
+            joint_lower_limits_rad=arm.lower, joint_upper_limits_rad=arm.upper,
+            joint_velocity_limits_rad_per_s=arm.max_velocity,
+            joint_torque_limits_nm=arm.max_torque, home_joint_positions_rad=arm.home_q,
+            default_flange_to_tool=convert.pose_to_proto(pin.SE3(arm.flange_T_tool)))
 
     def GetToolFrame(self, request, context):
         return pb.GetToolFrameResponse(flange_to_tool=convert.pose_to_proto(self._core.tool_frame))

@@ -11,6 +11,8 @@ import grpc
 import numpy as np
 import pytest
 
+from clients.python.values import ArmInfo
+from domain.robot_model.description import arm_description
 from services.proxy_robot import core as core_module
 from services.proxy_robot import servicer as servicer_module
 from services.proxy_robot.servicer import ProxyRobotServicer
@@ -81,6 +83,29 @@ def test_connect_initialize_and_read_state(rig, robot):
     status = robot.GetStatus(pb.GetStatusRequest())
     assert status.status == types_pb2.ROBOT_STATUS_READY
     assert status.change_time.ToNanoseconds() <= rig.clock.time_ns()
+
+
+def test_arm_info_is_what_the_arms_file_declares(robot):
+    """Answered before Connect: a client learns the arm before it drives it."""
+    info = ArmInfo.from_proto(robot.GetArmInfo(pb.GetArmInfoRequest(), timeout=5))
+    arm = arm_description("puma560")
+    assert info.name == "puma560"
+    assert info.joint_names == arm.joint_names == tuple(f"joint{i}" for i in range(1, 7))
+    np.testing.assert_array_equal(info.lower_limits, arm.lower)
+    np.testing.assert_array_equal(info.upper_limits, arm.upper)
+    np.testing.assert_array_equal(info.velocity_limits, arm.max_velocity)
+    np.testing.assert_array_equal(info.torque_limits, [97.6, 186.4, 89.4, 24.2, 20.1, 21.3])
+    np.testing.assert_array_equal(info.home, arm.home_q)
+    np.testing.assert_allclose(info.default_flange_to_tool.translation, [0, 0, 0.1], atol=1e-12)
+
+
+def test_a_joint_move_of_the_wrong_length_names_the_arms_count(rig, robot):
+    ready(robot)
+    with pytest.raises(grpc.RpcError) as raised:
+        robot.MoveJointsIncremental(pb.MoveJointsIncrementalRequest(
+            delta_joint_positions_rad=[0.01] * 7))
+    assert raised.value.code() == grpc.StatusCode.INVALID_ARGUMENT
+    assert raised.value.details() == "delta_joint_positions_rad needs 6 values, got 7"
 
 
 def test_bad_requests_get_the_right_codes(rig, robot):

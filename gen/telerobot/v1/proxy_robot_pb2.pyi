@@ -84,6 +84,30 @@ class GetToolFrameRequest(_message.Message):
     __slots__ = ()
     def __init__(self) -> None: ...
 
+class GetArmInfoRequest(_message.Message):
+    __slots__ = ()
+    def __init__(self) -> None: ...
+
+class GetArmInfoResponse(_message.Message):
+    __slots__ = ("name", "joint_names", "joint_lower_limits_rad", "joint_upper_limits_rad", "joint_velocity_limits_rad_per_s", "joint_torque_limits_nm", "home_joint_positions_rad", "default_flange_to_tool")
+    NAME_FIELD_NUMBER: _ClassVar[int]
+    JOINT_NAMES_FIELD_NUMBER: _ClassVar[int]
+    JOINT_LOWER_LIMITS_RAD_FIELD_NUMBER: _ClassVar[int]
+    JOINT_UPPER_LIMITS_RAD_FIELD_NUMBER: _ClassVar[int]
+    JOINT_VELOCITY_LIMITS_RAD_PER_S_FIELD_NUMBER: _ClassVar[int]
+    JOINT_TORQUE_LIMITS_NM_FIELD_NUMBER: _ClassVar[int]
+    HOME_JOINT_POSITIONS_RAD_FIELD_NUMBER: _ClassVar[int]
+    DEFAULT_FLANGE_TO_TOOL_FIELD_NUMBER: _ClassVar[int]
+    name: str
+    joint_names: _containers.RepeatedScalarFieldContainer[str]
+    joint_lower_limits_rad: _containers.RepeatedScalarFieldContainer[float]
+    joint_upper_limits_rad: _containers.RepeatedScalarFieldContainer[float]
+    joint_velocity_limits_rad_per_s: _containers.RepeatedScalarFieldContainer[float]
+    joint_torque_limits_nm: _containers.RepeatedScalarFieldContainer[float]
+    home_joint_positions_rad: _containers.RepeatedScalarFieldContainer[float]
+    default_flange_to_tool: _types_pb2.Pose
+    def __init__(self, name: _Optional[str] = ..., joint_names: _Optional[_Iterable[str]] = ..., joint_lower_limits_rad: _Optional[_Iterable[float]] = ..., joint_upper_limits_rad: _Optional[_Iterable[float]] = ..., joint_velocity_limits_rad_per_s: _Optional[_Iterable[float]] = ..., joint_torque_limits_nm: _Optional[_Iterable[float]] = ..., home_joint_positions_rad: _Optional[_Iterable[float]] = ..., default_flange_to_tool: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ...) -> None: ...
+
 class GetToolFrameResponse(_message.Message):
     __slots__ = ("flange_to_tool",)
     FLANGE_TO_TOOL_FIELD_NUMBER: _ClassVar[int]

@@ -67,6 +67,11 @@ class ProxyRobotStub:
                 request_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetStateRequest.SerializeToString,
                 response_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetStateResponse.FromString,
                 _registered_method=True)
+        self.GetArmInfo = channel.unary_unary(
+                '/telerobot.v1.ProxyRobot/GetArmInfo',
+                request_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetArmInfoRequest.SerializeToString,
+                response_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetArmInfoResponse.FromString,
+                _registered_method=True)
         self.GetToolFrame = channel.unary_unary(
                 '/telerobot.v1.ProxyRobot/GetToolFrame',
                 request_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetToolFrameRequest.SerializeToString,
@@ -170,6 +175,15 @@ class ProxyRobotServicer:
         context.set_details('Method not implemented!')
         raise NotImplementedError('Method not implemented!')
 
+    def GetArmInfo(self, request, context):
+        """GetArmInfo describes the arm: its name, joints, limits, home pose and default tool frame,
+        as its description file declares them, so a client adapts to any arm. Never fails.
+        Lane: high. Role: observer.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
     def GetToolFrame(self, request, context):
         """GetToolFrame returns the tool frame definition (T_t, M_e^t): the tool frame in the flange frame.
         Lane: high. Role: observer.
@@ -191,8 +205,9 @@ class ProxyRobotServicer:
     def MoveJointsIncremental(self, request, context):
         """MoveJointsIncremental adds a joint increment (delta theta) to the current target.
         It returns once the target is accepted; the arm is MOVING until it gets there.
-        Errors: INVALID_ARGUMENT for NaN/Inf or not six values; OUT_OF_RANGE past a joint limit or
-        over the increment cap; FAILED_PRECONDITION unless READY or MOVING. Nothing moves on error.
+        Errors: INVALID_ARGUMENT for NaN/Inf or not one value per joint (GetArmInfo); OUT_OF_RANGE
+        past a joint limit or over the increment cap; FAILED_PRECONDITION unless READY or MOVING.
+        Nothing moves on error.
         Lane: high. Role: operator.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
@@ -290,6 +305,11 @@ def add_ProxyRobotServicer_to_server(servicer, server):
                     servicer.GetState,
                     request_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetStateRequest.FromString,
                     response_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetStateResponse.SerializeToString,
+            ),
+            'GetArmInfo': grpc.unary_unary_rpc_method_handler(
+                    servicer.GetArmInfo,
+                    request_deserializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetArmInfoRequest.FromString,
+                    response_serializer=telerobot_dot_v1_dot_proxy__robot__pb2.GetArmInfoResponse.SerializeToString,
             ),
             'GetToolFrame': grpc.unary_unary_rpc_method_handler(
                     servicer.GetToolFrame,
@@ -480,6 +500,33 @@ class ProxyRobot:
             '/telerobot.v1.ProxyRobot/GetState',
             telerobot_dot_v1_dot_proxy__robot__pb2.GetStateRequest.SerializeToString,
             telerobot_dot_v1_dot_proxy__robot__pb2.GetStateResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def GetArmInfo(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/telerobot.v1.ProxyRobot/GetArmInfo',
+            telerobot_dot_v1_dot_proxy__robot__pb2.GetArmInfoRequest.SerializeToString,
+            telerobot_dot_v1_dot_proxy__robot__pb2.GetArmInfoResponse.FromString,
             options,
             channel_credentials,
             insecure,

@@ -1383,7 +1383,7 @@ export type RecordedIncrement = Message<"telerobot.v1.RecordedIncrement"> & {
   deltaRotation?: Matrix3 | undefined;
 
   /**
-   * Δθ of a joint increment, six values, radians; empty for a Cartesian one.
+   * Δθ of a joint increment, one value per joint, radians; empty for a Cartesian one.
    *
    * @generated from field: repeated double delta_joints_rad = 5;
    */

@@ -15,7 +15,7 @@ import type { Message } from "@bufbuild/protobuf";
  * Describes the file telerobot/v1/proxy_robot.proto.
  */
 export const file_telerobot_v1_proxy_robot: GenFile = /*@__PURE__*/
-  fileDesc("Ch50ZWxlcm9ib3QvdjEvcHJveHlfcm9ib3QucHJvdG8SDHRlbGVyb2JvdC52MSIQCg5Db25uZWN0UmVxdWVzdCI8Cg9Db25uZWN0UmVzcG9uc2USKQoGc3RhdHVzGAEgASgOMhkudGVsZXJvYm90LnYxLlJvYm90U3RhdHVzIhMKEUluaXRpYWxpemVSZXF1ZXN0Ij8KEkluaXRpYWxpemVSZXNwb25zZRIpCgZzdGF0dXMYASABKA4yGS50ZWxlcm9ib3QudjEuUm9ib3RTdGF0dXMiEwoRRGlzY29ubmVjdFJlcXVlc3QiPwoSRGlzY29ubmVjdFJlc3BvbnNlEikKBnN0YXR1cxgBIAEoDjIZLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXR1cyISChBHZXRTdGF0dXNSZXF1ZXN0In8KEUdldFN0YXR1c1Jlc3BvbnNlEikKBnN0YXR1cxgBIAEoDjIZLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXR1cxIOCgZyZWFzb24YAiABKAkSLwoLY2hhbmdlX3RpbWUYAyABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wIhEKD0dldFN0YXRlUmVxdWVzdCI7ChBHZXRTdGF0ZVJlc3BvbnNlEicKBXN0YXRlGAEgASgLMhgudGVsZXJvYm90LnYxLlJvYm90U3RhdGUiFQoTR2V0VG9vbEZyYW1lUmVxdWVzdCJCChRHZXRUb29sRnJhbWVSZXNwb25zZRIqCg5mbGFuZ2VfdG9fdG9vbBgBIAEoCzISLnRlbGVyb2JvdC52MS5Qb3NlIkEKE1NldFRvb2xGcmFtZVJlcXVlc3QSKgoOZmxhbmdlX3RvX3Rvb2wYASABKAsyEi50ZWxlcm9ib3QudjEuUG9zZSJCChRTZXRUb29sRnJhbWVSZXNwb25zZRIqCg5mbGFuZ2VfdG9fdG9vbBgBIAEoCzISLnRlbGVyb2JvdC52MS5Qb3NlIkEKHE1vdmVKb2ludHNJbmNyZW1lbnRhbFJlcXVlc3QSIQoZZGVsdGFfam9pbnRfcG9zaXRpb25zX3JhZBgBIAMoASJxCh1Nb3ZlSm9pbnRzSW5jcmVtZW50YWxSZXNwb25zZRIiChp0YXJnZXRfam9pbnRfcG9zaXRpb25zX3JhZBgBIAMoARIsChB0YXJnZXRfdG9vbF9wb3NlGAIgASgLMhIudGVsZXJvYm90LnYxLlBvc2UirgEKH01vdmVDYXJ0ZXNpYW5JbmNyZW1lbnRhbFJlcXVlc3QSLwoQZGVsdGFfcG9zaXRpb25fbRgBIAEoCzIVLnRlbGVyb2JvdC52MS5WZWN0b3IzEi0KDmRlbHRhX3JvdGF0aW9uGAIgASgLMhUudGVsZXJvYm90LnYxLk1hdHJpeDMSKwoFZnJhbWUYAyABKA4yHC50ZWxlcm9ib3QudjEuUmVmZXJlbmNlRnJhbWUijgEKIE1vdmVDYXJ0ZXNpYW5JbmNyZW1lbnRhbFJlc3BvbnNlEiIKGnRhcmdldF9qb2ludF9wb3NpdGlvbnNfcmFkGAEgAygBEiwKEHRhcmdldF90b29sX3Bvc2UYAiABKAsyEi50ZWxlcm9ib3QudjEuUG9zZRIYChBhcHBsaWVkX2ZyYWN0aW9uGAMgASgBIh0KC0hvbGRSZXF1ZXN0Eg4KBnJlYXNvbhgBIAEoCSKSAQoMSG9sZFJlc3BvbnNlEiIKGnRhcmdldF9qb2ludF9wb3NpdGlvbnNfcmFkGAEgAygBEiwKEHRhcmdldF90b29sX3Bvc2UYAiABKAsyEi50ZWxlcm9ib3QudjEuUG9zZRIwChRjdXRfdGFyZ2V0X3Rvb2xfcG9zZRgDIAEoCzISLnRlbGVyb2JvdC52MS5Qb3NlIj8KElN0cmVhbVN0YXRlUmVxdWVzdBIpCgZwZXJpb2QYASABKAsyGS5nb29nbGUucHJvdG9idWYuRHVyYXRpb24iPgoTU3RyZWFtU3RhdGVSZXNwb25zZRInCgVzdGF0ZRgBIAEoCzIYLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXRlIoABChhTdHJlYW1Sb2JvdEV2ZW50c1JlcXVlc3QSKwoFa2luZHMYASADKA4yHC50ZWxlcm9ib3QudjEuUm9ib3RFdmVudEtpbmQSNwoUZGF0YV9yZWNlaXZlZF9wZXJpb2QYAiABKAsyGS5nb29nbGUucHJvdG9idWYuRHVyYXRpb24itwIKGVN0cmVhbVJvYm90RXZlbnRzUmVzcG9uc2USEAoIc2VxdWVuY2UYASABKAMSLgoKZXZlbnRfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXASOAoNZGF0YV9yZWNlaXZlZBgDIAEoCzIfLnRlbGVyb2JvdC52MS5EYXRhUmVjZWl2ZWRFdmVudEgAEi4KBWVycm9yGAQgASgLMh0udGVsZXJvYm90LnYxLlJvYm90RXJyb3JFdmVudEgAEikKBW1vdmVkGAUgASgLMhgudGVsZXJvYm90LnYxLk1vdmVkRXZlbnRIABI6Cg5zdGF0dXNfY2hhbmdlZBgGIAEoCzIgLnRlbGVyb2JvdC52MS5TdGF0dXNDaGFuZ2VkRXZlbnRIAEIHCgVldmVudCI8ChFEYXRhUmVjZWl2ZWRFdmVudBInCgVzdGF0ZRgBIAEoCzIYLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXRlIjIKD1JvYm90RXJyb3JFdmVudBIOCgZyZWFzb24YASABKAkSDwoHbWVzc2FnZRgCIAEoCSJQCgpNb3ZlZEV2ZW50EhsKE2pvaW50X3Bvc2l0aW9uc19yYWQYASADKAESJQoJdG9vbF9wb3NlGAIgASgLMhIudGVsZXJvYm90LnYxLlBvc2UigwEKElN0YXR1c0NoYW5nZWRFdmVudBIyCg9wcmV2aW91c19zdGF0dXMYASABKA4yGS50ZWxlcm9ib3QudjEuUm9ib3RTdGF0dXMSKQoGc3RhdHVzGAIgASgOMhkudGVsZXJvYm90LnYxLlJvYm90U3RhdHVzEg4KBnJlYXNvbhgDIAEoCSImChRFbWVyZ2VuY3lTdG9wUmVxdWVzdBIOCgZyZWFzb24YASABKAkicQoVRW1lcmdlbmN5U3RvcFJlc3BvbnNlEikKBnN0YXR1cxgBIAEoDjIZLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXR1cxItCglzdG9wX3RpbWUYAiABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wIg4KDFJlc2V0UmVxdWVzdCI6Cg1SZXNldFJlc3BvbnNlEikKBnN0YXR1cxgBIAEoDjIZLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXR1cyqzAQoOUm9ib3RFdmVudEtpbmQSIAocUk9CT1RfRVZFTlRfS0lORF9VTlNQRUNJRklFRBAAEiIKHlJPQk9UX0VWRU5UX0tJTkRfREFUQV9SRUNFSVZFRBABEhoKFlJPQk9UX0VWRU5UX0tJTkRfRVJST1IQAhIaChZST0JPVF9FVkVOVF9LSU5EX01PVkVEEAMSIwofUk9CT1RfRVZFTlRfS0lORF9TVEFUVVNfQ0hBTkdFRBAEMtAKCgpQcm94eVJvYm90ElAKB0Nvbm5lY3QSHC50ZWxlcm9ib3QudjEuQ29ubmVjdFJlcXVlc3QaHS50ZWxlcm9ib3QudjEuQ29ubmVjdFJlc3BvbnNlIgjI8xgD2PMYAhJZCgpJbml0aWFsaXplEh8udGVsZXJvYm90LnYxLkluaXRpYWxpemVSZXF1ZXN0GiAudGVsZXJvYm90LnYxLkluaXRpYWxpemVSZXNwb25zZSIIyPMYA9jzGAISWQoKRGlzY29ubmVjdBIfLnRlbGVyb2JvdC52MS5EaXNjb25uZWN0UmVxdWVzdBogLnRlbGVyb2JvdC52MS5EaXNjb25uZWN0UmVzcG9uc2UiCMjzGAPY8xgCElYKCUdldFN0YXR1cxIeLnRlbGVyb2JvdC52MS5HZXRTdGF0dXNSZXF1ZXN0Gh8udGVsZXJvYm90LnYxLkdldFN0YXR1c1Jlc3BvbnNlIgjI8xgC2PMYARJTCghHZXRTdGF0ZRIdLnRlbGVyb2JvdC52MS5HZXRTdGF0ZVJlcXVlc3QaHi50ZWxlcm9ib3QudjEuR2V0U3RhdGVSZXNwb25zZSIIyPMYAtjzGAESXwoMR2V0VG9vbEZyYW1lEiEudGVsZXJvYm90LnYxLkdldFRvb2xGcmFtZVJlcXVlc3QaIi50ZWxlcm9ib3QudjEuR2V0VG9vbEZyYW1lUmVzcG9uc2UiCMjzGALY8xgBEl8KDFNldFRvb2xGcmFtZRIhLnRlbGVyb2JvdC52MS5TZXRUb29sRnJhbWVSZXF1ZXN0GiIudGVsZXJvYm90LnYxLlNldFRvb2xGcmFtZVJlc3BvbnNlIgjI8xgD2PMYBBJ6ChVNb3ZlSm9pbnRzSW5jcmVtZW50YWwSKi50ZWxlcm9ib3QudjEuTW92ZUpvaW50c0luY3JlbWVudGFsUmVxdWVzdBorLnRlbGVyb2JvdC52MS5Nb3ZlSm9pbnRzSW5jcmVtZW50YWxSZXNwb25zZSIIyPMYAtjzGAISgwEKGE1vdmVDYXJ0ZXNpYW5JbmNyZW1lbnRhbBItLnRlbGVyb2JvdC52MS5Nb3ZlQ2FydGVzaWFuSW5jcmVtZW50YWxSZXF1ZXN0Gi4udGVsZXJvYm90LnYxLk1vdmVDYXJ0ZXNpYW5JbmNyZW1lbnRhbFJlc3BvbnNlIgjI8xgC2PMYAhJHCgRIb2xkEhkudGVsZXJvYm90LnYxLkhvbGRSZXF1ZXN0GhoudGVsZXJvYm90LnYxLkhvbGRSZXNwb25zZSIIyPMYAtjzGAISXgoLU3RyZWFtU3RhdGUSIC50ZWxlcm9ib3QudjEuU3RyZWFtU3RhdGVSZXF1ZXN0GiEudGVsZXJvYm90LnYxLlN0cmVhbVN0YXRlUmVzcG9uc2UiCMjzGATY8xgBMAEScAoRU3RyZWFtUm9ib3RFdmVudHMSJi50ZWxlcm9ib3QudjEuU3RyZWFtUm9ib3RFdmVudHNSZXF1ZXN0GicudGVsZXJvYm90LnYxLlN0cmVhbVJvYm90RXZlbnRzUmVzcG9uc2UiCMjzGATY8xgBMAESYgoNRW1lcmdlbmN5U3RvcBIiLnRlbGVyb2JvdC52MS5FbWVyZ2VuY3lTdG9wUmVxdWVzdBojLnRlbGVyb2JvdC52MS5FbWVyZ2VuY3lTdG9wUmVzcG9uc2UiCMjzGAHY8xgBEkoKBVJlc2V0EhoudGVsZXJvYm90LnYxLlJlc2V0UmVxdWVzdBobLnRlbGVyb2JvdC52MS5SZXNldFJlc3BvbnNlIgjI8xgC2PMYAmIGcHJvdG8z", [file_google_protobuf_duration, file_google_protobuf_timestamp, file_telerobot_v1_options, file_telerobot_v1_types]);
+  fileDesc("Ch50ZWxlcm9ib3QvdjEvcHJveHlfcm9ib3QucHJvdG8SDHRlbGVyb2JvdC52MSIQCg5Db25uZWN0UmVxdWVzdCI8Cg9Db25uZWN0UmVzcG9uc2USKQoGc3RhdHVzGAEgASgOMhkudGVsZXJvYm90LnYxLlJvYm90U3RhdHVzIhMKEUluaXRpYWxpemVSZXF1ZXN0Ij8KEkluaXRpYWxpemVSZXNwb25zZRIpCgZzdGF0dXMYASABKA4yGS50ZWxlcm9ib3QudjEuUm9ib3RTdGF0dXMiEwoRRGlzY29ubmVjdFJlcXVlc3QiPwoSRGlzY29ubmVjdFJlc3BvbnNlEikKBnN0YXR1cxgBIAEoDjIZLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXR1cyISChBHZXRTdGF0dXNSZXF1ZXN0In8KEUdldFN0YXR1c1Jlc3BvbnNlEikKBnN0YXR1cxgBIAEoDjIZLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXR1cxIOCgZyZWFzb24YAiABKAkSLwoLY2hhbmdlX3RpbWUYAyABKAsyGi5nb29nbGUucHJvdG9idWYuVGltZXN0YW1wIhEKD0dldFN0YXRlUmVxdWVzdCI7ChBHZXRTdGF0ZVJlc3BvbnNlEicKBXN0YXRlGAEgASgLMhgudGVsZXJvYm90LnYxLlJvYm90U3RhdGUiFQoTR2V0VG9vbEZyYW1lUmVxdWVzdCITChFHZXRBcm1JbmZvUmVxdWVzdCKWAgoSR2V0QXJtSW5mb1Jlc3BvbnNlEgwKBG5hbWUYASABKAkSEwoLam9pbnRfbmFtZXMYAiADKAkSHgoWam9pbnRfbG93ZXJfbGltaXRzX3JhZBgDIAMoARIeChZqb2ludF91cHBlcl9saW1pdHNfcmFkGAQgAygBEicKH2pvaW50X3ZlbG9jaXR5X2xpbWl0c19yYWRfcGVyX3MYBSADKAESHgoWam9pbnRfdG9ycXVlX2xpbWl0c19ubRgGIAMoARIgChhob21lX2pvaW50X3Bvc2l0aW9uc19yYWQYByADKAESMgoWZGVmYXVsdF9mbGFuZ2VfdG9fdG9vbBgIIAEoCzISLnRlbGVyb2JvdC52MS5Qb3NlIkIKFEdldFRvb2xGcmFtZVJlc3BvbnNlEioKDmZsYW5nZV90b190b29sGAEgASgLMhIudGVsZXJvYm90LnYxLlBvc2UiQQoTU2V0VG9vbEZyYW1lUmVxdWVzdBIqCg5mbGFuZ2VfdG9fdG9vbBgBIAEoCzISLnRlbGVyb2JvdC52MS5Qb3NlIkIKFFNldFRvb2xGcmFtZVJlc3BvbnNlEioKDmZsYW5nZV90b190b29sGAEgASgLMhIudGVsZXJvYm90LnYxLlBvc2UiQQocTW92ZUpvaW50c0luY3JlbWVudGFsUmVxdWVzdBIhChlkZWx0YV9qb2ludF9wb3NpdGlvbnNfcmFkGAEgAygBInEKHU1vdmVKb2ludHNJbmNyZW1lbnRhbFJlc3BvbnNlEiIKGnRhcmdldF9qb2ludF9wb3NpdGlvbnNfcmFkGAEgAygBEiwKEHRhcmdldF90b29sX3Bvc2UYAiABKAsyEi50ZWxlcm9ib3QudjEuUG9zZSKuAQofTW92ZUNhcnRlc2lhbkluY3JlbWVudGFsUmVxdWVzdBIvChBkZWx0YV9wb3NpdGlvbl9tGAEgASgLMhUudGVsZXJvYm90LnYxLlZlY3RvcjMSLQoOZGVsdGFfcm90YXRpb24YAiABKAsyFS50ZWxlcm9ib3QudjEuTWF0cml4MxIrCgVmcmFtZRgDIAEoDjIcLnRlbGVyb2JvdC52MS5SZWZlcmVuY2VGcmFtZSKOAQogTW92ZUNhcnRlc2lhbkluY3JlbWVudGFsUmVzcG9uc2USIgoadGFyZ2V0X2pvaW50X3Bvc2l0aW9uc19yYWQYASADKAESLAoQdGFyZ2V0X3Rvb2xfcG9zZRgCIAEoCzISLnRlbGVyb2JvdC52MS5Qb3NlEhgKEGFwcGxpZWRfZnJhY3Rpb24YAyABKAEiHQoLSG9sZFJlcXVlc3QSDgoGcmVhc29uGAEgASgJIpIBCgxIb2xkUmVzcG9uc2USIgoadGFyZ2V0X2pvaW50X3Bvc2l0aW9uc19yYWQYASADKAESLAoQdGFyZ2V0X3Rvb2xfcG9zZRgCIAEoCzISLnRlbGVyb2JvdC52MS5Qb3NlEjAKFGN1dF90YXJnZXRfdG9vbF9wb3NlGAMgASgLMhIudGVsZXJvYm90LnYxLlBvc2UiPwoSU3RyZWFtU3RhdGVSZXF1ZXN0EikKBnBlcmlvZBgBIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiI+ChNTdHJlYW1TdGF0ZVJlc3BvbnNlEicKBXN0YXRlGAEgASgLMhgudGVsZXJvYm90LnYxLlJvYm90U3RhdGUigAEKGFN0cmVhbVJvYm90RXZlbnRzUmVxdWVzdBIrCgVraW5kcxgBIAMoDjIcLnRlbGVyb2JvdC52MS5Sb2JvdEV2ZW50S2luZBI3ChRkYXRhX3JlY2VpdmVkX3BlcmlvZBgCIAEoCzIZLmdvb2dsZS5wcm90b2J1Zi5EdXJhdGlvbiK3AgoZU3RyZWFtUm9ib3RFdmVudHNSZXNwb25zZRIQCghzZXF1ZW5jZRgBIAEoAxIuCgpldmVudF90aW1lGAIgASgLMhouZ29vZ2xlLnByb3RvYnVmLlRpbWVzdGFtcBI4Cg1kYXRhX3JlY2VpdmVkGAMgASgLMh8udGVsZXJvYm90LnYxLkRhdGFSZWNlaXZlZEV2ZW50SAASLgoFZXJyb3IYBCABKAsyHS50ZWxlcm9ib3QudjEuUm9ib3RFcnJvckV2ZW50SAASKQoFbW92ZWQYBSABKAsyGC50ZWxlcm9ib3QudjEuTW92ZWRFdmVudEgAEjoKDnN0YXR1c19jaGFuZ2VkGAYgASgLMiAudGVsZXJvYm90LnYxLlN0YXR1c0NoYW5nZWRFdmVudEgAQgcKBWV2ZW50IjwKEURhdGFSZWNlaXZlZEV2ZW50EicKBXN0YXRlGAEgASgLMhgudGVsZXJvYm90LnYxLlJvYm90U3RhdGUiMgoPUm9ib3RFcnJvckV2ZW50Eg4KBnJlYXNvbhgBIAEoCRIPCgdtZXNzYWdlGAIgASgJIlAKCk1vdmVkRXZlbnQSGwoTam9pbnRfcG9zaXRpb25zX3JhZBgBIAMoARIlCgl0b29sX3Bvc2UYAiABKAsyEi50ZWxlcm9ib3QudjEuUG9zZSKDAQoSU3RhdHVzQ2hhbmdlZEV2ZW50EjIKD3ByZXZpb3VzX3N0YXR1cxgBIAEoDjIZLnRlbGVyb2JvdC52MS5Sb2JvdFN0YXR1cxIpCgZzdGF0dXMYAiABKA4yGS50ZWxlcm9ib3QudjEuUm9ib3RTdGF0dXMSDgoGcmVhc29uGAMgASgJIiYKFEVtZXJnZW5jeVN0b3BSZXF1ZXN0Eg4KBnJlYXNvbhgBIAEoCSJxChVFbWVyZ2VuY3lTdG9wUmVzcG9uc2USKQoGc3RhdHVzGAEgASgOMhkudGVsZXJvYm90LnYxLlJvYm90U3RhdHVzEi0KCXN0b3BfdGltZRgCIAEoCzIaLmdvb2dsZS5wcm90b2J1Zi5UaW1lc3RhbXAiDgoMUmVzZXRSZXF1ZXN0IjoKDVJlc2V0UmVzcG9uc2USKQoGc3RhdHVzGAEgASgOMhkudGVsZXJvYm90LnYxLlJvYm90U3RhdHVzKrMBCg5Sb2JvdEV2ZW50S2luZBIgChxST0JPVF9FVkVOVF9LSU5EX1VOU1BFQ0lGSUVEEAASIgoeUk9CT1RfRVZFTlRfS0lORF9EQVRBX1JFQ0VJVkVEEAESGgoWUk9CT1RfRVZFTlRfS0lORF9FUlJPUhACEhoKFlJPQk9UX0VWRU5UX0tJTkRfTU9WRUQQAxIjCh9ST0JPVF9FVkVOVF9LSU5EX1NUQVRVU19DSEFOR0VEEAQyqwsKClByb3h5Um9ib3QSUAoHQ29ubmVjdBIcLnRlbGVyb2JvdC52MS5Db25uZWN0UmVxdWVzdBodLnRlbGVyb2JvdC52MS5Db25uZWN0UmVzcG9uc2UiCMjzGAPY8xgCElkKCkluaXRpYWxpemUSHy50ZWxlcm9ib3QudjEuSW5pdGlhbGl6ZVJlcXVlc3QaIC50ZWxlcm9ib3QudjEuSW5pdGlhbGl6ZVJlc3BvbnNlIgjI8xgD2PMYAhJZCgpEaXNjb25uZWN0Eh8udGVsZXJvYm90LnYxLkRpc2Nvbm5lY3RSZXF1ZXN0GiAudGVsZXJvYm90LnYxLkRpc2Nvbm5lY3RSZXNwb25zZSIIyPMYA9jzGAISVgoJR2V0U3RhdHVzEh4udGVsZXJvYm90LnYxLkdldFN0YXR1c1JlcXVlc3QaHy50ZWxlcm9ib3QudjEuR2V0U3RhdHVzUmVzcG9uc2UiCMjzGALY8xgBElMKCEdldFN0YXRlEh0udGVsZXJvYm90LnYxLkdldFN0YXRlUmVxdWVzdBoeLnRlbGVyb2JvdC52MS5HZXRTdGF0ZVJlc3BvbnNlIgjI8xgC2PMYARJZCgpHZXRBcm1JbmZvEh8udGVsZXJvYm90LnYxLkdldEFybUluZm9SZXF1ZXN0GiAudGVsZXJvYm90LnYxLkdldEFybUluZm9SZXNwb25zZSIIyPMYAtjzGAESXwoMR2V0VG9vbEZyYW1lEiEudGVsZXJvYm90LnYxLkdldFRvb2xGcmFtZVJlcXVlc3QaIi50ZWxlcm9ib3QudjEuR2V0VG9vbEZyYW1lUmVzcG9uc2UiCMjzGALY8xgBEl8KDFNldFRvb2xGcmFtZRIhLnRlbGVyb2JvdC52MS5TZXRUb29sRnJhbWVSZXF1ZXN0GiIudGVsZXJvYm90LnYxLlNldFRvb2xGcmFtZVJlc3BvbnNlIgjI8xgD2PMYBBJ6ChVNb3ZlSm9pbnRzSW5jcmVtZW50YWwSKi50ZWxlcm9ib3QudjEuTW92ZUpvaW50c0luY3JlbWVudGFsUmVxdWVzdBorLnRlbGVyb2JvdC52MS5Nb3ZlSm9pbnRzSW5jcmVtZW50YWxSZXNwb25zZSIIyPMYAtjzGAISgwEKGE1vdmVDYXJ0ZXNpYW5JbmNyZW1lbnRhbBItLnRlbGVyb2JvdC52MS5Nb3ZlQ2FydGVzaWFuSW5jcmVtZW50YWxSZXF1ZXN0Gi4udGVsZXJvYm90LnYxLk1vdmVDYXJ0ZXNpYW5JbmNyZW1lbnRhbFJlc3BvbnNlIgjI8xgC2PMYAhJHCgRIb2xkEhkudGVsZXJvYm90LnYxLkhvbGRSZXF1ZXN0GhoudGVsZXJvYm90LnYxLkhvbGRSZXNwb25zZSIIyPMYAtjzGAISXgoLU3RyZWFtU3RhdGUSIC50ZWxlcm9ib3QudjEuU3RyZWFtU3RhdGVSZXF1ZXN0GiEudGVsZXJvYm90LnYxLlN0cmVhbVN0YXRlUmVzcG9uc2UiCMjzGATY8xgBMAEScAoRU3RyZWFtUm9ib3RFdmVudHMSJi50ZWxlcm9ib3QudjEuU3RyZWFtUm9ib3RFdmVudHNSZXF1ZXN0GicudGVsZXJvYm90LnYxLlN0cmVhbVJvYm90RXZlbnRzUmVzcG9uc2UiCMjzGATY8xgBMAESYgoNRW1lcmdlbmN5U3RvcBIiLnRlbGVyb2JvdC52MS5FbWVyZ2VuY3lTdG9wUmVxdWVzdBojLnRlbGVyb2JvdC52MS5FbWVyZ2VuY3lTdG9wUmVzcG9uc2UiCMjzGAHY8xgBEkoKBVJlc2V0EhoudGVsZXJvYm90LnYxLlJlc2V0UmVxdWVzdBobLnRlbGVyb2JvdC52MS5SZXNldFJlc3BvbnNlIgjI8xgC2PMYAmIGcHJvdG8z", [file_google_protobuf_duration, file_google_protobuf_timestamp, file_telerobot_v1_options, file_telerobot_v1_types]);
 
 /**
  * ConnectRequest asks to open the hardware link.
@@ -227,6 +227,83 @@ export const GetToolFrameRequestSchema: GenMessage<GetToolFrameRequest> = /*@__P
   messageDesc(file_telerobot_v1_proxy_robot, 10);
 
 /**
+ * GetArmInfoRequest asks what arm this is.
+ *
+ * @generated from message telerobot.v1.GetArmInfoRequest
+ */
+export type GetArmInfoRequest = Message<"telerobot.v1.GetArmInfoRequest"> & {
+};
+
+/**
+ * Describes the message telerobot.v1.GetArmInfoRequest.
+ * Use `create(GetArmInfoRequestSchema)` to create a new message.
+ */
+export const GetArmInfoRequestSchema: GenMessage<GetArmInfoRequest> = /*@__PURE__*/
+  messageDesc(file_telerobot_v1_proxy_robot, 11);
+
+/**
+ * GetArmInfoResponse describes the arm. Every joint array has one value per joint, in the order
+ * of joint_names, which is the order of every joint array in every other message.
+ *
+ * @generated from message telerobot.v1.GetArmInfoResponse
+ */
+export type GetArmInfoResponse = Message<"telerobot.v1.GetArmInfoResponse"> & {
+  /**
+   * The arm's name, as `--arm` takes it (e.g. "puma560", "fr3", "ur5e").
+   *
+   * @generated from field: string name = 1;
+   */
+  name: string;
+
+  /**
+   * @generated from field: repeated string joint_names = 2;
+   */
+  jointNames: string[];
+
+  /**
+   * @generated from field: repeated double joint_lower_limits_rad = 3;
+   */
+  jointLowerLimitsRad: number[];
+
+  /**
+   * @generated from field: repeated double joint_upper_limits_rad = 4;
+   */
+  jointUpperLimitsRad: number[];
+
+  /**
+   * @generated from field: repeated double joint_velocity_limits_rad_per_s = 5;
+   */
+  jointVelocityLimitsRadPerS: number[];
+
+  /**
+   * @generated from field: repeated double joint_torque_limits_nm = 6;
+   */
+  jointTorqueLimitsNm: number[];
+
+  /**
+   * The ready pose the arm starts at.
+   *
+   * @generated from field: repeated double home_joint_positions_rad = 7;
+   */
+  homeJointPositionsRad: number[];
+
+  /**
+   * The tool frame in the flange frame that the description file mounts (SetToolFrame changes
+   * the one in use; GetToolFrame answers it).
+   *
+   * @generated from field: telerobot.v1.Pose default_flange_to_tool = 8;
+   */
+  defaultFlangeToTool?: Pose | undefined;
+};
+
+/**
+ * Describes the message telerobot.v1.GetArmInfoResponse.
+ * Use `create(GetArmInfoResponseSchema)` to create a new message.
+ */
+export const GetArmInfoResponseSchema: GenMessage<GetArmInfoResponse> = /*@__PURE__*/
+  messageDesc(file_telerobot_v1_proxy_robot, 12);
+
+/**
  * GetToolFrameResponse carries the tool frame definition.
  *
  * @generated from message telerobot.v1.GetToolFrameResponse
@@ -245,7 +322,7 @@ export type GetToolFrameResponse = Message<"telerobot.v1.GetToolFrameResponse"> 
  * Use `create(GetToolFrameResponseSchema)` to create a new message.
  */
 export const GetToolFrameResponseSchema: GenMessage<GetToolFrameResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 11);
+  messageDesc(file_telerobot_v1_proxy_robot, 13);
 
 /**
  * SetToolFrameRequest sets the tool frame definition.
@@ -266,7 +343,7 @@ export type SetToolFrameRequest = Message<"telerobot.v1.SetToolFrameRequest"> & 
  * Use `create(SetToolFrameRequestSchema)` to create a new message.
  */
 export const SetToolFrameRequestSchema: GenMessage<SetToolFrameRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 12);
+  messageDesc(file_telerobot_v1_proxy_robot, 14);
 
 /**
  * SetToolFrameResponse confirms the tool frame definition now in force.
@@ -287,7 +364,7 @@ export type SetToolFrameResponse = Message<"telerobot.v1.SetToolFrameResponse"> 
  * Use `create(SetToolFrameResponseSchema)` to create a new message.
  */
 export const SetToolFrameResponseSchema: GenMessage<SetToolFrameResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 13);
+  messageDesc(file_telerobot_v1_proxy_robot, 15);
 
 /**
  * MoveJointsIncrementalRequest carries a joint increment.
@@ -308,7 +385,7 @@ export type MoveJointsIncrementalRequest = Message<"telerobot.v1.MoveJointsIncre
  * Use `create(MoveJointsIncrementalRequestSchema)` to create a new message.
  */
 export const MoveJointsIncrementalRequestSchema: GenMessage<MoveJointsIncrementalRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 14);
+  messageDesc(file_telerobot_v1_proxy_robot, 16);
 
 /**
  * MoveJointsIncrementalResponse carries the accepted target.
@@ -317,7 +394,7 @@ export const MoveJointsIncrementalRequestSchema: GenMessage<MoveJointsIncrementa
  */
 export type MoveJointsIncrementalResponse = Message<"telerobot.v1.MoveJointsIncrementalResponse"> & {
   /**
-   * The new joint target, six values, in radians.
+   * The new joint target, one value per joint (GetArmInfo), in radians.
    *
    * @generated from field: repeated double target_joint_positions_rad = 1;
    */
@@ -336,7 +413,7 @@ export type MoveJointsIncrementalResponse = Message<"telerobot.v1.MoveJointsIncr
  * Use `create(MoveJointsIncrementalResponseSchema)` to create a new message.
  */
 export const MoveJointsIncrementalResponseSchema: GenMessage<MoveJointsIncrementalResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 15);
+  messageDesc(file_telerobot_v1_proxy_robot, 17);
 
 /**
  * MoveCartesianIncrementalRequest carries a Cartesian increment of the tool.
@@ -373,7 +450,7 @@ export type MoveCartesianIncrementalRequest = Message<"telerobot.v1.MoveCartesia
  * Use `create(MoveCartesianIncrementalRequestSchema)` to create a new message.
  */
 export const MoveCartesianIncrementalRequestSchema: GenMessage<MoveCartesianIncrementalRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 16);
+  messageDesc(file_telerobot_v1_proxy_robot, 18);
 
 /**
  * MoveCartesianIncrementalResponse carries the accepted target.
@@ -382,7 +459,7 @@ export const MoveCartesianIncrementalRequestSchema: GenMessage<MoveCartesianIncr
  */
 export type MoveCartesianIncrementalResponse = Message<"telerobot.v1.MoveCartesianIncrementalResponse"> & {
   /**
-   * The new joint target, six values, in radians.
+   * The new joint target, one value per joint (GetArmInfo), in radians.
    *
    * @generated from field: repeated double target_joint_positions_rad = 1;
    */
@@ -409,7 +486,7 @@ export type MoveCartesianIncrementalResponse = Message<"telerobot.v1.MoveCartesi
  * Use `create(MoveCartesianIncrementalResponseSchema)` to create a new message.
  */
 export const MoveCartesianIncrementalResponseSchema: GenMessage<MoveCartesianIncrementalResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 17);
+  messageDesc(file_telerobot_v1_proxy_robot, 19);
 
 /**
  * HoldRequest asks for a controlled stop without a latch.
@@ -430,7 +507,7 @@ export type HoldRequest = Message<"telerobot.v1.HoldRequest"> & {
  * Use `create(HoldRequestSchema)` to create a new message.
  */
 export const HoldRequestSchema: GenMessage<HoldRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 18);
+  messageDesc(file_telerobot_v1_proxy_robot, 20);
 
 /**
  * HoldResponse carries where the arm will stop.
@@ -439,7 +516,7 @@ export const HoldRequestSchema: GenMessage<HoldRequest> = /*@__PURE__*/
  */
 export type HoldResponse = Message<"telerobot.v1.HoldResponse"> & {
   /**
-   * The new joint target, six values, in radians.
+   * The new joint target, one value per joint (GetArmInfo), in radians.
    *
    * @generated from field: repeated double target_joint_positions_rad = 1;
    */
@@ -466,7 +543,7 @@ export type HoldResponse = Message<"telerobot.v1.HoldResponse"> & {
  * Use `create(HoldResponseSchema)` to create a new message.
  */
 export const HoldResponseSchema: GenMessage<HoldResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 19);
+  messageDesc(file_telerobot_v1_proxy_robot, 21);
 
 /**
  * StreamStateRequest subscribes to state samples.
@@ -488,7 +565,7 @@ export type StreamStateRequest = Message<"telerobot.v1.StreamStateRequest"> & {
  * Use `create(StreamStateRequestSchema)` to create a new message.
  */
 export const StreamStateRequestSchema: GenMessage<StreamStateRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 20);
+  messageDesc(file_telerobot_v1_proxy_robot, 22);
 
 /**
  * StreamStateResponse is one state sample.
@@ -509,7 +586,7 @@ export type StreamStateResponse = Message<"telerobot.v1.StreamStateResponse"> & 
  * Use `create(StreamStateResponseSchema)` to create a new message.
  */
 export const StreamStateResponseSchema: GenMessage<StreamStateResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 21);
+  messageDesc(file_telerobot_v1_proxy_robot, 23);
 
 /**
  * StreamRobotEventsRequest subscribes to the proxy's events.
@@ -537,7 +614,7 @@ export type StreamRobotEventsRequest = Message<"telerobot.v1.StreamRobotEventsRe
  * Use `create(StreamRobotEventsRequestSchema)` to create a new message.
  */
 export const StreamRobotEventsRequestSchema: GenMessage<StreamRobotEventsRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 22);
+  messageDesc(file_telerobot_v1_proxy_robot, 24);
 
 /**
  * StreamRobotEventsResponse is one event.
@@ -605,7 +682,7 @@ export type StreamRobotEventsResponse = Message<"telerobot.v1.StreamRobotEventsR
  * Use `create(StreamRobotEventsResponseSchema)` to create a new message.
  */
 export const StreamRobotEventsResponseSchema: GenMessage<StreamRobotEventsResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 23);
+  messageDesc(file_telerobot_v1_proxy_robot, 25);
 
 /**
  * DataReceivedEvent says a new state sample arrived from the arm.
@@ -626,7 +703,7 @@ export type DataReceivedEvent = Message<"telerobot.v1.DataReceivedEvent"> & {
  * Use `create(DataReceivedEventSchema)` to create a new message.
  */
 export const DataReceivedEventSchema: GenMessage<DataReceivedEvent> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 24);
+  messageDesc(file_telerobot_v1_proxy_robot, 26);
 
 /**
  * RobotErrorEvent says something went wrong at the arm or in the proxy.
@@ -654,7 +731,7 @@ export type RobotErrorEvent = Message<"telerobot.v1.RobotErrorEvent"> & {
  * Use `create(RobotErrorEventSchema)` to create a new message.
  */
 export const RobotErrorEventSchema: GenMessage<RobotErrorEvent> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 25);
+  messageDesc(file_telerobot_v1_proxy_robot, 27);
 
 /**
  * MovedEvent says the arm reached a commanded target.
@@ -663,7 +740,7 @@ export const RobotErrorEventSchema: GenMessage<RobotErrorEvent> = /*@__PURE__*/
  */
 export type MovedEvent = Message<"telerobot.v1.MovedEvent"> & {
   /**
-   * Joint angles reached, six values, in radians.
+   * Joint angles reached, one value per joint (GetArmInfo), in radians.
    *
    * @generated from field: repeated double joint_positions_rad = 1;
    */
@@ -682,7 +759,7 @@ export type MovedEvent = Message<"telerobot.v1.MovedEvent"> & {
  * Use `create(MovedEventSchema)` to create a new message.
  */
 export const MovedEventSchema: GenMessage<MovedEvent> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 26);
+  messageDesc(file_telerobot_v1_proxy_robot, 28);
 
 /**
  * StatusChangedEvent says the status changed.
@@ -717,7 +794,7 @@ export type StatusChangedEvent = Message<"telerobot.v1.StatusChangedEvent"> & {
  * Use `create(StatusChangedEventSchema)` to create a new message.
  */
 export const StatusChangedEventSchema: GenMessage<StatusChangedEvent> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 27);
+  messageDesc(file_telerobot_v1_proxy_robot, 29);
 
 /**
  * EmergencyStopRequest asks for an emergency stop.
@@ -738,7 +815,7 @@ export type EmergencyStopRequest = Message<"telerobot.v1.EmergencyStopRequest"> 
  * Use `create(EmergencyStopRequestSchema)` to create a new message.
  */
 export const EmergencyStopRequestSchema: GenMessage<EmergencyStopRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 28);
+  messageDesc(file_telerobot_v1_proxy_robot, 30);
 
 /**
  * EmergencyStopResponse confirms the latch.
@@ -766,7 +843,7 @@ export type EmergencyStopResponse = Message<"telerobot.v1.EmergencyStopResponse"
  * Use `create(EmergencyStopResponseSchema)` to create a new message.
  */
 export const EmergencyStopResponseSchema: GenMessage<EmergencyStopResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 29);
+  messageDesc(file_telerobot_v1_proxy_robot, 31);
 
 /**
  * ResetRequest asks to clear an e-stop or fault latch.
@@ -781,7 +858,7 @@ export type ResetRequest = Message<"telerobot.v1.ResetRequest"> & {
  * Use `create(ResetRequestSchema)` to create a new message.
  */
 export const ResetRequestSchema: GenMessage<ResetRequest> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 30);
+  messageDesc(file_telerobot_v1_proxy_robot, 32);
 
 /**
  * ResetResponse reports the status after Reset.
@@ -802,7 +879,7 @@ export type ResetResponse = Message<"telerobot.v1.ResetResponse"> & {
  * Use `create(ResetResponseSchema)` to create a new message.
  */
 export const ResetResponseSchema: GenMessage<ResetResponse> = /*@__PURE__*/
-  messageDesc(file_telerobot_v1_proxy_robot, 31);
+  messageDesc(file_telerobot_v1_proxy_robot, 33);
 
 /**
  * RobotEventKind selects event kinds in StreamRobotEventsRequest.
@@ -926,6 +1003,18 @@ export const ProxyRobot: GenService<{
     output: typeof GetStateResponseSchema;
   },
   /**
+   * GetArmInfo describes the arm: its name, joints, limits, home pose and default tool frame,
+   * as its description file declares them, so a client adapts to any arm. Never fails.
+   * Lane: high. Role: observer.
+   *
+   * @generated from rpc telerobot.v1.ProxyRobot.GetArmInfo
+   */
+  getArmInfo: {
+    methodKind: "unary";
+    input: typeof GetArmInfoRequestSchema;
+    output: typeof GetArmInfoResponseSchema;
+  },
+  /**
    * GetToolFrame returns the tool frame definition (T_t, M_e^t): the tool frame in the flange frame.
    * Lane: high. Role: observer.
    *
@@ -952,8 +1041,9 @@ export const ProxyRobot: GenService<{
   /**
    * MoveJointsIncremental adds a joint increment (delta theta) to the current target.
    * It returns once the target is accepted; the arm is MOVING until it gets there.
-   * Errors: INVALID_ARGUMENT for NaN/Inf or not six values; OUT_OF_RANGE past a joint limit or
-   * over the increment cap; FAILED_PRECONDITION unless READY or MOVING. Nothing moves on error.
+   * Errors: INVALID_ARGUMENT for NaN/Inf or not one value per joint (GetArmInfo); OUT_OF_RANGE
+   * past a joint limit or over the increment cap; FAILED_PRECONDITION unless READY or MOVING.
+   * Nothing moves on error.
    * Lane: high. Role: operator.
    *
    * @generated from rpc telerobot.v1.ProxyRobot.MoveJointsIncremental

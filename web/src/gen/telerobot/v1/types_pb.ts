@@ -157,14 +157,14 @@ export type RobotState = Message<"telerobot.v1.RobotState"> & {
   status: RobotStatus;
 
   /**
-   * Joint angles, six values, in radians.
+   * Joint angles, one value per joint (GetArmInfo), in radians.
    *
    * @generated from field: repeated double joint_positions_rad = 4;
    */
   jointPositionsRad: number[];
 
   /**
-   * Joint rates, six values, in radians per second.
+   * Joint rates, one value per joint (GetArmInfo), in radians per second.
    *
    * @generated from field: repeated double joint_velocities_rad_per_s = 5;
    */
