@@ -1,7 +1,8 @@
 """`make teleop`'s program end to end: against a station started the way it starts one
 (clients.teleop.stack.local_station, every service on port 0), it runs the peg-in-hole task with
 force feedback and then with compliance, and leaves its video, plots and summary. Once in
-plaintext and once with mutual TLS on every link (TELEROBOT_TLS_DIR, as the README says)."""
+plaintext and once with mutual TLS on every link (TELEROBOT_TLS_DIR, as the README says), on the
+PUMA 560; then on the FR3 and the UR5e (`make teleop ARM=…`)."""
 
 from __future__ import annotations
 
@@ -22,10 +23,13 @@ from tests.processes import REPO, scrape_metrics, unique_shm_name
 pytestmark = pytest.mark.e2e
 
 
-@pytest.mark.parametrize("tls", [False, True], ids=["plaintext", "tls"])
-def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls):
+@pytest.mark.parametrize(("tls", "arm"), [(False, "puma560"), (True, "puma560"),
+                                          (False, "fr3"), (False, "ur5e")],
+                         ids=["plaintext", "tls", "fr3", "ur5e"])
+def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls, arm):
     env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in STATION}
     env["TELEROBOT_WORLD_SHM"] = unique_shm_name()
+    env["TELEROBOT_ARM"] = arm
     if tls:
         pki.init(tmp_path / "pki")
         env.update(TELEROBOT_TLS_DIR=str(tmp_path / "pki"),
@@ -39,14 +43,15 @@ def test_teleop_finishes_the_peg_in_hole_and_leaves_its_artifacts(tmp_path, tls)
         operator = addresses["decision_server"]
         result = subprocess.run(
             [sys.executable, "-m", "clients.teleop", "--address", operator, "--out", str(out),
-             "--calibration", str(tmp_path / "cameras.json")],
+             "--calibration", str(tmp_path / "cameras.json"), "--arm", arm],
             cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True,
             timeout=400)
         assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
-        if not tls:
+        if not tls and arm == "puma560":
             _check_the_station_metrics_moved(addresses)
     summary = json.loads((out / "summary.json").read_text())
     assert summary["station"] == f"found at {operator}"
+    assert summary["arm"] == arm
     runs = {run["mode"]: run for run in summary["runs"]}
     assert list(runs) == ["feedback", "compliance"], runs
     assert all(run["success"] and run["depth_m"] > 0.035 for run in runs.values()), runs

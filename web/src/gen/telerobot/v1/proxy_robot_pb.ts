@@ -256,26 +256,36 @@ export type GetArmInfoResponse = Message<"telerobot.v1.GetArmInfoResponse"> & {
   name: string;
 
   /**
+   * The joints, named as the arm's description file names them, in chain order.
+   *
    * @generated from field: repeated string joint_names = 2;
    */
   jointNames: string[];
 
   /**
+   * Each joint's lowest position.
+   *
    * @generated from field: repeated double joint_lower_limits_rad = 3;
    */
   jointLowerLimitsRad: number[];
 
   /**
+   * Each joint's highest position.
+   *
    * @generated from field: repeated double joint_upper_limits_rad = 4;
    */
   jointUpperLimitsRad: number[];
 
   /**
+   * Each joint's fastest speed, either way.
+   *
    * @generated from field: repeated double joint_velocity_limits_rad_per_s = 5;
    */
   jointVelocityLimitsRadPerS: number[];
 
   /**
+   * Each joint's largest torque, either way.
+   *
    * @generated from field: repeated double joint_torque_limits_nm = 6;
    */
   jointTorqueLimitsNm: number[];
