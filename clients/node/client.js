@@ -176,6 +176,7 @@ async function main() {
     }
     result.health[service || '(server)'] = answer.ok ? answer.reply.status : answer.code;
   }
+  result.arm = await call(robot, 'GetArmInfo', {});  // which arm: its joints, limits, home
   result.status = await call(robot, 'GetStatus', {});
   result.state = await call(robot, 'GetState', {});
   console.log(JSON.stringify(result, null, 2));

@@ -191,8 +191,10 @@ def test_node_client_built_from_the_protos_reads_the_robot(station):
     assert report["health"] == {"(server)": "SERVING", "telerobot.v1.ProxyRobot": "SERVING"}
     assert report["status"]["ok"] and report["status"]["reply"]["status"] in (
         "ROBOT_STATUS_CONNECTED", "ROBOT_STATUS_READY", "ROBOT_STATUS_MOVING")
+    arm = report["arm"]["reply"]
+    assert arm["name"] == "puma560" and len(arm["joint_names"]) == 6
     state = report["state"]["reply"]["state"]
-    assert len(state["joint_positions_rad"]) == 6
+    assert len(state["joint_positions_rad"]) == len(arm["joint_names"])
     assert len(state["tool_pose"]["rotation"]["row_major"]) == 9
 
 

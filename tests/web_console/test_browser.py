@@ -122,6 +122,8 @@ def test_a_closed_tab_leaves_no_stream_open(browser, console_station, console_ur
 
 def test_take_the_lock_drive_with_keys_and_stop(browser, console_url, robot, decision, shots):
     page = open_console(browser, console_url)
+    wait_for(lambda: text(page, "#arm-name") == "puma560 · 6 joints", timeout_s=DEADLINE_S,
+             what="the page to say which arm the station drives")
     take_lock(page)
     holders = decision.GetControlState(decision_server_pb2.GetControlStateRequest(),
                                        timeout=5).state.holders

@@ -136,6 +136,11 @@ function showStatusOnly(reason: string) {
   $("status-reason").textContent = reason;
 }
 
+// Which arm the station drives (its description file), asked once: it does not change.
+robot.getArmInfo({}).then(
+  (arm) => { $("arm-name").textContent = `${arm.name} · ${arm.jointNames.length} joints`; },
+  () => { $("arm-name").textContent = "arm unknown"; });
+
 follow("state", async (signal) => {
   const period = { seconds: 0n, nanos: 50_000_000 };
   for await (const r of robot.streamState({ period }, { signal })) {
