@@ -3,6 +3,10 @@ SHELL := /bin/bash
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
+# franka-sim (a simulated FR3 behind libfranka's protocol) pins numpy 1.26 and mujoco < 3.3: it
+# gets a venv of its own, which runs only `python -m services.franka_sim`.
+FRANKA_VENV := .venv-franka
+FRANKA_SIM := franka-sim==1.1.7
 BUF := node_modules/.bin/buf
 PROTOS := $(wildcard protos/telerobot/v1/*.proto)
 GEN_OUT ?= gen
@@ -10,13 +14,19 @@ export MUJOCO_GL ?= egl
 
 .PHONY: install gen web lint docs test test-fast serve teleop bench certs clean
 
-install: $(VENV)/.installed node_modules/.installed web/node_modules/.installed
+install: $(VENV)/.installed node_modules/.installed web/node_modules/.installed $(FRANKA_VENV)/.installed
 
 # The virtual environment, with the project installed editable (services, clients, gen).
 $(VENV)/.installed: pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[dev]'
+	touch $@
+
+$(FRANKA_VENV)/.installed:
+	test -x $(FRANKA_VENV)/bin/python || $(PYTHON) -m venv $(FRANKA_VENV)
+	$(FRANKA_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(FRANKA_VENV)/bin/python -m pip install --quiet '$(FRANKA_SIM)'
 	touch $@
 
 # buf (lint, curl) and the Node.js client's packages, as locked. Not `npm ci`: the lock holds
@@ -90,4 +100,4 @@ bench: $(VENV)/.installed /usr/bin/chromium
 	$(PY) -m bench.readme  # docs/performance.md's tables, from bench/results/latest.json
 
 clean:
-	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache
+	rm -rf $(VENV) $(FRANKA_VENV) node_modules .pytest_cache .ruff_cache

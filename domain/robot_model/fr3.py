@@ -2,9 +2,12 @@
 
 Kinematics, joint limits, velocity and torque bounds and link inertias are Franka's own, from
 ``franka_description`` (Apache-2.0) as shipped in franka-sim's ``fr3.urdf``: each joint's origin
-is Franka's modified-DH table written the URDF way. Armature and damping are MuJoCo Menagerie's
-``franka_fr3`` values (0.1 kg*m^2, 1 N*m*s/rad on every joint): the URDF carries none, and the
-lightest wrist links are not stable in MuJoCo without them.
+is Franka's modified-DH table written the URDF way. The URDF carries no armature or damping:
+damping is MuJoCo Menagerie's (1 N*m*s/rad on every joint). Franka publishes no rotor inertias:
+the armature is the least that keeps a stiff 1 kHz joint servo stable on every link, franka-sim's
+included (its position gains' damping, up to 450 N*m*s/rad, needs KD*dt/2 below the joint's
+inertia: 0.3 kg*m^2 on joints 1-4, 0.15 on the wrist). With MuJoCo Menagerie's 0.1 the twist of
+joints 1 and 3 about their shared axis (q2 = 0) diverges under that servo.
 
 Home is Franka's own ready pose, the tool pointing straight down.
 """
@@ -23,7 +26,7 @@ from domain.robot_model.serial_chain import (
     rpy_xyz,
 )
 
-ARMATURE = 0.1  # kg*m^2
+ARMATURE = (0.3, 0.3, 0.3, 0.3, 0.15, 0.15, 0.15)  # kg*m^2
 DAMPING = 1.0  # N*m*s/rad
 HALF_PI = math.pi / 2
 
@@ -84,12 +87,12 @@ CHAIN = SerialChain(
         ChainLink(
             name=f"fr3_link{i}",
             origin=rpy_xyz(roll, 0.0, 0.0, xyz),
-            joint=ChainJoint(name, lower, upper, velocity, torque, ARMATURE, DAMPING),
+            joint=ChainJoint(name, lower, upper, velocity, torque, armature, DAMPING),
             inertial=inertial,
             radius=radius,
         )
-        for i, ((name, lower, upper, velocity, torque), (roll, xyz), inertial, radius)
-        in enumerate(zip(_JOINTS, _ORIGINS, _INERTIALS, _RADII, strict=True), start=1)
+        for i, ((name, lower, upper, velocity, torque), (roll, xyz), inertial, radius, armature)
+        in enumerate(zip(_JOINTS, _ORIGINS, _INERTIALS, _RADII, ARMATURE, strict=True), start=1)
     ),
     flange=rpy_xyz(0.0, 0.0, 0.0, (0.0, 0.0, 0.107)),
     home_q=np.array([0.0, -math.pi / 4, 0.0, -3 * math.pi / 4, 0.0, math.pi / 2, math.pi / 4]),

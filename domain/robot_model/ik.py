@@ -28,9 +28,12 @@ IK_POSITION_TOLERANCE = 1e-6  # m
 IK_ROTATION_TOLERANCE = 1e-6  # rad
 IK_MAX_STEP = 0.5  # rad, largest joint change per iteration (a trust region for far-away targets)
 TASK_DIMENSION = 6  # a pose: joints beyond these are redundant
-POSTURE_GAIN = 0.1  # per iteration, of the way back to home, in the null space
-LIMIT_GAIN = 0.2  # rad per iteration, away from a limit the joint is at
+POSTURE_GAIN = 0.02  # per iteration, of the way back to home, in the null space
+LIMIT_GAIN = 0.02  # rad per iteration, away from a limit the joint is at
 LIMIT_MARGIN = 0.8  # of a joint's half range from its middle, before the limit push starts
+# The posture task rests once the pose is this close (m, or rad), so the last iterations converge
+# on the pose alone: the damped projector leaks a little of each posture step into the task.
+POSTURE_UNTIL = 1e-4
 
 
 @dataclass(frozen=True)
@@ -91,7 +94,7 @@ def solve_ik(
         blocked = ((q <= lower) & (step < 0.0)) | ((q >= upper) & (step > 0.0))
         if blocked.any():
             step = _damped_step(error_jacobian * ~blocked, error, step_damping)
-        if model.nq > TASK_DIMENSION:
+        if model.nq > TASK_DIMENSION and max(position_error, rotation_error) > POSTURE_UNTIL:
             step += _null_space(error_jacobian, step_damping) @ _posture_step(
                 q, kinematics.home_q, lower, upper)
         largest = np.max(np.abs(step))

@@ -1,14 +1,17 @@
 """python -m services.proxy_robot: the ProxyRobot service process (the papers' PUMA component).
 
-It reaches the arm through the hardware link: in simulation, the world process's shared memory
-(--shm-name / TELEROBOT_WORLD_SHM). Clients Connect and Initialize before moving the arm.
+It reaches the arm through the hardware link (--driver): in simulation, the world process's
+shared memory (--shm-name / TELEROBOT_WORLD_SHM); on a Franka, libfranka (--driver franka
+--robot-host HOST, with --arm fr3). Clients Connect and Initialize before moving the arm.
 """
 
 from __future__ import annotations
 
 import argparse
+import logging
 import os
 
+from domain.robot_model.description import arm_description
 from services.proxy_robot.core import ProxyRobotCore
 from services.proxy_robot.servicer import ProxyRobotServicer
 from services.runtime.core_service import CoreService
@@ -20,9 +23,21 @@ from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink
 from telerobot.v1 import proxy_robot_pb2_grpc
 
+log = logging.getLogger(__name__)
+DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"
+ROBOT_HOST_ENV = "TELEROBOT_PROXY_ROBOT_ROBOT_HOST"
+
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
     add_shm_name_argument(parser, "shared-memory segment of the simulated arm's link")
+    parser.add_argument(
+        "--driver", choices=("sim", "franka"), default=os.environ.get(DRIVER_ENV, "sim"),
+        help=f"the arm's driver: the simulated world (sim), or a Franka through libfranka "
+             f"(franka, with --robot-host and --arm fr3) (env {DRIVER_ENV})")
+    parser.add_argument(
+        "--robot-host", default=os.environ.get(ROBOT_HOST_ENV, ""),
+        help=f"the Franka's address (its FCI, port 1337) for --driver franka "
+             f"(env {ROBOT_HOST_ENV})")
     parser.add_argument(
         "--aio-server", action=argparse.BooleanOptionalAction,
         default=os.environ.get("TELEROBOT_PROXY_ROBOT_AIO_SERVER", "") == "1",
@@ -31,9 +46,30 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
              "performance.md; env TELEROBOT_PROXY_ROBOT_AIO_SERVER=1)")
 
 
+def _franka_link_factory(host: str):
+    """The Franka driver's link factory, once the robot has answered: a driver that cannot
+    reach its robot stops the process here (exit 2), before it serves."""
+    from services.proxy_robot.franka_link import FrankaArmLink, probe_franka
+
+    if not host:
+        log.error("not starting: --driver franka needs --robot-host (the Franka's address)")
+        raise SystemExit(2)
+    problem = probe_franka(host)
+    if problem:
+        log.error("not starting: %s", problem)
+        raise SystemExit(2)
+    arm = arm_description()
+    return lambda: FrankaArmLink(host, arm)
+
+
 def build(args: argparse.Namespace) -> CoreService:
     # The link opens on Connect, as the papers' ConnectRobot does; close() holds the arm.
-    core = ProxyRobotCore(lambda: SharedMemoryArmLink(args.shm_name))
+    if args.driver == "franka":
+        link_factory = _franka_link_factory(args.robot_host)
+    else:
+        def link_factory():
+            return SharedMemoryArmLink(args.shm_name)
+    core = ProxyRobotCore(link_factory)
     # Restarted by the launcher after a crash: take the arm back where it is held, at once.
     because = os.environ.get(RESTARTED_BECAUSE_ENV)
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],

@@ -262,8 +262,8 @@ def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = Non
           cwd: str | Path | None = None, own_group: bool = True, watch_parent: bool = True,
           max_lines: int | None = 200, on_line: Callable[[Child, str], None] | None = None,
           on_exit: Callable[[Child], None] | None = None,
-          stop_grace_s: float = STOP_GRACE_S) -> Child:
-    """Start `python <args>` (this interpreter) as the child `name`.
+          stop_grace_s: float = STOP_GRACE_S, python: str = sys.executable) -> Child:
+    """Start `python <args>` (this interpreter, or `python`: another venv's) as the child `name`.
 
     env: added to this process' environment (PYTHONUNBUFFERED=1 always, so lines arrive as
     they are printed). own_group: in a process group of its own, out of reach of a terminal's
@@ -278,7 +278,7 @@ def start(name: str, args: Sequence[str], *, env: Mapping[str, str] | None = Non
     if watch_parent:
         full_env[PARENT_PID_ENV] = str(os.getpid())
     process = subprocess.Popen(
-        [sys.executable, *args], cwd=cwd, env=full_env, stdin=subprocess.DEVNULL,
+        [python, *args], cwd=cwd, env=full_env, stdin=subprocess.DEVNULL,
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
         process_group=0 if own_group else None)
     return Child(name, process, max_lines, on_line, on_exit, stop_grace_s,

@@ -1,0 +1,253 @@
+"""The hardware link to a Franka arm through libfranka (pylibfranka): ProxyRobot's Franka driver.
+
+libfranka's 1 kHz joint-position loop runs on a thread of this process, in libfranka's joint
+impedance controller. Each cycle it reads the robot's state and writes the next setpoint of the
+same reference generator the simulated servo uses (``services/world/trajectory.py``): targets
+arrive as straight segments, are chased under the arm's velocity and acceleration caps, and a
+hold brakes at the acceleration cap. libfranka's own rate limiter sits after it.
+
+Franka's robot modes and errors come through as they are: a reflex or a lost connection ends the
+control loop, latches a hold and becomes the link's fault, naming libfranka's error ("joint_reflex",
+"communication_constraints_violation"…), so ProxyRobot goes to FAULT and says why.
+``release_hold()`` (ProxyRobot's Reset) runs libfranka's automatic error recovery first, then starts
+the loop again where the arm stands.
+
+Nothing here knows gRPC; errors are wire.errors, as every ArmLink raises them.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from domain.robot_model.description import ArmDescription
+from services.world.link import ArmSample, checked_duration, checked_joint_target
+from services.world.sim import (
+    GOAL_SMOOTHING_S,
+    MAX_JOINT_ACCEL_RAD_PER_S2,
+    MAX_JOINT_SPEED_RAD_PER_S,
+)
+from services.world.trajectory import JointReference
+from wire.errors import FailedPreconditionError, UnavailableError
+
+log = logging.getLogger(__name__)
+
+CONTROL_PERIOD_S = 0.001  # libfranka's cycle
+START_TIMEOUT_S = 5.0  # for the control loop's first cycle
+STOP_TIMEOUT_S = 2.0
+# A state older than this (the control loop gone quiet without an exception: a hung robot or a
+# hung libfranka) makes every call UNAVAILABLE, as a stale world does.
+STALE_AFTER_S = 0.25
+
+
+def libfranka_exceptions(franka) -> tuple[type[BaseException], ...]:
+    """What libfranka raises: FrankaException, and its network, control and command errors,
+    which its Python binding derives from RuntimeError (as it does a bare "Net Exception")."""
+    return (franka.FrankaException, RuntimeError)
+
+
+def franka_errors(errors) -> list[str]:
+    """The names of the libfranka errors set in an ``Errors`` (its boolean flags)."""
+    return [name for name in dir(errors)
+            if not name.startswith("_") and getattr(errors, name) is True]
+
+
+class FrankaArmLink:
+    """ArmLink on a Franka arm at ``host`` (libfranka's port 1337). UnavailableError when it
+    cannot be reached. Thread-safe."""
+
+    def __init__(self, host: str, arm: ArmDescription,
+                 connect: Callable[[str], object] | None = None):
+        import pylibfranka  # here: only the Franka driver needs libfranka
+
+        self._franka = pylibfranka
+        self._failures = libfranka_exceptions(pylibfranka)
+        self.host = host
+        self.arm = arm
+        self.joint_lower, self.joint_upper = arm.lower.copy(), arm.upper.copy()
+        if arm.joint_count != 7:
+            raise FailedPreconditionError(
+                f"the Franka driver drives a 7-joint Franka arm, and this station was started "
+                f"for the {arm.name} ({arm.joint_count} joints): start it with --arm fr3",
+                reason="WRONG_ARM")
+        self._connect_to = connect or self._connect
+        try:
+            self._robot = self._connect_to(host)
+            state = self._robot.read_once()
+        except self._failures as error:
+            raise UnavailableError(f"cannot reach the Franka at {host}: {error}",
+                                   reason="ROBOT_UNREACHABLE") from None
+        self._lock = threading.Lock()
+        q = np.array(state.q, float)
+        self._reference = JointReference(
+            q, np.minimum(arm.max_velocity, MAX_JOINT_SPEED_RAD_PER_S),
+            np.full(7, MAX_JOINT_ACCEL_RAD_PER_S2), CONTROL_PERIOD_S, GOAL_SMOOTHING_S)
+        self._q, self._dq = q, np.array(state.dq, float)
+        self._sequence = 0
+        self._sample_ns = time.time_ns()
+        self._heard_ns = time.monotonic_ns()
+        self._latched = False
+        self._fault = ""
+        self.mode = str(state.robot_mode)
+        self.success_rate = 1.0  # libfranka's control_command_success_rate, latest
+        # Control cycles from the latest hold() to the first setpoint written after it (the
+        # braking one): what the e-stop costs in libfranka's time.
+        self.hold_latency_cycles: int | None = None
+        self._held_at_sequence: int | None = None
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._start_loop()
+
+    def _connect(self, host: str):
+        return self._franka.Robot(host, self._franka.RealtimeConfig.kIgnore)
+
+    # -- the control loop --------------------------------------------------------------------
+
+    def _start_loop(self) -> None:
+        started = threading.Event()
+        self._stop.clear()
+        self._thread = threading.Thread(target=self._run, args=(started,), name="franka-control",
+                                        daemon=True)
+        self._thread.start()
+        if not started.wait(START_TIMEOUT_S):
+            raise UnavailableError(f"the Franka at {self.host} did not start its control loop "
+                                   f"within {START_TIMEOUT_S:.0f} s", reason="ROBOT_UNREACHABLE")
+
+    def _run(self, started: threading.Event) -> None:
+        franka = self._franka
+        try:
+            control = self._robot.start_joint_position_control(
+                franka.ControllerMode.JointImpedance)
+            while not self._stop.is_set():
+                state, _period = control.readOnce()
+                with self._lock:
+                    self._reference.step()
+                    setpoint = self._reference.position.copy()
+                    if self._held_at_sequence is not None:
+                        self.hold_latency_cycles = self._sequence + 1 - self._held_at_sequence
+                        self._held_at_sequence = None
+                    self._q = np.array(state.q, float)
+                    self._dq = np.array(state.dq, float)
+                    self._sequence += 1
+                    self._sample_ns = time.time_ns()
+                    self._heard_ns = time.monotonic_ns()
+                    self.mode = str(state.robot_mode)
+                    self.success_rate = float(state.control_command_success_rate)
+                started.set()
+                control.writeOnce(franka.JointPositions(setpoint.tolist()))
+        except self._failures as error:
+            self._fail(self._describe(error))
+        except Exception as error:  # noqa: BLE001 (anything else ends the loop the same way)
+            self._fail(f"the control loop failed: {error!r}")
+        finally:
+            started.set()
+
+    def _describe(self, error) -> str:
+        """What libfranka said, with the errors the robot reports (when it still answers)."""
+        try:
+            named = franka_errors(self._robot.read_once().last_motion_errors)
+        except self._failures:
+            named = []
+        return f"{error}" + (f" ({', '.join(named)})" if named else "")
+
+    def _fail(self, why: str) -> None:
+        with self._lock:
+            if self._stop.is_set():
+                return  # closing: not a fault
+            self._fault = f"Franka: {why}"
+            self._latched = True
+        log.error("the Franka's control loop ended: %s", why)
+
+    # -- ArmLink -----------------------------------------------------------------------------
+
+    def read_arm(self) -> ArmSample:
+        with self._lock:
+            self._check_heard()
+            return ArmSample(self._sequence, self._sample_ns, self._q.copy(), self._dq.copy(),
+                             self._reference.goal.copy(), self._latched, self._fault)
+
+    def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
+        target = checked_joint_target(joint_positions_rad, self.joint_lower, self.joint_upper)
+        duration = checked_duration(duration_s)
+        with self._lock:
+            self._check_heard()
+            if not self._latched:
+                self._reference.set_goal(np.clip(target, self.joint_lower, self.joint_upper),
+                                         duration)
+
+    def hold(self) -> None:
+        # The setpoint brakes from where it is: a Franka's commands must stay continuous.
+        with self._lock:
+            if self._latched:
+                return
+            self._latched = True
+            self._held_at_sequence = self._sequence
+            reference = self._reference
+            reference.reset(reference.position.copy(), reference.velocity.copy())
+            reference.set_goal(np.clip(reference.goal, self.joint_lower, self.joint_upper))
+
+    def release_hold(self) -> None:
+        with self._lock:
+            fault = self._fault
+        if fault:  # the loop ended: reconnect, recover the robot, run again where it stands
+            self._join_loop()
+            try:
+                self._robot = self._connect_to(self.host)
+                self._robot.automatic_error_recovery()
+                state = self._robot.read_once()
+            except self._failures as error:
+                raise UnavailableError(f"the Franka at {self.host} did not recover: {error}",
+                                       reason="ROBOT_UNREACHABLE") from None
+            with self._lock:
+                self._q, self._dq = np.array(state.q, float), np.zeros(7)
+                self._fault = ""
+                self._latched = False
+                self._reference.reset(self._q)
+                self._heard_ns = time.monotonic_ns()
+            self._start_loop()
+            return
+        with self._lock:
+            if self._latched:
+                self._latched = False
+                self._reference.reset(self._reference.position.copy())
+
+    def close(self) -> None:
+        self._join_loop()
+        try:
+            self._robot.stop()
+        except self._failures:
+            pass
+
+    def _join_loop(self) -> None:
+        self._stop.set()
+        thread = self._thread
+        if thread is not None and thread is not threading.current_thread():
+            thread.join(STOP_TIMEOUT_S)
+
+    def _check_heard(self) -> None:
+        """UNAVAILABLE when the loop has gone quiet while it should run (lock held)."""
+        if self._fault:
+            return  # a fault is an answer: the state is the last one heard
+        quiet_s = (time.monotonic_ns() - self._heard_ns) / 1e9
+        if quiet_s > STALE_AFTER_S:
+            raise UnavailableError(f"the Franka at {self.host} has not answered for "
+                                   f"{quiet_s * 1e3:.0f} ms", reason="ROBOT_STALE")
+
+
+def probe_franka(host: str, connect: Callable[[str], object] | None = None) -> str:
+    """Why the Franka at ``host`` cannot be driven ("" when it answers): a state read over a
+    connection that is closed again."""
+    import pylibfranka
+
+    try:
+        robot = (connect or (lambda h: pylibfranka.Robot(h, pylibfranka.RealtimeConfig.kIgnore)))(
+            host)
+        robot.read_once()
+    except libfranka_exceptions(pylibfranka) as error:
+        return f"cannot reach the Franka at {host} (libfranka, port 1337): {error}"
+    del robot  # libfranka disconnects when the Robot goes
+    return ""

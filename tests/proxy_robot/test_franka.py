@@ -1,0 +1,148 @@
+"""ProxyRobot's Franka driver against franka-sim: libfranka's own protocol, served by a MuJoCo FR3
+(the project's own FR3 cell) from its own venv, on 127.0.0.1:1337. The link alone, then the
+ProxyRobot process with --driver franka."""
+
+from __future__ import annotations
+
+import signal
+import time
+
+import numpy as np
+import pytest
+
+from clients.python import ProxyRobotClient, RobotStatus
+from domain.robot_model.description import arm_description
+from services.franka_sim.__main__ import READY_LINE
+from services.proxy_robot.franka_link import FrankaArmLink
+from services.runtime import children
+from tests.conftest import wait_for
+from tests.processes import REPO, start_process
+from wire.errors import UnavailableError
+
+pytestmark = pytest.mark.e2e
+
+FRANKA_PYTHON = REPO / ".venv-franka" / "bin" / "python"  # make install makes it
+HOST = "127.0.0.1"
+FR3 = arm_description("fr3")
+
+
+def start_franka_sim() -> children.Child:
+    sim = children.start("franka_sim", ["-m", "services.franka_sim", "--host", HOST], cwd=REPO,
+                         python=str(FRANKA_PYTHON), own_group=False, max_lines=None)
+    try:
+        sim.wait_line(READY_LINE, timeout_s=60)
+    except children.ChildFailed:
+        sim.stop()
+        raise
+    return sim
+
+
+@pytest.fixture
+def franka_sim():
+    sim = start_franka_sim()
+    yield sim
+    sim.stop(signal.SIGTERM)
+
+
+@pytest.fixture
+def link(franka_sim):
+    link = FrankaArmLink(HOST, FR3)
+    yield link
+    link.close()
+
+
+def _at(link: FrankaArmLink, q: np.ndarray, tolerance: float = 1e-3) -> bool:
+    return bool(np.abs(link.read_arm().joint_positions_rad - q).max() < tolerance)
+
+
+def test_the_link_drives_the_arm_home_through_libfrankas_loop(link):
+    link.write_target(FR3.home_q)
+    wait_for(lambda: _at(link, FR3.home_q), timeout_s=15, what="the FR3 at home")
+    sample = link.read_arm()
+    assert not sample.hold_latched and sample.fault == ""
+    assert link.mode == "RobotMode.Move" and link.success_rate > 0.95
+
+
+def test_a_hold_brakes_in_the_next_control_cycle_and_holds(link):
+    link.write_target(FR3.home_q)
+    wait_for(lambda: _at(link, FR3.home_q), timeout_s=15, what="the FR3 at home")
+    far = FR3.home_q.copy()
+    far[0] += 1.0
+    link.write_target(far)
+    wait_for(lambda: abs(link.read_arm().joint_velocities_rad_per_s[0]) > 0.5, timeout_s=5,
+             what="joint 1 moving")
+    link.hold()
+    wait_for(lambda: link.hold_latency_cycles is not None, timeout_s=1, what="a cycle after it")
+    assert link.hold_latency_cycles <= 2
+    wait_for(lambda: abs(link.read_arm().joint_velocities_rad_per_s[0]) < 1e-3, timeout_s=5,
+             what="the arm at rest")
+    held = link.read_arm()
+    assert held.hold_latched and held.joint_positions_rad[0] < far[0] - 0.3
+    link.write_target(far)  # ignored while latched
+    time_ok = held.joint_positions_rad.copy()
+    wait_for(lambda: link.read_arm().sequence > held.sequence + 100, timeout_s=2,
+             what="100 more cycles")
+    assert np.abs(link.read_arm().joint_positions_rad - time_ok).max() < 1e-3
+    link.release_hold()
+    link.write_target(FR3.home_q)
+    wait_for(lambda: _at(link, FR3.home_q), timeout_s=15, what="the FR3 back home")
+
+
+def _unavailable(link: FrankaArmLink) -> str:
+    """The UNAVAILABLE a read answers, or "" while the arm still answers."""
+    try:
+        link.read_arm()
+    except UnavailableError as error:
+        return str(error)
+    return ""
+
+
+def test_a_killed_franka_sim_is_a_clear_error_not_a_hang(franka_sim):
+    link = FrankaArmLink(HOST, FR3)
+    franka_sim.stop(signal.SIGKILL)
+    error = wait_for(lambda: _unavailable(link), timeout_s=2, what="the link to say it is lost")
+    assert f"the Franka at {HOST} has not answered for" in error
+    with pytest.raises(UnavailableError, match="ROBOT_STALE"):
+        link.write_target(FR3.home_q)
+    closing = time.monotonic()
+    link.close()
+    assert time.monotonic() - closing < 5
+    restarted = start_franka_sim()  # and a new connection drives it again
+    try:
+        again = FrankaArmLink(HOST, FR3)
+        again.write_target(FR3.home_q)
+        wait_for(lambda: _at(again, FR3.home_q), timeout_s=15, what="the FR3 home again")
+        again.close()
+    finally:
+        restarted.stop(signal.SIGTERM)
+
+
+def test_the_proxy_robot_process_drives_the_franka(franka_sim):
+    robot_process = start_process(["-m", "services.proxy_robot", "--address", "127.0.0.1:0",
+                                   "--arm", "fr3", "--driver", "franka", "--robot-host", HOST])
+    try:
+        with ProxyRobotClient(robot_process.wait_ready(timeout_s=60)) as robot:
+            assert robot.get_arm_info().name == "fr3"
+            robot.connect()
+            robot.initialize()
+            start = robot.get_state().tool_pose.translation.copy()
+            for _ in range(20):
+                robot.move_cartesian([0.0, 0.004, 0.002])
+            goal = start + np.array([0.0, 0.08, 0.04])
+            wait_for(lambda: np.linalg.norm(robot.get_state().tool_pose.translation - goal)
+                     < 1e-3, timeout_s=15, what="the tool at the sum of the moves")
+            assert robot.emergency_stop("test") is RobotStatus.ESTOPPED
+            assert robot.reset() is RobotStatus.READY
+    finally:
+        robot_process.stop(signal.SIGTERM)
+
+
+def test_a_driver_that_cannot_reach_its_robot_exits_2_before_serving():
+    started = time.monotonic()
+    process = start_process(["-m", "services.proxy_robot", "--address", "127.0.0.1:0",
+                             "--arm", "fr3", "--driver", "franka", "--robot-host", "127.0.0.7"])
+    assert process.wait(timeout_s=60) == 2
+    output = "\n".join(process.lines)
+    assert "cannot reach the Franka at 127.0.0.7 (libfranka, port 1337)" in output, output
+    assert process.ready == {}
+    assert time.monotonic() - started < 60
