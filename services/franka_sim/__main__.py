@@ -34,6 +34,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="address to listen on (default 127.0.0.1: loopback only)")
     parser.add_argument("--model", type=Path, default=Path(os.environ.get("FR3_MJCF", FR3_SCENE)),
                         help="the FR3's MJCF (env FR3_MJCF; default: the project's FR3 cell)")
+    parser.add_argument("--enforce-comm-constraints", action="store_true",
+                        help="abort a motion with communication_constraints_violation after 20 "
+                             "lost command cycles, as the real FCI does (a reflex)")
     args = parser.parse_args(argv)
     if not args.model.is_file():
         print(f"franka_sim: no model at {args.model}", file=sys.stderr)
@@ -41,7 +44,8 @@ def main(argv: list[str] | None = None) -> int:
     os.environ["FR3_MJCF"] = str(args.model)  # franka-sim would download its own otherwise
     from franka_sim import FrankaSimServer
 
-    server = FrankaSimServer(host=args.host, port=COMMAND_PORT, enable_gripper=False)
+    server = FrankaSimServer(host=args.host, port=COMMAND_PORT, enable_gripper=False,
+                             enforce_comm_constraints=args.enforce_comm_constraints)
     stop = threading.Event()
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: stop.set())

@@ -148,8 +148,9 @@ class FrankaArmLink:
 
     def _describe(self, error) -> str:
         """What libfranka said, with the errors the robot reports (when it still answers)."""
+        robot = self._robot
         try:
-            named = franka_errors(self._robot.read_once().last_motion_errors)
+            named = franka_errors(robot.read_once().last_motion_errors) if robot else []
         except self._failures:
             named = []
         return f"{error}" + (f" ({', '.join(named)})" if named else "")
@@ -195,6 +196,9 @@ class FrankaArmLink:
             fault = self._fault
         if fault:  # the loop ended: reconnect, recover the robot, run again where it stands
             self._join_loop()
+            # The old connection goes first: the robot serves one client at a time, and a
+            # second one would wait behind it for good.
+            self._robot = None
             try:
                 self._robot = self._connect_to(self.host)
                 self._robot.automatic_error_recovery()
@@ -217,10 +221,12 @@ class FrankaArmLink:
 
     def close(self) -> None:
         self._join_loop()
-        try:
-            self._robot.stop()
-        except self._failures:
-            pass
+        robot, self._robot = self._robot, None  # libfranka disconnects when it goes
+        if robot is not None:
+            try:
+                robot.stop()
+            except self._failures:
+                pass
 
     def _join_loop(self) -> None:
         self._stop.set()

@@ -26,8 +26,9 @@ HOST = "127.0.0.1"
 FR3 = arm_description("fr3")
 
 
-def start_franka_sim() -> children.Child:
-    sim = children.start("franka_sim", ["-m", "services.franka_sim", "--host", HOST], cwd=REPO,
+def start_franka_sim(*args: str) -> children.Child:
+    sim = children.start("franka_sim", ["-m", "services.franka_sim", "--host", HOST, *args],
+                         cwd=REPO,
                          python=str(FRANKA_PYTHON), own_group=False, max_lines=None)
     try:
         sim.wait_line(READY_LINE, timeout_s=60)
@@ -86,6 +87,27 @@ def test_a_hold_brakes_in_the_next_control_cycle_and_holds(link):
     link.release_hold()
     link.write_target(FR3.home_q)
     wait_for(lambda: _at(link, FR3.home_q), timeout_s=15, what="the FR3 back home")
+
+
+def test_a_reflex_is_a_named_fault_and_reset_recovers_the_robot():
+    """A driver that stops commanding for 20 cycles trips the FCI's communication reflex (a
+    stalled driver, here by taking the link's lock); libfranka's error recovery clears it."""
+    sim = start_franka_sim("--enforce-comm-constraints")
+    link = FrankaArmLink(HOST, FR3)
+    try:
+        with link._lock:  # the control loop waits here: no command reaches the robot
+            time.sleep(0.1)
+        sample = wait_for(lambda: link.read_arm().fault and link.read_arm(), timeout_s=5,
+                          what="the reflex as a fault")
+        assert sample.hold_latched
+        assert "communication_constraints_violation" in sample.fault, sample.fault
+        link.release_hold()  # ProxyRobot's Reset
+        assert link.read_arm().fault == "" and not link.read_arm().hold_latched
+        link.write_target(FR3.home_q)
+        wait_for(lambda: _at(link, FR3.home_q), timeout_s=15, what="the FR3 moving again")
+    finally:
+        link.close()
+        sim.stop(signal.SIGTERM)
 
 
 def _unavailable(link: FrankaArmLink) -> str:
