@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 # In the order they run; each is a module of bench/groups/ (bench/run.py dispatches to it).
 GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
-          "stereo", "soak", "soak_overload", "network", "video")
+          "stereo", "franka", "soak", "soak_overload", "network", "video")
 # `make bench`; the soak and the network experiment (bench/network.py, and its video rows,
 # bench/video.py) take minutes. soak_overload (bench/overload.py) runs by default: 45 s, 15 s
 # with --quick.

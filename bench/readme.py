@@ -63,6 +63,8 @@ WHAT = (
     ("estop_ds_idle", "EmergencyStop through the DecisionServer"),
     ("estop_ds_busywork", "same, 200 BusyWork on its low lane"),
     ("closed_loop", "operator command → contact → force change at the operator"),
+    ("franka_command_1000", "FR3 joint target → applied in franka-sim through libfranka, "
+                            "1 kHz (and libfranka's control success rate)"),
     ("stereo_*", "stereo pair captured → decoded, 640×480 JPEG"),
     ("world_loop", "the world's 1 kHz loop over the whole run"),
     ("soak_overload", "Teleoperate at 500 Hz (Python client, pipelined) beside a busy "

@@ -43,6 +43,7 @@ from bench.groups import (
     decision,
     estop,
     force,
+    franka,
     observers,
     soak,
     soak_overload,
@@ -61,7 +62,7 @@ RESULTS_DIR = Path(__file__).resolve().parent / "results"
 # Each group's module (bench/groups/), in the order they run: steps(plan), run(session).
 GROUP_MODULES = {"command": command, "force": force, "baselines": baselines,
                  "observers": observers, "estop": estop, "decision": decision,
-                 "closed_loop": closed_loop, "stereo": stereo, "soak": soak,
+                 "closed_loop": closed_loop, "stereo": stereo, "franka": franka, "soak": soak,
                  "soak_overload": soak_overload, "network": network_group,
                  "video": video_group}
 # Groups whose row carries its own run, so that a run of them alone merges into a latest.json;

@@ -140,10 +140,16 @@ def _video_console(p: dict) -> dict:
     return measure_console(p)  # the console's page in Chromium through the link
 
 
+def _franka(p: dict) -> dict:
+    from bench.franka import measure
+
+    return measure(p["duration_s"])
+
+
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
          "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo,
          "events": _events, "overload": _overload, "network": _network, "video": _video,
-         "video_console": _video_console}
+         "video_console": _video_console, "franka": _franka}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -20,6 +20,7 @@ from __future__ import annotations
 import logging
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 
 import numpy as np
@@ -42,6 +43,7 @@ STOP_TIMEOUT_S = 2.0
 # A state older than this (the control loop gone quiet without an exception: a hung robot or a
 # hung libfranka) makes every call UNAVAILABLE, as a stale world does.
 STALE_AFTER_S = 0.25
+APPLIED_KEPT = 100_000
 
 
 def libfranka_exceptions(franka) -> tuple[type[BaseException], ...]:
@@ -98,6 +100,13 @@ class FrankaArmLink:
         # braking one): what the e-stop costs in libfranka's time.
         self.hold_latency_cycles: int | None = None
         self._held_at_sequence: int | None = None
+        # Command -> applied: from write_target() until the robot's commanded position (its
+        # q_d, after libfranka's filter) moves off where it stood when the loop sent the first
+        # setpoint written after it, in ns; the latest APPLIED_KEPT (make bench's
+        # franka_command_1000).
+        self.applied_ns: deque[int] = deque(maxlen=APPLIED_KEPT)
+        self._written_ns: int | None = None  # a target written, no setpoint sent since
+        self._in_flight: tuple[int, np.ndarray] | None = None  # (written ns, q_d at sending)
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self._start_loop()
@@ -125,8 +134,13 @@ class FrankaArmLink:
             while not self._stop.is_set():
                 state, _period = control.readOnce()
                 with self._lock:
+                    commanded = np.array(state.q_d, float)
+                    self._note_applied(commanded)
                     self._reference.step()
                     setpoint = self._reference.position.copy()
+                    if self._written_ns is not None and self._in_flight is None:
+                        self._in_flight = (self._written_ns, commanded)
+                        self._written_ns = None
                     if self._held_at_sequence is not None:
                         self.hold_latency_cycles = self._sequence + 1 - self._held_at_sequence
                         self._held_at_sequence = None
@@ -145,6 +159,14 @@ class FrankaArmLink:
             self._fail(f"the control loop failed: {error!r}")
         finally:
             started.set()
+
+    def _note_applied(self, commanded: np.ndarray) -> None:
+        """The robot's command has moved since the setpoint in flight was sent: applied."""
+        if self._in_flight is not None:
+            written_ns, before = self._in_flight
+            if not np.array_equal(commanded, before):
+                self.applied_ns.append(time.monotonic_ns() - written_ns)
+                self._in_flight = None
 
     def _describe(self, error) -> str:
         """What libfranka said, with the errors the robot reports (when it still answers)."""
@@ -179,6 +201,8 @@ class FrankaArmLink:
             if not self._latched:
                 self._reference.set_goal(np.clip(target, self.joint_lower, self.joint_upper),
                                          duration)
+                if self._written_ns is None:
+                    self._written_ns = time.monotonic_ns()
 
     def hold(self) -> None:
         # The setpoint brakes from where it is: a Franka's commands must stay continuous.
