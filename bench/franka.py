@@ -16,19 +16,15 @@ from __future__ import annotations
 import math
 import signal
 import time
-from pathlib import Path
 
 import numpy as np
 
 from bench.schedule import Schedule
 from bench.stats import summary
 from domain.robot_model.description import arm_description
-from services.franka_sim.__main__ import READY_LINE
+from services.franka_sim.process import start_franka_sim
 from services.proxy_robot.franka_link import FrankaArmLink
-from services.runtime import children
 
-REPO = Path(__file__).resolve().parent.parent
-FRANKA_PYTHON = REPO / ".venv-franka" / "bin" / "python"
 HOST = "127.0.0.1"
 RATE_HZ = 1000
 SWING_RAD = 0.1
@@ -37,10 +33,8 @@ HOME_TIMEOUT_S = 15.0
 
 
 def measure(duration_s: float) -> dict:
-    sim = children.start("franka_sim", ["-m", "services.franka_sim", "--host", HOST], cwd=REPO,
-                         python=str(FRANKA_PYTHON), own_group=False)
+    sim = start_franka_sim(HOST)
     try:
-        sim.wait_line(READY_LINE, timeout_s=60)
         arm = arm_description("fr3")
         link = FrankaArmLink(HOST, arm)
         try:

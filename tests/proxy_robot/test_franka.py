@@ -12,30 +12,21 @@ import pytest
 
 from clients.python import ProxyRobotClient, RobotStatus
 from domain.robot_model.description import arm_description
-from services.franka_sim.__main__ import READY_LINE
+from services.franka_sim.process import start_franka_sim as launch
 from services.proxy_robot.franka_link import FrankaArmLink
 from services.runtime import children
 from tests.conftest import wait_for
-from tests.processes import REPO, start_process
+from tests.processes import start_process
 from wire.errors import UnavailableError
 
 pytestmark = pytest.mark.e2e
 
-FRANKA_PYTHON = REPO / ".venv-franka" / "bin" / "python"  # make install makes it
 HOST = "127.0.0.1"
 FR3 = arm_description("fr3")
 
 
 def start_franka_sim(*args: str) -> children.Child:
-    sim = children.start("franka_sim", ["-m", "services.franka_sim", "--host", HOST, *args],
-                         cwd=REPO,
-                         python=str(FRANKA_PYTHON), own_group=False, max_lines=None)
-    try:
-        sim.wait_line(READY_LINE, timeout_s=60)
-    except children.ChildFailed:
-        sim.stop()
-        raise
-    return sim
+    return launch(HOST, *args, max_lines=None)
 
 
 @pytest.fixture
