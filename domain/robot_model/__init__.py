@@ -1,36 +1,15 @@
-"""Simulated PUMA 560: parameters, generated MJCF, kinematics, dynamics and IK.
+"""The arms: their description files, kinematics, dynamics and IK.
 
-Pure domain code (no transport). Modules, one job each:
+Pure domain code (no transport). Modules, one job each (import them directly: this package
+imports nothing, so a process that needs only an arm's name loads neither MuJoCo nor Pinocchio):
 
-* ``puma560``     -- every robot parameter (DH, inertia, drives, tool, names, home pose)
-* ``workspace``   -- layout of the work cell (table, peg-in-hole fixture, stereo cameras)
-* ``mjcf``        -- generates ``puma560.xml`` and ``scene.xml`` from the two modules above
+* ``description`` -- an arm as its file declares it, checked; which arm this station drives
+* ``names``       -- the element names every arm file uses (sites, sensors, home keyframe)
+* ``puma560``, ``fr3``, ``ur5e`` -- each arm's numbers (``serial_chain`` for the last two)
+* ``workspace``   -- the work cell around an arm (table, peg-in-hole fixture, stereo cameras)
+* ``mjcf``        -- writes each arm's ``arms/<arm>/arm.xml`` and ``scene.xml`` from the above
 * ``loader``      -- loads the MuJoCo / Pinocchio models and resolves MuJoCo ids by name
 * ``kinematics``  -- ``ArmKinematics``: poses, Jacobians, D(q), C(q, qd), G(q), RNEA
 * ``ik``          -- damped least-squares inverse kinematics within the joint limits
 * ``singularity`` -- distance-to-singularity measures for Cartesian motion
 """
-
-from domain.robot_model.ik import IkResult, solve_ik
-from domain.robot_model.kinematics import TOOL_FRAME, ArmKinematics, JacobianFrame
-from domain.robot_model.loader import (
-    MujocoIds,
-    load_mujoco_model,
-    load_pinocchio_model,
-    mujoco_ids,
-)
-from domain.robot_model.singularity import SingularityMeasures, singularity_measures
-
-__all__ = [
-    "TOOL_FRAME",
-    "IkResult",
-    "JacobianFrame",
-    "MujocoIds",
-    "ArmKinematics",
-    "SingularityMeasures",
-    "load_mujoco_model",
-    "load_pinocchio_model",
-    "mujoco_ids",
-    "singularity_measures",
-    "solve_ik",
-]

@@ -17,7 +17,6 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-import mujoco
 import numpy as np
 
 from domain.robot_model import names as n
@@ -72,12 +71,16 @@ def selected_arm_name() -> str:
     return os.environ.get(ARM_ENV) or DEFAULT_ARM
 
 
-def select_arm(name: str) -> ArmDescription:
-    """Make ``name`` this process's arm (and its children's); UnknownArmError or
-    ArmDescriptionError before anything is changed."""
-    description = arm_description(name)
+def select_arm(name: str, read: bool = True) -> None:
+    """Make ``name`` this process's arm (and its children's); UnknownArmError, or with `read`
+    ArmDescriptionError for a broken file, before anything is changed. Without `read` only the
+    name is checked (a process that never loads the arm's model)."""
+    arms = available_arms()
+    if name not in arms:
+        raise UnknownArmError(f"unknown arm {name!r}: the arms are {', '.join(arms)}")
+    if read:
+        arm_description(name)
     os.environ[ARM_ENV] = name
-    return description
 
 
 @functools.cache
@@ -92,6 +95,8 @@ def arm_description(name: str | None = None) -> ArmDescription:
 
 def read_description(name: str, arm_xml: Path, scene_xml: Path) -> ArmDescription:
     """Read and check one arm file; ArmDescriptionError names the file and the element."""
+    import mujoco  # here: naming an arm (the emergency-stop band) needs no MuJoCo
+
     try:
         model = mujoco.MjModel.from_xml_path(str(arm_xml))
     except ValueError as error:
@@ -163,7 +168,10 @@ def read_description(name: str, arm_xml: Path, scene_xml: Path) -> ArmDescriptio
         flange_T_tool=_flange_T_tool(model, home))
 
 
-def _flange_T_tool(model: mujoco.MjModel, home: np.ndarray) -> np.ndarray:
+def _flange_T_tool(model, home: np.ndarray) -> np.ndarray:
+    """The tool_point site in the flange site's frame (4x4), from a compiled arm model."""
+    import mujoco
+
     data = mujoco.MjData(model)
     data.qpos[:] = home
     mujoco.mj_kinematics(model, data)

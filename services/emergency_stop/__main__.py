@@ -50,4 +50,4 @@ if __name__ == "__main__":
     raise SystemExit(run_service(
         "emergency_stop", "The emergency-stop band: ProxyRobot.EmergencyStop past the driver.",
         build, add_arguments=_add_arguments,
-        realtime_priority=BAND_FIFO_PRIORITY))
+        realtime_priority=BAND_FIFO_PRIORITY, reads_arm=False))

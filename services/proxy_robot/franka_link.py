@@ -7,21 +7,22 @@ arrive as straight segments, are chased under the arm's velocity and acceleratio
 hold brakes at the acceleration cap. libfranka's own rate limiter sits after it.
 
 Franka's robot modes and errors come through as they are: a reflex or a lost connection ends the
-control loop, latches a hold and becomes the link's fault, naming libfranka's error ("joint_reflex",
-"communication_constraints_violation"…), so ProxyRobot goes to FAULT and says why.
-``release_hold()`` (ProxyRobot's Reset) runs libfranka's automatic error recovery first, then starts
-the loop again where the arm stands.
+control loop, latches a hold and becomes the link's fault, with the robot's mode and libfranka's
+error ("communication_constraints_violation"…), so ProxyRobot goes to FAULT and says why.
+``release_hold()`` (ProxyRobot's Reset) then reconnects, runs libfranka's automatic error
+recovery and starts the loop again where the arm stands.
 
 Nothing here knows gRPC; errors are wire.errors, as every ArmLink raises them.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
+import os
 import threading
 import time
 from collections import deque
-from collections.abc import Callable
 
 import numpy as np
 
@@ -52,6 +53,21 @@ def libfranka_exceptions(franka) -> tuple[type[BaseException], ...]:
     return (franka.FrankaException, RuntimeError)
 
 
+@contextlib.contextmanager
+def scheduling_kept():
+    """Keep the calling thread's scheduling across a libfranka call. Where it may, libfranka
+    raises the thread that connects or starts a control loop to SCHED_FIFO 99, even with
+    RealtimeConfig.kIgnore; every thread started from it after would inherit that, above the
+    station's own real-time priorities (services/runtime/priority.py) and everything else on
+    the host."""
+    policy, param = os.sched_getscheduler(0), os.sched_getparam(0)
+    try:
+        yield
+    finally:
+        if (os.sched_getscheduler(0), os.sched_getparam(0)) != (policy, param):
+            os.sched_setscheduler(0, policy, param)
+
+
 def franka_errors(errors) -> list[str]:
     """The names of the libfranka errors set in an ``Errors`` (its boolean flags)."""
     return [name for name in dir(errors)
@@ -62,8 +78,7 @@ class FrankaArmLink:
     """ArmLink on a Franka arm at ``host`` (libfranka's port 1337). UnavailableError when it
     cannot be reached. Thread-safe."""
 
-    def __init__(self, host: str, arm: ArmDescription,
-                 connect: Callable[[str], object] | None = None):
+    def __init__(self, host: str, arm: ArmDescription):
         import pylibfranka  # here: only the Franka driver needs libfranka
 
         self._franka = pylibfranka
@@ -76,9 +91,8 @@ class FrankaArmLink:
                 f"the Franka driver drives a 7-joint Franka arm, and this station was started "
                 f"for the {arm.name} ({arm.joint_count} joints): start it with --arm fr3",
                 reason="WRONG_ARM")
-        self._connect_to = connect or self._connect
         try:
-            self._robot = self._connect_to(host)
+            self._robot = self._connect(host)
             state = self._robot.read_once()
         except self._failures as error:
             raise UnavailableError(f"cannot reach the Franka at {host}: {error}",
@@ -112,7 +126,8 @@ class FrankaArmLink:
         self._start_loop()
 
     def _connect(self, host: str):
-        return self._franka.Robot(host, self._franka.RealtimeConfig.kIgnore)
+        with scheduling_kept():
+            return self._franka.Robot(host, self._franka.RealtimeConfig.kIgnore)
 
     # -- the control loop --------------------------------------------------------------------
 
@@ -129,8 +144,9 @@ class FrankaArmLink:
     def _run(self, started: threading.Event) -> None:
         franka = self._franka
         try:
-            control = self._robot.start_joint_position_control(
-                franka.ControllerMode.JointImpedance)
+            with scheduling_kept():
+                control = self._robot.start_joint_position_control(
+                    franka.ControllerMode.JointImpedance)
             while not self._stop.is_set():
                 state, _period = control.readOnce()
                 with self._lock:
@@ -181,7 +197,7 @@ class FrankaArmLink:
         with self._lock:
             if self._stop.is_set():
                 return  # closing: not a fault
-            self._fault = f"Franka: {why}"
+            self._fault = f"Franka ({self.mode}): {why}"
             self._latched = True
         log.error("the Franka's control loop ended: %s", why)
 
@@ -224,8 +240,9 @@ class FrankaArmLink:
             # second one would wait behind it for good.
             self._robot = None
             try:
-                self._robot = self._connect_to(self.host)
-                self._robot.automatic_error_recovery()
+                self._robot = self._connect(self.host)
+                with scheduling_kept():
+                    self._robot.automatic_error_recovery()
                 state = self._robot.read_once()
             except self._failures as error:
                 raise UnavailableError(f"the Franka at {self.host} did not recover: {error}",
@@ -268,14 +285,14 @@ class FrankaArmLink:
                                    f"{quiet_s * 1e3:.0f} ms", reason="ROBOT_STALE")
 
 
-def probe_franka(host: str, connect: Callable[[str], object] | None = None) -> str:
+def probe_franka(host: str) -> str:
     """Why the Franka at ``host`` cannot be driven ("" when it answers): a state read over a
     connection that is closed again."""
     import pylibfranka
 
     try:
-        robot = (connect or (lambda h: pylibfranka.Robot(h, pylibfranka.RealtimeConfig.kIgnore)))(
-            host)
+        with scheduling_kept():
+            robot = pylibfranka.Robot(host, pylibfranka.RealtimeConfig.kIgnore)
         robot.read_once()
     except libfranka_exceptions(pylibfranka) as error:
         return f"cannot reach the Franka at {host} (libfranka, port 1337): {error}"

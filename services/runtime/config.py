@@ -92,11 +92,12 @@ def add_arm_argument(parser: argparse.ArgumentParser) -> None:
              f"{DEFAULT_ARM})")
 
 
-def select_arm_from(args: argparse.Namespace, log: logging.Logger) -> bool:
+def select_arm_from(args: argparse.Namespace, log: logging.Logger, read: bool = True) -> bool:
     """Make args.arm this process's arm (its children inherit it); False, with the reason
-    logged, when there is no such arm or its file is broken."""
+    logged, when there is no such arm or (`read`: the process loads its model) its file is
+    broken."""
     try:
-        select_arm(args.arm)
+        select_arm(args.arm, read)
     except (UnknownArmError, ArmDescriptionError) as error:
         log.error("not starting: %s", error)
         return False

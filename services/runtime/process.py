@@ -72,11 +72,14 @@ def run_service(
     add_arguments: Callable[[argparse.ArgumentParser], None] | None = None,
     switch_interval_s: float = GIL_SWITCH_INTERVAL_S,
     realtime_priority: int = 0,
+    reads_arm: bool = True,
 ) -> int:
     """Run the service `name` until SIGINT/SIGTERM; returns the process exit code.
     `switch_interval_s` is the process's GIL switch interval (the world's is shorter).
     `realtime_priority` > 0: the service is on the command path, and every thread of its
-    process runs at SCHED_FIFO at that priority where the host allows it (`--rt-priority`)."""
+    process runs at SCHED_FIFO at that priority where the host allows it (`--rt-priority`).
+    `reads_arm`: the service loads the arm's model, so `--arm`'s file is checked before it
+    starts; a service that does not (the emergency-stop band) checks only the name."""
     parser = base_parser(name, description)
     if realtime_priority:
         add_realtime_argument(parser, name, realtime_priority)
@@ -84,7 +87,7 @@ def run_service(
         add_arguments(parser)
     args = parser.parse_args(argv)
     configure_logging(name, args.log_level)
-    if not select_arm_from(args, log):  # before anything loads a model
+    if not select_arm_from(args, log, reads_arm):  # before anything loads a model
         return 2
     if realtime_priority:  # first: the threads started from now on inherit it
         if args.rt_priority:
