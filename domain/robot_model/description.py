@@ -75,9 +75,7 @@ def select_arm(name: str, read: bool = True) -> None:
     """Make ``name`` this process's arm (and its children's); UnknownArmError, or with `read`
     ArmDescriptionError for a broken file, before anything is changed. Without `read` only the
     name is checked (a process that never loads the arm's model)."""
-    arms = available_arms()
-    if name not in arms:
-        raise UnknownArmError(f"unknown arm {name!r}: the arms are {', '.join(arms)}")
+    _known(name)
     if read:
         arm_description(name)
     os.environ[ARM_ENV] = name
@@ -86,11 +84,15 @@ def select_arm(name: str, read: bool = True) -> None:
 @functools.cache
 def arm_description(name: str | None = None) -> ArmDescription:
     """The description of arm ``name`` (default: the selected arm), read once per process."""
-    name = name or selected_arm_name()
+    name = _known(name or selected_arm_name())
+    return read_description(name, arm_xml_path(name), scene_xml_path(name))
+
+
+def _known(name: str) -> str:
     arms = available_arms()
     if name not in arms:
         raise UnknownArmError(f"unknown arm {name!r}: the arms are {', '.join(arms)}")
-    return read_description(name, arm_xml_path(name), scene_xml_path(name))
+    return name
 
 
 def read_description(name: str, arm_xml: Path, scene_xml: Path) -> ArmDescription:
