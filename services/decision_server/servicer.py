@@ -13,6 +13,7 @@ import grpc
 import numpy as np
 
 from domain.geometry import finite_vector
+from domain.robot_model.description import arm_description
 from services.common import se3
 from services.common.fanout import Subscription
 from services.common.inbox import Inbox, Producer
@@ -584,7 +585,7 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
 def _move_from_proto(core: DecisionCore, lease: str | None, kind: str, action):
     """RunAction's move, checked and converted now, to run through the core later."""
     if kind == "move_joints":
-        deltas = finite_vector(action.delta_joint_positions_rad, 6,
+        deltas = finite_vector(action.delta_joint_positions_rad, arm_description().joint_count,
                                "delta_joint_positions_rad")
         return lambda: core.move_joints(lease, deltas)
     if kind == "move_cartesian":

@@ -222,6 +222,12 @@ def test_run_action_moves_go_through_the_core(fake_station):
             move_joints=proxy_robot_pb2.MoveJointsIncrementalRequest(
                 delta_joint_positions_rad=[float("nan")] * 6)), metadata=metadata)
     assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+    with pytest.raises(grpc.RpcError) as error:  # one value per joint of the station's arm
+        station.decisions.RunAction(pb.RunActionRequest(
+            move_joints=proxy_robot_pb2.MoveJointsIncrementalRequest(
+                delta_joint_positions_rad=[0.01] * 7)), metadata=metadata)
+    assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+    assert "delta_joint_positions_rad needs 6 values, got 7" in error.value.details()
 
 
 def test_events_report_locks_assistance_and_holds_in_order(fake_station):

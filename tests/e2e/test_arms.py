@@ -3,7 +3,10 @@ as its file does, moves where it is told, and refuses a service started for anot
 
 from __future__ import annotations
 
+import os
 import signal
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -16,7 +19,7 @@ from clients.python import (
 )
 from domain.robot_model.description import arm_description
 from tests.conftest import wait_for
-from tests.processes import start_process, start_station, station_env
+from tests.processes import REPO, start_process, start_station, station_env
 
 pytestmark = pytest.mark.e2e
 
@@ -73,3 +76,13 @@ def test_a_service_started_for_another_arm_refuses_the_world(station):
                 robot.connect()
     finally:
         child.stop(signal.SIGINT)
+
+
+def test_make_teleop_for_another_arm_is_refused_with_the_reason(station, tmp_path):
+    name, address, env = station
+    result = subprocess.run(
+        [sys.executable, "-m", "clients.teleop", "--address", address, "--arm", "puma560",
+         "--out", str(tmp_path / "run"), "--no-video"],
+        cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 3, result.stdout[-2000:] + result.stderr[-2000:]
+    assert f"drives the {name}, not the puma560" in result.stderr
