@@ -51,14 +51,14 @@ def _franka_link_factory(host: str):
     reach its robot stops the process here (exit 2), before it serves."""
     from services.proxy_robot.franka_link import FrankaArmLink, probe_franka
 
-    if not host:
-        log.error("not starting: --driver franka needs --robot-host (the Franka's address)")
-        raise SystemExit(2)
-    problem = probe_franka(host)
+    arm = arm_description()
+    problem = (
+        "--driver franka needs --robot-host (the Franka's address)" if not host
+        else f"--driver franka drives a Franka FR3, and --arm is {arm.name}: use --arm fr3"
+        if arm.name != "fr3" else probe_franka(host))
     if problem:
         log.error("not starting: %s", problem)
         raise SystemExit(2)
-    arm = arm_description()
     return lambda: FrankaArmLink(host, arm)
 
 

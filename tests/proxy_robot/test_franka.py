@@ -165,3 +165,16 @@ def test_a_driver_that_cannot_reach_its_robot_exits_2_before_serving():
     assert "cannot reach the Franka at 127.0.0.7 (libfranka, port 1337)" in output, output
     assert process.ready == {}
     assert time.monotonic() - started < 60
+
+
+@pytest.mark.parametrize(("args", "says"), [
+    (["--arm", "puma560", "--robot-host", HOST], "--driver franka drives a Franka FR3, and "
+                                                 "--arm is puma560: use --arm fr3"),
+    (["--arm", "fr3"], "--driver franka needs --robot-host"),
+], ids=["another-arm", "no-host"])
+def test_a_franka_driver_started_wrong_exits_2_saying_why(args, says):
+    process = start_process(["-m", "services.proxy_robot", "--address", "127.0.0.1:0",
+                             "--driver", "franka", *args])
+    assert process.wait(timeout_s=60) == 2
+    assert any(says in line for line in process.lines), "\n".join(process.lines)
+    assert process.ready == {}
