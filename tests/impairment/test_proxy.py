@@ -43,11 +43,15 @@ def delayed_proxy(health_server):
 
 @pytest.fixture
 def health(delayed_proxy):
-    """A health stub on a channel through the proxy, its connection already open."""
+    """A health stub on a channel through the proxy, its connection already open; the
+    channel's connectivity states from then on are in `stub.states`."""
     with grpc.insecure_channel(delayed_proxy.address) as channel:
         stub = health_pb2_grpc.HealthStub(channel)
         assert stub.Check(health_pb2.HealthCheckRequest(), timeout=5).status == SERVING
+        stub.states = []
+        channel.subscribe(stub.states.append)
         yield stub
+        channel.unsubscribe(stub.states.append)
 
 
 def timed_check(stub, **kwargs) -> float:
@@ -74,6 +78,11 @@ def test_a_reset_cut_fails_the_open_stream_and_a_new_call_then_succeeds(health, 
     assert time.monotonic() - started >= CUT_S
     assert not delayed_proxy.cutting  # the reset comes when the cut ends
     assert delayed_proxy.stats.reset_by_cuts == 1
+    # A call made before the channel has seen its connection go can still be written to it and
+    # fail ("Stream removed"); once it has, the next call reconnects.
+    wait_for(lambda: any(state != grpc.ChannelConnectivity.READY for state in health.states),
+             timeout_s=5,
+             what=lambda: f"the channel to see the reset (states {health.states})")
     assert timed_check(health, timeout=5, wait_for_ready=True) >= 2 * ONE_WAY_S
     assert delayed_proxy.stats.connections == 2  # the channel reconnected
 
