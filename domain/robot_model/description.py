@@ -156,6 +156,13 @@ def read_description(name: str, arm_xml: Path, scene_xml: Path) -> ArmDescriptio
         raise fail(f"numeric {n.MAX_VELOCITY_NUMERIC!r} needs {model.njnt} positive values "
                    f"(rad/s, one per joint), has {velocity.tolist()}")
 
+    flange, tool = (mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, site)
+                    for site in (n.FLANGE_SITE, n.TOOL_SITE))
+    if (model.body_weldid[model.site_bodyid[tool]]
+            != model.body_weldid[model.site_bodyid[flange]]):
+        raise fail(f"site {n.TOOL_SITE!r} is not rigid with site {n.FLANGE_SITE!r}: the tool "
+                   "mounts on the last link, with no joint between them")
+
     lower, upper = model.jnt_range[:, 0].copy(), model.jnt_range[:, 1].copy()
     home = model.key_qpos[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, n.HOME_KEY)].copy()
     for joint, value, low, high in zip(joint_names, home, lower, upper, strict=True):

@@ -34,15 +34,6 @@ def _frame_id(model: pin.Model, name: str) -> int:
     return model.getFrameId(name)
 
 
-def _offset_from_flange(model: pin.Model, name: str) -> pin.SE3:
-    """Pose of frame ``name`` relative to the flange; both must be rigid on the last link."""
-    frame = model.frames[_frame_id(model, name)]
-    flange = model.frames[_frame_id(model, n.FLANGE_SITE)]
-    if frame.parentJoint != flange.parentJoint:
-        raise ValueError(f"frame {name!r} is not on the flange's link")
-    return flange.placement.actInv(frame.placement)
-
-
 class ArmKinematics:
     """Forward kinematics, Jacobians and dynamics of one arm, for joint vectors ``q`` of shape
     (nq,).
@@ -59,13 +50,13 @@ class ArmKinematics:
         arm: ArmDescription | None = None,
     ) -> None:
         """``arm`` defaults to the selected arm, ``model`` to its ``arm.xml``, ``flange_T_tool``
-        to its tool_point site."""
+        to its tool_point site (the description's, which GetArmInfo reports too)."""
         self.arm = arm or arm_description()
         model = pin.Model(load_pinocchio_model(self.arm) if model is None else model)
         self._flange = _frame_id(model, n.FLANGE_SITE)
         flange = model.frames[self._flange]
         if flange_T_tool is None:
-            flange_T_tool = _offset_from_flange(model, n.TOOL_SITE)
+            flange_T_tool = pin.SE3(self.arm.flange_T_tool)
         tool = pin.Frame(
             TOOL_FRAME,
             flange.parentJoint,

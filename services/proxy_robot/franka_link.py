@@ -92,7 +92,7 @@ class FrankaArmLink:
                 f"for the {arm.name} ({arm.joint_count} joints): start it with --arm fr3",
                 reason="WRONG_ARM")
         try:
-            self._robot = self._connect(host)
+            self._robot = connect(host)
             state = self._robot.read_once()
         except self._failures as error:
             raise UnavailableError(f"cannot reach the Franka at {host}: {error}",
@@ -124,10 +124,6 @@ class FrankaArmLink:
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self._start_loop()
-
-    def _connect(self, host: str):
-        with scheduling_kept():
-            return self._franka.Robot(host, self._franka.RealtimeConfig.kIgnore)
 
     # -- the control loop --------------------------------------------------------------------
 
@@ -240,7 +236,7 @@ class FrankaArmLink:
             # second one would wait behind it for good.
             self._robot = None
             try:
-                self._robot = self._connect(self.host)
+                self._robot = connect(self.host)
                 with scheduling_kept():
                     self._robot.automatic_error_recovery()
                 state = self._robot.read_once()
@@ -285,14 +281,22 @@ class FrankaArmLink:
                                    f"{quiet_s * 1e3:.0f} ms", reason="ROBOT_STALE")
 
 
+def connect(host: str):
+    """A libfranka connection to the Franka at ``host`` (no real-time kernel needed), leaving
+    the calling thread's scheduling as it was."""
+    import pylibfranka  # here: only the Franka driver needs libfranka
+
+    with scheduling_kept():
+        return pylibfranka.Robot(host, pylibfranka.RealtimeConfig.kIgnore)
+
+
 def probe_franka(host: str) -> str:
     """Why the Franka at ``host`` cannot be driven ("" when it answers): a state read over a
     connection that is closed again."""
     import pylibfranka
 
     try:
-        with scheduling_kept():
-            robot = pylibfranka.Robot(host, pylibfranka.RealtimeConfig.kIgnore)
+        robot = connect(host)
         robot.read_once()
     except libfranka_exceptions(pylibfranka) as error:
         return f"cannot reach the Franka at {host} (libfranka, port 1337): {error}"

@@ -92,8 +92,8 @@ def test_a_reflex_is_a_named_fault_and_reset_recovers_the_robot():
     sim = start_franka_sim("--enforce-comm-constraints")
     link = FrankaArmLink(HOST, FR3)
     try:
-        with link._lock:  # the control loop waits here: no command reaches the robot
-            time.sleep(0.1)
+        with link._lock:  # the control loop waits here until the robot gives the motion up
+            sim.wait_line("communication_constraints_violation", timeout_s=5)
         sample = wait_for(lambda: link.read_arm().fault and link.read_arm(), timeout_s=5,
                           what="the reflex as a fault")
         assert sample.hold_latched

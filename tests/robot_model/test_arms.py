@@ -215,3 +215,15 @@ def test_a_broken_description_names_what_is_wrong(fr3_copy: Path, old, new, mess
     with pytest.raises(ArmDescriptionError, match=message) as raised:
         read_description("fr3", fr3_copy, fr3_copy)
     assert str(fr3_copy) in str(raised.value)
+
+
+def test_a_tool_behind_a_joint_from_the_flange_is_refused(fr3_copy: Path) -> None:
+    lines = fr3_copy.read_text().splitlines()
+    tool = next(line for line in lines if '<site name="tool_point"' in line)
+    lines.remove(tool)
+    link6 = next(i for i, line in enumerate(lines) if '<body name="fr3_link6"' in line)
+    lines.insert(link6 + 1, tool)  # on link 6: joint 7 lies between it and the flange
+    fr3_copy.write_text("\n".join(lines))
+    with pytest.raises(ArmDescriptionError, match="site 'tool_point' is not rigid with site "
+                                                  "'flange'"):
+        read_description("fr3", fr3_copy, fr3_copy)
