@@ -185,7 +185,7 @@ class GrpcSlave:
                 if self.emergency is not None else None)
         status, robot_error, band_error = None, None, None
         try:
-            status = _status_name(call(self.robot.EmergencyStop, request).status)
+            status = status_name(call(self.robot.EmergencyStop, request).status)
         except TelerobotError as error:
             robot_error = error
         if band is not None:
@@ -212,7 +212,7 @@ class GrpcSlave:
                 timeout=BAND_TIMEOUT_S)
 
     def reset(self) -> str:
-        return _status_name(call(self.robot.Reset, proxy_robot_pb2.ResetRequest()).status)
+        return status_name(call(self.robot.Reset, proxy_robot_pb2.ResetRequest()).status)
 
     def set_tool_frame(self, flange_to_tool: pin.SE3) -> pin.SE3:
         reply = call(self.robot.SetToolFrame, proxy_robot_pb2.SetToolFrameRequest(
@@ -228,7 +228,7 @@ class GrpcSlave:
         if state is not None and time.time_ns() - state.sample_time_ns < STATE_FRESH_S * 1e9:
             return state
         reply = call(self.robot.GetStatus, proxy_robot_pb2.GetStatusRequest())
-        name = _status_name(reply.status)
+        name = status_name(reply.status)
         if name == "NOT_CONNECTED":
             return SlaveState(pin.SE3.Identity(), name, time.time_ns(), reply.reason)
         return self._state_from(call(self.robot.GetState, proxy_robot_pb2.GetStateRequest())
@@ -315,7 +315,7 @@ class GrpcSlave:
 
     @staticmethod
     def _state_from(state: types_pb2.RobotState) -> SlaveState:
-        return SlaveState(se3.trusted_pose(state.tool_pose), _status_name(state.status),
+        return SlaveState(se3.trusted_pose(state.tool_pose), status_name(state.status),
                           state.sample_time.ToNanoseconds())
 
     def _follow(self, name: str, open_stream: Callable[[], Iterator],
@@ -376,7 +376,7 @@ class _WrenchStream:
         self._call.cancel()
 
 
-def _status_name(status: int) -> str:
+def status_name(status: int) -> str:
     return types_pb2.RobotStatus.Name(status).removeprefix("ROBOT_STATUS_")
 
 
@@ -388,15 +388,20 @@ def _wrench_from(sample: force_sensor_pb2.WrenchSample) -> SlaveWrench:
 
 def forwarding_servicer(servicer_base: type, stub, service_descriptor,
                         guard: Callable[[str, grpc.ServicerContext], None],
-                        overrides: type | None = None):
+                        overrides: type | None = None,
+                        answered: Callable[[str, object], None] | None = None):
     """A servicer that forwards every RPC of `service_descriptor` to `stub`, after
-    `guard(method_name, context)` (which raises to refuse). Methods of `overrides` win."""
+    `guard(method_name, context)` (which raises to refuse). Methods of `overrides` win.
+    `answered(method_name, reply)` sees each unary reply before the caller does."""
 
     def unary(name: str):
         def method(self, request, context):
             guard(name, context)
-            return call(getattr(stub, name), request, forwarded_metadata(context),
-                        forward_timeout(context))
+            reply = call(getattr(stub, name), request, forwarded_metadata(context),
+                         forward_timeout(context))
+            if answered is not None:
+                answered(name, reply)
+            return reply
         return method
 
     def server_stream(name: str):

@@ -283,8 +283,10 @@ class DecisionCore:
                         state.reason or "no reason given")
             self._stop_replay(f"the arm is {newly_latched}: {state.reason}".rstrip(": "))
 
-    def _note_status(self, status: str, reason: str) -> None:
-        """The status an answer from the arm reported, as of now."""
+    def note_status(self, status: str, reason: str) -> None:
+        """The status an answer from the arm reported, as of now: it wins over state samples
+        taken before it, which the state stream may still deliver (a Teleoperate right after
+        Initialize's READY must not see the CONNECTED of a sample from before it)."""
         state = self._state
         pose = state.tool_pose if state is not None else pin.SE3.Identity()
         self._note_state(SlaveState(pose, status, self.clock.time_ns(), reason), answer=True)
@@ -457,7 +459,7 @@ class DecisionCore:
             self._replace_force_loop(None)
             self._stop_replay(f"emergency stop: {reason}")
             raise
-        self._note_status(status, reason)  # the latch pauses force control until a Reset
+        self.note_status(status, reason)  # the latch pauses force control until a Reset
         self._stop_replay(f"emergency stop: {reason}")
         return status
 
@@ -465,7 +467,7 @@ class DecisionCore:
         """Clear the latch (the lock holder only); force control, if configured, resumes."""
         self.locks.require(lease_id)
         status = self.slave.reset()
-        self._note_status(status, "reset")
+        self.note_status(status, "reset")
         with self._lock:
             if self.latched is None:
                 self._replace_force_loop(self._assistance)

@@ -19,7 +19,7 @@ from services.common.fanout import Subscription
 from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
 from services.decision_server.arbitration import DEFAULT_LEASE_S, ControlMode, ControlView, Lease
-from services.decision_server.backends import forwarding_servicer
+from services.decision_server.backends import forwarding_servicer, status_name
 from services.decision_server.cobegin import MAX_BUSY_WORK_S
 from services.decision_server.core import (
     AssistanceChanged,
@@ -65,6 +65,8 @@ INIT_TIMEOUT_S = 10.0
 # Calls through the facades that command the arm or the sensor need the control lock.
 PROXY_COMMANDS = {"Connect", "Initialize", "Disconnect", "SetToolFrame", "MoveJointsIncremental",
                   "MoveCartesianIncremental", "Hold", "Reset"}
+# Forwarded calls whose answer says the arm's new status, which the core notes.
+STATUS_ANSWERS = {"Connect", "Initialize", "Disconnect"}
 SENSOR_COMMANDS = {"StartReading", "StopReading", "Tare", "SetSensorConfig"}
 _OUTCOMES = {name: pb.CommandOutcome.Value(f"COMMAND_OUTCOME_{name}")
              for name in ("APPLIED", "MODIFIED", "MERGED_LATE", "INDEXED", "REJECTED",
@@ -646,10 +648,14 @@ def make_facades(core: DecisionCore, robot_stub, sensor_stub, stereo_stub) -> li
             return proxy_robot_pb2.SetToolFrameResponse(flange_to_tool=convert.pose_to_proto(
                 core.set_tool_frame(lease_id(context), flange_to_tool)))
 
+    def note_status(method: str, reply) -> None:
+        if method in STATUS_ANSWERS:
+            core.note_status(status_name(reply.status), method.lower())
+
     robot = forwarding_servicer(
         proxy_robot_pb2_grpc.ProxyRobotServicer, robot_stub,
         proxy_robot_pb2.DESCRIPTOR.services_by_name["ProxyRobot"],
-        guard_commands(PROXY_COMMANDS), RobotOverrides)
+        guard_commands(PROXY_COMMANDS), RobotOverrides, answered=note_status)
     sensor = forwarding_servicer(
         force_sensor_pb2_grpc.ForceSensorServicer, sensor_stub,
         force_sensor_pb2.DESCRIPTOR.services_by_name["ForceSensor"],

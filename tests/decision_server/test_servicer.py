@@ -10,6 +10,7 @@ import pytest
 from clients.python.errors import from_rpc_error
 from services.common import se3
 from services.decision_server.clock_offset import ClockOffsetEstimator
+from services.decision_server.servicer import make_facades
 from services.decision_server.sessions import CommandResult
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
@@ -17,6 +18,7 @@ from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
 from wire import convert
 from wire.errors import FailedPreconditionError
+from wire.metadata import LEASE_METADATA_KEY
 
 
 def test_acks_carry_the_outcome_pose_status_and_a_fresh_wrench(fake_station):
@@ -384,3 +386,39 @@ def test_the_group_secret_is_in_the_members_answers_only(fake_station):
     exclusive = station.decisions.AcquireControl(pb.AcquireControlRequest(
         operator_id="cat", mode=pb.CONTROL_MODE_EXCLUSIVE), timeout=5)
     assert exclusive.group_secret == ""
+
+
+class _ArmStub:
+    """ProxyRobot's Initialize, forwarded by the facade, on the fake slave's arm."""
+
+    def __init__(self, slave):
+        self.slave = slave
+
+    def Initialize(self, request, metadata=(), timeout=None):
+        self.slave.status = "READY"
+        return proxy_robot_pb2.InitializeResponse(status=types_pb2.ROBOT_STATUS_READY)
+
+
+class _Context:
+    def __init__(self, lease_id: str):
+        self.lease_id = lease_id
+
+    def invocation_metadata(self):
+        return ((LEASE_METADATA_KEY, self.lease_id),)
+
+    def time_remaining(self):
+        return 5.0
+
+
+def test_teleoperate_right_after_initialize_sees_its_ready_not_an_older_sample(rig):
+    """Defect (CI, under a flood): Teleoperate right after Initialize answered READY was refused
+    'the arm is NOT_CONNECTED': the state stream still held a sample from before."""
+    rig.slave.status = "NOT_CONNECTED"
+    rig.slave.lagging_state = rig.slave.state()
+    rig.clock.advance(0.001)
+    with pytest.raises(FailedPreconditionError, match="NOT_CONNECTED"):
+        rig.core.open_session("alice", rig.lease.lease_id, None, 1.0)
+    (_, _, robot), *_ = make_facades(rig.core, _ArmStub(rig.slave), None, None)
+    robot.Initialize(proxy_robot_pb2.InitializeRequest(), _Context(rig.lease.lease_id))
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 1.0)
+    session.close("done")

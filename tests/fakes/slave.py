@@ -112,6 +112,9 @@ class FakeSlave:
         self.sensor_is_reading_calls = 0
         self.wrench_delay_s = 0.0  # how late samples arrive (a backlog on a loaded machine)
         self.publish_state = True  # False: the state stream lags (samples held back)
+        # What state() answers instead of the arm's own, while set: the state stream's cached
+        # sample from before (GrpcSlave answers its latest sample while it is fresh).
+        self.lagging_state: SlaveState | None = None
         self.reachable = True
         # What health() says of each dependency: "ok" or why not (a test sets them); the arm
         # and the sensor also say "unreachable" while `reachable` is False.
@@ -246,7 +249,7 @@ class FakeSlave:
     def state(self) -> SlaveState:
         self._check_reachable()
         with self._lock:
-            return self._state()
+            return self.lagging_state or self._state()
 
     def wrench(self) -> SlaveWrench | None:
         return self._latest_wrench if self.sensor_reading and not self.sensor_hung else None
