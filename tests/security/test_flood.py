@@ -37,6 +37,7 @@ from telerobot.v1 import decision_server_pb2 as ds
 from telerobot.v1 import decision_server_pb2_grpc, proxy_robot_pb2, proxy_robot_pb2_grpc
 from tests.conftest import wait_for
 from tests.processes import start_process, station_env
+from wire.errors import TelerobotError
 from wire.tls import ChannelSecurity
 
 pytestmark = pytest.mark.e2e
@@ -64,7 +65,7 @@ def station(tmp_path_factory):
     try:
         launcher.wait_ready(STATION, timeout_s=SETTLE_S)
         launcher.wait_line(UP_LINE, timeout_s=CALL_TIMEOUT_S)
-        yield dict(launcher.ready)["decision_server"], pki
+        yield dict(launcher.ready)["decision_server"], pki, launcher
     finally:
         launcher.stop(signal.SIGINT)
 
@@ -183,17 +184,20 @@ class Flood:
 
 
 def test_a_flood_from_one_identity_does_not_starve_the_lease_holder(station):
-    address, pki = station
+    address, pki, launcher = station
     operator = DecisionClient(address, security=ChannelSecurity(pki, "operator"),
                               default_timeout=CALL_TIMEOUT_S)
     lease = operator.acquire_control("operator", lease_duration_s=10.0)
-    status = operator.robot.get_status().status
-    if status is RobotStatus.NOT_CONNECTED:
-        operator.robot.connect()
+    try:
         status = operator.robot.get_status().status
-    if status is RobotStatus.CONNECTED:
-        operator.robot.initialize()
-    session = operator.teleoperate(watchdog_timeout_s=5.0, max_command_age_s=1.0)
+        if status is RobotStatus.NOT_CONNECTED:
+            operator.robot.connect()
+            status = operator.robot.get_status().status
+        if status is RobotStatus.CONNECTED:
+            operator.robot.initialize()
+        session = operator.teleoperate(watchdog_timeout_s=5.0, max_command_age_s=1.0)
+    except TelerobotError as error:  # the station's own account of why
+        raise AssertionError(f"{error}\n{launcher.describe(60)}") from error
     driver = Driver(operator, session)
     flood = None
     try:
