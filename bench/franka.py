@@ -2,7 +2,9 @@
 
 franka-sim (a MuJoCo FR3 behind libfranka's own protocol, `python -m services.franka_sim` from
 its venv) is the robot; the driver's link (services/proxy_robot/franka_link.py) runs libfranka's
-1 kHz joint-position loop in this worker. From home, a joint target is written every 1 ms (joint
+1 kHz joint-position loop in this worker. `mirrored`: the loop also publishes every cycle on its
+mirror of the arm (services/proxy_robot/arm_mirror.py: the state and the estimated wrench), as
+in the station. From home, a joint target is written every 1 ms (joint
 7 swinging 0.1 rad at 0.5 Hz), as ProxyRobot writes a streamed command's target. Command ->
 applied runs from write_target() until the robot reports (its RobotState.q_d, as libfranka
 reads it back) the first setpoint the loop sent after it: the driver's queue, one control cycle
@@ -14,6 +16,7 @@ share of the robot's cycles that got a command in time) is the run's lowest read
 from __future__ import annotations
 
 import math
+import os
 import signal
 import time
 
@@ -23,7 +26,8 @@ from bench.schedule import Schedule
 from bench.stats import summary
 from domain.robot_model.description import arm_description
 from services.franka_sim.process import start_franka_sim
-from services.proxy_robot.franka_link import FrankaArmLink
+from services.proxy_robot.arm_mirror import ArmMirror
+from services.proxy_robot.franka_link import CONTROL_PERIOD_S, FrankaArmLink
 
 HOST = "127.0.0.1"
 RATE_HZ = 1000
@@ -32,16 +36,20 @@ SWING_HZ = 0.5
 HOME_TIMEOUT_S = 15.0
 
 
-def measure(duration_s: float) -> dict:
+def measure(duration_s: float, mirrored: bool) -> dict:
     sim = start_franka_sim(HOST)
+    arm = arm_description("fr3")
+    mirror = (ArmMirror(arm, CONTROL_PERIOD_S, f"telerobot_bench_franka_{os.getpid()}")
+              if mirrored else None)
     try:
-        arm = arm_description("fr3")
-        link = FrankaArmLink(HOST, arm)
+        link = FrankaArmLink(HOST, arm, mirror, torque_source="impedance")
         try:
             return _run(link, arm.home_q, duration_s)
         finally:
             link.close()
     finally:
+        if mirror is not None:
+            mirror.close()
         sim.stop(signal.SIGTERM)
 
 

@@ -145,7 +145,7 @@ GOALS: tuple[tuple[str, Goal], ...] = (
     ("observers_32", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("closed_loop", Goal(p50_ms=15.0, p99_ms=25.0, source=_ISSUE)),
     # Issue #30: libfranka's loop is 1 kHz; a command applied within 2 cycles at p99.
-    ("franka_command_1000", Goal(min_rate=990, p99_ms=2.0, source=_ARMS_ISSUE)),
+    ("franka_command_1000*", Goal(min_rate=990, p99_ms=2.0, source=_ARMS_ISSUE)),
     ("estop_*", Goal(p99_ms=5.0, source=_ISSUE)),
     ("stereo_sim_double", Goal(min_rate=17, rate_unit="fps", source=_ISSUE)),
     ("stereo_pattern_*", Goal(p99_ms=30.0, source=_BRIEF)),

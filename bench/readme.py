@@ -65,6 +65,8 @@ WHAT = (
     ("closed_loop", "operator command → contact → force change at the operator"),
     ("franka_command_1000", "FR3 joint target → applied in franka-sim through libfranka, "
                             "1 kHz (and libfranka's control success rate)"),
+    ("franka_command_1000_mirrored", "the same, the driver also publishing its mirror of the "
+                                     "arm every cycle, as in the station"),
     ("stereo_*", "stereo pair captured → decoded, 640×480 JPEG"),
     ("world_loop", "the world's 1 kHz loop over the whole run"),
     ("soak_overload", "Teleoperate at 500 Hz (Python client, pipelined) beside a busy "

@@ -36,7 +36,9 @@ TLS_SUFFIX = "_tls"
 PLAINTEXT = "plaintext"  # what a TLS variant is compared with, as the ratios name it
 MCAP_SUFFIX = "_mcap"
 RECORDING_OFF = "recording_off"  # what a recording-on variant is compared with
-TWINS = {TLS_SUFFIX: PLAINTEXT, MCAP_SUFFIX: RECORDING_OFF}
+MIRRORED_SUFFIX = "_mirrored"
+UNMIRRORED = "unmirrored"  # what a driver publishing its arm's mirror is compared with
+TWINS = {TLS_SUFFIX: PLAINTEXT, MCAP_SUFFIX: RECORDING_OFF, MIRRORED_SUFFIX: UNMIRRORED}
 
 
 def family(name: str) -> str:
@@ -50,7 +52,8 @@ def plaintext_twin(name: str) -> str | None:
 
 def twin_of(name: str) -> tuple[str, str] | None:
     """(label, scenario) of the scenario a variant repeats: teleop_1000_tls's plaintext
-    teleop_1000, teleop_1000_mcap's teleop_1000 without recording; None for the others."""
+    teleop_1000, teleop_1000_mcap's teleop_1000 without recording, franka_command_1000_mirrored's
+    franka_command_1000 without the arm's mirror; None for the others."""
     for suffix, label in TWINS.items():
         if name.endswith(suffix):
             return label, name.removesuffix(suffix)

@@ -143,7 +143,7 @@ def _video_console(p: dict) -> dict:
 def _franka(p: dict) -> dict:
     from bench.franka import measure
 
-    return measure(p["duration_s"])
+    return measure(p["duration_s"], p["mirrored"])
 
 
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,

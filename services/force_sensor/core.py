@@ -42,8 +42,9 @@ from collections.abc import Callable
 import numpy as np
 import pinocchio as pin
 
-from domain.robot_model import names, puma560
+from domain.robot_model import names
 from domain.robot_model.kinematics import ArmKinematics
+from domain.wrench_model import ContactWrench, Payload, contact_wrench, default_payload
 from services.common.fanout import Fanout
 from services.force_sensor.settings import SensorSettings, ThreadPriority
 from services.force_sensor.subscribers import (
@@ -53,7 +54,6 @@ from services.force_sensor.subscribers import (
     WrenchSubscription,
     changed_enough,
 )
-from services.force_sensor.wrench_model import ContactWrench, Payload, contact_wrench
 from services.world.link import ArmLink, WrenchLink
 from services.world.realtime import RealtimeLoop
 from wire.errors import (
@@ -75,12 +75,6 @@ MAX_SUBSCRIBERS = 128
 STOP_TIMEOUT_S = 2.0
 _IDENTITY = np.eye(3)  # the sensor's rotation when no arm link tells it
 _IDENTITY.setflags(write=False)
-
-
-def default_payload() -> Payload:
-    """The shipped peg: a uniform cylinder along the sensor's z axis."""
-    tool = puma560.TOOL
-    return Payload(tool.mass, np.array([0.0, 0.0, tool.length / 2.0]))
 
 
 class ForceSensorCore:

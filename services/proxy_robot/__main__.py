@@ -3,6 +3,9 @@
 It reaches the arm through the hardware link (--driver): in simulation, the world process's
 shared memory (--shm-name / TELEROBOT_WORLD_SHM); on a Franka, libfranka (--driver franka
 --robot-host HOST, with --arm fr3). Clients Connect and Initialize before moving the arm.
+
+On a Franka this process owns the station's shared memory in the world's place (arm_mirror.py):
+the force sensor, the cameras and the emergency-stop band read the Franka there.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from telerobot.v1 import proxy_robot_pb2_grpc
 log = logging.getLogger(__name__)
 DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"
 ROBOT_HOST_ENV = "TELEROBOT_PROXY_ROBOT_ROBOT_HOST"
+TORQUE_SOURCE_ENV = "TELEROBOT_PROXY_ROBOT_TORQUE_SOURCE"
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -39,6 +43,13 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"the Franka's address (its FCI, port 1337) for --driver franka "
              f"(env {ROBOT_HOST_ENV})")
     parser.add_argument(
+        "--torque-source", choices=("robot", "impedance"),
+        default=os.environ.get(TORQUE_SOURCE_ENV, "robot"),
+        help=f"for --driver franka, where the push on the tool comes from: the robot's own "
+             f"estimate (robot: tau_ext_hat_filtered), or its joint-impedance spring "
+             f"(impedance: what franka-sim needs, as it estimates nothing) (env "
+             f"{TORQUE_SOURCE_ENV})")
+    parser.add_argument(
         "--aio-server", action=argparse.BooleanOptionalAction,
         default=os.environ.get("TELEROBOT_PROXY_ROBOT_AIO_SERVER", "") == "1",
         help="serve on grpc.aio: an EmergencyStop sent here under a flood of other calls is "
@@ -46,10 +57,12 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
              "performance.md; env TELEROBOT_PROXY_ROBOT_AIO_SERVER=1)")
 
 
-def _franka_link_factory(host: str):
+def _franka_link_factory(host: str, mirror_segment: str | None, torque_source: str):
     """The Franka driver's link factory, once the robot has answered: a driver that cannot
-    reach its robot stops the process here (exit 2), before it serves."""
-    from services.proxy_robot.franka_link import FrankaArmLink, probe_franka
+    reach its robot stops the process here (exit 2), before it serves. With the mirror of
+    the Franka on the station's segment, which close() removes."""
+    from services.proxy_robot.arm_mirror import ArmMirror
+    from services.proxy_robot.franka_link import CONTROL_PERIOD_S, FrankaArmLink, probe_franka
 
     arm = arm_description()
     problem = (
@@ -59,21 +72,33 @@ def _franka_link_factory(host: str):
     if problem:
         log.error("not starting: %s", problem)
         raise SystemExit(2)
-    return lambda: FrankaArmLink(host, arm)
+    mirror = ArmMirror(arm, CONTROL_PERIOD_S, mirror_segment)
+    log.info("the Franka at %s is mirrored on the shared memory %r (external torques: %s)",
+             host, mirror.name, torque_source)
+    return (lambda: FrankaArmLink(host, arm, mirror, torque_source)), mirror.close
 
 
 def build(args: argparse.Namespace) -> CoreService:
     # The link opens on Connect, as the papers' ConnectRobot does; close() holds the arm.
     if args.driver == "franka":
-        link_factory = _franka_link_factory(args.robot_host)
+        link_factory, close_mirror = _franka_link_factory(args.robot_host, args.shm_name,
+                                                          args.torque_source)
     else:
         def link_factory():
             return SharedMemoryArmLink(args.shm_name)
+
+        def close_mirror():
+            pass
     core = ProxyRobotCore(link_factory)
+
+    def close() -> None:
+        core.close()  # the link first: its control loop publishes on the mirror
+        close_mirror()
+
     # Restarted by the launcher after a crash: take the arm back where it is held, at once.
     because = os.environ.get(RESTARTED_BECAUSE_ENV)
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", ProxyRobotServicer(core))],
-                       core.close, emergency_latch=core.hold_now,
+                       close, emergency_latch=core.hold_now,
                        on_start=(lambda: core.reattach(because)) if because else None,
                        fanouts={"robot_states": core.states, "robot_events": core.events},
                        aio_server=args.aio_server)

@@ -6,6 +6,13 @@ same reference generator the simulated servo uses (``services/world/trajectory.p
 arrive as straight segments, are chased under the arm's velocity and acceleration caps, and a
 hold brakes at the acceleration cap. libfranka's own rate limiter sits after it.
 
+Every cycle also goes to the station's segment when a mirror is given (arm_mirror.py): the
+force sensor then reads the Franka's own estimate of the push on its tool, the cameras its
+joints, and the emergency-stop band's stop latches the same hold as EmergencyStop. The
+estimate comes from the joint torques the environment applies: the robot's own
+(``tau_ext_hat_filtered``, from its torque sensors), or its joint-impedance spring's, K (q − q_d),
+with the stiffness K the driver sets (JOINT_STIFFNESS).
+
 Franka's robot modes and errors come through as they are: a reflex or a lost connection ends the
 control loop, latches a hold and becomes the link's fault, with the robot's mode and libfranka's
 error ("communication_constraints_violation"…), so ProxyRobot goes to FAULT and says why.
@@ -27,6 +34,8 @@ from collections import deque
 import numpy as np
 
 from domain.robot_model.description import ArmDescription
+from domain.robot_model.external_wrench import impedance_torques
+from services.proxy_robot.arm_mirror import ArmMirror
 from services.world.link import ArmSample, checked_duration, checked_joint_target
 from services.world.sim import (
     GOAL_SMOOTHING_S,
@@ -45,6 +54,12 @@ STOP_TIMEOUT_S = 2.0
 # hung libfranka) makes every call UNAVAILABLE, as a stale world does.
 STALE_AFTER_S = 0.25
 APPLIED_KEPT = 100_000
+# The joint impedance controller's stiffness (N·m/rad), set on connect: the spring the
+# "impedance" torque source reads. franka-sim's joint servo has these gains whatever it is
+# told; a real FR3 takes them (libfranka's own default is 3000…2000).
+JOINT_STIFFNESS = np.array([4500.0, 4500.0, 3500.0, 3500.0, 2000.0, 2000.0, 2000.0])
+# Where the environment's joint torques come from: the robot's estimate, or the spring.
+TORQUE_SOURCES = ("robot", "impedance")
 
 
 def libfranka_exceptions(franka) -> tuple[type[BaseException], ...]:
@@ -78,9 +93,14 @@ class FrankaArmLink:
     """ArmLink on a Franka arm at ``host`` (libfranka's port 1337). UnavailableError when it
     cannot be reached. Thread-safe."""
 
-    def __init__(self, host: str, arm: ArmDescription):
+    def __init__(self, host: str, arm: ArmDescription, mirror: ArmMirror | None = None,
+                 torque_source: str = "robot"):
         import pylibfranka  # here: only the Franka driver needs libfranka
 
+        if torque_source not in TORQUE_SOURCES:
+            raise ValueError(f"torque_source must be one of {TORQUE_SOURCES}")
+        self._mirror = mirror
+        self._torque_source = torque_source
         self._franka = pylibfranka
         self._failures = libfranka_exceptions(pylibfranka)
         self.host = host
@@ -93,6 +113,7 @@ class FrankaArmLink:
                 reason="WRONG_ARM")
         try:
             self._robot = connect(host)
+            self._robot.set_joint_impedance(JOINT_STIFFNESS.tolist())
             state = self._robot.read_once()
         except self._failures as error:
             raise UnavailableError(f"cannot reach the Franka at {host}: {error}",
@@ -163,14 +184,28 @@ class FrankaArmLink:
                     self._heard_ns = time.monotonic_ns()
                     self.mode = str(state.robot_mode)
                     self.success_rate = float(state.control_command_success_rate)
+                    sample = self._sample()
                 started.set()
                 control.writeOnce(franka.JointPositions(setpoint.tolist()))
+                if self._mirror is not None and self._mirror.publish(
+                        sample, self._external_torques(state, commanded)):
+                    self.hold()  # the band's stop
         except self._failures as error:
             self._fail(self._describe(error))
         except Exception as error:  # noqa: BLE001 (anything else ends the loop the same way)
             self._fail(f"the control loop failed: {error!r}")
         finally:
             started.set()
+
+    def _external_torques(self, state, commanded: np.ndarray) -> np.ndarray:
+        if self._torque_source == "robot":
+            return np.array(state.tau_ext_hat_filtered, float)
+        return impedance_torques(JOINT_STIFFNESS, commanded, self._q)
+
+    def _sample(self) -> ArmSample:
+        """The latest state as an ArmSample (lock held)."""
+        return ArmSample(self._sequence, self._sample_ns, self._q.copy(), self._dq.copy(),
+                         self._reference.goal.copy(), self._latched, self._fault)
 
     def _note_applied(self, commanded: np.ndarray) -> None:
         """The robot's command has moved since the setpoint in flight was sent: applied."""
@@ -202,8 +237,7 @@ class FrankaArmLink:
     def read_arm(self) -> ArmSample:
         with self._lock:
             self._check_heard()
-            return ArmSample(self._sequence, self._sample_ns, self._q.copy(), self._dq.copy(),
-                             self._reference.goal.copy(), self._latched, self._fault)
+            return self._sample()
 
     def write_target(self, joint_positions_rad: np.ndarray, duration_s: float = 0.0) -> None:
         target = checked_joint_target(joint_positions_rad, self.joint_lower, self.joint_upper)
@@ -237,6 +271,7 @@ class FrankaArmLink:
             self._robot = None
             try:
                 self._robot = connect(self.host)
+                self._robot.set_joint_impedance(JOINT_STIFFNESS.tolist())
                 with scheduling_kept():
                     self._robot.automatic_error_recovery()
                 state = self._robot.read_once()

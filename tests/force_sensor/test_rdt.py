@@ -207,8 +207,7 @@ def test_the_service_process_reads_a_net_ft_when_configured(responder_factory, w
         # compare with the same conversion of the responder's numbers at the arm's pose.
         from domain.robot_model import puma560
         from domain.robot_model.kinematics import ArmKinematics
-        from services.force_sensor.core import default_payload
-        from services.force_sensor.wrench_model import contact_wrench
+        from domain.wrench_model import contact_wrench, default_payload
         from services.world.shm_link import SharedMemoryArmLink
 
         arm = SharedMemoryArmLink(world.shm_name)

@@ -10,8 +10,8 @@ import pytest
 from domain.robot_model import puma560
 from domain.robot_model.ik import solve_ik
 from domain.robot_model.kinematics import ArmKinematics
+from domain.wrench_model import ContactWrench, contact_wrench
 from services.force_sensor.core import default_payload
-from services.force_sensor.wrench_model import ContactWrench, contact_wrench
 from services.world.sim import ArmSim
 
 TOOL_DOWN = np.diag([1.0, -1.0, -1.0])

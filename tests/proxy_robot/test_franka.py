@@ -1,6 +1,7 @@
 """ProxyRobot's Franka driver against franka-sim: libfranka's own protocol, served by a MuJoCo FR3
 (the project's own FR3 cell) from its own venv, on 127.0.0.1:1337. The link alone, then the
-ProxyRobot process with --driver franka."""
+ProxyRobot process with --driver franka, with the force sensor and the emergency-stop band on its
+mirror of the arm."""
 
 from __future__ import annotations
 
@@ -12,20 +13,24 @@ import time
 import numpy as np
 import pytest
 
-from clients.python import ProxyRobotClient, RobotStatus
+from clients.python import ForceSensorClient, ProxyRobotClient, RobotStatus
 from domain.robot_model.description import arm_description
+from domain.robot_model.workspace import cell_for
 from services.franka_sim.process import start_franka_sim as launch
 from services.proxy_robot.franka_link import FrankaArmLink
 from services.runtime import children
 from tests.conftest import wait_for
-from tests.processes import start_process
-from wire.errors import UnavailableError
+from tests.processes import start_process, unique_shm_name
+from wire.errors import FailedPreconditionError, UnavailableError
 
 pytestmark = pytest.mark.e2e
 
 HOST = "127.0.0.1"
 FR3 = arm_description("fr3")
-
+CELL = cell_for("fr3")
+# A spot on the table beside the fixture, that the FR3 reaches with its peg pointing down.
+TABLE_SPOT = np.array([CELL.fixture_center_xy[0] + 0.10, CELL.fixture_center_xy[1] + 0.10,
+                       CELL.table_top_z])
 
 def start_franka_sim(*args: str) -> children.Child:
     return launch(HOST, *args, max_lines=None)
@@ -136,9 +141,15 @@ def test_a_killed_franka_sim_is_a_clear_error_not_a_hang(franka_sim):
         restarted.stop(signal.SIGTERM)
 
 
+def start_franka_driver(shm_name: str, *args: str) -> children.Child:
+    """ProxyRobot with --driver franka, mirroring the arm on the segment `shm_name`."""
+    return start_process(["-m", "services.proxy_robot", "--address", "127.0.0.1:0",
+                          "--arm", "fr3", "--driver", "franka", "--robot-host", HOST, *args],
+                         env={"TELEROBOT_WORLD_SHM": shm_name})
+
+
 def test_the_proxy_robot_process_drives_the_franka(franka_sim):
-    robot_process = start_process(["-m", "services.proxy_robot", "--address", "127.0.0.1:0",
-                                   "--arm", "fr3", "--driver", "franka", "--robot-host", HOST])
+    robot_process = start_franka_driver(unique_shm_name())
     try:
         with ProxyRobotClient(robot_process.wait_ready(timeout_s=60)) as robot:
             assert robot.get_arm_info().name == "fr3"
@@ -178,3 +189,56 @@ def test_a_franka_driver_started_wrong_exits_2_saying_why(args, says):
     assert process.wait(timeout_s=60) == 2
     assert any(says in line for line in process.lines), "\n".join(process.lines)
     assert process.ready == {}
+
+
+def _move_tool_to(robot: ProxyRobotClient, goal: np.ndarray) -> None:
+    """Cartesian moves of at most 2 cm that add up to `goal`, then until the tool is there."""
+    delta = goal - robot.get_state().tool_pose.translation
+    steps = int(np.ceil(np.linalg.norm(delta) / 0.02))
+    for _ in range(steps):
+        robot.move_cartesian(delta / steps)
+    wait_for(lambda: np.linalg.norm(goal - robot.get_state().tool_pose.translation) < 1e-3,
+             timeout_s=30, what=f"the tool at {goal}")
+
+
+def test_the_force_sensor_feels_a_push_through_the_frankas_joints_and_the_band_stops_it(
+        franka_sim):
+    """The force sensor and the band run on the driver's mirror of the Franka, as on the world:
+    pressed onto the table, the joint-impedance spring's push reads as the table's reaction
+    along the peg; the band's stop latches the Franka's hold."""
+    shm_name = unique_shm_name()
+    env = {"TELEROBOT_WORLD_SHM": shm_name}
+    robot_process = start_franka_driver(shm_name, "--torque-source", "impedance")
+    processes = [robot_process]
+    try:
+        robot_address = robot_process.wait_ready(timeout_s=60)
+        processes.append(start_process(["-m", "services.force_sensor", "--address",
+                                        "127.0.0.1:0", "--arm", "fr3"], env=env))
+        processes.append(start_process(["-m", "services.emergency_stop", "--address",
+                                        "127.0.0.1:0", "--arm", "fr3"], env=env))
+        sensor_address, band_address = (p.wait_ready(timeout_s=60) for p in processes[1:])
+        with ProxyRobotClient(robot_address) as robot, \
+                ForceSensorClient(sensor_address) as sensor, \
+                ProxyRobotClient(band_address) as band:
+            robot.connect()
+            robot.initialize()
+            sensor.start_reading()
+            _move_tool_to(robot, TABLE_SPOT + [0.0, 0.0, 0.03])
+            wait_for(lambda: np.linalg.norm(sensor.get_wrench().force) < 0.5, timeout_s=5,
+                     what="no push in free air")
+            for _ in range(7):  # 5 mm into the table
+                robot.move_cartesian([0.0, 0.0, -0.005])
+            pushed = wait_for(lambda: (w := sensor.get_wrench()).force[2] < -30.0 and w,
+                              timeout_s=10, what="the table pushing back")
+            # Along the peg, up its axis (the tool's z points down, into the table).
+            assert abs(pushed.force[2]) > 0.9 * np.linalg.norm(pushed.force), pushed
+            band.emergency_stop("the band, on the Franka")
+            wait_for(lambda: robot.get_status().status is RobotStatus.ESTOPPED, timeout_s=5,
+                     what="the band's stop latched on the Franka")
+            with pytest.raises(FailedPreconditionError):
+                robot.move_cartesian([0.0, 0.0, 0.01])
+            # The reset holds where the arm stands: the table's push relaxes the spring.
+            assert robot.reset() is RobotStatus.READY
+    finally:
+        for process in reversed(processes):
+            process.stop(signal.SIGTERM)

@@ -30,6 +30,7 @@ import numpy as np
 import pinocchio as pin
 
 from domain.geometry import cross3
+from domain.robot_model import puma560
 
 GRAVITY_WORLD = np.array([0.0, 0.0, -9.81])  # m/s², as in the simulation
 
@@ -40,6 +41,12 @@ class Payload:
 
     mass_kg: float
     center_of_mass_m: np.ndarray
+
+
+def default_payload() -> Payload:
+    """The shipped peg: a uniform cylinder along the sensor's z axis."""
+    tool = puma560.TOOL
+    return Payload(tool.mass, np.array([0.0, 0.0, tool.length / 2.0]))
 
 
 @dataclass(frozen=True)
@@ -67,3 +74,14 @@ def contact_wrench(force_n: np.ndarray, torque_nm: np.ndarray, sensor_rotation: 
     if bias is not None:
         force, torque = force - bias.force_n, torque - bias.torque_nm
     return ContactWrench(force, torque)
+
+
+def wrist_reading(force_ext_n: np.ndarray, torque_ext_nm: np.ndarray,
+                  sensor_rotation: np.ndarray, payload: Payload) -> tuple[np.ndarray, np.ndarray]:
+    """What a wrist sensor reads (force, moment: sensor axes, about its origin) when the
+    environment pushes on the tool with (force_ext_n, torque_ext_nm) (sensor axes, about the
+    sensor origin) and the payload hangs from it: the inverse of contact_wrench's first step.
+    For an arm that estimates its external wrench instead of measuring it at the wrist
+    (services/proxy_robot/arm_mirror.py), so the force sensor's own model applies unchanged."""
+    weight = payload.mass_kg * (sensor_rotation.T @ GRAVITY_WORLD)
+    return -force_ext_n - weight, -torque_ext_nm - cross3(payload.center_of_mass_m, weight)

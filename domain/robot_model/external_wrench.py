@@ -1,0 +1,42 @@
+"""The environment's wrench on an arm's tool, from the torques it puts on the joints.
+
+An arm with no wrist F/T sensor still feels a push: in its joints. For a wrench W = (F, C) on a
+frame of the last link (F and C in the frame's axes, C about its origin),
+
+    τ_ext = Jᵀ W
+
+with J that frame's Jacobian in its own axes (LOCAL). W is the least-squares solution: on a
+7-joint arm what lies outside Jᵀ's range (a push on the elbow) is no wrench at the tool and is
+left out; near a singularity the directions the arm cannot resist are cut (RCOND) instead of
+amplified.
+
+Where τ_ext comes from:
+- a torque-sensing arm estimates it itself (a Franka's ``tau_ext_hat_filtered``);
+- a joint-impedance servo, τ = K (q_d − q) − D q̇ with gravity compensated, balances a push at
+  rest with its spring: τ_ext = K (q − q_d). Moving, the servo's tracking error reads as a
+  small push too (damping and inertia over K).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from domain.robot_model.kinematics import ArmKinematics, JacobianFrame
+
+# Singular values of J below this fraction of the largest count as zero (see above).
+RCOND = 1e-3
+
+
+def impedance_torques(stiffness: np.ndarray, commanded_q: np.ndarray,
+                      measured_q: np.ndarray) -> np.ndarray:
+    """The joint torques the environment applies to a joint-impedance servo at rest (N·m)."""
+    return np.asarray(stiffness, float) * (np.asarray(measured_q, float)
+                                           - np.asarray(commanded_q, float))
+
+
+def wrench_at_frame(kinematics: ArmKinematics, q: np.ndarray, frame: str,
+                    external_torques: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(force N, moment N·m) on `frame` from the environment, in its axes, about its origin."""
+    jacobian = kinematics.frame_jacobian(q, frame, JacobianFrame.LOCAL)
+    wrench = np.linalg.lstsq(jacobian.T, np.asarray(external_torques, float), rcond=RCOND)[0]
+    return wrench[:3], wrench[3:]
