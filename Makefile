@@ -75,14 +75,15 @@ test: install /usr/bin/chromium docs
 test-fast: $(VENV)/.installed
 	$(PY) -m pytest -m "not e2e" $(PYTEST_ARGS)
 
-# The slave station: every service in its own process, until Ctrl-C.
+# The slave station: every service in its own process, until Ctrl-C. ARM=fr3|ur5e|puma560;
+# DRIVER=franka ROBOT_HOST=… drives a Franka (ARM=fr3), DRIVER=franka-sim franka-sim as one.
 serve: $(VENV)/.installed
-	$(PY) -m services.launcher $(if $(ARM),--arm $(ARM))
+	$(PY) -m services.launcher $(if $(ARM),--arm $(ARM)) $(if $(DRIVER),--driver $(DRIVER)) $(if $(ROBOT_HOST),--robot-host $(ROBOT_HOST))
 
 # A scripted peg-in-hole session, with and without server-side compliance; starts a local
-# station if none answers. Artifacts land in runs/teleop-<time>/.
+# station if none answers (ARM and DRIVER as for serve). Artifacts land in runs/teleop-<time>/.
 teleop: $(VENV)/.installed
-	$(PY) -m clients.teleop $(if $(ARM),--arm $(ARM)) $(TELEOP_ARGS)
+	$(PY) -m clients.teleop $(if $(ARM),--arm $(ARM)) $(if $(DRIVER),--driver $(DRIVER)) $(TELEOP_ARGS)
 
 # A development PKI in var/pki: a CA, a certificate per service and per identity (admin,
 # operator, observer). HOSTS="name 10.0.0.2" adds names the servers answer on; FORCE=1 makes a

@@ -8,8 +8,9 @@ If a child ends on its own, the launcher says which and how, shows its last log 
 restarts it on the same address after a capped back-off (services.runtime.restart): the arm
 holds meanwhile (each layer's watchdog, see docs/operations.md), and the rest of the station,
 the stop button and the video included, keeps serving. Two exceptions stop the whole station:
-the world (the hardware link: nothing can be commanded without it) and a child that failed too
-often (5 times within 60 s), which a supervisor above (systemd) can take over. When several
+the world (the hardware link: nothing can be commanded without it; on a real arm, ProxyRobot,
+which owns that link) and a child that failed too often (5 times within 60 s), which a
+supervisor above (systemd) can take over. When several
 children are down, the emergency-stop band is restarted first. What the launcher knows about
 each child is in the file TELEROBOT_SUPERVISOR_STATE names (services.runtime.supervisor_state),
 which it sets for its children: the DecisionServer reports a dependency as restarting from it,
@@ -27,6 +28,12 @@ SERVING the launcher prints its ready line, `TELEROBOT_READY <name> <host:port>`
 so whoever started the launcher (`make teleop`, the tests) learns every address; the station is
 up once decision_server's line is out, and then the banner follows. The children are supervised
 by services.runtime.children.
+
+The arm is simulated by default. `--driver franka --robot-host HOST` drives a Franka instead:
+no world is started, and ProxyRobot, first, mirrors the Franka on the station's shared memory
+for the sensor, the cameras and the band (services/proxy_robot/arm_mirror.py).
+`--driver franka-sim` does the same against franka-sim, which the launcher starts on loopback
+as the robot (from .venv-franka; the push on the tool from the joint-impedance spring).
 """
 
 from __future__ import annotations
@@ -48,6 +55,7 @@ import grpc
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
 from discovery.advertise import ADVERTISE_ENV, advertised
+from services.franka_sim.process import start_franka_sim
 from services.runtime import children
 from services.runtime.children import Child, ChildFailed
 from services.runtime.config import (
@@ -79,6 +87,19 @@ log = logging.getLogger("launcher")
 # reverse, so the hardware goes last.
 STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
            "decision_server", "web_console", "foxglove"]
+# On a real arm ProxyRobot owns the hardware link and the shared memory, in the world's place.
+HARDWARE_STATION = ["proxy_robot", *(name for name in STATION
+                                     if name not in ("world", "proxy_robot"))]
+DRIVERS = ("sim", "franka", "franka-sim")
+DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"  # ProxyRobot's own, which it inherits
+ROBOT_HOST_ENV = "TELEROBOT_PROXY_ROBOT_ROBOT_HOST"
+TORQUE_SOURCE_ENV = "TELEROBOT_PROXY_ROBOT_TORQUE_SOURCE"
+FRANKA_SIM_HOST = "127.0.0.1"
+
+
+def station_services(driver: str) -> list[str]:
+    """The station's services in start order, for the arm's `driver`."""
+    return STATION if driver == "sim" else HARDWARE_STATION
 # Children that answer HTTP, not gRPC: their health is GET /healthz (the browser console).
 HTTP_CHILDREN = {"web_console"}
 # Children that speak only WebSocket: they serve once they answer a handshake (the live view).
@@ -99,6 +120,13 @@ def main(argv: list[str] | None = None) -> int:
                         help="how long each service may drain in-flight calls on stop")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     add_arm_argument(parser)
+    parser.add_argument("--driver", choices=DRIVERS, default=os.environ.get(DRIVER_ENV, "sim"),
+                        help=f"the arm's driver: the simulated world (sim), a Franka through "
+                             f"libfranka (franka, with --robot-host and --arm fr3), or "
+                             f"franka-sim started here as the Franka (franka-sim) (env "
+                             f"{DRIVER_ENV})")
+    parser.add_argument("--robot-host", default=os.environ.get(ROBOT_HOST_ENV, ""),
+                        help=f"the Franka's address for --driver franka (env {ROBOT_HOST_ENV})")
     parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
                         help=f"run every service with mutual TLS from this directory (env "
                              f"{TLS_DIR_ENV}; `make certs` writes var/pki)")
@@ -142,14 +170,26 @@ def main(argv: list[str] | None = None) -> int:
     env = {"TELEROBOT_GRACE_S": str(args.grace_s)}
     if args.tls_dir:
         env[TLS_DIR_ENV] = str(Path(args.tls_dir).resolve())
+    robot = None  # franka-sim, when it stands in for the Franka
+    if args.driver == "franka-sim":
+        try:
+            robot = start_franka_sim(FRANKA_SIM_HOST, max_lines=_LOG_TAIL_LINES)
+        except ChildFailed as failed:
+            log.error("start-up failed: %s", failed)
+            return 1
+        env.update({ROBOT_HOST_ENV: FRANKA_SIM_HOST, TORQUE_SOURCE_ENV: "impedance"})
+    elif args.robot_host:
+        env[ROBOT_HOST_ENV] = args.robot_host
+    env[DRIVER_ENV] = "sim" if args.driver == "sim" else "franka"
+    services = station_services(args.driver)
     with tempfile.TemporaryDirectory(prefix="telerobot-station-") as run_dir:
         env[SUPERVISOR_STATE_ENV] = str(Path(run_dir) / "supervisor.json")
         station = _Station(env, health_security, stop, wake,
-                           RestartPolicy(max_failures=args.max_failures))
+                           RestartPolicy(max_failures=args.max_failures), services)
         try:
             # One at a time: a service starts once the ones it depends on answer, so its first
             # calls to them do not fail and leave its channels backing off.
-            for name in STATION:
+            for name in services:
                 try:
                     address = station.start(name)
                 except ChildFailed as failed:
@@ -176,19 +216,23 @@ def main(argv: list[str] | None = None) -> int:
         finally:
             children.stop_all(reversed(list(station.children.values())),
                               args.grace_s + STOP_MARGIN_S)
+            if robot is not None:
+                robot.stop(signal.SIGTERM)
 
 
 class _Station:
     """The children, by name, each restarted under the policy when it ends on its own."""
 
     def __init__(self, env: dict[str, str], security: ChannelSecurity, stop: threading.Event,
-                 wake: threading.Event, policy: RestartPolicy):
+                 wake: threading.Event, policy: RestartPolicy, services: list[str]):
         self.env = env  # every child's; a started child's bound address is added to it
         self.children: dict[str, Child] = {}
+        self._services = services
+        self._hardware = services[0]  # the one that owns the hardware link
         self._security = security
         self._stop = stop
         self._wake = wake
-        self._trackers = {name: RestartTracker(policy) for name in STATION}
+        self._trackers = {name: RestartTracker(policy) for name in services}
         self._states: dict[str, ChildState] = {}
         self._state_path = Path(env[SUPERVISOR_STATE_ENV])
 
@@ -228,7 +272,7 @@ class _Station:
             for name, child in self.children.items():
                 if name in due or not child.exited.is_set():
                     continue
-                if name == "world":
+                if name == self._hardware:
                     return (f"{child.describe()}\nthe hardware link is gone: stopping the whole "
                             "station")
                 delay = self._trackers[name].failed(now)
@@ -242,7 +286,7 @@ class _Station:
                                 child.how_it_ended())
                 due[name] = now + delay
             # The stop button first, then in start order (dependencies first).
-            ready = sorted((n for n, t in due.items() if t <= now), key=_restart_order)
+            ready = sorted((n for n, t in due.items() if t <= now), key=self._restart_order)
             for name in ready:
                 del due[name]
                 if not self._restart(name):
@@ -266,16 +310,15 @@ class _Station:
                     self._trackers[name].restarts, because)
         return True
 
+    def _restart_order(self, name: str) -> int:
+        return -1 if name == "emergency_stop" else self._services.index(name)
+
     def _set_state(self, name: str, state: str, restarts: int, last_exit: str = "") -> None:
         previous = self._states.get(name)
         self._states[name] = ChildState(state, restarts,
                                         last_exit or (previous.last_exit if previous else ""),
                                         time.time())
         write_state(self._state_path, self._states)
-
-
-def _restart_order(name: str) -> int:
-    return -1 if name == "emergency_stop" else STATION.index(name)
 
 
 _OUTPUT = threading.Lock()

@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import dataclasses
+import os
 import sys
 import threading
 import time
@@ -34,7 +35,7 @@ from clients.teleop.artifacts import plot, write_summary
 from clients.teleop.dependencies import DependencyMonitor, as_json, describe
 from clients.teleop.mcap_log import RobotStateFeed, SessionRecorder
 from clients.teleop.stack import station_at
-from clients.teleop.task import PegInHole, Result, ready_the_arm
+from clients.teleop.task import PegInHole, Result, go_home, ready_the_arm
 from clients.teleop.video import StereoView
 from discovery import DiscoveryError, discovered_address
 from domain.robot_model import workspace
@@ -168,6 +169,11 @@ def explain(error: TelerobotError) -> str:
     return f"teleop: the session ended: {error}\n{advice}"
 
 
+# The local station's choice of driver (the launcher's --driver), inherited as the arm's is.
+DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"
+DRIVERS = ("sim", "franka-sim")
+
+
 def main(argv: list[str] | None = None) -> int:
     """The operator station; exits 0 when every run succeeded, 1 when one failed, 3 when the
     session ended early (a lost link, a lost lease, a dead DecisionServer), with a message and
@@ -184,6 +190,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--arm", default=None,
                         help="the arm a local station is started with (env TELEROBOT_ARM; "
                              "default puma560); a station that answers already must drive it")
+    parser.add_argument("--driver", choices=DRIVERS, default=None,
+                        help="the arm's driver a local station is started with: sim (the "
+                             "default), or franka-sim (franka-sim as a Franka FR3, through "
+                             f"libfranka; with --arm fr3) (env {DRIVER_ENV})")
     parser.add_argument("--calibration", type=Path, default=None,
                         help="saved camera identification (made on the first run; default "
                              "var/cameras-<arm>.json)")
@@ -200,6 +210,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.arm is not None:
             select_arm(args.arm)  # a local station inherits it
+        if args.driver is not None:
+            os.environ[DRIVER_ENV] = args.driver  # as the arm
         if args.discover is not None:
             args.address = discovered_address(args.discover or None, DISCOVERY_TIMEOUT_S)
             print(f"teleop: found the slave station at {args.address}")
@@ -236,6 +248,7 @@ def run(args: argparse.Namespace) -> int:
             calibration = args.calibration or Path("var") / f"cameras-{arm}.json"
             calibration.parent.mkdir(parents=True, exist_ok=True)
             ready_the_arm(client)
+            go_home(client)
             client.sensor.tare(0.2)
             start = client.robot.get_state().tool_pose.translation.copy()
             model = RobotModel(client.robot.get_state().tool_pose)

@@ -48,6 +48,7 @@ from domain.passivity import MasterPassivity
 from domain.robot_model import workspace
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
+from wire.errors import DeadlineExceededError
 from wire.pose import Pose
 
 COMMAND_RATE_HZ = 50.0
@@ -131,6 +132,34 @@ def ready_the_arm(client: DecisionClient) -> None:
     if client.robot.get_status().status.name == "CONNECTED":
         client.robot.initialize()
     client.sensor.start_reading()
+
+
+HOME_STEP_RAD = 0.4  # joint moves home in steps under ProxyRobot's 0.5 rad cap
+HOME_TOLERANCE_RAD = 1e-3
+HOME_TIMEOUT_S = 30.0
+
+
+def go_home(client: DecisionClient) -> bool:
+    """Move the arm to its home pose (GetArmInfo's), where the task starts, in joint space; a
+    no-op for an arm there already (a simulated one starts there; a real one stands where it
+    was left, to be clear of the fixture). Whether it moved."""
+    home = client.robot.get_arm_info().home
+    error = home - client.robot.get_state().joint_positions
+    if np.max(np.abs(error)) < HOME_TOLERANCE_RAD:
+        return False
+    steps = int(np.ceil(np.max(np.abs(error)) / HOME_STEP_RAD))
+    for _ in range(steps):
+        client.robot.move_joints(error / steps)
+    deadline = time.monotonic() + HOME_TIMEOUT_S
+    # There and at rest (READY, not MOVING): the sensor is tared next, and a moving arm's
+    # wrench is not its resting one.
+    while (np.max(np.abs(home - client.robot.get_state().joint_positions)) > HOME_TOLERANCE_RAD
+           or client.robot.get_status().status.name != "READY"):
+        if time.monotonic() > deadline:
+            raise DeadlineExceededError(
+                f"the arm did not reach home within {HOME_TIMEOUT_S:.0f} s", reason="NOT_HOME")
+        time.sleep(0.05)
+    return True
 
 
 class StrokingHand:

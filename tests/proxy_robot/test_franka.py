@@ -228,10 +228,15 @@ def test_the_force_sensor_feels_a_push_through_the_frankas_joints_and_the_band_s
                      what="no push in free air")
             for _ in range(7):  # 5 mm into the table
                 robot.move_cartesian([0.0, 0.0, -0.005])
-            pushed = wait_for(lambda: (w := sensor.get_wrench()).force[2] < -30.0 and w,
-                              timeout_s=10, what="the table pushing back")
-            # Along the peg, up its axis (the tool's z points down, into the table).
-            assert abs(pushed.force[2]) > 0.9 * np.linalg.norm(pushed.force), pushed
+            # Held back by the table short of its target: at rest, pressing.
+            wait_for(lambda: sensor.get_wrench().force[2] < -30.0
+                     and np.abs(robot.get_state().joint_velocities).max() < 1e-3,
+                     timeout_s=10, what="the arm at rest on the table, pressing")
+            pushed = sensor.get_wrench()
+            # Up the peg's axis (the tool's z points down, into the table), with some friction
+            # sideways: the joint springs are stiffer in some directions than in others.
+            assert pushed.force[2] < -30.0, pushed
+            assert abs(pushed.force[2]) > 0.85 * np.linalg.norm(pushed.force), pushed
             band.emergency_stop("the band, on the Franka")
             wait_for(lambda: robot.get_status().status is RobotStatus.ESTOPPED, timeout_s=5,
                      what="the band's stop latched on the Franka")

@@ -2,7 +2,8 @@
 (clients.teleop.stack.local_station, every service on port 0), it runs the peg-in-hole task with
 force feedback and then with compliance, and leaves its video, plots and summary. Once in
 plaintext and once with mutual TLS on every link (TELEROBOT_TLS_DIR, as the README says), on the
-PUMA 560; then on the FR3 and the UR5e (`make teleop ARM=…`)."""
+PUMA 560; then on the FR3 and the UR5e (`make teleop ARM=…`), and on franka-sim through the
+Franka driver (`DRIVER=franka-sim`)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ import cv2
 import pytest
 
 from clients.teleop.stack import local_station
-from services.launcher import GRPC_CHILDREN, STATION
+from services.launcher import GRPC_CHILDREN, HARDWARE_STATION, STATION
 from services.runtime.process import metrics_port_name
 from services.security import pki
 from tests.processes import REPO, scrape_metrics, unique_shm_name
@@ -104,3 +105,30 @@ def _check_the_station_metrics_moved(addresses: dict[str, str]) -> None:
                   stream="wrench") > 100
     assert _total(scraped["proxy_robot"], "telerobot_stream_lag_seconds_count") > 0
     assert _total(scraped["world"], "telerobot_world_steps_total") > 1000
+
+
+def test_teleop_inserts_the_peg_on_a_franka_under_compliance(tmp_path):
+    """`make teleop ARM=fr3 DRIVER=franka-sim`: the whole station on ProxyRobot's Franka driver,
+    franka-sim as the robot (libfranka's protocol), the force sensor on the Franka's own
+    estimate of the push (its joint-impedance spring). Compliance mode only: in feedback mode
+    the estimate reads the servo's tracking error while the arm moves (several newtons at the
+    operator's approach speed, docs/arms.md), which the scripted operator takes for the floor."""
+    env = {f"TELEROBOT_{name.upper()}_ADDRESS": "127.0.0.1:0" for name in HARDWARE_STATION}
+    env.update(TELEROBOT_WORLD_SHM=unique_shm_name(), TELEROBOT_ARM="fr3",
+               TELEROBOT_PROXY_ROBOT_DRIVER="franka-sim")
+    out = tmp_path / "run"
+    with local_station(env=env) as addresses:
+        assert set(HARDWARE_STATION) - {"web_console", "foxglove"} <= set(addresses)
+        assert "world" not in addresses  # the Franka is the hardware; ProxyRobot mirrors it
+        result = subprocess.run(
+            [sys.executable, "-m", "clients.teleop", "--address", addresses["decision_server"],
+             "--out", str(out), "--calibration", str(tmp_path / "cameras.json"), "--arm", "fr3",
+             "--modes", "compliance"],
+            cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True, timeout=400)
+        assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+    summary = json.loads((out / "summary.json").read_text())
+    (run,) = summary["runs"]
+    assert summary["arm"] == "fr3" and run["mode"] == "compliance", summary
+    assert run["success"] and run["depth_m"] > 0.035, run
+    assert abs(run["final_force_n"] - 5.0) < 1.0, run
+    assert summary["video_frames"] >= 10, summary  # the cameras render the mirrored Franka
