@@ -137,6 +137,7 @@ def ready_the_arm(client: DecisionClient) -> None:
 HOME_STEP_RAD = 0.4  # joint moves home in steps under ProxyRobot's 0.5 rad cap
 HOME_TOLERANCE_RAD = 1e-3
 HOME_TIMEOUT_S = 30.0
+STILL_RAD_PER_S = 1e-3  # at rest: a moving arm's wrench is not its resting one
 
 
 def go_home(client: DecisionClient) -> bool:
@@ -151,15 +152,20 @@ def go_home(client: DecisionClient) -> bool:
     for _ in range(steps):
         client.robot.move_joints(error / steps)
     deadline = time.monotonic() + HOME_TIMEOUT_S
-    # There and at rest (READY, not MOVING): the sensor is tared next, and a moving arm's
-    # wrench is not its resting one.
-    while (np.max(np.abs(home - client.robot.get_state().joint_positions)) > HOME_TOLERANCE_RAD
-           or client.robot.get_status().status.name != "READY"):
+    # There and at rest: the sensor is tared next.
+    while not _still_at(client, home):
         if time.monotonic() > deadline:
             raise DeadlineExceededError(
                 f"the arm did not reach home within {HOME_TIMEOUT_S:.0f} s", reason="NOT_HOME")
         time.sleep(0.05)
     return True
+
+
+def _still_at(client: DecisionClient, joints: np.ndarray) -> bool:
+    state = client.robot.get_state()
+    return (state.status.name == "READY"
+            and np.max(np.abs(joints - state.joint_positions)) <= HOME_TOLERANCE_RAD
+            and np.max(np.abs(state.joint_velocities)) <= STILL_RAD_PER_S)
 
 
 class StrokingHand:
