@@ -94,6 +94,7 @@ DRIVERS = ("sim", "franka", "franka-sim")
 DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"  # ProxyRobot's own, which it inherits
 ROBOT_HOST_ENV = "TELEROBOT_PROXY_ROBOT_ROBOT_HOST"
 TORQUE_SOURCE_ENV = "TELEROBOT_PROXY_ROBOT_TORQUE_SOURCE"
+FORCE_SENSOR_ENV = "TELEROBOT_FORCE_SENSOR_SENSOR"
 FRANKA_SIM_HOST = "127.0.0.1"
 
 
@@ -181,6 +182,8 @@ def main(argv: list[str] | None = None) -> int:
     elif args.robot_host:
         env[ROBOT_HOST_ENV] = args.robot_host
     env[DRIVER_ENV] = "sim" if args.driver == "sim" else "franka"
+    if args.driver != "sim":  # the Franka's own estimate of the push, mirrored by ProxyRobot
+        env[FORCE_SENSOR_ENV] = "franka"
     services = station_services(args.driver)
     with tempfile.TemporaryDirectory(prefix="telerobot-station-") as run_dir:
         env[SUPERVISOR_STATE_ENV] = str(Path(run_dir) / "supervisor.json")

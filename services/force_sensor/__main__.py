@@ -1,8 +1,10 @@
 """python -m services.force_sensor: the wrist force/torque sensor service.
 
 The sensor is the simulated one (the world's shared memory) by default, or an ATI Net F/T over
-RDT with --sensor rdt --rdt-address host[:port]. Either way the arm's joint angles come from the
-world's link (read only), to remove the tool's weight in any orientation.
+RDT with --sensor rdt --rdt-address host[:port], or a Franka's own estimate of the push on its
+tool with --sensor franka: ProxyRobot's Franka driver mirrors it on the station's shared memory as
+a wrist sensor's reading (services/proxy_robot/arm_mirror.py). Either way the arm's joint angles
+come from the shared memory (read only), to remove the tool's weight in any orientation.
 """
 
 from __future__ import annotations
@@ -24,13 +26,15 @@ from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2_grpc
 
 log = logging.getLogger("force_sensor")
+SENSOR_ENV = "TELEROBOT_FORCE_SENSOR_SENSOR"
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--sensor", choices=["sim", "rdt"],
-                        default=os.environ.get("TELEROBOT_FORCE_SENSOR_SENSOR", "sim"),
-                        help="sim: the world's wrist sensor; rdt: an ATI Net F/T "
-                             "(env TELEROBOT_FORCE_SENSOR_SENSOR)")
+    parser.add_argument("--sensor", choices=["sim", "rdt", "franka"],
+                        default=os.environ.get(SENSOR_ENV, "sim"),
+                        help=f"sim: the world's wrist sensor; rdt: an ATI Net F/T; franka: the "
+                             f"Franka's estimate of the push, from ProxyRobot's Franka driver "
+                             f"(env {SENSOR_ENV})")
     parser.add_argument("--rdt-address", default=os.environ.get("TELEROBOT_RDT_ADDRESS", ""),
                         help=f"host[:port] of the Net F/T (port {RDT_PORT} by default; "
                              "env TELEROBOT_RDT_ADDRESS)")
@@ -50,7 +54,7 @@ def build(args: argparse.Namespace) -> CoreService:
         def wrench_link():
             return RdtWrenchLink(host, int(port or RDT_PORT), args.counts_per_force,
                                  args.counts_per_torque)
-    else:
+    else:  # the world's wrist sensor, or the Franka's estimate mirrored in its place
         def wrench_link():
             return SharedMemoryWrenchLink(args.shm_name)
 

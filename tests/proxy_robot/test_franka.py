@@ -213,7 +213,8 @@ def test_the_force_sensor_feels_a_push_through_the_frankas_joints_and_the_band_s
     try:
         robot_address = robot_process.wait_ready(timeout_s=60)
         processes.append(start_process(["-m", "services.force_sensor", "--address",
-                                        "127.0.0.1:0", "--arm", "fr3"], env=env))
+                                        "127.0.0.1:0", "--arm", "fr3", "--sensor", "franka"],
+                                       env=env))
         processes.append(start_process(["-m", "services.emergency_stop", "--address",
                                         "127.0.0.1:0", "--arm", "fr3"], env=env))
         sensor_address, band_address = (p.wait_ready(timeout_s=60) for p in processes[1:])
