@@ -10,11 +10,11 @@ holds meanwhile (each layer's watchdog, see docs/operations.md), and the rest of
 the stop button and the video included, keeps serving. Two exceptions stop the whole station:
 the world (the hardware link: nothing can be commanded without it; on a real arm, ProxyRobot,
 which owns that link) and a child that failed too often (5 times within 60 s), which a
-supervisor above (systemd) can take over. When several
-children are down, the emergency-stop band is restarted first. What the launcher knows about
-each child is in the file TELEROBOT_SUPERVISOR_STATE names (services.runtime.supervisor_state),
-which it sets for its children: the DecisionServer reports a dependency as restarting from it,
-and a restarted ProxyRobot learns from TELEROBOT_RESTARTED_BECAUSE why it was restarted.
+supervisor above (systemd) can take over. When several children are down, the emergency-stop
+band is restarted first. What the launcher knows about each child is in the file
+TELEROBOT_SUPERVISOR_STATE names (services.runtime.supervisor_state), which it sets for its
+children: the DecisionServer reports a dependency as restarting from it, and a restarted
+ProxyRobot learns from TELEROBOT_RESTARTED_BECAUSE why it was restarted.
 
 Children run in their own process group, so a terminal's Ctrl-C reaches only the launcher, which
 then drains each child once; each child also stops by itself if the launcher is killed. Started
@@ -97,10 +97,6 @@ TORQUE_SOURCE_ENV = "TELEROBOT_PROXY_ROBOT_TORQUE_SOURCE"
 FORCE_SENSOR_ENV = "TELEROBOT_FORCE_SENSOR_SENSOR"
 FRANKA_SIM_HOST = "127.0.0.1"
 
-
-def station_services(driver: str) -> list[str]:
-    """The station's services in start order, for the arm's `driver`."""
-    return STATION if driver == "sim" else HARDWARE_STATION
 # Children that answer HTTP, not gRPC: their health is GET /healthz (the browser console).
 HTTP_CHILDREN = {"web_console"}
 # Children that speak only WebSocket: they serve once they answer a handshake (the live view).
@@ -113,6 +109,11 @@ UP_LINE = "Slave station is up"
 # After SIGTERM, a child has its grace period to drain and this long on top to exit.
 STOP_MARGIN_S = 1.5
 _LOG_TAIL_LINES = 20
+
+
+def station_services(driver: str) -> list[str]:
+    """The station's services in start order, for the arm's `driver`."""
+    return STATION if driver == "sim" else HARDWARE_STATION
 
 
 def main(argv: list[str] | None = None) -> int:

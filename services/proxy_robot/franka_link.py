@@ -54,9 +54,9 @@ STOP_TIMEOUT_S = 2.0
 # hung libfranka) makes every call UNAVAILABLE, as a stale world does.
 STALE_AFTER_S = 0.25
 APPLIED_KEPT = 100_000
-# The joint impedance controller's stiffness (N·m/rad), set on connect: the spring the
-# "impedance" torque source reads. franka-sim's joint servo has these gains whatever it is
-# told; a real FR3 takes them (libfranka's own default is 3000…2000).
+# The joint impedance controller's stiffness (N·m/rad), set on connect for the "impedance"
+# torque source, which reads this spring. franka-sim's joint servo has these gains whatever it
+# is told. (With the "robot" source the robot keeps its own, libfranka's 3000…2000 default.)
 JOINT_STIFFNESS = np.array([4500.0, 4500.0, 3500.0, 3500.0, 2000.0, 2000.0, 2000.0])
 # Where the environment's joint torques come from: the robot's estimate, or the spring.
 TORQUE_SOURCES = ("robot", "impedance")
@@ -113,7 +113,7 @@ class FrankaArmLink:
                 reason="WRONG_ARM")
         try:
             self._robot = connect(host)
-            self._robot.set_joint_impedance(JOINT_STIFFNESS.tolist())
+            self._set_stiffness()
             state = self._robot.read_once()
         except self._failures as error:
             raise UnavailableError(f"cannot reach the Franka at {host}: {error}",
@@ -184,10 +184,10 @@ class FrankaArmLink:
                     self._heard_ns = time.monotonic_ns()
                     self.mode = str(state.robot_mode)
                     self.success_rate = float(state.control_command_success_rate)
-                    sample = self._sample()
+                    sample = self._sample() if self._mirror is not None else None
                 started.set()
                 control.writeOnce(franka.JointPositions(setpoint.tolist()))
-                if self._mirror is not None and self._mirror.publish(
+                if sample is not None and self._mirror.publish(
                         sample, self._external_torques(state, commanded)):
                     self.hold()  # the band's stop
         except self._failures as error:
@@ -196,6 +196,10 @@ class FrankaArmLink:
             self._fail(f"the control loop failed: {error!r}")
         finally:
             started.set()
+
+    def _set_stiffness(self) -> None:
+        if self._torque_source == "impedance":
+            self._robot.set_joint_impedance(JOINT_STIFFNESS.tolist())
 
     def _external_torques(self, state, commanded: np.ndarray) -> np.ndarray:
         if self._torque_source == "robot":
@@ -271,7 +275,7 @@ class FrankaArmLink:
             self._robot = None
             try:
                 self._robot = connect(self.host)
-                self._robot.set_joint_impedance(JOINT_STIFFNESS.tolist())
+                self._set_stiffness()
                 with scheduling_kept():
                     self._robot.automatic_error_recovery()
                 state = self._robot.read_once()
