@@ -5,10 +5,10 @@ frame of the last link (F and C in the frame's axes, C about its origin),
 
     τ_ext = Jᵀ W
 
-with J that frame's Jacobian in its own axes (LOCAL). W is the least-squares solution: on a
-7-joint arm what lies outside Jᵀ's range (a push on the elbow) is no wrench at the tool and is
-left out; near a singularity the directions the arm cannot resist are cut (RCOND) instead of
-amplified.
+with J that frame's Jacobian in its own axes (LOCAL). W is the damped least-squares solution,
+(J Jᵀ + λ² I) W = J τ_ext: on a 7-joint arm what lies outside Jᵀ's range (a push on the elbow)
+is no wrench at the tool and is left out; near a singularity the damping (DAMPING) keeps the
+directions the arm cannot resist from being amplified.
 
 Where τ_ext comes from:
 - a torque-sensing arm estimates it itself (a Franka's ``tau_ext_hat_filtered``);
@@ -23,8 +23,9 @@ import numpy as np
 
 from domain.robot_model.kinematics import ArmKinematics, JacobianFrame
 
-# Singular values of J below this fraction of the largest count as zero (see above).
-RCOND = 1e-3
+# λ of the damped least squares (see above), in the Jacobian's units (m, and rad/rad): far
+# below the FR3's and the PUMA's smallest singular value away from a singularity.
+DAMPING = 1e-3
 
 
 def impedance_torques(stiffness: np.ndarray, commanded_q: np.ndarray,
@@ -38,5 +39,6 @@ def wrench_at_frame(kinematics: ArmKinematics, q: np.ndarray, frame: str,
                     external_torques: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(force N, moment N·m) on `frame` from the environment, in its axes, about its origin."""
     jacobian = kinematics.frame_jacobian(q, frame, JacobianFrame.LOCAL)
-    wrench = np.linalg.lstsq(jacobian.T, np.asarray(external_torques, float), rcond=RCOND)[0]
+    wrench = np.linalg.solve(jacobian @ jacobian.T + DAMPING**2 * np.eye(6),
+                             jacobian @ np.asarray(external_torques, float))
     return wrench[:3], wrench[3:]
