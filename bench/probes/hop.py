@@ -14,6 +14,7 @@ takes. It prints figures and judges nothing; what it showed: docs/probes.md.
 from __future__ import annotations
 
 import argparse
+import queue
 import subprocess
 import sys
 import time
@@ -29,6 +30,8 @@ from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
 from wire import convert
 
 KINDS = ("noop", "bare", "stack")
+STREAM_KINDS = ("noop", "bare")  # the kinds also served over a persistent stream
+STREAM_METHOD = "/bench.probes.Hop/Moves"
 WARMUP = 200
 
 
@@ -74,13 +77,41 @@ def serve(kind: str) -> None:
             "127.0.0.1:0", [binding(proxy_robot_pb2_grpc, "ProxyRobot", proxy_robot_servicer())])
     else:
         server = grpc.server(futures.ThreadPoolExecutor(max_workers=16))
-        proxy_robot_pb2_grpc.add_ProxyRobotServicer_to_server(
-            _Noop() if kind == "noop" else proxy_robot_servicer(), server)
+        servicer = _Noop() if kind == "noop" else proxy_robot_servicer()
+        proxy_robot_pb2_grpc.add_ProxyRobotServicer_to_server(servicer, server)
+        server.add_generic_rpc_handlers((_stream_handler(servicer),))
         port = server.add_insecure_port("127.0.0.1:0")
     server.start()
     print(port, flush=True)
     sys.stdin.read()
     server.stop(0)
+
+
+def _stream_handler(servicer) -> grpc.GenericRpcHandler:
+    """STREAM_METHOD: each move request on the stream answered by `servicer`, in order."""
+    def moves(requests, context):
+        for request in requests:
+            yield servicer.MoveCartesianIncremental(request, context)
+
+    service, method = STREAM_METHOD.strip("/").split("/")
+    handler = grpc.stream_stream_rpc_method_handler(
+        moves, pb.MoveCartesianIncrementalRequest.FromString,
+        pb.MoveCartesianIncrementalResponse.SerializeToString)
+    return grpc.method_handlers_generic_handler(service, {method: handler})
+
+
+def _lockstep(call, calls: int, rate_hz: float) -> np.ndarray:
+    """`call(i)` paced at `rate_hz`, each after the one before answered; ms, warm-up left out."""
+    took = []
+    start = time.perf_counter()
+    for i in range(WARMUP + calls):
+        delay = start + i / rate_hz - time.perf_counter()
+        if delay > 0:
+            time.sleep(delay)
+        started = time.perf_counter()
+        call(i)
+        took.append(time.perf_counter() - started)
+    return np.asarray(took[WARMUP:]) * 1e3
 
 
 def round_trips(kind: str, calls: int, rate_hz: float) -> None:
@@ -90,20 +121,34 @@ def round_trips(kind: str, calls: int, rate_hz: float) -> None:
         port = int(server.stdout.readline())
         with grpc.insecure_channel(f"127.0.0.1:{port}") as channel:
             move = proxy_robot_pb2_grpc.ProxyRobotStub(channel).MoveCartesianIncremental
-            took = []
-            start = time.perf_counter()
-            for i in range(WARMUP + calls):
-                delay = start + i / rate_hz - time.perf_counter()
-                if delay > 0:
-                    time.sleep(delay)
-                started = time.perf_counter()
-                move(_request(1 if i % 2 else -1), timeout=5.0)
-                took.append(time.perf_counter() - started)
-        print(f"round trip at {rate_hz:.0f} Hz, {kind}:".ljust(34),
-              _percentiles(np.asarray(took[WARMUP:]) * 1e3))
+            took = _lockstep(lambda i: move(_request(1 if i % 2 else -1), timeout=5.0), calls,
+                             rate_hz)
+            print(f"round trip at {rate_hz:.0f} Hz, {kind}:".ljust(34), _percentiles(took))
+            if kind in STREAM_KINDS:
+                took = _over_one_stream(channel, calls, rate_hz)
+                print(f"same, one open stream, {kind}:".ljust(34), _percentiles(took))
     finally:
         server.stdin.close()
         server.wait(10)
+
+
+def _over_one_stream(channel: grpc.Channel, calls: int, rate_hz: float) -> np.ndarray:
+    """The lockstep over STREAM_METHOD: grpcio's client reads the requests from a queue on a
+    thread of its own, as a persistent hop's sender would."""
+    requests: queue.Queue = queue.Queue()
+    stream = channel.stream_stream(STREAM_METHOD,
+                                   pb.MoveCartesianIncrementalRequest.SerializeToString,
+                                   pb.MoveCartesianIncrementalResponse.FromString)
+    answers = stream(iter(requests.get, None))
+
+    def call(i: int) -> None:
+        requests.put(_request(1 if i % 2 else -1))
+        next(answers)
+
+    try:
+        return _lockstep(call, calls, rate_hz)
+    finally:
+        requests.put(None)
 
 
 def main(argv: list[str] | None = None) -> int:
