@@ -44,6 +44,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--video-source", choices=("sim", "pattern"), default=None,
                         help="the video group's camera source (default sim: the work cell "
                              "rendered; pattern: a test card, next to no CPU, a diagnostic)")
+    parser.add_argument("--video-size", type=_size, default=None, metavar="WxH",
+                        help="the video group's picture per eye (default 640x480); the sim "
+                             "camera's render time grows with it")
     args = parser.parse_args(argv)
     if args.soak_minutes is not None and args.soak_minutes <= 0:
         parser.error("--soak-minutes must be > 0")
@@ -52,8 +55,21 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(f"--{name.replace('_', '-')} must be > 0")
     return run(Plan(quick=args.quick, only=tuple(args.only), profile=args.profile,
                     soak_minutes=args.soak_minutes, video_s=args.video_seconds,
-                    video_long_s=args.video_long_seconds, video_source=args.video_source),
+                    video_long_s=args.video_long_seconds, video_source=args.video_source,
+                    video_size=args.video_size),
                Path(args.out))
+
+
+def _size(text: str) -> tuple[int, int]:
+    """WxH, both even and at least 16 (H.264's 4:2:0 needs even sizes)."""
+    width, _, height = text.lower().partition("x")
+    try:
+        size = int(width), int(height)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not WxH, e.g. 320x240") from None
+    if any(side < 16 or side % 2 for side in size):
+        raise argparse.ArgumentTypeError(f"{text!r}: both sides even and at least 16")
+    return size
 
 
 if __name__ == "__main__":

@@ -31,6 +31,8 @@ class Plan:
     video_s: float | None = None  # each video probe's length; None: video.PROBE_S (quick: less)
     video_long_s: float | None = None  # the video group's long run; None: video.LONG_S
     video_source: str | None = None  # the video group's camera source; None: video.SOURCE
+    # The video group's picture per eye, (width, height); None: video.WIDTH_PX x HEIGHT_PX.
+    video_size: tuple[int, int] | None = None
 
     @property
     def command_s(self) -> float:

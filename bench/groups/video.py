@@ -51,7 +51,8 @@ def run(bench: Session) -> None:
     plan, started = bench.plan, time.monotonic()
     grid = cells(plan.quick, plan.video_s, plan.video_long_s)
     source = plan.video_source or SOURCE
-    bench.progress.step(f"video: a StereoCamera ({source}, {WIDTH_PX}x{HEIGHT_PX} per eye, "
+    width, height = plan.video_size or (WIDTH_PX, HEIGHT_PX)
+    bench.progress.step(f"video: a StereoCamera ({source}, {width}x{height} per eye, "
                         f"{SOURCE_FPS:g} fps) and a DecisionServer in front of it")
     why = stereo.available()
     if why:
@@ -60,7 +61,7 @@ def run(bench: Session) -> None:
     procs = bench.procs
     try:
         camera, camera_address = procs.run_service("stereo_camera", [
-            "--source", source, "--width", str(WIDTH_PX), "--height", str(HEIGHT_PX),
+            "--source", source, "--width", str(width), "--height", str(height),
             "--fps", str(SOURCE_FPS)])
     except ChildFailed as error:
         return bench.fail([NAME], error)
@@ -92,7 +93,7 @@ def run(bench: Session) -> None:
         "bottlenecks_mbit": [cap for cap in (QUICK_BOTTLENECKS_MBIT if plan.quick
                                              else BOTTLENECKS_MBIT)],
         "commit": _commit(),
-        "camera": {"source": source, "width_px": WIDTH_PX, "height_px": HEIGHT_PX,
+        "camera": {"source": source, "width_px": width, "height_px": height,
                    "fps": SOURCE_FPS},
         "goals": {"min_fps": MIN_FPS, "age_slack_ms": AGE_SLACK_MS, "backlog_ms": BACKLOG_MS,
                   "text": goal_text()},
