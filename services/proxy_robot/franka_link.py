@@ -60,6 +60,10 @@ APPLIED_KEPT = 100_000
 JOINT_STIFFNESS = np.array([4500.0, 4500.0, 3500.0, 3500.0, 2000.0, 2000.0, 2000.0])
 # Where the environment's joint torques come from: the robot's estimate, or the spring.
 TORQUE_SOURCES = ("robot", "impedance")
+# The spring's reading is low-passed with this time constant, as the robot filters its own
+# (tau_ext_hat_filtered): moving, the servo's tracking error reads as a push in bursts of a
+# few ms when setpoints come unevenly (docs/arms.md).
+IMPEDANCE_FILTER_S = 0.03
 
 
 def libfranka_exceptions(franka) -> tuple[type[BaseException], ...]:
@@ -101,6 +105,7 @@ class FrankaArmLink:
             raise ValueError(f"torque_source must be one of {TORQUE_SOURCES}")
         self._mirror = mirror
         self._torque_source = torque_source
+        self._filtered_spring = np.zeros(arm.joint_count)  # the control thread's own
         self._franka = pylibfranka
         self._failures = libfranka_exceptions(pylibfranka)
         self.host = host
@@ -204,7 +209,10 @@ class FrankaArmLink:
     def _external_torques(self, state, commanded: np.ndarray) -> np.ndarray:
         if self._torque_source == "robot":
             return np.array(state.tau_ext_hat_filtered, float)
-        return impedance_torques(JOINT_STIFFNESS, commanded, self._q)
+        spring = impedance_torques(JOINT_STIFFNESS, commanded, self._q)
+        self._filtered_spring += (spring - self._filtered_spring) * (
+            CONTROL_PERIOD_S / (IMPEDANCE_FILTER_S + CONTROL_PERIOD_S))
+        return self._filtered_spring.copy()
 
     def _sample(self) -> ArmSample:
         """The latest state as an ArmSample (lock held)."""
