@@ -29,7 +29,8 @@ def test_every_kind_prints_its_percentiles(capsys):
     lines = capsys.readouterr().out.splitlines()
     assert [line.split(":")[0] for line in lines] == [
         "handler, 0.0 ms apart", "handler, 0.5 ms apart", "handler, 2.0 ms apart",
-        "round trip at 500 Hz, noop", "round trip at 500 Hz, bare",
+        "round trip at 500 Hz, noop", "same, one open stream, noop",
+        "round trip at 500 Hz, bare", "same, one open stream, bare",
         "round trip at 500 Hz, stack"]
     for line in lines:
         p50, p90, p99 = (float(v) for v in re.findall(r"p\d\d ([\d.]+)", line))

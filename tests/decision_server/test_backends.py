@@ -108,13 +108,20 @@ def test_a_wrench_that_stopped_coming_leaves_the_acks(slave):
     """Defect: acks showed the last cached wrench for ever after StopReading."""
     slave, sensor, _ = slave
     wait_for(lambda: sensor.streams() == 1, what="the wrench follower to subscribe")
-    sensor.put(-4.0)
-    fresh = wait_for(slave.wrench, what="a wrench sample")
+    # A reading sensor streams sample after sample: one alone is fresh for WRENCH_FRESH_S only,
+    # which a loaded machine can spend delivering it (CI once did).
+    fresh = wait_for(lambda: _reading(sensor, -4.0, slave), what="a wrench sample")
     assert fresh.force_n[2] == -4.0
     # No more samples (the sensor stopped reading): within WRENCH_FRESH_S it is gone.
     wait_for(lambda: slave.wrench() is None, 2, "the stale wrench to be dropped")
-    sensor.put(-5.0)
-    assert wait_for(slave.wrench, what="a new sample").force_n[2] == -5.0
+    assert wait_for(lambda: _reading(sensor, -5.0, slave), what="a new sample").force_n[2] == -5.0
+
+
+def _reading(sensor: Sensor, force_z: float, slave):
+    """One more sample of `force_z` from the sensor; the slave's wrench if it is that one."""
+    sensor.put(force_z)
+    wrench = slave.wrench()
+    return wrench if wrench is not None and wrench.force_n[2] == force_z else None
 
 
 def test_streams_reopened_after_a_reconnect_are_not_kept(slave):
