@@ -91,10 +91,11 @@ STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_cam
 HARDWARE_STATION = ["proxy_robot", *(name for name in STATION
                                      if name not in ("world", "proxy_robot"))]
 DRIVERS = ("sim", "franka", "franka-sim")
-DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"  # ProxyRobot's own, which it inherits
-ROBOT_HOST_ENV = "TELEROBOT_PROXY_ROBOT_ROBOT_HOST"
-TORQUE_SOURCE_ENV = "TELEROBOT_PROXY_ROBOT_TORQUE_SOURCE"
-FORCE_SENSOR_ENV = "TELEROBOT_FORCE_SENSOR_SENSOR"
+# The children's own settings (their flags' variables), which they inherit.
+DRIVER_ENV = env_name("proxy_robot", "driver")
+ROBOT_HOST_ENV = env_name("proxy_robot", "robot_host")
+TORQUE_SOURCE_ENV = env_name("proxy_robot", "torque_source")
+FORCE_SENSOR_ENV = env_name("force_sensor", "sensor")
 FRANKA_SIM_HOST = "127.0.0.1"
 
 # Children that answer HTTP, not gRPC: their health is GET /healthz (the browser console).

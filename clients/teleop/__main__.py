@@ -40,7 +40,7 @@ from clients.teleop.video import StereoView
 from discovery import DiscoveryError, discovered_address
 from domain.robot_model import workspace
 from domain.robot_model.description import ArmDescriptionError, UnknownArmError, select_arm
-from wire.addresses import address_for
+from wire.addresses import address_for, env_name
 from wire.errors import TelerobotError
 
 MODES = ("feedback", "compliance")
@@ -170,7 +170,7 @@ def explain(error: TelerobotError) -> str:
 
 
 # The local station's choice of driver (the launcher's --driver), inherited as the arm's is.
-DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"
+DRIVER_ENV = env_name("proxy_robot", "driver")
 DRIVERS = ("sim", "franka-sim")
 
 

@@ -24,9 +24,10 @@ from services.runtime.supervisor_state import RESTARTED_BECAUSE_ENV
 from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink, SharedMemoryWrenchLink
 from telerobot.v1 import force_sensor_pb2_grpc
+from wire.addresses import env_name
 
 log = logging.getLogger("force_sensor")
-SENSOR_ENV = "TELEROBOT_FORCE_SENSOR_SENSOR"
+SENSOR_ENV = env_name("force_sensor", "sensor")
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -25,11 +25,12 @@ from services.runtime.supervisor_state import RESTARTED_BECAUSE_ENV
 from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink
 from telerobot.v1 import proxy_robot_pb2_grpc
+from wire.addresses import env_name
 
 log = logging.getLogger(__name__)
-DRIVER_ENV = "TELEROBOT_PROXY_ROBOT_DRIVER"
-ROBOT_HOST_ENV = "TELEROBOT_PROXY_ROBOT_ROBOT_HOST"
-TORQUE_SOURCE_ENV = "TELEROBOT_PROXY_ROBOT_TORQUE_SOURCE"
+DRIVER_ENV = env_name("proxy_robot", "driver")
+ROBOT_HOST_ENV = env_name("proxy_robot", "robot_host")
+TORQUE_SOURCE_ENV = env_name("proxy_robot", "torque_source")
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
