@@ -21,6 +21,9 @@ $(VENV)/.installed: pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[dev]'
+	# matplotlib finds the system's fonts (fc-list) once, on first import; here, so that no
+	# unit test starts that process
+	$(PY) -c "import matplotlib.font_manager"
 	touch $@
 
 $(FRANKA_VENV)/.installed:

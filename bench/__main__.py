@@ -47,6 +47,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--video-size", type=_size, default=None, metavar="WxH",
                         help="the video group's picture per eye (default 640x480); the sim "
                              "camera's render time grows with it")
+    parser.add_argument("--video-render-scale", choices=("auto", "1", "0.75", "0.5"),
+                        default=None,
+                        help="the video group's sim camera render scale (default auto: fewer "
+                             "pixels while rendering is over its budget; 1: the full picture "
+                             "whatever it costs)")
     args = parser.parse_args(argv)
     if args.soak_minutes is not None and args.soak_minutes <= 0:
         parser.error("--soak-minutes must be > 0")
@@ -56,7 +61,7 @@ def main(argv: list[str] | None = None) -> int:
     return run(Plan(quick=args.quick, only=tuple(args.only), profile=args.profile,
                     soak_minutes=args.soak_minutes, video_s=args.video_seconds,
                     video_long_s=args.video_long_seconds, video_source=args.video_source,
-                    video_size=args.video_size),
+                    video_size=args.video_size, video_render_scale=args.video_render_scale),
                Path(args.out))
 
 

@@ -33,6 +33,9 @@ class Plan:
     video_source: str | None = None  # the video group's camera source; None: video.SOURCE
     # The video group's picture per eye, (width, height); None: video.WIDTH_PX x HEIGHT_PX.
     video_size: tuple[int, int] | None = None
+    # The sim camera's --sim-render-scale in the video group: auto, or a fixed scale ("1": the
+    # full picture, whatever it costs); None: auto.
+    video_render_scale: str | None = None
 
     @property
     def command_s(self) -> float:

@@ -284,7 +284,7 @@ def _ratios_text(record: dict) -> str:
     return ", ".join(parts) or "–"
 
 
-HEADER = ("round trip", "bottleneck", "H.264 fps", "age p50 / p95 ms", "p95 by thirds ms",
+HEADER = ("round trip", "bottleneck", "H.264 fps", "render scale", "age p50 / p95 ms", "p95 by thirds ms",
           "kbit/s (target)", "age bound ms", "result", "JPEG fps", "JPEG age p50 / p95 ms",
           "JPEG kbit/s", "H.264 / JPEG")
 
@@ -304,7 +304,9 @@ def table_rows(result: dict) -> list[tuple[str, ...]]:
         kbit = (f"{_num(h264.get('kbit_per_s'), 0)} ({target})" if "kbit_per_s" in h264
                 else "–")
         jpeg_fps, jpeg_age, jpeg_kbit = _figures(jpeg) if jpeg is not None else ("–",) * 3
-        rows.append((trip, cap, fps, age, _thirds(h264), kbit, f"{record['age_bound_ms']:g}",
+        scale = h264.get("render_scale")
+        rows.append((trip, cap, fps, "–" if scale is None else f"{scale:g}", age, _thirds(h264),
+                     kbit, f"{record['age_bound_ms']:g}",
                      _verdict(record), jpeg_fps, jpeg_age, jpeg_kbit, _ratios_text(record)))
     return rows
 
@@ -381,7 +383,10 @@ def markdown(result: dict, source: str = "bench/results/latest.json") -> str:
         f"({machine.get('cpu_model')}, Python {machine.get('python')}, load average "
         f"{loads or '?'}). One station: the `{camera.get('source')}` StereoCamera "
         f"({camera.get('width_px')}×{camera.get('height_px')} per eye, at most "
-        f"{_num(camera.get('fps'), 0)} pairs/s) behind a DecisionServer, and "
+        f"{_num(camera.get('fps'), 0)} pairs/s, render scale "
+        f"{camera.get('render_scale', '1')}: the share of the picture's width and height "
+        "the sim renders, which `auto` lowers while a pair's render is over its budget) "
+        "behind a DecisionServer, and "
         "`services/impairment`'s link between the probe (`clients.video_probe`, the operator "
         "station's client) and the DecisionServer: half the round trip each way, the "
         "bottleneck both ways, no jitter. Each probe streams "

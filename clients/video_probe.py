@@ -5,7 +5,8 @@
 Streams pairs through the same client the operator station uses (clients.python's
 StereoCameraClient, which reports receipts and decodes H.264), measures them with its
 VideoMeter, and prints one JSON line: fps, age_ms_p50, age_ms_p95, kbit_per_s, codec, and
-more (the thirds' p95 ages, frames, the sender's last target bitrate). The first --skip-s
+more (the thirds' p95 ages, frames, the sender's last target bitrate, the median render scale:
+the share of its width and height a sim camera short of CPU drew). The first --skip-s
 seconds (start-up) are left out. The bench runs it too.
 """
 

@@ -28,7 +28,9 @@ def run(bench: Session) -> None:
         try:
             service, address = bench.procs.run_service("stereo_camera", [
                 "--source", source, "--width", str(stereo.WIDTH_PX),
-                "--height", str(stereo.HEIGHT_PX), "--fps", str(plan.stereo_source_fps)])
+                "--height", str(stereo.HEIGHT_PX), "--fps", str(plan.stereo_source_fps),
+                # the papers' full picture, as these rows have always measured it
+                "--sim-render-scale", "1"])
         except ChildFailed as error:
             for mode in plan.stereo_modes:
                 bench.progress.step(f"stereo_{source}_{mode}")

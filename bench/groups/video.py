@@ -52,8 +52,10 @@ def run(bench: Session) -> None:
     grid = cells(plan.quick, plan.video_s, plan.video_long_s)
     source = plan.video_source or SOURCE
     width, height = plan.video_size or (WIDTH_PX, HEIGHT_PX)
+    render_scale = plan.video_render_scale or "auto"
     bench.progress.step(f"video: a StereoCamera ({source}, {width}x{height} per eye, "
-                        f"{SOURCE_FPS:g} fps) and a DecisionServer in front of it")
+                        f"{SOURCE_FPS:g} fps, render scale {render_scale}) and a "
+                        "DecisionServer in front of it")
     why = stereo.available()
     if why:
         bench.results[NAME] = {**_blank(), "status": "pending", "reason": why}
@@ -62,7 +64,7 @@ def run(bench: Session) -> None:
     try:
         camera, camera_address = procs.run_service("stereo_camera", [
             "--source", source, "--width", str(width), "--height", str(height),
-            "--fps", str(SOURCE_FPS)])
+            "--fps", str(SOURCE_FPS), "--sim-render-scale", render_scale])
     except ChildFailed as error:
         return bench.fail([NAME], error)
     records, console = [], None
@@ -94,7 +96,7 @@ def run(bench: Session) -> None:
                                              else BOTTLENECKS_MBIT)],
         "commit": _commit(),
         "camera": {"source": source, "width_px": width, "height_px": height,
-                   "fps": SOURCE_FPS},
+                   "fps": SOURCE_FPS, "render_scale": render_scale},
         "goals": {"min_fps": MIN_FPS, "age_slack_ms": AGE_SLACK_MS, "backlog_ms": BACKLOG_MS,
                   "text": goal_text()},
         "skip_s": SKIP_S, "campus_rtt_ms": CAMPUS_RTT_MS,

@@ -3,7 +3,8 @@
 Each frame counts at the moment the client has both eyes (decoded): its age is that moment
 minus the frame's capture time (the earlier eye's), on the wall clock, which the camera and the
 client share on one host and must share through NTP or PTP across two. The meter gives the
-frame rate, the age's percentiles and the bitrate, over the whole stream and over its last
+frame rate, the age's percentiles, the bitrate and the camera's render scale (how much of
+its detail a sim camera short of CPU drew), over the whole stream and over its last
 `window_s` (the live status line).
 """
 
@@ -28,6 +29,7 @@ class _Sample:
     age_ms: float
     size_bytes: int
     target_kbit: int
+    render_scale: float = 1.0
 
 
 def _capture_ns(frame: StereoFrame) -> int:
@@ -51,12 +53,13 @@ class VideoMeter:
         self.codec = CODECS.get(frame.header.encoding, str(frame.header.encoding))
         self.record(shown_ns, (shown_ns - _capture_ns(frame)) / 1e6,
                     len(pair.left_image) + len(pair.right_image) + len(pair.video_frame),
-                    pair.target_kbit_per_s)
+                    pair.target_kbit_per_s, pair.render_scale or 1.0)  # 0: not said, full
 
-    def record(self, shown_ns: int, age_ms: float, size_bytes: int, target_kbit: int) -> None:
+    def record(self, shown_ns: int, age_ms: float, size_bytes: int, target_kbit: int,
+               render_scale: float = 1.0) -> None:
         """A frame shown at `shown_ns` (wall clock), `age_ms` after its capture, of
         `size_bytes`: from a client that timed it itself (the console's page)."""
-        sample = _Sample(shown_ns, age_ms, size_bytes, target_kbit)
+        sample = _Sample(shown_ns, age_ms, size_bytes, target_kbit, render_scale)
         self._samples.append(sample)
         self._recent.append(sample)
         while self._recent and self._recent[0].shown_ns < shown_ns - self._window_ns:
@@ -90,7 +93,7 @@ def _summary(samples: list[_Sample], intervals: int, span_s: float) -> dict:
     """`intervals` frames (and their bytes) over `span_s` seconds."""
     if not samples or not span_s:
         return {"fps": 0.0, "age_ms_p50": None, "age_ms_p95": None, "kbit_per_s": 0.0,
-                "target_kbit_per_s": 0}
+                "target_kbit_per_s": 0, "render_scale": None}
     ages = np.array([s.age_ms for s in samples])
     counted = samples[len(samples) - intervals:]
     return {
@@ -99,4 +102,5 @@ def _summary(samples: list[_Sample], intervals: int, span_s: float) -> dict:
         "age_ms_p95": round(float(np.percentile(ages, 95)), 1),
         "kbit_per_s": round(sum(s.size_bytes for s in counted) * 8 / 1e3 / span_s, 1),
         "target_kbit_per_s": samples[-1].target_kbit,
+        "render_scale": float(np.median([s.render_scale for s in samples])),
     }

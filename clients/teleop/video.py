@@ -138,8 +138,9 @@ class StereoView:
         now = self.meter.now()
         if not now["fps"]:
             return "video -"
+        detail = "" if now["render_scale"] == 1.0 else f" detail {now['render_scale']:g}"
         return (f"video {now['fps']:4.1f} fps {now['age_ms_p50']:4.0f} ms "
-                f"{now['kbit_per_s'] / 1e3:4.1f} Mbit/s")
+                f"{now['kbit_per_s'] / 1e3:4.1f} Mbit/s{detail}")
 
     def summary(self) -> dict:
         """The whole session's video figures (VideoMeter.summary), for summary.json."""

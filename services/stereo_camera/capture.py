@@ -334,7 +334,7 @@ class CaptureHub:
         if pair is None:
             return  # the eyes disagreed on the tick: no pair this time (a sequence gap)
         frame = StereoFrame(tick, pair[0].image, pair[1].image, pair[0].capture_time_ns,
-                            pair[1].capture_time_ns, started)
+                            pair[1].capture_time_ns, started, pair[0].render_scale)
         with self._cond:
             self._latest = frame
             self._pairs += 1

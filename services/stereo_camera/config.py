@@ -20,6 +20,7 @@ from services.stereo_camera.sim import (
     WorldJoints,
     home_joints,
 )
+from services.stereo_camera.render_scale import LADDER
 from services.stereo_camera.source import StereoSource
 from services.stereo_camera.video import DEVICE, FILE, VideoSource
 from services.world.shm_layout import add_shm_name_argument
@@ -49,6 +50,19 @@ def _optional_int(value):
 
 def _optional_float(value):
     return None if value in (None, "") else float(value)
+
+
+def _render_scale(value: str) -> float | None:
+    if value == "auto":
+        return None
+    try:
+        scale = float(value)
+    except ValueError:
+        scale = None
+    if scale not in LADDER:
+        raise argparse.ArgumentTypeError(
+            f"expected auto or one of {', '.join(f'{s:g}' for s in LADDER)}, got {value!r}")
+    return scale
 
 
 def add_source_arguments(parser: argparse.ArgumentParser) -> None:
@@ -107,6 +121,13 @@ def add_source_arguments(parser: argparse.ArgumentParser) -> None:
         default=int(_env("sim_multisample", DEFAULT_MULTISAMPLES)),
         help=f"multisampling (anti-aliasing) samples per pixel (default {DEFAULT_MULTISAMPLES}: "
              "none; MuJoCo's own 4 smooths the edges and doubles the cost in software)")
+    group.add_argument(
+        "--sim-render-scale", type=_render_scale,
+        default=_render_scale(_env("sim_render_scale", "auto")),
+        help="of the picture's width and height, what the sim renders before streams scale it "
+             "back: auto (default) renders fewer pixels while a pair's render takes over "
+             "0.6 of its frame interval, which keeps the frame rate on software rendering "
+             "(render_scale.py); a number fixes it (1: full detail, whatever it costs)")
     add_shm_name_argument(group, "shared memory of the world process, for --sim-joints world")
 
 
@@ -135,7 +156,8 @@ def source_from_args(args: argparse.Namespace) -> SourceSetup:
             closers.append(joints.close)
         source = SimSource(joints, width, height, args.fps or DEFAULT_FPS, args.sim_shadows,
                            shadow_map_px=args.sim_shadow_map,
-                           multisamples=args.sim_multisample)
+                           multisamples=args.sim_multisample,
+                           render_scale=args.sim_render_scale)
         return SourceSetup(source, closers)
     kind = DEVICE if args.source == "device" else FILE
     if args.side_by_side and (args.left or args.right):

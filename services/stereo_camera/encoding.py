@@ -147,10 +147,13 @@ def snapshot_settings(request: pb.GetSnapshotRequest) -> StreamSettings:
 
 
 def resize(image: np.ndarray, width_px: int, height_px: int) -> np.ndarray:
-    """`image` at width_px x height_px (area averaging when shrinking); itself if it fits."""
+    """`image` at width_px x height_px (area averaging when shrinking, bilinear when enlarging
+    a picture rendered small); itself if it fits."""
     if image.shape[1] == width_px and image.shape[0] == height_px:
         return image
-    return cv2.resize(image, (width_px, height_px), interpolation=cv2.INTER_AREA)
+    enlarging = width_px > image.shape[1] or height_px > image.shape[0]
+    return cv2.resize(image, (width_px, height_px),
+                      interpolation=cv2.INTER_LINEAR if enlarging else cv2.INTER_AREA)
 
 
 def encode_image(image: np.ndarray, encoding: int, jpeg_quality: int = DEFAULT_JPEG_QUALITY,

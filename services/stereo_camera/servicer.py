@@ -74,7 +74,8 @@ def pair_proto(frame: StereoFrame, left_image: bytes = b"", right_image: bytes =
         sequence=frame.sequence,
         left_capture_time=convert.timestamp(frame.left_time_ns),
         right_capture_time=convert.timestamp(frame.right_time_ns),
-        left_image=left_image, right_image=right_image, eye_skew=skew, **video)
+        left_image=left_image, right_image=right_image, eye_skew=skew,
+        render_scale=frame.render_scale, **video)
 
 
 class _VideoEncoding:

@@ -36,6 +36,7 @@ import numpy as np
 
 from domain.robot_model.loader import load_mujoco_model, mujoco_ids
 from services.stereo_camera.calibration import mujoco_stereo
+from services.stereo_camera.render_scale import RenderScaler
 from services.stereo_camera.source import EyeFrame, SourceGeometry
 from services.world.shm_link import SharedMemoryArmLink
 from wire.errors import FailedPreconditionError, UnavailableError
@@ -87,7 +88,8 @@ class SimSource:
                  fps: float = DEFAULT_FPS, shadows: bool = False,
                  model: mujoco.MjModel | None = None,
                  shadow_map_px: int = DEFAULT_SHADOW_MAP_PX,
-                 multisamples: int = DEFAULT_MULTISAMPLES):
+                 multisamples: int = DEFAULT_MULTISAMPLES,
+                 render_scale: float | None = 1.0):
         if width_px < 1 or height_px < 1 or not fps > 0:
             raise ValueError(f"the sim cameras need a positive size and fps, got "
                              f"{width_px}x{height_px} at {fps}")
@@ -107,10 +109,14 @@ class SimSource:
         calibration = mujoco_stereo(self._model, self._data, self._ids.left_camera,
                                     self._ids.right_camera, width_px, height_px)
         self.geometry = SourceGeometry(width_px, height_px, calibration, fps, "sim")
-        self._renderer: mujoco.Renderer | None = None
+        # a number from render_scale.LADDER fixes the scale; None makes it follow the render's
+        # cost (render_scale.py)
+        self._scaler = RenderScaler(1.0 / fps, fixed=render_scale)
+        self._renderers: dict[float, mujoco.Renderer] = {}  # by scale, made as first needed
+        self._opened = False
 
     def open(self) -> SourceGeometry:
-        if self._renderer is None:
+        if not self._opened:
             problem = gl_backend_problem()
             if problem:
                 raise FailedPreconditionError(f"cannot render the sim cameras: {problem}",
@@ -118,23 +124,37 @@ class SimSource:
             global_ = self._model.vis.global_
             global_.offwidth = max(int(global_.offwidth), self.geometry.width_px)
             global_.offheight = max(int(global_.offheight), self.geometry.height_px)
-            quality = self._model.vis.quality  # read when the GL context is made, just below
+            quality = self._model.vis.quality  # read when a GL context is made (_renderer)
             quality.shadowsize = self._shadow_map_px
             quality.offsamples = self._multisamples
+            self._renderer(self._scaler.scale)  # fails here, not at the first grab
+            self._opened = True
+        return self.geometry
+
+    @property
+    def render_scale(self) -> float:
+        """The scale the next pair is rendered at."""
+        return self._scaler.scale
+
+    def _renderer(self, scale: float) -> mujoco.Renderer:
+        """The renderer for `scale` of the full size (each has its own GL context)."""
+        renderer = self._renderers.get(scale)
+        if renderer is None:
+            width = max(1, round(self.geometry.width_px * scale))
+            height = max(1, round(self.geometry.height_px * scale))
             try:
-                self._renderer = mujoco.Renderer(self._model, self.geometry.height_px,
-                                                 self.geometry.width_px)
+                renderer = mujoco.Renderer(self._model, height, width)
             except Exception as exc:  # mujoco.FatalError, GL errors: no usable context
                 raise FailedPreconditionError(
                     f"cannot create an offscreen OpenGL context for the sim cameras: {exc}. "
                     "Set MUJOCO_GL=egl (or osmesa) before the process starts",
                     reason="RENDERER_UNAVAILABLE") from None
-            self._renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = self._shadows
-        return self.geometry
+            renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = self._shadows
+            self._renderers[scale] = renderer
+        return renderer
 
     def grab(self, tick: int) -> tuple[EyeFrame, EyeFrame]:
-        renderer = self._renderer
-        if renderer is None:
+        if not self._opened:
             raise UnavailableError("the sim cameras are not open", reason="SOURCE_CLOSED")
         q = np.asarray(self._joints(), dtype=float)
         state_time_ns = time.time_ns()
@@ -144,15 +164,25 @@ class SimSource:
         self._data.qpos[self._ids.qpos] = q
         mujoco.mj_kinematics(self._model, self._data)
         mujoco.mj_camlight(self._model, self._data)
+        scale = self._scaler.scale
+        renderer = self._renderer(scale)
+        started = time.perf_counter()
         frames = []
         for camera in (self._ids.left_camera, self._ids.right_camera):
             renderer.update_scene(self._data, camera=camera)
-            frames.append(EyeFrame(tick, renderer.render(), state_time_ns))
+            frames.append(EyeFrame(tick, renderer.render(), state_time_ns, scale))
+        render_s = time.perf_counter() - started
+        if self._scaler.observe(render_s, time.monotonic()) != scale:
+            log.info("rendering at %g of %dx%d from the next pair: a pair took %.1f ms at %g, "
+                     "its frame interval is %.1f ms", self._scaler.scale,
+                     self.geometry.width_px, self.geometry.height_px, render_s * 1e3, scale,
+                     1e3 / self.geometry.rate_hz)
         return frames[0], frames[1]
 
     def close(self) -> None:
-        renderer, self._renderer = self._renderer, None
-        if renderer is not None:
+        renderers, self._renderers = self._renderers, {}
+        self._opened = False
+        for renderer in renderers.values():
             renderer.close()
 
 

@@ -31,6 +31,8 @@ class EyeFrame:
     tick: int  # the camera's own frame number (for a file: the frame index in the file)
     image: np.ndarray  # RGB8 (height, width, 3)
     capture_time_ns: int  # wall clock, when the camera captured it
+    render_scale: float = 1.0  # of the source's size, what a renderer short of CPU drew
+    # (render_scale.py); the image is that much smaller and streams scale it back
 
 
 @dataclass(frozen=True)
@@ -43,6 +45,7 @@ class StereoFrame:
     left_time_ns: int  # wall clock
     right_time_ns: int
     started_ns: int  # time.monotonic_ns() when the capture of this tick started
+    render_scale: float = 1.0  # of the source's width and height, as EyeFrame's
 
     @property
     def eye_skew_ns(self) -> int:

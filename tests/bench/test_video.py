@@ -203,7 +203,7 @@ def test_a_failed_probe_shows_as_failed_in_the_table():
     record = _record(50.0, 4.0, h264={"status": "failed", "reason": "took too long"},
                      jpeg={"status": "failed", "reason": "x"})
     row = video.table_rows({"cells": [record]})[0]
-    assert row[2] == "failed" and row[7] == "FAIL: failed: took too long" and row[8] == "failed"
+    assert row[2] == "failed" and row[8] == "FAIL: failed: took too long" and row[9] == "failed"
     assert "failed" in video.cell_text(record)
 
 

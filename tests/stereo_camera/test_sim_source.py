@@ -160,7 +160,7 @@ def test_the_defaults_render_without_shadows_or_multisampling():
     try:
         quality = source._model.vis.quality
         assert (quality.shadowsize, quality.offsamples) == (256, 2)
-        assert source._renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW]
+        assert source._renderer(source.render_scale).scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW]
     finally:
         source.close()
 
@@ -181,8 +181,59 @@ def test_shadows_darken_the_table_under_the_arm():
     assert darker.mean() > 0.005  # the arm's shadow falls on the table and the fixture
 
 
+def _blue_centroid(image: np.ndarray) -> np.ndarray:
+    """Mean pixel (u, v) of the fixture's blue top."""
+    red, green, blue = (image[..., k].astype(int) for k in range(3))
+    v, u = np.nonzero((blue > red + 30) & (blue > green + 20))
+    return np.array([u.mean(), v.mean()])
+
+
+def test_a_pair_rendered_small_streams_at_full_size_with_the_same_geometry():
+    """A camera short of CPU renders fewer pixels (render_scale.py); the stream scales the
+    picture back, so the calibration and the AR overlay hold and only detail is lost."""
+    arm = Arm()
+    full = _render(arm)
+    half = SimSource(arm, W, H, render_scale=0.5)
+    half.open()
+    try:
+        left, _ = half.grab(0)
+        assert left.image.shape == (H // 2, W // 2, 3) and left.render_scale == 0.5
+    finally:
+        half.close()
+    camera = start_camera(SimSource(arm, W, H, render_scale=0.5))
+    try:
+        messages = camera.stream(2, encoding=pb.IMAGE_ENCODING_PNG)
+    finally:
+        camera.close()
+    header = messages[0].header
+    assert (header.width_px, header.height_px) == (W, H)
+    pair = messages[1].pair
+    assert pair.render_scale == 0.5
+    streamed, _ = decode_pair(header, pair)
+    assert streamed.shape == full.shape
+    assert 20 < psnr(streamed, full) < 60  # the same scene, less detail
+    # the fixture's top sits where the full render has it, within a fraction of a pixel
+    assert np.abs(_blue_centroid(streamed) - _blue_centroid(full)).max() < 0.5
+    u, v = _project(header.left, FIXTURE_TOP)
+    red, green, blue = streamed[round(v), round(u)].astype(int)
+    assert blue > red + 30 and blue > green + 20
+
+
+def test_the_flag_chooses_an_adaptive_or_a_fixed_render_scale():
+    parser = argparse.ArgumentParser()
+    add_source_arguments(parser)
+    args = parser.parse_args(["--sim-joints", "home"])
+    assert args.sim_render_scale is None  # adaptive by default
+    args = parser.parse_args(["--sim-joints", "home", "--sim-render-scale", "0.5"])
+    assert source_from_args(args).source.render_scale == 0.5
+    with pytest.raises(SystemExit):
+        parser.parse_args(["--sim-render-scale", "0.6"])
+
+
 def test_bad_render_settings_are_refused():
     with pytest.raises(ValueError, match="shadow map"):
         SimSource(Arm(), W, H, shadow_map_px=0)
     with pytest.raises(ValueError, match="multisampling"):
         SimSource(Arm(), W, H, multisamples=-1)
+    with pytest.raises(ValueError, match="render scale"):
+        SimSource(Arm(), W, H, render_scale=0.3)

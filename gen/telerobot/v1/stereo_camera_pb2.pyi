@@ -150,7 +150,7 @@ class CameraCalibration(_message.Message):
     def __init__(self, fx_px: _Optional[float] = ..., fy_px: _Optional[float] = ..., cx_px: _Optional[float] = ..., cy_px: _Optional[float] = ..., projection: _Optional[_Iterable[float]] = ..., camera_pose: _Optional[_Union[_types_pb2.Pose, _Mapping]] = ..., distortion: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class StereoPair(_message.Message):
-    __slots__ = ("sequence", "left_capture_time", "right_capture_time", "left_image", "right_image", "eye_skew", "video_frame", "keyframe", "target_kbit_per_s")
+    __slots__ = ("sequence", "left_capture_time", "right_capture_time", "left_image", "right_image", "eye_skew", "video_frame", "keyframe", "target_kbit_per_s", "render_scale")
     SEQUENCE_FIELD_NUMBER: _ClassVar[int]
     LEFT_CAPTURE_TIME_FIELD_NUMBER: _ClassVar[int]
     RIGHT_CAPTURE_TIME_FIELD_NUMBER: _ClassVar[int]
@@ -160,6 +160,7 @@ class StereoPair(_message.Message):
     VIDEO_FRAME_FIELD_NUMBER: _ClassVar[int]
     KEYFRAME_FIELD_NUMBER: _ClassVar[int]
     TARGET_KBIT_PER_S_FIELD_NUMBER: _ClassVar[int]
+    RENDER_SCALE_FIELD_NUMBER: _ClassVar[int]
     sequence: int
     left_capture_time: _timestamp_pb2.Timestamp
     right_capture_time: _timestamp_pb2.Timestamp
@@ -169,4 +170,5 @@ class StereoPair(_message.Message):
     video_frame: bytes
     keyframe: bool
     target_kbit_per_s: int
-    def __init__(self, sequence: _Optional[int] = ..., left_capture_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., right_capture_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., left_image: _Optional[bytes] = ..., right_image: _Optional[bytes] = ..., eye_skew: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., video_frame: _Optional[bytes] = ..., keyframe: _Optional[bool] = ..., target_kbit_per_s: _Optional[int] = ...) -> None: ...
+    render_scale: float
+    def __init__(self, sequence: _Optional[int] = ..., left_capture_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., right_capture_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., left_image: _Optional[bytes] = ..., right_image: _Optional[bytes] = ..., eye_skew: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., video_frame: _Optional[bytes] = ..., keyframe: _Optional[bool] = ..., target_kbit_per_s: _Optional[int] = ..., render_scale: _Optional[float] = ...) -> None: ...
