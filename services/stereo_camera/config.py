@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from services.stereo_camera.pattern import PatternSource
+from services.stereo_camera.render_scale import LADDER
 from services.stereo_camera.sim import (
     DEFAULT_MULTISAMPLES,
     DEFAULT_SHADOW_MAP_PX,
@@ -20,7 +21,6 @@ from services.stereo_camera.sim import (
     WorldJoints,
     home_joints,
 )
-from services.stereo_camera.render_scale import LADDER
 from services.stereo_camera.source import StereoSource
 from services.stereo_camera.video import DEVICE, FILE, VideoSource
 from services.world.shm_layout import add_shm_name_argument

@@ -75,7 +75,7 @@ def test_a_load_that_comes_and_goes_steps_down_then_back_up_after_the_hold():
     changes = [k for k in range(1, len(up)) if up[k] != up[k - 1]]
     assert len(changes) == len(LADDER) - 1
     assert all((b - a) * INTERVAL_S >= HOLD_S - INTERVAL_S
-               for a, b in zip(changes, changes[1:]))
+               for a, b in zip(changes, changes[1:], strict=False))
 
 
 def test_a_renderer_that_nearly_fits_the_bigger_size_backs_off_instead_of_flipping():
@@ -93,7 +93,7 @@ def test_a_renderer_that_nearly_fits_the_bigger_size_backs_off_instead_of_flippi
     ups = [k for k in range(1, len(scales)) if scales[k] > scales[k - 1]]
     # holds of 2, 4, 8, 16, 32, 32... s: a few tries in two minutes, not one every 2 s
     assert 2 <= len(ups) <= 6
-    gaps = [(b - a) * INTERVAL_S for a, b in zip(ups, ups[1:])]
+    gaps = [(b - a) * INTERVAL_S for a, b in zip(ups, ups[1:], strict=False)]
     assert gaps == sorted(gaps)
     assert scales.count(0.75) == WINDOW * (len(ups) + 1)  # the way down, then each try: a window
 
