@@ -285,8 +285,8 @@ def _ratios_text(record: dict) -> str:
 
 
 HEADER = ("round trip", "bottleneck", "H.264 fps", "render scale", "age p50 / p95 ms",
-          "p95 by thirds ms", "kbit/s (target)", "age bound ms", "result", "JPEG fps", "JPEG age p50 / p95 ms",
-          "JPEG kbit/s", "H.264 / JPEG")
+          "p95 by thirds ms", "kbit/s (target)", "age bound ms", "result", "JPEG fps",
+          "JPEG age p50 / p95 ms", "JPEG kbit/s", "H.264 / JPEG")
 
 
 def table_rows(result: dict) -> list[tuple[str, ...]]:
