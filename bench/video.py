@@ -221,7 +221,7 @@ def measure_console(params: dict) -> dict:
     meter = VideoMeter()
     for sample in stats["samples"]:
         meter.record(round(sample["shownMs"] * 1e6), sample["ageMs"], sample["bytes"],
-                     sample["targetKbit"])
+                     sample["targetKbit"], sample.get("renderScale", 1.0))
     result = meter.summary(params["skip_s"])
     result.update(codec=stats["codec"], decoder=stats["decoder"],
                   fallback=stats["fallback"], decode_errors=stats["errors"],

@@ -46,3 +46,4 @@ def test_h264_with_receipts_through_the_decision_server(video_station):
     first, _, last = result["age_ms_p95_thirds"]
     assert last <= first + 20, result
     assert result["target_kbit_per_s"] > 0, result
+    assert result["render_scale"] == 1.0, result  # the test card is drawn whole

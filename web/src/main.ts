@@ -194,12 +194,14 @@ setInterval(() => {
   $("fps").textContent = shown(live.fps, 1);
   $("video-kbit").textContent = shown(live.kbitPerS);
   $("video-target").textContent = live.targetKbit ? String(live.targetKbit) : "–";
+  $("video-detail").textContent = shown(live.renderScale, 2);
   $("video-codec").textContent = video.decoder ? `${video.codec}, ${video.decoder}` : "–";
   const el = $("video-stats");
   Object.assign(el.dataset, {
     codec: video.codec, decoder: video.decoder, frames: String(video.frames),
     fps: live.fps.toFixed(1), ageP50: shown(live.ageP50, 1), ageP95: shown(live.ageP95, 1),
     kbitPerS: live.kbitPerS.toFixed(0), targetKbitPerS: String(live.targetKbit),
+    renderScale: shown(live.renderScale, 3),
     decodeErrors: String(video.decodeErrors), fallback: video.fallbackReason,
   });
 }, 500);

@@ -25,6 +25,7 @@ export interface VideoSample {
   drawMs: number;
   bytes: number;  // received for this frame
   targetKbit: number;  // the sender's target (H.264)
+  renderScale: number;  // of the picture's width and height, what the camera drew (1: all)
   sequence: number;
 }
 
@@ -67,6 +68,7 @@ export class VideoStats {
       ageP95: pick(0.95),
       kbitPerS: recent.reduce((sum, s) => sum + s.bytes, 0) * 8 / windowMs,
       targetKbit: recent.length ? recent[recent.length - 1].targetKbit : 0,
+      renderScale: recent.length ? recent[recent.length - 1].renderScale : NaN,
     };
   }
 }
@@ -215,6 +217,7 @@ class FramePainter {
     this.stats.shown({
       receivedAgeMs: p.receivedMs - captureMs, decodeMs: p.decodedMs - p.receivedMs,
       drawMs: wallMs() - drawStart, bytes: p.bytes, targetKbit: pair.targetKbitPerS,
+      renderScale: pair.renderScale || 1,  // 0: not said, the full picture
       sequence: Number(pair.sequence),
     }, captureMs);
   }
@@ -424,7 +427,7 @@ export function startVideo(o: VideoOptions): VideoStats {
       stats.shown({
         receivedAgeMs: receivedMs - captureMs, decodeMs: 0, drawMs: wallMs() - drawStart,
         bytes: pair.leftImage.length + pair.rightImage.length, targetKbit: 0,
-        sequence: Number(pair.sequence),
+        renderScale: pair.renderScale || 1, sequence: Number(pair.sequence),
       }, captureMs);
       const wait = SNAPSHOT_MIN_INTERVAL_MS - (performance.now() - asked);
       if (wait > 0) await new Promise((done) => setTimeout(done, wait));
