@@ -12,7 +12,8 @@ inside the budget, so the scale then stays at 1.
 
 The rule, on the median render time of the last WINDOW pairs at the current scale:
 
-- above OVERUSE of the frame interval: one step down the ladder (at once, no hold);
+- above OVERUSE of the frame interval: one step down the ladder, no lower than FLOOR (at once,
+  no hold);
 - below UNDERUSE of the interval *as predicted for the next step up* (time scales with the
   pixels, a square of the scale): one step up, but only HOLD_S after the last change, and a step
   up that has to be undone within its hold doubles the next hold (up to MAX_HOLD_S), so a
@@ -27,6 +28,11 @@ import statistics
 from collections import deque
 
 LADDER = (1.0, 0.75, 0.5, 0.375, 0.25)  # linear scale of the render, biggest first
+# The adaptation's floor. Below half, the render's fixed part (posing the scene, the GL
+# pipeline: about 5 of a 640x480 pair's 20 ms alone here) dominates, so the picture would lose
+# more than the rate gains; and on a host whose other processes take the CPU, the render's
+# time is their preemption as much as its own pixels. Smaller scales can be fixed.
+FLOOR = 0.5
 OVERUSE = 0.6  # of the frame interval: room is left for the encoder and the rest of the host
 UNDERUSE = 0.4  # of the frame interval, predicted at the next step up
 WINDOW = 15  # pairs (half a second at 30 fps): a moment's preemption is not a trend
@@ -38,11 +44,11 @@ class RenderScaler:
     """Chooses the render scale from measured render times.
 
     `fixed`: a scale from LADDER to keep whatever the times (1.0 turns the adaptation off).
-    `min_scale`: the smallest scale the adaptation may choose.
+    `min_scale`: the smallest scale the adaptation may choose (FLOOR).
     """
 
     def __init__(self, frame_interval_s: float, *, fixed: float | None = None,
-                 min_scale: float = LADDER[-1]):
+                 min_scale: float = FLOOR):
         if not frame_interval_s > 0:
             raise ValueError(f"the frame interval must be positive, got {frame_interval_s}")
         if fixed is not None and fixed not in LADDER:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 from services.stereo_camera.render_scale import (
+    FLOOR,
     HOLD_S,
     LADDER,
     OVERUSE,
@@ -66,14 +67,14 @@ def test_a_load_that_comes_and_goes_steps_down_then_back_up_after_the_hold():
     loaded = FakeRenderer(full_s=0.2)  # preempted: everything takes six times as long
     quiet = FakeRenderer(full_s=0.008)  # a fast renderer
     down = run(scaler, loaded, 5)
-    assert down[-1] == 0.25
+    assert down[-1] == FLOOR
     assert down == sorted(down, reverse=True)  # only down while loaded
     up = run(scaler, quiet, 30, start_s=5)
     assert up[-1] == 1.0
     assert up == sorted(up)  # only up once quiet
     # each step up waits for the hold after the one before
     changes = [k for k in range(1, len(up)) if up[k] != up[k - 1]]
-    assert len(changes) == len(LADDER) - 1
+    assert len(changes) == LADDER.index(FLOOR)
     assert all((b - a) * INTERVAL_S >= HOLD_S - INTERVAL_S
                for a, b in zip(changes, changes[1:], strict=False))
 
@@ -106,8 +107,10 @@ def test_a_fixed_scale_never_changes():
 
 
 def test_the_smallest_scale_is_a_floor():
-    scaler = RenderScaler(INTERVAL_S, min_scale=0.5)
-    assert run(scaler, FakeRenderer(full_s=1.0), 5)[-1] == 0.5
+    assert run(RenderScaler(INTERVAL_S), FakeRenderer(full_s=1.0), 5)[-1] == FLOOR
+    scaler = RenderScaler(INTERVAL_S, min_scale=LADDER[-1])
+    scales = run(scaler, FakeRenderer(full_s=1.0), 5)
+    assert sorted(set(scales), reverse=True) == list(LADDER)  # every step, to the last
 
 
 @pytest.mark.parametrize("options, message", [

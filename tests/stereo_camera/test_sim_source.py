@@ -16,7 +16,7 @@ import pytest
 from domain.robot_model import workspace as ws
 from services.stereo_camera.client import decode_pair
 from services.stereo_camera.config import add_source_arguments, source_from_args
-from services.stereo_camera.render_scale import LADDER, WINDOW
+from services.stereo_camera.render_scale import FLOOR, LADDER, WINDOW
 from services.stereo_camera.sim import SimSource, WorldJoints, home_joints
 from telerobot.v1 import stereo_camera_pb2 as pb
 from tests.stereo_camera.conftest import error_code, psnr, start_camera
@@ -226,13 +226,13 @@ def test_a_sim_camera_over_its_render_budget_draws_fewer_pixels():
     source = SimSource(Arm(), W, H, fps=1000.0, render_scale=None)
     source.open()
     try:
-        frames = [source.grab(tick)[0] for tick in range(len(LADDER) * WINDOW)]
+        frames = [source.grab(tick)[0] for tick in range((LADDER.index(FLOOR) + 1) * WINDOW)]
     finally:
         source.close()
     scales = [frame.render_scale for frame in frames]
     assert scales == sorted(scales, reverse=True) and scales[0] == 1.0
-    assert scales[-1] == LADDER[-1]
-    assert frames[-1].image.shape == (round(H * LADDER[-1]), round(W * LADDER[-1]), 3)
+    assert scales[-1] == FLOOR
+    assert frames[-1].image.shape == (round(H * FLOOR), round(W * FLOOR), 3)
 
 
 def test_the_flag_chooses_an_adaptive_or_a_fixed_render_scale():
