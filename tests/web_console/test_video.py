@@ -49,11 +49,18 @@ def test_h264_video_through_a_183_ms_link(browser, video_console):
                          timeout_s=60, what=f"{FRAMES} more frames shown")
         shown = page.locator("#video-stats")
         figures = {key: shown.get_attribute(f"data-{key}")
-                   for key in ("codec", "decoder", "fps", "age-p95", "kbit-per-s")}
+                   for key in ("codec", "decoder", "fps", "age-p95", "kbit-per-s",
+                               "render-scale")}
+        streamed, shown_px = page.evaluate("""() => {
+            const eye = document.getElementById("left-eye");
+            return [eye.width, eye.clientWidth * devicePixelRatio]; }""")
     assert stats["decoder"] == "webcodecs" and stats["codec"].startswith("h264"), stats["fallback"]
     assert stats["errors"] == 0
     assert figures["decoder"] == "webcodecs" and float(figures["fps"]) > 0, figures
     assert float(figures["kbit-per-s"]) > 0, figures
+    assert float(figures["render-scale"]) == 1.0, figures  # the test card is drawn whole
+    # The page asks for the pixels its canvas shows, no more: the source is 640 wide.
+    assert 0 < streamed <= min(640, shown_px), (streamed, shown_px)
     # Every pair came through the link: none arrived younger than its one-way delay.
     assert min(stats["ages"]) >= ONE_WAY_S * 1e3, min(stats["ages"])
     # A receipt per pair, on the receipts socket (bar the first few, sent while it opened).

@@ -256,6 +256,15 @@ const DEQUEUE_POLL_MS = 10;
 // browser or link always gets the newest pair.
 const SNAPSHOT_MIN_INTERVAL_MS = 66;
 
+/** The size per eye to stream: the source's, shrunk to the `shownPx` device pixels its canvas
+ * is shown across, even for H.264. Pixels beyond those shown cost the page decoding and
+ * drawing, and show nothing more (WebRTC's sinks ask for their size the same way). */
+export function streamSize(sourceW: number, sourceH: number, shownPx: number): [number, number] {
+  const scale = shownPx > 0 ? Math.min(1, shownPx / sourceW) : 1;
+  const even = (v: number) => Math.max(2, 2 * Math.floor(v / 2));
+  return [even(sourceW * scale), even(sourceH * scale)];
+}
+
 export function startVideo(o: VideoOptions): VideoStats {
   const stats = new VideoStats();
   (window as unknown as { videoStats: VideoStats }).videoStats = stats;
@@ -330,7 +339,12 @@ export function startVideo(o: VideoOptions): VideoStats {
     };
 
     try {
-      const stream = o.camera.streamPairs({ encoding: ImageEncoding.H264, receipts: true },
+      const source = (await o.camera.getStreamInfo({}, { signal: local.signal })).header;
+      const [widthPx, heightPx] = source
+        ? streamSize(source.widthPx, source.heightPx, o.left.clientWidth * devicePixelRatio)
+        : [0, 0];  // 0: the source's own size
+      const stream = o.camera.streamPairs(
+        { encoding: ImageEncoding.H264, receipts: true, widthPx, heightPx },
         { signal: local.signal });
       for await (const r of stream) {
         if (r.content.case === "header") {
