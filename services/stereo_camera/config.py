@@ -126,7 +126,7 @@ def add_source_arguments(parser: argparse.ArgumentParser) -> None:
         default=_render_scale(_env("sim_render_scale", "auto")),
         help="of the picture's width and height, what the sim renders before streams scale it "
              "back: auto (default) renders fewer pixels, down to half, while a pair's "
-             "render takes over 0.6 of its frame interval, which keeps the frame rate on "
+             "render takes over half its frame interval, which keeps the frame rate on "
              "software rendering (render_scale.py); a number fixes it (1: full detail, "
              "whatever it costs)")
     add_shm_name_argument(group, "shared memory of the world process, for --sim-joints world")

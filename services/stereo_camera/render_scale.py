@@ -33,7 +33,8 @@ LADDER = (1.0, 0.75, 0.5, 0.375, 0.25)  # linear scale of the render, biggest fi
 # more than the rate gains; and on a host whose other processes take the CPU, the render's
 # time is their preemption as much as its own pixels. Smaller scales can be fixed.
 FLOOR = 0.5
-OVERUSE = 0.6  # of the frame interval: room is left for the encoder and the rest of the host
+OVERUSE = 0.5  # of the frame interval: the other half is the encoder's and the host's (at
+# 0.6, 0.75 of 640x480 stayed while the station ran, and frames aged by tens of ms)
 UNDERUSE = 0.4  # of the frame interval, predicted at the next step up
 WINDOW = 15  # pairs (half a second at 30 fps): a moment's preemption is not a trend
 HOLD_S = 2.0

@@ -48,8 +48,8 @@ def test_a_renderer_that_fits_its_budget_keeps_the_full_size():
 
 
 def test_a_costly_renderer_steps_down_to_the_biggest_scale_within_budget_and_stays():
-    # a software renderer: 33 ms for the full size, as llvmpipe on this machine
-    renderer = FakeRenderer(full_s=0.033)
+    # a software renderer: 26 ms for the full size
+    renderer = FakeRenderer(full_s=0.025)
     scaler = RenderScaler(INTERVAL_S)
     scales = run(scaler, renderer, 60)
     budget = OVERUSE * INTERVAL_S
