@@ -85,8 +85,10 @@ serve: $(VENV)/.installed
 
 # A scripted peg-in-hole session, with and without server-side compliance; starts a local
 # station if none answers (ARM and DRIVER as for serve). Artifacts land in runs/teleop-<time>/.
+# EPISODES=N records N demonstration episodes at the station (TASK="..." labels them).
 teleop: $(VENV)/.installed
-	$(PY) -m clients.teleop $(if $(ARM),--arm $(ARM)) $(if $(DRIVER),--driver $(DRIVER)) $(TELEOP_ARGS)
+	$(PY) -m clients.teleop $(if $(ARM),--arm $(ARM)) $(if $(DRIVER),--driver $(DRIVER)) \
+		$(if $(EPISODES),--episodes $(EPISODES)) $(if $(TASK),--task "$(TASK)") $(TELEOP_ARGS)
 
 # A development PKI in var/pki: a CA, a certificate per service and per identity (admin,
 # operator, observer). HOSTS="name 10.0.0.2" adds names the servers answer on; FORCE=1 makes a

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import time
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -187,15 +188,34 @@ class _DecisionMethods:
                            lambda r: r.engaged, timeout, lane)
 
     # -- record and replay -----------------------------------------------------------------------
-    def start_recording(self, name: str, *, timeout: float | None = None,
+    def start_recording(self, name: str, *, format: int = pb.RECORDING_FORMAT_JSONL,
+                        task: str = "", timeout: float | None = None,
                         lane: str | None = None) -> Recording:
-        return self._unary("StartRecording", pb.StartRecordingRequest(name=name),
+        """Record the applied commands under `name` (MCAP: with the arm's state, wrench and
+        the stereo video); a `task` makes it an episode (MCAP)."""
+        return self._unary("StartRecording", pb.StartRecordingRequest(
+            name=name, format=format, task=task),
+            lambda r: Recording.from_proto(r.recording), timeout, lane)
+
+    def stop_recording(self, *, outcome: int = pb.EPISODE_OUTCOME_UNSPECIFIED,
+                       timeout: float | None = None, lane: str | None = None) -> Recording:
+        """Save the recording; `outcome` (an EpisodeOutcome) says how an episode went."""
+        return self._unary("StopRecording", pb.StopRecordingRequest(outcome=outcome),
                            lambda r: Recording.from_proto(r.recording), timeout, lane)
 
-    def stop_recording(self, *, timeout: float | None = None, lane: str | None = None
-                       ) -> Recording:
-        return self._unary("StopRecording", pb.StopRecordingRequest(),
-                           lambda r: Recording.from_proto(r.recording), timeout, lane)
+    def start_episode(self, task: str, name: str | None = None, *,
+                      timeout: float | None = None, lane: str | None = None) -> Recording:
+        """Start a demonstration episode of `task` (an MCAP recording; named after the time
+        unless `name`). Needs the control lock, as any recording."""
+        name = name or time.strftime("episode-%Y%m%d-%H%M%S", time.gmtime()) + \
+            f"-{time.time_ns() // 1_000_000 % 1000:03d}"
+        return self.start_recording(name, format=pb.RECORDING_FORMAT_MCAP, task=task,
+                                    timeout=timeout, lane=lane)
+
+    def end_episode(self, outcome: int = pb.EPISODE_OUTCOME_SUCCEEDED, *,
+                    timeout: float | None = None, lane: str | None = None) -> Recording:
+        """End the episode: saved (fsynced) with how it went (SUCCEEDED, FAILED, DISCARDED)."""
+        return self.stop_recording(outcome=outcome, timeout=timeout, lane=lane)
 
     def list_recordings(self, *, timeout: float | None = None, lane: str | None = None
                         ) -> list[Recording]:

@@ -222,11 +222,17 @@ class Recording:
     create_time_ns: int
     duration_s: float
     command_count: int
+    task: str = ""  # an episode's
+    outcome: str = ""  # an episode's: SUCCEEDED, FAILED, DISCARDED or UNSPECIFIED
+    video_frames: int = 0
+    error: str = ""  # why it cannot be replayed, when it cannot
 
     @classmethod
     def from_proto(cls, recording: ds_pb.Recording) -> Recording:
+        outcome = ds_pb.EpisodeOutcome.Name(recording.outcome).removeprefix("EPISODE_OUTCOME_")
         return cls(recording.name, time_ns(recording.create_time), seconds(recording.duration),
-                   recording.command_count)
+                   recording.command_count, recording.task,
+                   outcome if recording.task else "", recording.video_frames, recording.error)
 
 
 @dataclass(frozen=True)

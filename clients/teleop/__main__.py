@@ -40,6 +40,7 @@ from clients.teleop.video import StereoView
 from discovery import DiscoveryError, discovered_address
 from domain.robot_model import workspace
 from domain.robot_model.description import ArmDescriptionError, UnknownArmError, select_arm
+from telerobot.v1 import decision_server_pb2 as ds_pb
 from wire.addresses import address_for, env_name
 from wire.errors import TelerobotError
 
@@ -206,7 +207,17 @@ def main(argv: list[str] | None = None) -> int:
                              "tool pose and wrench, stereo pairs, the DecisionServer's events, "
                              "the arm's state, and Foxglove's /tf, images, force arrow; "
                              "python -m clients.teleop.mcap_inspect FILE summarizes it)")
+    parser.add_argument("--episodes", type=int, default=0, metavar="N",
+                        help="record N demonstration episodes: the scripted operator runs the "
+                             "task N times (the modes in turn), each recorded by the "
+                             "DecisionServer with --task and its outcome (python -m "
+                             "clients.teleop.export_lerobot makes a LeRobot dataset of them)")
+    parser.add_argument("--task", default=None,
+                        help=f"the episodes' task label (default {DEFAULT_TASK!r}); alone, "
+                             "each mode's run is an episode")
     args = parser.parse_args(argv)
+    if args.episodes < 0:
+        parser.error("--episodes must be >= 0")
     try:
         if args.arm is not None:
             select_arm(args.arm)  # a local station inherits it
@@ -227,6 +238,27 @@ def main(argv: list[str] | None = None) -> int:
         return 130
 
 
+DEFAULT_TASK = "insert the peg"
+
+
+def run_episode(client: DecisionClient, task: PegInHole, label: str, episodes: list[dict]):
+    """`task` run as a recorded episode: SUCCEEDED or FAILED as the run says; DISCARDED when
+    it breaks off (the exception goes on), so no half-run episode reads as a demonstration."""
+    client.start_episode(label)
+    try:
+        result = task.run()
+    except BaseException:
+        with contextlib.suppress(TelerobotError):
+            client.end_episode(ds_pb.EPISODE_OUTCOME_DISCARDED)
+        raise
+    saved = client.end_episode(ds_pb.EPISODE_OUTCOME_SUCCEEDED if result.success
+                               else ds_pb.EPISODE_OUTCOME_FAILED)
+    episodes.append({"name": saved.name, "task": saved.task, "outcome": saved.outcome,
+                     "commands": saved.command_count, "video_frames": saved.video_frames,
+                     "duration_s": saved.duration_s})
+    return result
+
+
 class WrongArm(Exception):
     """The station that answers drives another arm than --arm asked for."""
 
@@ -236,6 +268,7 @@ def run(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
 
     recorder = SessionRecorder(out / "session.mcap") if args.mcap else None
+    episodes: list[dict] = []  # each recorded episode: name, task, outcome, frames
     with station_at(args.address) as started, recorder or contextlib.nullcontext():
         client = DecisionClient(args.address, default_timeout=10.0)
         with client:
@@ -268,15 +301,21 @@ def run(args: argparse.Namespace) -> int:
             for dependency in monitor.initial():
                 if not dependency.serving:
                     status.note(describe(dependency))
+            episode_task = args.task or (DEFAULT_TASK if args.episodes else None)
+            plan = ([args.modes[k % len(args.modes)] for k in range(args.episodes)]
+                    if args.episodes else args.modes)
             try:
-                for mode in args.modes:
+                for mode in plan:
                     retract(client, start)
                     status.restart()
                     task = PegInHole(client, mode, model, status, on_link=LinkNotes(status.note),
                                      recorder=recorder, passivity=not args.no_passivity,
                                      cell=cell)
                     began = time.time_ns()
-                    results.append(task.run())
+                    if episode_task:
+                        results.append(run_episode(client, task, episode_task, episodes))
+                    else:
+                        results.append(task.run())
                     if recorder is not None:
                         recorder.run(mode, began, time.time_ns())
                     traces.append(task.trace)
@@ -295,6 +334,7 @@ def run(args: argparse.Namespace) -> int:
         "station": "started locally" if started else f"found at {args.address}",
         "arm": arm,
         "runs": [dataclasses.asdict(result) for result in results],
+        "episodes": episodes,
         "video": str(out / "stereo.mp4") if view and view.recorder else None,
         "video_frames": view.recorder.frames if view and view.recorder else 0,
         "video_error": view.error if view else None,

@@ -17,6 +17,7 @@ import grpc
 
 from services.common.fanout import Subscription
 from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
+from services.decision_server.camera_feed import CameraFeed
 from services.decision_server.core import ControlChanged, DecisionCore
 from services.decision_server.dependencies import SERVING, DependencyWatch
 from services.decision_server.recordings import RecordingStore
@@ -37,6 +38,9 @@ from wire.tls import open_channel
 DEPENDENCY_HEALTH_PREFIX = "telerobot.v1.DecisionServer/"
 HEALTH_ANSWER_TIMEOUT_S = 2.0
 # Waiting for a lock or at a cobegin barrier holds a medium-lane thread, so give it more.
+# The recordings' video: enough for 320x240 per eye at 30 fps with the scene's detail, a
+# fraction of the stream an operator watches.
+RECORDING_VIDEO_KBIT = 1000
 LANES = {**DEFAULT_LANES,
          Lane.MEDIUM: LaneConfig(static_threads=2, max_threads=32, queue_capacity=64)}
 
@@ -57,19 +61,22 @@ class DecisionService(Service):
         security = station_channel_security(self.args.tls_dir or None, "decision_server")
         slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address,
                           self.args.emergency_stop_address or None, security)
-        self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir)))
         # A window of about one pair: the forward then reads a pair only as its client takes
         # one, so it holds no backlog of its own (wire/stereo.py).
         self._stereo_channel = open_channel(self.args.stereo_camera_address,
                                             [*RECONNECT_OPTIONS, *LOW_LATENCY_OPTIONS], security,
                                             service="stereo_camera")
         slave.watch_health("stereo_camera", self._stereo_channel)
+        stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
+        video = self.args.recording_video
+        self.core = DecisionCore(
+            slave, RecordingStore(Path(self.args.recordings_dir)),
+            video_feed=CameraFeed(stereo, *video, RECORDING_VIDEO_KBIT) if video else None)
         self._slave = slave
         # Each dependency's state, from its health and the launcher's state file; every change
         # is an event (and, once attached, a health entry).
         self.dependencies = DependencyWatch(slave.health, self.core.clock)
         self.dependencies.subscribe(self.core.emit)
-        stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
         self._servicer = DecisionServerServicer(self.core, self.dependencies)
         return [binding(decision_server_pb2_grpc, "DecisionServer", self._servicer),
                 *(binding(module, name, servicer)
@@ -133,6 +140,27 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--recordings-dir",
                         default=os.environ.get("TELEROBOT_RECORDINGS_DIR", "var/recordings"),
                         help="where recordings are kept (env TELEROBOT_RECORDINGS_DIR)")
+    parser.add_argument("--recording-video", type=_video_size,
+                        default=_video_size(os.environ.get(
+                            "TELEROBOT_DECISION_SERVER_RECORDING_VIDEO", "320x240")),
+                        help="the stereo video MCAP recordings keep, per eye: WxH (default "
+                             f"320x240, H.264 at {RECORDING_VIDEO_KBIT} kbit/s), or off (env "
+                             "TELEROBOT_DECISION_SERVER_RECORDING_VIDEO)")
+
+
+def _video_size(text: str) -> tuple[int, int] | None:
+    """WxH, even and positive (H.264), or None for off."""
+    if text.lower() == "off":
+        return None
+    width, _, height = text.lower().partition("x")
+    try:
+        size = int(width), int(height)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is neither WxH (320x240) nor off") from None
+    if any(side < 2 or side % 2 for side in size):
+        raise argparse.ArgumentTypeError(f"{text!r}: H.264 needs an even, positive width and "
+                                         "height")
+    return size
 
 
 if __name__ == "__main__":

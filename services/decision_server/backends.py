@@ -316,7 +316,8 @@ class GrpcSlave:
     @staticmethod
     def _state_from(state: types_pb2.RobotState) -> SlaveState:
         return SlaveState(se3.trusted_pose(state.tool_pose), status_name(state.status),
-                          state.sample_time.ToNanoseconds())
+                          state.sample_time.ToNanoseconds(),
+                          joint_positions_rad=tuple(state.joint_positions_rad))
 
     def _follow(self, name: str, open_stream: Callable[[], Iterator],
                 on_message: Callable) -> None:

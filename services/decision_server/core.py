@@ -134,9 +134,11 @@ class _Replay:
 # -- the core -------------------------------------------------------------------------------
 
 class DecisionCore:
-    def __init__(self, slave: Slave, recordings: RecordingStore, clock: Clock = SYSTEM_CLOCK):
+    def __init__(self, slave: Slave, recordings: RecordingStore, clock: Clock = SYSTEM_CLOCK,
+                 video_feed: Callable | None = None):
         self.slave = slave
         self.recordings = recordings
+        self.video_feed = video_feed  # the stereo video for MCAP recordings (Sources.video)
         self.clock = clock
         self._lock = threading.RLock()
         self._event_sequence = itertools.count(1)
@@ -475,21 +477,24 @@ class DecisionCore:
 
     # -- record and replay ------------------------------------------------------------------
 
-    def start_recording(self, lease_id: str, name: str, format: str = "JSONL"
+    def start_recording(self, lease_id: str, name: str, format: str = "JSONL", task: str = ""
                         ) -> RecordingInfo:
-        """An MCAP recording also samples the arm's latest state and wrench (20 Hz): the
-        samples the streams brought (the arm is asked only before its stream's first), on the
-        recording's writer thread."""
+        """An MCAP recording also samples the arm's latest state and wrench (20 Hz; an
+        episode's, with a task, 100 Hz): the samples the streams brought (the arm is asked only
+        before its stream's first), on the recording's writer thread; and the stereo video,
+        when the server has a camera."""
         self.locks.require(lease_id)
         return self.recordings.start(name, format, Sources(
-            lambda: self._state or self.slave.state(), self.slave.wrench))
+            lambda: self._state or self.slave.state(), self.slave.wrench, self.video_feed),
+            task)
 
-    def stop_recording(self, lease_id: str | None) -> RecordingInfo:
+    def stop_recording(self, lease_id: str | None, outcome: str = "UNSPECIFIED"
+                       ) -> RecordingInfo:
         """End the recording and save it: the lock holder only, as for StartRecording. Whoever
         holds control decides what is recorded of it, so a recording whose starter released
         control or vanished is stopped by the next holder, and nobody else can cut it short."""
         self.locks.require(lease_id)
-        return self.recordings.stop()
+        return self.recordings.stop(outcome)
 
     def start_replay(self, lease_id: str, name: str, speed: float) -> RecordingInfo:
         lease = self.locks.require(lease_id)

@@ -38,7 +38,7 @@ from services.common.inbox import queued_now
 from services.runtime.clock import Clock
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
-from wire import convert
+from wire import convert, foxglove
 from wire.errors import FailedPreconditionError, TelerobotError
 
 log = logging.getLogger(__name__)
@@ -48,19 +48,24 @@ ACK = "/recording/ack"
 STATE = "/robot/state"
 WRENCH = "/robot/wrench"
 EVENTS = "/decision_server/events"
+STEREO_HEADER = "/camera/stereo_header"
+STEREO_VIDEO = "/camera/stereo/video"  # foxglove.CompressedVideo, as make teleop --mcap writes
 CHANNELS = (INCREMENT, ACK, STATE, WRENCH, EVENTS)
 PROFILE = "telerobot"
 METADATA = "recording"
 MAGIC = b"\x89MCAP0\r\n"  # an MCAP file's first and last bytes
 
 SAMPLE_PERIOD_S = 0.05  # robot state and wrench at 20 Hz: the arm's path, not its servo
+# An episode's (a recording with a task): as fast as the streams bring them (100 Hz), so each
+# frame of a dataset at up to 50 fps has its own samples rather than its neighbours' blend.
+EPISODE_SAMPLE_PERIOD_S = 0.01
 # Items waiting for the writer; past that it has fallen behind, and new acks and events are
 # dropped (counted) until it is back under half of it. Increments, which a replay needs, have
 # twice the room: a writer that stalls for a while loses its acks first.
 QUEUE_LIMIT = 20_000
 GAP = "recording_gap"  # the metadata record of each gap
 # What each kind of queued item is written as: the channels a gap counts.
-KIND_CHANNELS = {"increment": INCREMENT, "ack": ACK, "event": EVENTS}
+KIND_CHANNELS = {"increment": INCREMENT, "ack": ACK, "event": EVENTS, "video": STEREO_VIDEO}
 # The writer takes what is queued once a period, not as each item comes: at 1 kHz of acks,
 # waking for each cost the DecisionServer more than writing them (a wake is a GIL hand-over).
 DRAIN_PERIOD_S = 0.01
@@ -169,13 +174,18 @@ def metadata_for(name: str, create_time_ns: int, commands, counts,
 
 
 def metadata_of(name: str, create_time_ns: int, command_count: int, duration_s: float, counts,
-                dropped: Counter | None = None) -> dict[str, str]:
-    """The "recording" metadata; "dropped" (by channel) only when a gap dropped messages."""
+                dropped: Counter | None = None, task: str = "", outcome: str = ""
+                ) -> dict[str, str]:
+    """The "recording" metadata; "dropped" (by channel) only when a gap dropped messages;
+    "task" and "outcome" (an EpisodeOutcome name without its prefix) for an episode."""
     metadata = {"name": name, "create_time_ns": str(create_time_ns),
                 "duration_s": repr(float(duration_s)), "command_count": str(command_count),
                 "counts": json.dumps(dict(counts))}
     if dropped:
         metadata["dropped"] = json.dumps(dict(dropped))
+    if task:
+        metadata["task"] = task
+        metadata["outcome"] = outcome or "UNSPECIFIED"
     return metadata
 
 
@@ -206,6 +216,10 @@ class Sources:
 
     state: Callable[[], object] | None = None
     wrench: Callable[[], object] | None = None
+    # The stereo video: called with a sink(header, pair) (StereoHeader, StereoPair of an H.264
+    # stream), it feeds the sink from a thread of its own until the function it returns is
+    # called. Only MCAP recordings take it.
+    video: Callable[[Callable[[object, object], None]], Callable[[], None]] | None = None
 
 
 @dataclass
@@ -270,6 +284,9 @@ class Recorder:
 
     def event(self, event) -> None:
         self._put("event", event)
+
+    def video(self, header, pair) -> None:
+        self._put("video", header, pair)
 
     def _put(self, kind: str, *payload) -> None:
         if self.error is not None:
@@ -375,12 +392,20 @@ class McapRecorder(Recorder):
 
     def __init__(self, path: Path, name: str, create_time_ns: int, clock: Clock,
                  sources: Sources, event_to_message: Callable | None,
-                 on_failure: Callable[[str], None]):
+                 on_failure: Callable[[str], None], task: str = ""):
         self._sources = sources
         self._event_to_message = event_to_message
         self._last_samples: dict[str, int] = {}
         self._next_sample = clock.monotonic()
+        self.task = task
+        self.outcome = ""  # set before finish(): how the episode went
+        self._header = None  # the stereo stream's, once written
+        self._video_keyed = False  # the video starts at the stream's first key frame
         super().__init__(path, name, create_time_ns, clock, on_failure)
+
+    @property
+    def video_frames(self) -> int:
+        return self._file.counts[STEREO_VIDEO]
 
     def open(self) -> None:
         self._file = McapFile(self.path)
@@ -390,12 +415,13 @@ class McapRecorder(Recorder):
         if now >= self._next_sample:
             self._sample()
             self._file.flush()  # a full disk shows up now, not at the end
-            self._next_sample = now + SAMPLE_PERIOD_S
+            self._next_sample = now + (EPISODE_SAMPLE_PERIOD_S if self.task else SAMPLE_PERIOD_S)
 
     def finish_file(self) -> None:
         self._sample()
         self._file.finish(metadata_of(self.name, self.create_time_ns, self.command_count,
-                                      self.duration_s, self._file.counts, self.dropped))
+                                      self.duration_s, self._file.counts, self.dropped,
+                                      self.task, self.outcome))
 
     def abandon(self) -> None:
         self._file.abandon()
@@ -418,6 +444,20 @@ class McapRecorder(Recorder):
             message = self._event_to_message(event)
             if message is not None:
                 self._file.write(EVENTS, message, event.time_ns)
+        elif kind == "video":
+            self._write_video(item[1], item[2])
+
+    def _write_video(self, header, pair) -> None:
+        """A stream's header once, then its frames from its first key frame, each at its
+        capture time (both eyes share it)."""
+        captured = convert.time_ns(pair.left_capture_time) or self._clock.time_ns()
+        if header != self._header:
+            self._header = header
+            self._video_keyed = False
+            self._file.write(STEREO_HEADER, header, captured)
+        self._video_keyed |= pair.keyframe
+        if self._video_keyed:
+            self._file.write(STEREO_VIDEO, foxglove.stereo_video(pair), captured)
 
     def _sample(self) -> None:
         """The latest robot state and wrench, each written once."""
@@ -429,7 +469,9 @@ class McapRecorder(Recorder):
                 sequence=self._file.counts[STATE] + 1,
                 sample_time=convert.timestamp(state.sample_time_ns),
                 status=types_pb2.RobotStatus.Value(f"ROBOT_STATUS_{state.status}"),
-                tool_pose=convert.pose_to_proto(state.tool_pose)), now, state.sample_time_ns)
+                tool_pose=convert.pose_to_proto(state.tool_pose),
+                joint_positions_rad=getattr(state, "joint_positions_rad", ())),
+                now, state.sample_time_ns)
         wrench = self._latest(self._sources.wrench)
         if wrench is not None and wrench.sample_time_ns != self._last_samples.get(WRENCH):
             self._last_samples[WRENCH] = wrench.sample_time_ns

@@ -44,6 +44,8 @@ from wire.errors import (
 log = logging.getLogger(__name__)
 
 NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]{1,64}")
+MAX_TASK_CHARS = 256
+OUTCOMES = ("UNSPECIFIED", "SUCCEEDED", "FAILED", "DISCARDED")  # EpisodeOutcome's names
 SUFFIXES = {"JSONL": ".jsonl", "MCAP": ".mcap"}
 PARTIAL = ".partial"  # a recording being written: <name>.<suffix>.partial
 
@@ -84,6 +86,9 @@ class RecordingInfo:
     command_count: int
     format: str = "JSONL"  # or MCAP
     error: str = ""  # why the file cannot be read, when it cannot
+    task: str = ""  # an episode's (MCAP): what the operator was doing
+    outcome: str = ""  # an episode's: SUCCEEDED, FAILED, DISCARDED or UNSPECIFIED
+    video_frames: int = 0
 
 
 # -- the JSONL format, whole files (the store and the converter) ------------------------------
@@ -180,6 +185,7 @@ class _Active:
     create_time_ns: int
     started: float  # monotonic
     recorder: Recorder
+    stop_video: Callable[[], None] | None = None  # ends the stereo video's feed
 
 
 class RecordingStore:
@@ -213,11 +219,13 @@ class RecordingStore:
                 return path, format
         raise NotFoundError(f"no recording named '{name}'", reason="NO_RECORDING")
 
-    def start(self, name: str, format: str = "JSONL", sources: Sources | None = None
-              ) -> RecordingInfo:
-        """Start recording; MCAP recordings also sample `sources` (the arm's state, wrench)."""
+    def start(self, name: str, format: str = "JSONL", sources: Sources | None = None,
+              task: str = "") -> RecordingInfo:
+        """Start recording; MCAP recordings also sample `sources` (the arm's state, wrench,
+        and the stereo video when there is one). A `task` makes it an episode (MCAP only)."""
         if format not in SUFFIXES:
             raise InvalidArgumentError(f"unknown recording format {format!r}", reason="BAD_FORMAT")
+        _check_task(task, format)
         path = self._path(name, format)
         with self._lock:
             if self._active is not None:
@@ -239,7 +247,7 @@ class RecordingStore:
                 if format == "MCAP":
                     recorder: Recorder = McapRecorder(
                         partial, name, created, self._clock, sources or Sources(),
-                        self.event_to_message, died)
+                        self.event_to_message, died, task)
                 else:
                     recorder = JsonlRecorder(partial, name, created, self._clock, died)
             except OSError as error:
@@ -248,7 +256,9 @@ class RecordingStore:
             made.append(recorder)
             active = _Active(name, format, created, started, recorder)
             self._active = active
-        return RecordingInfo(name, active.create_time_ns, 0.0, 0, format)
+            if format == "MCAP" and sources is not None and sources.video is not None:
+                active.stop_video = sources.video(recorder.video)
+        return RecordingInfo(name, active.create_time_ns, 0.0, 0, format, task=task)
 
     @property
     def recording(self) -> bool:
@@ -291,13 +301,19 @@ class RecordingStore:
         with self._lock:
             if self._active is None or self._active.recorder is not recorder:
                 return  # stopped meanwhile: StopRecording answered the failure itself
-            self._active = None
+            active, self._active = self._active, None
             self._failure = (recorder.name, why)
+        if active.stop_video is not None:
+            active.stop_video()
         on_failed = self.on_failed
         if on_failed is not None:
             on_failed(recorder.name, why)
 
-    def stop(self) -> RecordingInfo:
+    def stop(self, outcome: str = "UNSPECIFIED") -> RecordingInfo:
+        """Save the recording; `outcome` (OUTCOMES) is how an episode went."""
+        if outcome not in OUTCOMES:
+            raise InvalidArgumentError(f"unknown episode outcome {outcome!r}: one of "
+                                       f"{', '.join(OUTCOMES)}", reason="BAD_OUTCOME")
         with self._lock:
             active = self._active
             if active is None:
@@ -311,6 +327,11 @@ class RecordingStore:
             self._active = None
         path = self._path(active.name, active.format)
         recorder = active.recorder
+        if active.stop_video is not None:
+            active.stop_video()  # before the end is written: no frame comes after it
+        task = getattr(recorder, "task", "")
+        if task:
+            recorder.outcome = outcome
         try:
             recorder.finish()  # raises when the writing failed
             recorder.path.replace(path)
@@ -322,7 +343,9 @@ class RecordingStore:
         lost = recorder.dropped.get(INCREMENT, 0)
         return RecordingInfo(active.name, active.create_time_ns, recorder.duration_s,
                              recorder.command_count, active.format,
-                             recording_mcap.incomplete(active.name, lost).message if lost else "")
+                             recording_mcap.incomplete(active.name, lost).message if lost else "",
+                             task, outcome if task else "",
+                             getattr(recorder, "video_frames", 0))
 
     def _recover(self, partial: Path) -> None:
         """A JSONL recording the server did not stop (it crashed, or was killed): what its file
@@ -377,8 +400,11 @@ class RecordingStore:
                 error = ""
             except FailedPreconditionError as incomplete:
                 error = incomplete.message
+            counts = json.loads(meta.get("counts", "{}"))
             return RecordingInfo(name, int(meta["create_time_ns"]), float(meta["duration_s"]),
-                                 int(meta["command_count"]), format, error)
+                                 int(meta["command_count"]), format, error,
+                                 meta.get("task", ""), meta.get("outcome", ""),
+                                 int(counts.get(recording_mcap.STEREO_VIDEO, 0)))
         except FailedPreconditionError as error:
             return RecordingInfo(name, 0, 0.0, 0, format, error.message)
         except (KeyError, ValueError) as error:
@@ -404,6 +430,20 @@ class RecordingStore:
               format: str = "JSONL") -> RecordingInfo:
         duration = commands[-1].offset_s - commands[0].offset_s if commands else 0.0
         return RecordingInfo(name, created, duration, len(commands), format)
+
+
+def _check_task(task: str, format: str) -> None:
+    if not task:
+        return
+    if format != "MCAP":
+        raise InvalidArgumentError("a task makes the recording an episode, which is recorded as "
+                                   "MCAP (format RECORDING_FORMAT_MCAP), not JSONL",
+                                   reason="TASK_NEEDS_MCAP")
+    if len(task) > MAX_TASK_CHARS or not task.isprintable() or not task.strip():
+        raise InvalidArgumentError(
+            f"a task is 1..{MAX_TASK_CHARS} printable characters, not only spaces (got "
+            f"{len(task)} characters{'' if task.isprintable() else ', some not printable'})",
+            reason="BAD_TASK")
 
 
 def _sync_directory(directory: Path) -> None:

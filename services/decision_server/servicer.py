@@ -169,7 +169,21 @@ def recording_to_proto(info) -> pb.Recording:
     return pb.Recording(name=info.name, create_time=convert.timestamp(info.create_time_ns),
                         duration=duration, command_count=info.command_count,
                         format=pb.RecordingFormat.Value(f"RECORDING_FORMAT_{info.format}"),
-                        error=info.error)
+                        error=info.error, task=info.task,
+                        outcome=pb.EpisodeOutcome.Value(
+                            f"EPISODE_OUTCOME_{info.outcome or 'UNSPECIFIED'}"),
+                        video_frames=info.video_frames)
+
+
+def episode_outcome(value: int) -> str:
+    """SUCCEEDED, FAILED, DISCARDED or UNSPECIFIED, from a request; InvalidArgumentError for a
+    value the contract does not have."""
+    try:
+        return pb.EpisodeOutcome.Name(value).removeprefix("EPISODE_OUTCOME_")
+    except ValueError:
+        raise InvalidArgumentError(f"unknown episode outcome {value}: use EPISODE_OUTCOME_"
+                                   "SUCCEEDED, _FAILED, _DISCARDED or _UNSPECIFIED",
+                                   reason="BAD_OUTCOME") from None
 
 
 def recording_format(value: int) -> str:
@@ -509,12 +523,12 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
 
     def StartRecording(self, request, context):
         info = self._core.start_recording(lease_id(context), request.name,
-                                          recording_format(request.format))
+                                          recording_format(request.format), request.task)
         return pb.StartRecordingResponse(recording=recording_to_proto(info))
 
     def StopRecording(self, request, context):
         return pb.StopRecordingResponse(recording=recording_to_proto(
-            self._core.stop_recording(lease_id(context))))
+            self._core.stop_recording(lease_id(context), episode_outcome(request.outcome))))
 
     def ListRecordings(self, request, context):
         return pb.ListRecordingsResponse(

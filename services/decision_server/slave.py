@@ -22,6 +22,7 @@ class SlaveState:
     status: str  # RobotStatus name, e.g. "READY"
     sample_time_ns: int
     reason: str = ""  # why the status was entered, when the source says
+    joint_positions_rad: tuple[float, ...] = ()  # measured, when the source says
 
 
 @dataclass(frozen=True)

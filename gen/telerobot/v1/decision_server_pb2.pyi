@@ -14,6 +14,13 @@ from typing import ClassVar as _ClassVar, Optional as _Optional, Union as _Union
 
 DESCRIPTOR: _descriptor.FileDescriptor
 
+class EpisodeOutcome(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    EPISODE_OUTCOME_UNSPECIFIED: _ClassVar[EpisodeOutcome]
+    EPISODE_OUTCOME_SUCCEEDED: _ClassVar[EpisodeOutcome]
+    EPISODE_OUTCOME_FAILED: _ClassVar[EpisodeOutcome]
+    EPISODE_OUTCOME_DISCARDED: _ClassVar[EpisodeOutcome]
+
 class RecordingFormat(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     RECORDING_FORMAT_UNSPECIFIED: _ClassVar[RecordingFormat]
@@ -70,6 +77,10 @@ class Passivity(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     PASSIVITY_UNSPECIFIED: _ClassVar[Passivity]
     PASSIVITY_OFF: _ClassVar[Passivity]
     PASSIVITY_TDPA: _ClassVar[Passivity]
+EPISODE_OUTCOME_UNSPECIFIED: EpisodeOutcome
+EPISODE_OUTCOME_SUCCEEDED: EpisodeOutcome
+EPISODE_OUTCOME_FAILED: EpisodeOutcome
+EPISODE_OUTCOME_DISCARDED: EpisodeOutcome
 RECORDING_FORMAT_UNSPECIFIED: RecordingFormat
 RECORDING_FORMAT_JSONL: RecordingFormat
 RECORDING_FORMAT_MCAP: RecordingFormat
@@ -379,12 +390,14 @@ class ControlHolder(_message.Message):
     def __init__(self, operator_id: _Optional[str] = ..., mode: _Optional[_Union[ControlMode, str]] = ..., group: _Optional[str] = ..., expire_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ...) -> None: ...
 
 class StartRecordingRequest(_message.Message):
-    __slots__ = ("name", "format")
+    __slots__ = ("name", "format", "task")
     NAME_FIELD_NUMBER: _ClassVar[int]
     FORMAT_FIELD_NUMBER: _ClassVar[int]
+    TASK_FIELD_NUMBER: _ClassVar[int]
     name: str
     format: RecordingFormat
-    def __init__(self, name: _Optional[str] = ..., format: _Optional[_Union[RecordingFormat, str]] = ...) -> None: ...
+    task: str
+    def __init__(self, name: _Optional[str] = ..., format: _Optional[_Union[RecordingFormat, str]] = ..., task: _Optional[str] = ...) -> None: ...
 
 class StartRecordingResponse(_message.Message):
     __slots__ = ("recording",)
@@ -393,8 +406,10 @@ class StartRecordingResponse(_message.Message):
     def __init__(self, recording: _Optional[_Union[Recording, _Mapping]] = ...) -> None: ...
 
 class StopRecordingRequest(_message.Message):
-    __slots__ = ()
-    def __init__(self) -> None: ...
+    __slots__ = ("outcome",)
+    OUTCOME_FIELD_NUMBER: _ClassVar[int]
+    outcome: EpisodeOutcome
+    def __init__(self, outcome: _Optional[_Union[EpisodeOutcome, str]] = ...) -> None: ...
 
 class StopRecordingResponse(_message.Message):
     __slots__ = ("recording",)
@@ -447,20 +462,26 @@ class StopReplayResponse(_message.Message):
     def __init__(self, commands_replayed: _Optional[int] = ...) -> None: ...
 
 class Recording(_message.Message):
-    __slots__ = ("name", "create_time", "duration", "command_count", "format", "error")
+    __slots__ = ("name", "create_time", "duration", "command_count", "format", "error", "task", "outcome", "video_frames")
     NAME_FIELD_NUMBER: _ClassVar[int]
     CREATE_TIME_FIELD_NUMBER: _ClassVar[int]
     DURATION_FIELD_NUMBER: _ClassVar[int]
     COMMAND_COUNT_FIELD_NUMBER: _ClassVar[int]
     FORMAT_FIELD_NUMBER: _ClassVar[int]
     ERROR_FIELD_NUMBER: _ClassVar[int]
+    TASK_FIELD_NUMBER: _ClassVar[int]
+    OUTCOME_FIELD_NUMBER: _ClassVar[int]
+    VIDEO_FRAMES_FIELD_NUMBER: _ClassVar[int]
     name: str
     create_time: _timestamp_pb2.Timestamp
     duration: _duration_pb2.Duration
     command_count: int
     format: RecordingFormat
     error: str
-    def __init__(self, name: _Optional[str] = ..., create_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., duration: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., command_count: _Optional[int] = ..., format: _Optional[_Union[RecordingFormat, str]] = ..., error: _Optional[str] = ...) -> None: ...
+    task: str
+    outcome: EpisodeOutcome
+    video_frames: int
+    def __init__(self, name: _Optional[str] = ..., create_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., duration: _Optional[_Union[datetime.timedelta, _duration_pb2.Duration, _Mapping]] = ..., command_count: _Optional[int] = ..., format: _Optional[_Union[RecordingFormat, str]] = ..., error: _Optional[str] = ..., task: _Optional[str] = ..., outcome: _Optional[_Union[EpisodeOutcome, str]] = ..., video_frames: _Optional[int] = ...) -> None: ...
 
 class RecordedIncrement(_message.Message):
     __slots__ = ("offset", "frame", "delta_position_m", "delta_rotation", "delta_joints_rad", "target_position_m")

@@ -1,0 +1,103 @@
+"""python -m clients.teleop.export_lerobot RUNS... --out DIR [--fps 30]
+
+Turns recorded episodes (DecisionServer recordings with a task: `make teleop EPISODES=N`, or
+StartRecording with a task from any client) into a LeRobotDataset v3.0 in DIR
+(clients/teleop/lerobot_dataset.py says what it holds). RUNS are episode files (<name>.mcap)
+or directories of them (the DecisionServer's --recordings-dir), in name order.
+
+- Episodes marked DISCARDED are left out; FAILED ones too, unless --include-failed.
+- An episode whose file was never finished (the server was killed mid-episode: the file ends
+  in .mcap.partial, or is cut short) is named and left out; the earlier ones export whole.
+- Without video, the dataset has no image features, and says so.
+- DIR must not exist: a dataset is written whole, never merged into.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from clients.teleop.episode_file import PARTIAL, Episode, IncompleteEpisode, read_episode
+from clients.teleop.lerobot_dataset import on_grid, write_dataset
+
+EXPORTED = ("SUCCEEDED", "UNSPECIFIED")
+
+
+def episode_files(runs: list[Path]) -> list[Path]:
+    """The episode files among `runs` (files, or directories holding them), in name order."""
+    files: list[Path] = []
+    for run in runs:
+        if run.is_dir():
+            files += sorted(p for p in run.iterdir()
+                            if p.name.endswith(".mcap") or p.name.endswith(".mcap" + PARTIAL))
+        elif run.exists():
+            files.append(run)
+        else:
+            raise FileNotFoundError(f"{run}: no such file or directory")
+    return files
+
+
+def export(runs: list[Path], out: Path, fps: int = 30, include_failed: bool = False,
+           robot_type: str = "puma560", report=print) -> dict:
+    """Write the dataset; its info.json. ValueError when there is nothing to export."""
+    if out.exists():
+        raise FileExistsError(f"{out} exists: a dataset is written whole; give a new --out")
+    if not 1 <= fps <= 120:
+        raise ValueError(f"--fps must be 1..120, not {fps}")
+    episodes: list[Episode] = []
+    for path in episode_files(runs):
+        try:
+            episode = read_episode(path)
+        except IncompleteEpisode as why:
+            if path.name.endswith(PARTIAL) or "cut short" in str(why) or "truncated" in str(why):
+                report(f"incomplete: {why}")
+            else:
+                report(f"skipped: {why}")
+            continue
+        if episode.outcome == "DISCARDED" or (episode.outcome == "FAILED"
+                                              and not include_failed):
+            report(f"skipped: {path.name} ({episode.task!r}) is marked {episode.outcome}")
+            continue
+        episodes.append(episode)
+    if not episodes:
+        raise ValueError("no episode to export (see above)")
+    with_video = all(e.has_video for e in episodes)
+    if not with_video:
+        missing = [e.path.name for e in episodes if not e.has_video]
+        report(f"no video in {', '.join(missing)}: the dataset is exported without images")
+        for episode in episodes:
+            episode.video_frames, episode.eye_size = [], None
+    frames = [on_grid(episode, fps) for episode in episodes]
+    info = write_dataset(out, frames, fps, robot_type)
+    for number, f in enumerate(frames):
+        report(f"episode {number}: {f.episode.path.name}, {f.episode.task!r}, "
+               f"{f.episode.outcome}, {len(f.times_ns)} frames")
+    report(f"wrote {out}: {info['total_episodes']} episodes, {info['total_frames']} frames at "
+           f"{fps} fps, {info['total_tasks']} tasks"
+           + ("" if with_video else ", no images"))
+    return info
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m clients.teleop.export_lerobot",
+                                     description=__doc__.split("\n\n")[1])
+    parser.add_argument("runs", nargs="+", type=Path, metavar="RUNS",
+                        help="episode files (.mcap) or directories of them")
+    parser.add_argument("--out", type=Path, required=True, help="the dataset's directory (new)")
+    parser.add_argument("--fps", type=int, default=30, help="the dataset's frame rate")
+    parser.add_argument("--include-failed", action="store_true",
+                        help="also export episodes marked FAILED")
+    parser.add_argument("--robot-type", default="puma560",
+                        help="info.json's robot_type (default puma560)")
+    args = parser.parse_args(argv)
+    try:
+        export(args.runs, args.out, args.fps, args.include_failed, args.robot_type)
+    except (ValueError, FileExistsError, FileNotFoundError) as error:
+        print(f"export_lerobot: {error}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,376 @@
+"""Episodes into a LeRobotDataset, format v3.0, as lerobot 0.4-0.6 reads it.
+
+The layout (one file of each kind; lerobot reads any number, in name order):
+
+    meta/info.json                      fps, features, counts, path templates
+    meta/tasks.parquet                  the task strings (pandas index "task") and task_index
+    meta/episodes/chunk-000/file-000.parquet   a row per episode: where its rows and frames are,
+                                        its task, length and stats
+    meta/stats.json                     min, max, mean, std, count, q01..q99 per feature
+    data/chunk-000/file-000.parquet     a row per frame
+    videos/observation.images.<eye>/chunk-000/file-000.mp4   every episode's frames, back to back
+
+Frames are on a grid at the dataset's fps, from the episode's first moment with both a state
+and a picture to its last. On frame k at time t_k (the station's clock):
+- observation.state: the joint angles and the tool pose interpolated at t_k, and the newest
+  wrench sample at t_k: all as the arm was when the picture was taken;
+- observation.images.left / right: the newest stereo frame *captured* at or before t_k (capture
+  time, not arrival);
+- action: the end-effector increment the station applied from t_k to t_k+1, summed (rotations
+  composed), in the base frame: dx, dy, dz (m), then the rotation vector (rad).
+Each video is H.264 (libx264, yuv420p, no B-frames, constant frame rate), frame i at pts i/fps,
+which is how lerobot finds a frame (from_timestamp + timestamp, within 1e-4 s).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+
+import av
+import numpy as np
+import pandas as pd
+import pinocchio as pin
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from clients.teleop.episode_file import Episode
+from wire.video import H264Decoder, VideoDecodeError
+
+CODEBASE_VERSION = "v3.0"
+CHUNK_FILE = "chunk-{chunk_index:03d}/file-{file_index:03d}"
+DATA_PATH = "data/" + CHUNK_FILE + ".parquet"
+VIDEO_PATH = "videos/{video_key}/" + CHUNK_FILE + ".mp4"
+EPISODES_PATH = "meta/episodes/" + CHUNK_FILE + ".parquet"
+EYES = ("left", "right")
+IMAGE_KEY = "observation.images.{eye}"
+QUANTILES = (0.01, 0.10, 0.50, 0.90, 0.99)
+GOP = 10  # a key frame every 10 frames: random access for training at a modest size cost
+IMAGE_STATS_FRAMES = 100  # frames per episode an image's stats are estimated from
+ACTION_NAMES = ("delta_x_m", "delta_y_m", "delta_z_m", "delta_rx_rad", "delta_ry_rad",
+                "delta_rz_rad")
+WRENCH_NAMES = ("force_x_n", "force_y_n", "force_z_n", "torque_x_nm", "torque_y_nm",
+                "torque_z_nm")
+TOOL_NAMES = ("tool_x_m", "tool_y_m", "tool_z_m", "tool_qw", "tool_qx", "tool_qy", "tool_qz")
+
+
+@dataclass
+class EpisodeFrames:
+    """One episode on the dataset's grid."""
+
+    episode: Episode
+    times_ns: np.ndarray  # (n,)
+    state: np.ndarray  # (n, D) float32
+    action: np.ndarray  # (n, 6) float32
+    video_index: np.ndarray | None  # (n,) which recorded frame each grid frame shows
+
+
+def state_names(joints: int) -> list[str]:
+    return [f"joint_{i + 1}_rad" for i in range(joints)] + list(TOOL_NAMES) + list(WRENCH_NAMES)
+
+
+def on_grid(episode: Episode, fps: int) -> EpisodeFrames:
+    """The episode resampled at `fps` (see the module docstring). ValueError when it is too
+    short for one frame."""
+    start, end = episode.state_ns[0], episode.state_ns[-1]
+    if episode.has_video:
+        start, end = max(start, episode.video_ns[0]), min(end, episode.video_ns[-1])
+    if end < start:
+        raise ValueError(f"{episode.path}: its state and its video do not overlap in time")
+    step_ns = 1e9 / fps
+    count = int((end - start) // step_ns) + 1
+    times = start + np.round(np.arange(count) * step_ns).astype(np.int64)
+    state = np.hstack([_joints_at(episode, times), _tool_at(episode, times),
+                       _wrench_at(episode, times)]).astype(np.float32)
+    action = _actions(episode, times, int(round(step_ns))).astype(np.float32)
+    video_index = None
+    if episode.has_video:
+        video_index = np.searchsorted(episode.video_ns, times, side="right") - 1
+    return EpisodeFrames(episode, times, state, action, video_index)
+
+
+def _joints_at(episode: Episode, times: np.ndarray) -> np.ndarray:
+    return np.column_stack([np.interp(times, episode.state_ns, episode.joints_rad[:, j])
+                            for j in range(episode.joints_rad.shape[1])])
+
+
+def _tool_at(episode: Episode, times: np.ndarray) -> np.ndarray:
+    """Position interpolated; orientation from the nearer sample, as a unit quaternion (w first,
+    w >= 0)."""
+    position = np.column_stack([np.interp(times, episode.state_ns, episode.tool_position_m[:, a])
+                                for a in range(3)])
+    nearest = _nearest(episode.state_ns, times)
+    quaternions = []
+    for rotation in episode.tool_rotation[nearest]:
+        q = pin.Quaternion(_orthonormal(rotation))
+        w, x, y, z = q.w, q.x, q.y, q.z
+        quaternions.append([w, x, y, z] if w >= 0 else [-w, -x, -y, -z])
+    return np.hstack([position, np.array(quaternions).reshape(-1, 4)])
+
+
+def _wrench_at(episode: Episode, times: np.ndarray) -> np.ndarray:
+    if not len(episode.wrench_ns):
+        return np.zeros((len(times), 6))
+    newest = np.clip(np.searchsorted(episode.wrench_ns, times, side="right") - 1, 0, None)
+    return episode.wrench[newest]
+
+
+def _actions(episode: Episode, times: np.ndarray, step_ns: int) -> np.ndarray:
+    """Each grid frame's applied increments, summed in the base frame."""
+    actions = np.zeros((len(times), 6))
+    if not len(episode.increment_ns):
+        return actions
+    frame_of = np.searchsorted(times, episode.increment_ns, side="right") - 1
+    inside = (frame_of >= 0) & (episode.increment_ns < times[-1] + step_ns)
+    tool = _nearest(episode.state_ns, episode.increment_ns)
+    rotations = [np.eye(3) for _ in times]
+    for k in np.flatnonzero(inside):
+        delta_p, delta_r = episode.increment_position_m[k], _orthonormal(
+            episode.increment_rotation[k])
+        if episode.increment_frame[k] != "BASE":  # TOOL or WRIST axes: into the base frame
+            axes = _orthonormal(episode.tool_rotation[tool[k]])
+            delta_p, delta_r = axes @ delta_p, axes @ delta_r @ axes.T
+        frame = frame_of[k]
+        actions[frame, :3] += delta_p
+        rotations[frame] = delta_r @ rotations[frame]
+    actions[:, 3:] = [pin.log3(rotation) for rotation in rotations]
+    return actions
+
+
+def _nearest(sample_ns: np.ndarray, times: np.ndarray) -> np.ndarray:
+    after = np.clip(np.searchsorted(sample_ns, times), 0, len(sample_ns) - 1)
+    before = np.clip(after - 1, 0, len(sample_ns) - 1)
+    closer_before = np.abs(times - sample_ns[before]) <= np.abs(sample_ns[after] - times)
+    return np.where(closer_before, before, after)
+
+
+def _orthonormal(rotation: np.ndarray) -> np.ndarray:
+    u, _, vt = np.linalg.svd(np.asarray(rotation, dtype=float))
+    return u @ np.diag([1.0, 1.0, np.linalg.det(u @ vt)]) @ vt
+
+
+# -- the stats ----------------------------------------------------------------------------------
+
+def vector_stats(values: np.ndarray) -> dict[str, np.ndarray]:
+    """min, max, mean, std, count and the quantiles of each column of (n, D) values."""
+    values = np.asarray(values, dtype=np.float64).reshape(len(values), -1)
+    stats = {"min": values.min(0), "max": values.max(0), "mean": values.mean(0),
+             "std": values.std(0), "count": np.array([len(values)])}
+    for q in QUANTILES:
+        stats[f"q{round(q * 100):02d}"] = np.quantile(values, q, axis=0)
+    return stats
+
+
+def image_stats(images: list[np.ndarray]) -> dict[str, np.ndarray]:
+    """Per channel over `images` (RGB8), as fractions of 255, shaped (3, 1, 1)."""
+    pixels = np.concatenate([image.reshape(-1, 3) for image in images]).astype(np.float64) / 255
+    stats = vector_stats(pixels)
+    return {key: value if key == "count" else value.reshape(3, 1, 1)
+            for key, value in {**stats, "count": np.array([len(images)])}.items()}
+
+
+def merge_stats(parts: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    """Episodes' stats into the dataset's: mean count-weighted, std by parallel variance,
+    min and max global, quantiles count-weighted (as lerobot 0.4-0.6 aggregates)."""
+    counts = np.array([part["count"][0] for part in parts], dtype=np.float64)
+    weights = counts / counts.sum()
+    mean = sum(w * part["mean"] for w, part in zip(weights, parts, strict=True))
+    variance = sum(w * (part["std"] ** 2 + (part["mean"] - mean) ** 2)
+                   for w, part in zip(weights, parts, strict=True))
+    merged = {"min": np.min([p["min"] for p in parts], axis=0),
+              "max": np.max([p["max"] for p in parts], axis=0),
+              "mean": mean, "std": np.sqrt(variance), "count": np.array([int(counts.sum())])}
+    for key in parts[0]:
+        if key.startswith("q"):
+            merged[key] = sum(w * part[key] for w, part in zip(weights, parts, strict=True))
+    return merged
+
+
+# -- the writer ----------------------------------------------------------------------------------
+
+class VideoWriter:
+    """One eye's mp4: every episode's frames back to back, frame i at pts i/fps."""
+
+    def __init__(self, path: Path, width: int, height: int, fps: int):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        self._container = av.open(str(path), "w")
+        self._stream = self._container.add_stream(
+            "libx264", rate=fps, options={"bf": "0", "g": str(GOP), "preset": "veryfast",
+                                          "crf": "23"})
+        self._stream.width, self._stream.height = width, height
+        self._stream.pix_fmt = "yuv420p"
+        self._stream.codec_context.time_base = Fraction(1, fps)
+        self.frames = 0
+
+    def add(self, image: np.ndarray) -> None:
+        frame = av.VideoFrame.from_ndarray(np.ascontiguousarray(image), format="rgb24")
+        frame.pts = self.frames
+        self._container.mux(self._stream.encode(frame))
+        self.frames += 1
+
+    def close(self) -> None:
+        self._container.mux(self._stream.encode(None))
+        self._container.close()
+
+
+def decoded_eyes(episode: Episode):
+    """Each recorded stereo frame decoded, as (left, right) RGB8 arrays, in order; a frame that
+    does not decode repeats the last one (the recording starts at a key frame)."""
+    decoder = H264Decoder()
+    last = None
+    for data in episode.video_frames:
+        with contextlib.suppress(VideoDecodeError):
+            last = decoder.decode(data) or last
+        if last is None:
+            raise ValueError(f"{episode.path}: its video does not start at a decodable frame")
+        yield last
+
+
+def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type: str) -> dict:
+    """The whole dataset into `out` (which must not exist yet); its info.json as a dict."""
+    out.mkdir(parents=True)
+    tasks = list(dict.fromkeys(frames.episode.task for frames in episodes))
+    with_video = all(frames.video_index is not None for frames in episodes)
+    joints = episodes[0].state.shape[1] - len(TOOL_NAMES) - len(WRENCH_NAMES)
+    writers: dict[str, VideoWriter] = {}
+    rows: list[dict] = []
+    episode_rows: list[dict] = []
+    per_episode_stats: list[dict[str, dict]] = []
+    index = 0
+    try:
+        for number, frames in enumerate(episodes):
+            length = len(frames.times_ns)
+            task_index = tasks.index(frames.episode.task)
+            timestamps = (np.arange(length) / fps).astype(np.float32)
+            columns = {"observation.state": frames.state, "action": frames.action,
+                       "timestamp": timestamps, "frame_index": np.arange(length),
+                       "episode_index": np.full(length, number),
+                       "index": np.arange(index, index + length),
+                       "task_index": np.full(length, task_index)}
+            rows.append(columns)
+            stats = {key: vector_stats(value) for key, value in columns.items()}
+            row = {"episode_index": number, "tasks": [frames.episode.task], "length": length,
+                   "data/chunk_index": 0, "data/file_index": 0,
+                   "dataset_from_index": index, "dataset_to_index": index + length}
+            if with_video:
+                samples = _write_eyes(out, frames, fps, writers, row)
+                for eye in EYES:
+                    stats[IMAGE_KEY.format(eye=eye)] = image_stats(samples[eye])
+            row.update({"meta/episodes/chunk_index": 0, "meta/episodes/file_index": 0})
+            for feature, values in stats.items():
+                for stat, value in values.items():
+                    row[f"stats/{feature}/{stat}"] = value.tolist()
+            episode_rows.append(row)
+            per_episode_stats.append(stats)
+            index += length
+    finally:
+        for writer in writers.values():
+            writer.close()
+    _write_data(out, rows, episodes[0].state.shape[1])
+    _write_tasks(out, tasks)
+    _write_parquet(out / EPISODES_PATH.format(chunk_index=0, file_index=0),
+                   pa.Table.from_pylist(episode_rows))
+    dataset_stats = {feature: merge_stats([s[feature] for s in per_episode_stats])
+                     for feature in per_episode_stats[0]}
+    (out / "meta" / "stats.json").write_text(json.dumps(
+        {feature: {stat: value.tolist() for stat, value in stats.items()}
+         for feature, stats in dataset_stats.items()}, indent=2))
+    info = _info(episodes, tasks, fps, robot_type, joints, with_video)
+    (out / "meta" / "info.json").write_text(json.dumps(info, indent=2))
+    return info
+
+
+def _write_eyes(out: Path, frames: EpisodeFrames, fps: int, writers: dict,
+                row: dict) -> dict[str, list[np.ndarray]]:
+    """The episode's grid frames into each eye's mp4; the episode row's video columns; a
+    sample of the frames for the stats."""
+    width, height = frames.episode.eye_size
+    for eye in EYES:
+        key = IMAGE_KEY.format(eye=eye)
+        if key not in writers:
+            writers[key] = VideoWriter(out / VIDEO_PATH.format(video_key=key, chunk_index=0,
+                                                               file_index=0), width, height, fps)
+        row.update({f"videos/{key}/chunk_index": 0, f"videos/{key}/file_index": 0,
+                    f"videos/{key}/from_timestamp": writers[key].frames / fps})
+    wanted = frames.video_index
+    every = max(1, math.ceil(len(wanted) / IMAGE_STATS_FRAMES))
+    samples: dict[str, list[np.ndarray]] = {eye: [] for eye in EYES}
+    position = 0
+    for recorded, eyes in enumerate(decoded_eyes(frames.episode)):
+        while position < len(wanted) and wanted[position] <= recorded:
+            for eye, image in zip(EYES, eyes, strict=True):
+                writers[IMAGE_KEY.format(eye=eye)].add(image)
+                if position % every == 0:
+                    samples[eye].append(image[::2, ::2])
+            position += 1
+    for eye in EYES:
+        key = IMAGE_KEY.format(eye=eye)
+        row[f"videos/{key}/to_timestamp"] = writers[key].frames / fps
+    if position != len(wanted):
+        raise ValueError(f"{frames.episode.path}: {len(wanted) - position} of its frames "
+                         "have no decoded picture")
+    return samples
+
+
+def _write_data(out: Path, rows: list[dict], state_size: int) -> None:
+    def vectors(key: str, size: int) -> pa.Array:
+        values = np.concatenate([r[key] for r in rows]).astype(np.float32).reshape(-1)
+        return pa.FixedSizeListArray.from_arrays(pa.array(values, pa.float32()), size)
+
+    def column(key: str, dtype) -> pa.Array:
+        return pa.array(np.concatenate([r[key] for r in rows]), dtype)
+
+    table = pa.table({
+        "observation.state": vectors("observation.state", state_size),
+        "action": vectors("action", len(ACTION_NAMES)),
+        "timestamp": column("timestamp", pa.float32()),
+        "frame_index": column("frame_index", pa.int64()),
+        "episode_index": column("episode_index", pa.int64()),
+        "index": column("index", pa.int64()),
+        "task_index": column("task_index", pa.int64())})
+    _write_parquet(out / DATA_PATH.format(chunk_index=0, file_index=0), table)
+
+
+def _write_tasks(out: Path, tasks: list[str]) -> None:
+    """Indexed by the task string: lerobot reads a sample's task as its row's index."""
+    table = pd.DataFrame({"task_index": range(len(tasks))}, index=pd.Index(tasks, name="task"))
+    _write_parquet(out / "meta" / "tasks.parquet", pa.Table.from_pandas(table,
+                                                                        preserve_index=True))
+
+
+def _write_parquet(path: Path, table: pa.Table) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    pq.write_table(table, path, compression="snappy")
+
+
+def _info(episodes: list[EpisodeFrames], tasks: list[str], fps: int, robot_type: str,
+          joints: int, with_video: bool) -> dict:
+    total = sum(len(frames.times_ns) for frames in episodes)
+    features = {
+        "observation.state": {"dtype": "float32", "shape": [episodes[0].state.shape[1]],
+                              "names": state_names(joints)},
+        "action": {"dtype": "float32", "shape": [len(ACTION_NAMES)],
+                   "names": list(ACTION_NAMES)},
+    }
+    if with_video:
+        width, height = episodes[0].episode.eye_size
+        for eye in EYES:
+            features[IMAGE_KEY.format(eye=eye)] = {
+                "dtype": "video", "shape": [height, width, 3],
+                "names": ["height", "width", "channels"],
+                "info": {"video.height": height, "video.width": width, "video.codec": "h264",
+                         "video.pix_fmt": "yuv420p", "video.is_depth_map": False,
+                         "video.fps": fps, "video.channels": 3, "has_audio": False,
+                         "is_depth_map": False}}
+    for name in ("timestamp", "frame_index", "episode_index", "index", "task_index"):
+        features[name] = {"dtype": "float32" if name == "timestamp" else "int64",
+                          "shape": [1], "names": None}
+    return {"codebase_version": CODEBASE_VERSION, "robot_type": robot_type,
+            "total_episodes": len(episodes), "total_frames": total, "total_tasks": len(tasks),
+            "chunks_size": 1000, "data_files_size_in_mb": 100, "video_files_size_in_mb": 200,
+            "fps": fps, "splits": {"train": f"0:{len(episodes)}"}, "data_path": DATA_PATH,
+            "video_path": VIDEO_PATH if with_video else None, "features": features}
