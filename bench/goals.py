@@ -114,9 +114,9 @@ _MEDIANS = {"delivered_hz": "delivered", "p50_ms": "p50", "p99_ms": "p99",
             CPU_KEY: "server_cpu"}
 
 
-_ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE, _MCAP_ISSUE, _OVERLOAD_ISSUE, _ARMS_ISSUE = (
-    "issue #12", "architecture brief", "issue #13", "issue #16", "issue #17", "issue #29",
-    "issue #30")
+(_ISSUE, _BRIEF, _TLS_ISSUE, _SOAK_ISSUE, _MCAP_ISSUE, _OVERLOAD_ISSUE, _ARMS_ISSUE,
+ _EPISODE_ISSUE) = ("issue #12", "architecture brief", "issue #13", "issue #16", "issue #17",
+                    "issue #29", "issue #30", "issue #32")
 
 
 def _recording_overhead(twin: str, cost: str) -> Goal:
@@ -141,6 +141,9 @@ GOALS: tuple[tuple[str, Goal], ...] = (
     ("command_1000_tls", Goal(p99_vs=("command_1000", 1.2), source=_TLS_ISSUE)),
     ("teleop_1000_mcap", _recording_overhead("teleop_1000", "cpu")),
     ("force_1000_mcap", _recording_overhead("force_1000", "p50")),
+    # Issue #32: recording a demonstration does not disturb teleoperation.
+    ("teleop_1000_episode", Goal(rate_vs=("teleop_1000", 0.9), p99_vs=("teleop_1000", 1.1),
+                                 recording_complete=True, paired=True, source=_EPISODE_ISSUE)),
     ("observers_16", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("observers_32", Goal(min_rate=990, p99_ms=2.0, source=_ISSUE)),
     ("closed_loop", Goal(p50_ms=15.0, p99_ms=25.0, source=_ISSUE)),

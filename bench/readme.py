@@ -51,6 +51,9 @@ WHAT = (
     ("teleop_1000_lockstep", "diagnostic: `teleop_1000` sent lockstep (wait for each ack)"),
     ("teleop_1000_mcap", "`teleop_1000` with the DecisionServer recording it as MCAP "
                          "(StartRecording); pairs off / on interleaved"),
+    ("teleop_1000_episode", "`teleop_1000` with the DecisionServer recording it as a "
+                            "demonstration episode (MCAP with the test card's stereo video); "
+                            "pairs off / on interleaved"),
     ("force_1000_mcap", "`force_1000` with the subscriber writing each sample to MCAP (wrench "
                         "and Foxglove arrow, as `make teleop --mcap`); pairs off / on "
                         "interleaved"),

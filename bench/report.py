@@ -35,10 +35,12 @@ PAPERS = {
 TLS_SUFFIX = "_tls"
 PLAINTEXT = "plaintext"  # what a TLS variant is compared with, as the ratios name it
 MCAP_SUFFIX = "_mcap"
+EPISODE_SUFFIX = "_episode"  # recorded as a demonstration episode: MCAP with the video
 RECORDING_OFF = "recording_off"  # what a recording-on variant is compared with
 MIRRORED_SUFFIX = "_mirrored"
 UNMIRRORED = "unmirrored"  # what a driver publishing its arm's mirror is compared with
-TWINS = {TLS_SUFFIX: PLAINTEXT, MCAP_SUFFIX: RECORDING_OFF, MIRRORED_SUFFIX: UNMIRRORED}
+TWINS = {TLS_SUFFIX: PLAINTEXT, MCAP_SUFFIX: RECORDING_OFF, EPISODE_SUFFIX: RECORDING_OFF,
+         MIRRORED_SUFFIX: UNMIRRORED}
 
 
 def family(name: str) -> str:

@@ -200,13 +200,15 @@ class Session:
         self.progress.done(f"{self.headline(name)} (/ {twin}: {report.ratio_text(versus)})")
 
     def mcap_twin(self, twin: str, what: str, off: Callable[[int], dict],
-                  on: Callable[[int], dict]) -> None:
+                  on: Callable[[int], dict], suffix: str = "mcap", reuse_twin: bool = True
+                  ) -> None:
         """`<twin>_mcap`: plan.overhead_pairs interleaved pairs right after `twin` ran, on the
-        same processes: the twin's run (else `off(0)` if it failed), `on(0)`, then `off(i)`,
+        same processes: the twin's run (else, or when not `reuse_twin`, `off(0)`), `on(0)`, then
+        `off(i)`,
         `on(i)` for each pair i after it (`on`: the twin's worker, recording in MCAP). The
         row is report.interleaved's: the first on leg's figures, each pair's ratios and their
         medians, which goals.py judges."""
-        name = f"{twin}_mcap"
+        name = f"{twin}_{suffix}"
         count = self.plan.overhead_pairs
         self.progress.step(f"{name}: {twin} again, {what}; {count} pairs interleaved (off, on, "
                            "off, on...)")
@@ -214,7 +216,8 @@ class Session:
         try:
             for index in range(count):
                 base = self.results.get(twin, {})
-                first = base if index == 0 and base.get("p50_ms") is not None else None
+                first = base if reuse_twin and index == 0 and base.get("p50_ms") is not None \
+                    else None
                 leg_off = first if first is not None else off(index)
                 leg_on = on(index)
                 for leg in (leg_off, leg_on):

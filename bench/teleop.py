@@ -160,9 +160,9 @@ class GrpcTeleop:
     def open(self) -> GrpcStream:
         return GrpcStream(self._stub, self._lease, self._watchdog_s)
 
-    def start_recording(self, name: str) -> None:
+    def start_recording(self, name: str, task: str = "") -> None:
         self._stub.StartRecording(
-            dpb.StartRecordingRequest(name=name, format=dpb.RECORDING_FORMAT_MCAP),
+            dpb.StartRecordingRequest(name=name, format=dpb.RECORDING_FORMAT_MCAP, task=task),
             metadata=[(LEASE_METADATA_KEY, self._lease)], timeout=10)
 
     def stop_recording(self) -> dpb.Recording:
@@ -454,13 +454,15 @@ def _summarize(books: tuple[list, list[str], int, int], error: str | None, trans
     return result
 
 
-def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict]) -> dict:
+def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict],
+             episode_task: str = "") -> dict:
     """`run()` (one session) with the DecisionServer recording it as MCAP into `record_dir`
-    (its recordings directory); the result gets `recording` (recording.teleop_check)."""
+    (its recordings directory), as an episode of `episode_task` if given (with the stereo
+    video and the state at 100 Hz); the result gets `recording` (recording.teleop_check)."""
     from bench import recording  # the MCAP readers: only in a recording worker
 
     name = f"bench_{uuid.uuid4().hex[:12]}"  # a retried worker must not meet ALREADY_EXISTS
-    client.start_recording(name)
+    client.start_recording(name, episode_task)
     try:
         result = run()
     except BaseException:
@@ -471,13 +473,16 @@ def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict]) -> d
     result["recording"] = recording.teleop_check(record_dir / f"{name}.mcap",
                                                  result["session_applied"],
                                                  saved.command_count, TELEOP_STEP_M)
+    if episode_task:
+        result["recording"]["video_frames"] = saved.video_frames
     return result
 
 
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
             duration_s: float, swing: int | None = None, window_s: float | None = None,
             drain_s: float = DRAIN_S, first_sign: float = 1.0, record_dir: str | None = None,
-            server_pid: int | None = None, **client_options) -> dict[str, dict]:
+            server_pid: int | None = None, episode_task: str = "", **client_options
+            ) -> dict[str, dict]:
     """run_rate for each rate (a session each, the direction of motion alternating from
     `first_sign`); {str(rate): result}. `client_options` go to the client (`security` for
     gRPC, and `watchdog_s`); `swing`, `window_s`, `drain_s`: see run_rate (the soak's long
@@ -492,7 +497,8 @@ def measure(transport_kind: str, address: str, shm_name: str | None, rates: list
             run = functools.partial(run_rate, client, rate, duration_s, sign, loop, swing,
                                     window_s, drain_s)
             cpu_s = process_cpu_s(server_pid) if server_pid else None
-            result = run() if record_dir is None else recorded(client, Path(record_dir), run)
+            result = run() if record_dir is None else recorded(client, Path(record_dir), run,
+                                                                episode_task)
             if cpu_s is not None and result["session_applied"]:
                 result["server_cpu_ms_per_command"] = round(
                     1e3 * (process_cpu_s(server_pid) - cpu_s) / result["session_applied"], 4)

@@ -60,7 +60,8 @@ def _teleop(p: dict) -> dict:
     from bench.teleop import measure
 
     options = {key: p[key] for key in ("swing", "window_s", "drain_s", "first_sign",
-                                       "record_dir", "server_pid") if p.get(key)}
+                                       "record_dir", "server_pid", "episode_task")
+               if p.get(key)}
     if p.get("watchdog_s"):  # the session's watchdog (the soak's); else teleop's own
         options["watchdog_s"] = p["watchdog_s"]
     return measure(p["transport"], p["address"], p.get("shm"), p["rates"], p["duration_s"],

@@ -18,8 +18,11 @@ from bench.station import OPERATOR_IDENTITY, Station
 from telerobot.v1 import decision_server_pb2_grpc
 
 
+EPISODE_TASK = "bench: teleop_1000"
+
+
 def steps(plan: Plan) -> int:
-    return 7 + plan.profile
+    return 8 + plan.profile
 
 
 def run(bench: Session) -> None:
@@ -39,6 +42,7 @@ def run(bench: Session) -> None:
         bench.with_decision_server(["profile"],
                                    lambda address: _profile(bench, address))
     _teleop_baseline(bench)
+    _teleop_episode(bench)
     bench.with_decision_server(["estop_ds_idle", "estop_ds_busywork"],
                                lambda address: _estop_ds(bench, address))
 
@@ -80,6 +84,39 @@ def _teleop(bench: Session, address: str) -> None:
                     lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
                         "first_sign": -1.0, **leg,
                         "record_dir": str(bench.procs.scratch / "recordings")})["1000"])
+
+
+def _teleop_episode(bench: Session) -> None:
+    """teleop_1000_episode: teleop_1000 off and on, interleaved, the on legs recorded as a
+    demonstration episode (MCAP, the state at 100 Hz, the stereo video) by a DecisionServer
+    with a camera behind it. The camera is the test card (pattern): the row measures what
+    recording costs (an H.264 stream encoded at 320x240 per eye, written with the rest), not
+    what rendering the sim costs, which a real camera does not."""
+    name = "teleop_1000_episode"
+    try:
+        camera, camera_address = bench.procs.run_service("stereo_camera", [
+            "--source", "pattern", "--width", "640", "--height", "480", "--fps", "30"])
+    except ChildFailed as error:
+        bench.progress.step(f"{name}: starting its camera")
+        return bench.fail([name], error)
+    try:
+        with bench.decision_server(bench.station, camera_address) as address:
+            leg = {"duration_s": bench.plan.overhead_teleop_leg_s,
+                   "server_pid": bench.pid("decision_server")}
+            bench.mcap_twin(
+                "teleop_1000", "the DecisionServer recording it as a demonstration episode "
+                "(MCAP, the state at 100 Hz, the pattern camera's video at 320x240 per eye)",
+                lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+                    "first_sign": 1.0, **leg})["1000"],
+                lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+                    "first_sign": -1.0, **leg, "episode_task": EPISODE_TASK,
+                    "record_dir": str(bench.procs.scratch / "recordings")})["1000"],
+                suffix="episode", reuse_twin=False)
+    except ChildFailed as error:
+        bench.progress.step(f"{name}: starting its DecisionServer")
+        bench.fail([name], error)
+    finally:
+        bench.procs.stop(camera)
 
 
 def _teleop_tls(bench: Session, tls: Station) -> dict:

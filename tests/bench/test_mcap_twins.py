@@ -33,7 +33,8 @@ def test_the_goal_is_rate_and_cost_within_10_percent_of_the_twin_and_a_whole_rec
     assert teleop.text() == ("delivered >= 0.9 x teleop_1000, server CPU/command <= 1.1 x "
                              "teleop_1000 (medians of interleaved pairs), recording complete")
     assert goals.dependents("force_1000") == ["force_1000_mcap"]
-    assert goals.dependents("teleop_1000") == ["teleop_1000_tls", "teleop_1000_mcap"]
+    assert goals.dependents("teleop_1000") == ["teleop_1000_tls", "teleop_1000_mcap",
+                                              "teleop_1000_episode"]
 
 
 def test_an_mcap_row_waits_for_its_twin_then_is_judged_on_rate_p50_and_its_file():
