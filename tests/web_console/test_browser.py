@@ -198,6 +198,7 @@ def test_assistance_and_record_replay_from_the_page(browser, console_url, robot,
 
     name = f"browser-test-{uuid.uuid4().hex[:8]}"  # recordings outlive stations
     page.fill("#rec-name", name)
+    page.fill("#rec-task", "raise the tool")  # a demonstration episode (MCAP)
     page.click("#rec-start")
     wait_for(lambda: text(page, "#message") == "record: done", timeout_s=DEADLINE_S,
              what=f"recording; page says {text(page, '#message')!r}")
@@ -207,10 +208,16 @@ def test_assistance_and_record_replay_from_the_page(browser, console_url, robot,
     wait_for(lambda: tool_z(robot) > start + 0.005, timeout_s=DEADLINE_S, what="the arm to rise")
     page.keyboard.up("r")
     page.click("#drive-toggle")  # end the session; then the recording
+    page.select_option("#rec-outcome", "2")  # failed
     page.click("#rec-stop")
     wait_for(lambda: page.locator(f"#rec-list option[value='{name}']").count() == 1,
              timeout_s=DEADLINE_S,
              what=f"the recording listed; page says {text(page, '#message')!r}")
+    episode = next(r for r in decision.ListRecordings(
+        decision_server_pb2.ListRecordingsRequest(), timeout=5).recordings if r.name == name)
+    assert episode.task == "raise the tool"
+    assert episode.format == decision_server_pb2.RECORDING_FORMAT_MCAP
+    assert episode.outcome == decision_server_pb2.EPISODE_OUTCOME_FAILED
     page.select_option("#rec-list", name)
     before = tool_z(robot)
     page.click("#replay-start")

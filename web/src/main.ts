@@ -8,7 +8,8 @@ import { createConnectTransport } from "@connectrpc/connect-web";
 
 import {
   type AssistanceConfig, AssistanceConfigSchema, CommandOutcome, ConstraintType, ControlMode,
-  type ControlState, DecisionServer, ReplayState, TeleopSessionState, TeleoperateRequestSchema,
+  type ControlState, DecisionServer, RecordingFormat, ReplayState, TeleopSessionState,
+  TeleoperateRequestSchema,
   TeleoperateResponseSchema,
 } from "./gen/telerobot/v1/decision_server_pb";
 import { ForceSensor } from "./gen/telerobot/v1/force_sensor_pb";
@@ -367,8 +368,16 @@ async function listRecordings() {
     select.replaceChildren(...r.recordings.map((rec) => new Option(rec.name, rec.name)));
   } catch { /* shown by the buttons */ }
 }
-$("rec-start").onclick = () => act("record", () => station.startRecording({ name: $<HTMLInputElement>("rec-name").value }));
-$("rec-stop").onclick = () => act("stop recording", async () => { await station.stopRecording({}); await listRecordings(); });
+$("rec-start").onclick = () => act("record", () => {
+  // A task makes the recording a demonstration episode, which is recorded as MCAP.
+  const task = $<HTMLInputElement>("rec-task").value.trim();
+  return station.startRecording({ name: $<HTMLInputElement>("rec-name").value, task,
+    format: task ? RecordingFormat.MCAP : RecordingFormat.UNSPECIFIED });
+});
+$("rec-stop").onclick = () => act("stop recording", async () => {
+  await station.stopRecording({ outcome: Number($<HTMLSelectElement>("rec-outcome").value) });
+  await listRecordings();
+});
 $("replay-start").onclick = () => act("replay", () => station.startReplay({ name: $<HTMLSelectElement>("rec-list").value, speed: 1 }));
 $("replay-stop").onclick = () => act("stop replay", () => station.stopReplay({}));
 void listRecordings();
