@@ -355,3 +355,95 @@ def test_the_readme_buf_curl_calls_record_in_mcap_and_replay(driven):
     curl("StartReplay", {"name": "drive2", "speed": 1}, lease)
     wait_for(lambda: (event := events.get(0.1)) is not None
              and getattr(event.payload, "state", "") == "FINISHED", 5, "the replay to finish")
+
+
+class FakeCamera:
+    """Sources.video: feeds header-and-pair tuples from a thread of its own, as the
+    DecisionServer's CameraFeed does; the first frames are not key frames."""
+
+    def __init__(self, frames: int = 6, first_key: int = 2):
+        import threading
+
+        self._threading = threading
+        self.frames, self.first_key = frames, first_key
+        self.fed = self._threading.Event()
+        self.stopped = False
+
+    def __call__(self, sink):
+        from telerobot.v1 import stereo_camera_pb2 as sc_pb
+
+        header = sc_pb.StereoHeader(width_px=4, height_px=2,
+                                    encoding=sc_pb.IMAGE_ENCODING_H264)
+
+        def feed():
+            for k in range(self.frames):
+                pair = sc_pb.StereoPair(sequence=k + 1, video_frame=b"\x00\x00\x01" + bytes([k]),
+                                        keyframe=k == self.first_key)
+                pair.left_capture_time.FromNanoseconds(1_000_000_000 + k * 33_000_000)
+                sink(header, pair)
+            self.fed.set()
+
+        thread = self._threading.Thread(target=feed, daemon=True)
+        thread.start()
+
+        def stop():
+            thread.join(5)
+            self.stopped = True
+
+        return stop
+
+
+def test_an_episode_keeps_its_task_outcome_and_video(rig):
+    camera = FakeCamera()
+    rig.core.video_feed = camera
+    lease = rig.lease.lease_id
+    started = rig.core.start_recording(lease, "episode-1", "MCAP", "insert the peg")
+    assert started.task == "insert the peg"
+    assert camera.fed.wait(5)
+    rig.core.move_cartesian(lease, np.array([0.001, 0.0, 0.0]), np.eye(3), "BASE")
+    saved = rig.core.stop_recording(lease, "FAILED")
+    assert camera.stopped  # the feed ends before the file does
+    assert (saved.task, saved.outcome, saved.video_frames) == ("insert the peg", "FAILED", 4)
+    assert rig.core.recordings.info("episode-1") == saved.__class__(
+        "episode-1", saved.create_time_ns, saved.duration_s, 1, "MCAP", "", "insert the peg",
+        "FAILED", 4)
+    contents = _read(rig.core.recordings.directory / "episode-1.mcap")
+    assert len(contents[recording_mcap.STEREO_HEADER]) == 1
+    video = contents[recording_mcap.STEREO_VIDEO]
+    # from the first key frame on, each at its capture time, as it came
+    assert [bytes(v.data)[-1] for _, v in video] == [2, 3, 4, 5]
+    assert [v.timestamp.ToNanoseconds() for _, v in video] == [
+        1_000_000_000 + k * 33_000_000 for k in (2, 3, 4, 5)]
+    assert all(v.format == "h264" for _, v in video)
+
+
+def test_a_task_is_refused_without_mcap_or_when_it_is_not_a_label(rig):
+    from wire.errors import InvalidArgumentError
+
+    lease = rig.lease.lease_id
+    for task, format, reason in (("insert the peg", "JSONL", "TASK_NEEDS_MCAP"),
+                                 ("x" * 257, "MCAP", "BAD_TASK"), ("a\nb", "MCAP", "BAD_TASK"),
+                                 ("   ", "MCAP", "BAD_TASK")):
+        with pytest.raises(InvalidArgumentError) as error:
+            rig.core.start_recording(lease, "refused", format, task)
+        assert error.value.reason == reason
+    assert not rig.core.recordings.recording  # nothing half-started
+
+
+def test_an_episode_over_the_wire_takes_its_outcome_and_refuses_a_bad_one(fake_station):
+    station, _ = fake_station
+    _, metadata = station.acquire()
+    started = station.decisions.StartRecording(pb.StartRecordingRequest(
+        name="ep", format=pb.RECORDING_FORMAT_MCAP, task="wipe"), metadata=metadata).recording
+    assert started.task == "wipe"
+    with pytest.raises(grpc.RpcError) as error:
+        station.decisions.StopRecording(pb.StopRecordingRequest(outcome=42), metadata=metadata)
+    assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+    assert "EPISODE_OUTCOME_SUCCEEDED" in error.value.details()
+    saved = station.decisions.StopRecording(pb.StopRecordingRequest(
+        outcome=pb.EPISODE_OUTCOME_DISCARDED), metadata=metadata).recording
+    assert (saved.task, saved.outcome) == ("wipe", pb.EPISODE_OUTCOME_DISCARDED)
+    with pytest.raises(grpc.RpcError) as error:
+        station.decisions.StartRecording(pb.StartRecordingRequest(name="j", task="wipe"),
+                                         metadata=metadata)
+    assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
