@@ -17,7 +17,6 @@ from bench.session import Session
 from bench.station import OPERATOR_IDENTITY, Station
 from telerobot.v1 import decision_server_pb2_grpc
 
-
 EPISODE_TASK = "bench: teleop_1000"
 
 

@@ -228,10 +228,14 @@ class _DecisionMethods:
         return self._unary("DeleteRecording", pb.DeleteRecordingRequest(name=name),
                            lambda r: None, timeout, lane)
 
-    def start_replay(self, name: str, speed: float = 1.0, *, timeout: float | None = None,
-                     lane: str | None = None) -> Recording:
-        return self._unary("StartReplay", pb.StartReplayRequest(name=name, speed=speed),
-                           lambda r: Recording.from_proto(r.recording), timeout, lane)
+    def start_replay(self, name: str, speed: float = 1.0, *,
+                     increments: Sequence[pb.RecordedIncrement] = (),
+                     timeout: float | None = None, lane: str | None = None) -> Recording:
+        """Replay the stored recording `name`, or `increments` (RecordedIncrements, each at its
+        offset; `name` then labels the replay's events)."""
+        return self._unary("StartReplay", pb.StartReplayRequest(
+            name=name, speed=speed, increments=increments),
+            lambda r: Recording.from_proto(r.recording), timeout, lane)
 
     def stop_replay(self, *, timeout: float | None = None, lane: str | None = None) -> int:
         """Interrupt the replay; returns the number of commands replayed."""

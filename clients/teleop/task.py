@@ -144,19 +144,23 @@ def go_home(client: DecisionClient) -> bool:
     """Move the arm to its home pose (GetArmInfo's), where the task starts, in joint space; a
     no-op for an arm there already (a simulated one starts there; a real one stands where it
     was left, to be clear of the fixture). Whether it moved."""
-    home = client.robot.get_arm_info().home
-    error = home - client.robot.get_state().joint_positions
+    return move_to_joints(client, client.robot.get_arm_info().home, "home")
+
+
+def move_to_joints(client: DecisionClient, joints: np.ndarray, what: str = "its start") -> bool:
+    """Move the arm to `joints` in joint space and wait until it is there and at rest (the
+    sensor may be tared next); a no-op for an arm there already. Whether it moved."""
+    error = np.asarray(joints) - client.robot.get_state().joint_positions
     if np.max(np.abs(error)) < HOME_TOLERANCE_RAD:
         return False
     steps = int(np.ceil(np.max(np.abs(error)) / HOME_STEP_RAD))
     for _ in range(steps):
         client.robot.move_joints(error / steps)
     deadline = time.monotonic() + HOME_TIMEOUT_S
-    # There and at rest: the sensor is tared next.
-    while not _still_at(client, home):
+    while not _still_at(client, joints):
         if time.monotonic() > deadline:
             raise DeadlineExceededError(
-                f"the arm did not reach home within {HOME_TIMEOUT_S:.0f} s", reason="NOT_HOME")
+                f"the arm did not reach {what} within {HOME_TIMEOUT_S:.0f} s", reason="NOT_THERE")
         time.sleep(0.05)
     return True
 

@@ -496,13 +496,21 @@ class DecisionCore:
         self.locks.require(lease_id)
         return self.recordings.stop(outcome)
 
-    def start_replay(self, lease_id: str, name: str, speed: float) -> RecordingInfo:
+    def start_replay(self, lease_id: str, name: str, speed: float,
+                     commands: list | None = None) -> RecordingInfo:
+        """Replay the stored recording `name`, or `commands` (RecordedCommands sent with the
+        request, `name` their label)."""
         lease = self.locks.require(lease_id)
         speed = speed or 1.0
         if not MIN_REPLAY_SPEED <= speed <= MAX_REPLAY_SPEED:
             raise InvalidArgumentError(f"speed must be {MIN_REPLAY_SPEED}..{MAX_REPLAY_SPEED}",
                                        reason="BAD_SPEED")
-        info, commands = self.recordings.load(name)
+        if commands is None:
+            info, commands = self.recordings.load(name)
+        else:
+            info = RecordingInfo(name or "increments", self.clock.time_ns(),
+                                 commands[-1].offset_s - commands[0].offset_s if commands
+                                 else 0.0, len(commands), "UNSPECIFIED")
         with self._lock:
             if self._replay is not None:
                 raise FailedPreconditionError("a replay is already running", reason="REPLAYING")

@@ -18,6 +18,7 @@ from services.common import se3
 from services.common.fanout import Subscription
 from services.common.inbox import Inbox, Producer
 from services.decision_server import assistance as assist
+from services.decision_server import recording_mcap
 from services.decision_server.arbitration import DEFAULT_LEASE_S, ControlMode, ControlView, Lease
 from services.decision_server.backends import forwarding_servicer, status_name
 from services.decision_server.cobegin import MAX_BUSY_WORK_S
@@ -30,6 +31,7 @@ from services.decision_server.core import (
     RobotEventForwarded,
 )
 from services.decision_server.dependencies import Dependency, DependencyChanged, DependencyWatch
+from services.decision_server.recordings import RecordedCommand
 from services.decision_server.sessions import (
     CommandResult,
     MasterIncrement,
@@ -173,6 +175,38 @@ def recording_to_proto(info) -> pb.Recording:
                         outcome=pb.EpisodeOutcome.Value(
                             f"EPISODE_OUTCOME_{info.outcome or 'UNSPECIFIED'}"),
                         video_frames=info.video_frames)
+
+
+MAX_INLINE_INCREMENTS = 100_000
+
+
+def inline_increments(messages) -> list[RecordedCommand]:
+    """A StartReplay's own increments as RecordedCommands; InvalidArgumentError naming the
+    first that is not a finite Cartesian increment at an offset that does not go back."""
+    if len(messages) > MAX_INLINE_INCREMENTS:
+        raise InvalidArgumentError(f"at most {MAX_INLINE_INCREMENTS} increments in a replay, "
+                                   f"not {len(messages)}", reason="TOO_MANY_INCREMENTS")
+    commands, last = [], 0.0
+    for index, message in enumerate(messages):
+        try:
+            if message.delta_joints_rad:
+                raise ValueError("a joint increment: only Cartesian ones replay from a request")
+            command = recording_mcap.increment_from_proto(message, RecordedCommand)
+            values = np.concatenate([command.delta_position_m, command.delta_rotation.ravel(),
+                                     [command.offset_s]])
+            if not np.isfinite(values).all():
+                raise ValueError("a value that is not finite")
+            if command.offset_s < last:
+                raise ValueError(f"its offset {command.offset_s:.3f} s goes back")
+            if not np.allclose(command.delta_rotation @ command.delta_rotation.T, np.eye(3),
+                               atol=1e-6) or np.linalg.det(command.delta_rotation) < 0:
+                raise ValueError("a delta_rotation that is not a rotation")
+        except ValueError as error:
+            raise InvalidArgumentError(f"increment {index}: {error}",
+                                       reason="BAD_INCREMENT") from None
+        last = command.offset_s
+        commands.append(command)
+    return commands
 
 
 def episode_outcome(value: int) -> str:
@@ -539,7 +573,9 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         return pb.DeleteRecordingResponse()
 
     def StartReplay(self, request, context):
-        info = self._core.start_replay(lease_id(context), request.name, request.speed)
+        commands = inline_increments(request.increments) if request.increments else None
+        info = self._core.start_replay(lease_id(context), request.name, request.speed,
+                                       commands)
         return pb.StartReplayResponse(recording=recording_to_proto(info))
 
     def StopReplay(self, request, context):

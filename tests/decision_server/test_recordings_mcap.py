@@ -447,3 +447,44 @@ def test_an_episode_over_the_wire_takes_its_outcome_and_refuses_a_bad_one(fake_s
         station.decisions.StartRecording(pb.StartRecordingRequest(name="j", task="wipe"),
                                          metadata=metadata)
     assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+
+
+def _increment(offset_s: float, dz: float, **fields) -> pb.RecordedIncrement:
+    from wire import convert
+
+    return pb.RecordedIncrement(offset=convert.duration(offset_s),
+                                frame=types_pb2.REFERENCE_FRAME_BASE,
+                                delta_position_m=types_pb2.Vector3(z=dz), **fields)
+
+
+def test_a_replay_of_increments_sent_with_the_request(rig):
+    """What replay_dataset sends: the increments themselves, each at its offset."""
+    from services.decision_server.servicer import inline_increments
+
+    commands = inline_increments([_increment(k * 0.01, 0.001) for k in range(5)])
+    info = rig.core.start_replay(rig.lease.lease_id, "dataset-episode-0", 1.0, commands)
+    assert (info.name, info.command_count, info.format) == ("dataset-episode-0", 5,
+                                                             "UNSPECIFIED")
+    for _ in range(10):
+        rig.clock.advance(0.01)
+    wait_for(lambda: len(rig.slave.commands) == 5, timeout_s=5, what="the five increments")
+    assert [c.detail[0] for c in rig.slave.commands] == ["BASE"] * 5
+    assert sum(c.detail[1][2] for c in rig.slave.commands) == pytest.approx(0.005)
+
+
+@pytest.mark.parametrize("increments, message", [
+    ([_increment(0.0, 0.001, delta_joints_rad=[0.1] * 6)], "joint increment"),
+    ([_increment(0.02, 0.001), _increment(0.01, 0.001)], "goes back"),
+    ([_increment(0.0, float("nan"))], "not finite"),
+    ([_increment(0.0, 0.001, delta_rotation=types_pb2.Matrix3(row_major=[2] * 9))],
+     "not a rotation"),
+    ([pb.RecordedIncrement()], "no frame"),
+])
+def test_increments_sent_with_a_replay_are_checked(fake_station, increments, message):
+    station, _ = fake_station
+    _, metadata = station.acquire()
+    with pytest.raises(grpc.RpcError) as error:
+        station.decisions.StartReplay(pb.StartReplayRequest(name="x", increments=increments),
+                                      metadata=metadata)
+    assert error.value.code() is grpc.StatusCode.INVALID_ARGUMENT
+    assert message in error.value.details()

@@ -1,8 +1,9 @@
 """Demonstrations end to end: `make teleop EPISODES=3` on a station started as it starts one
 records three episodes at the DecisionServer (MCAP, with the stereo video); the export makes a
 LeRobotDataset v3.0 of them, checked field by field against the layout lerobot 0.4-0.6 reads;
-then a DecisionServer killed (SIGKILL) mid-episode leaves the earlier episodes whole, and the
-export names the last one incomplete."""
+episode 0 of it replays on the arm to where the recording had the tool; then a DecisionServer
+killed (SIGKILL) mid-episode leaves the earlier episodes whole, and the export names the last
+one incomplete."""
 
 from __future__ import annotations
 
@@ -25,6 +26,7 @@ import pytest
 from clients.python.decision_server import DecisionClient
 from clients.teleop.export_lerobot import export
 from clients.teleop.lerobot_dataset import ACTION_NAMES, state_names
+from clients.teleop.replay_dataset import replay
 from clients.teleop.stack import local_station
 from services.launcher import STATION
 from tests.processes import REPO, unique_shm_name
@@ -53,8 +55,13 @@ def recorded(tmp_path_factory):
              "feedback", "--episodes", str(EPISODES), "--task", TASK, "--no-video"],
             cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True, timeout=600)
         assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+        before = tmp / "dataset-before"
+        export([recordings], before, FPS, report=lambda line: None)
+        with DecisionClient(addresses["decision_server"], default_timeout=10.0) as client:
+            replayed = replay(client, before, 0)
+            client.release_control()
         _kill_mid_episode(addresses["decision_server"], recordings, shm)
-    return recordings, json.loads((out / "summary.json").read_text())
+    return recordings, json.loads((out / "summary.json").read_text()), replayed
 
 
 def _kill_mid_episode(address: str, recordings: Path, shm: str) -> None:
@@ -84,7 +91,7 @@ def _decision_server_pid(shm: str) -> int:
 
 @pytest.fixture(scope="module")
 def dataset(recorded, tmp_path_factory):
-    recordings, _ = recorded
+    recordings = recorded[0]
     out = tmp_path_factory.mktemp("dataset") / "peg"
     lines: list[str] = []
     info = export([recordings], out, FPS, report=lines.append)
@@ -92,7 +99,7 @@ def dataset(recorded, tmp_path_factory):
 
 
 def test_make_teleop_recorded_each_episode_with_its_outcome_and_video(recorded):
-    recordings, summary = recorded
+    recordings, summary, _ = recorded
     episodes = summary["episodes"]
     assert len(episodes) == EPISODES, summary
     runs = summary["runs"]
@@ -223,3 +230,9 @@ def test_the_actions_add_up_to_the_tool_path(dataset):
         commanded = action[rows[:-1], :3].sum(0)
         # the task presses into the hole's floor: the arm stops short of a few commands
         assert np.linalg.norm(moved - commanded) < 0.01, (moved, commanded)
+
+
+def test_episode_0_replays_to_where_the_recording_had_the_tool(recorded):
+    replayed = recorded[2]
+    assert replayed["frames"] > 100, replayed
+    assert replayed["final_error_mm"] <= 2.0, replayed

@@ -438,12 +438,14 @@ class DeleteRecordingResponse(_message.Message):
     def __init__(self) -> None: ...
 
 class StartReplayRequest(_message.Message):
-    __slots__ = ("name", "speed")
+    __slots__ = ("name", "speed", "increments")
     NAME_FIELD_NUMBER: _ClassVar[int]
     SPEED_FIELD_NUMBER: _ClassVar[int]
+    INCREMENTS_FIELD_NUMBER: _ClassVar[int]
     name: str
     speed: float
-    def __init__(self, name: _Optional[str] = ..., speed: _Optional[float] = ...) -> None: ...
+    increments: _containers.RepeatedCompositeFieldContainer[RecordedIncrement]
+    def __init__(self, name: _Optional[str] = ..., speed: _Optional[float] = ..., increments: _Optional[_Iterable[_Union[RecordedIncrement, _Mapping]]] = ...) -> None: ...
 
 class StartReplayResponse(_message.Message):
     __slots__ = ("recording",)
