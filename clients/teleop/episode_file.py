@@ -34,6 +34,10 @@ class IncompleteEpisode(Exception):
     """An episode file that cannot be exported whole; the message says which and why."""
 
 
+class NotAnEpisode(Exception):
+    """A file that is not an episode (no task, not a DecisionServer recording)."""
+
+
 @dataclass
 class Episode:
     path: Path
@@ -75,13 +79,13 @@ def read_episode(path: Path) -> Episode:
             metadata = next((dict(m.metadata) for m in reader.iter_metadata()
                              if m.name == METADATA), None)
             if metadata is None:
-                raise IncompleteEpisode(f"{path}: no '{METADATA}' metadata: not a "
-                                        "DecisionServer recording")
+                raise NotAnEpisode(f"{path}: no '{METADATA}' metadata: not a DecisionServer "
+                                   "recording")
             if not metadata.get("task"):
-                raise IncompleteEpisode(f"{path}: a recording without a task, not an episode "
-                                        "(StartRecording with a task makes one)")
+                raise NotAnEpisode(f"{path}: a recording without a task, not an episode "
+                                   "(StartRecording with a task makes one)")
             return _contents(path, metadata, reader)
-    except IncompleteEpisode:
+    except (IncompleteEpisode, NotAnEpisode):
         raise
     except (McapError, OSError, ValueError, EOFError) as error:
         raise IncompleteEpisode(f"{path}: cannot be read ({error or type(error).__name__}): "
@@ -106,8 +110,8 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
             wrenches.append([*_vector(decoded.force_n), *_vector(decoded.torque_nm)])
         elif topic == INCREMENT:
             if decoded.frame not in FRAMES:
-                raise IncompleteEpisode(f"{path}: joint increments cannot be exported yet "
-                                        "(the dataset's action is a Cartesian increment)")
+                raise NotAnEpisode(f"{path}: joint increments cannot be exported (the "
+                                   "dataset's action is a Cartesian increment)")
             inc_ns.append(created + decoded.offset.ToNanoseconds())
             inc_frames.append(FRAMES[decoded.frame])
             inc_positions.append(_vector(decoded.delta_position_m))
@@ -119,7 +123,7 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
             video_ns.append(decoded.timestamp.ToNanoseconds())
             video.append(bytes(decoded.data))
     if not state_ns:
-        raise IncompleteEpisode(f"{path}: no arm state with joint angles was recorded")
+        raise NotAnEpisode(f"{path}: no arm state with joint angles was recorded")
     return Episode(
         path, metadata.get("name", path.stem), metadata["task"],
         metadata.get("outcome", "UNSPECIFIED"),

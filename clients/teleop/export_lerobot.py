@@ -18,7 +18,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from clients.teleop.episode_file import PARTIAL, Episode, IncompleteEpisode, read_episode
+from clients.teleop.episode_file import (
+    PARTIAL,
+    Episode,
+    IncompleteEpisode,
+    NotAnEpisode,
+    read_episode,
+)
 from clients.teleop.lerobot_dataset import on_grid, write_dataset
 
 EXPORTED = ("SUCCEEDED", "UNSPECIFIED")
@@ -50,10 +56,10 @@ def export(runs: list[Path], out: Path, fps: int = 30, include_failed: bool = Fa
         try:
             episode = read_episode(path)
         except IncompleteEpisode as why:
-            if path.name.endswith(PARTIAL) or "cut short" in str(why) or "truncated" in str(why):
-                report(f"incomplete: {why}")
-            else:
-                report(f"skipped: {why}")
+            report(f"incomplete: {why}")
+            continue
+        except NotAnEpisode as why:
+            report(f"skipped: {why}")
             continue
         if episode.outcome == "DISCARDED" or (episode.outcome == "FAILED"
                                               and not include_failed):
