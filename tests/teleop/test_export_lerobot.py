@@ -1,0 +1,115 @@
+"""The export's bad input, on episodes the DecisionServer's own recording store writes (a fake
+clock and an arm that moves 1 mm a sample; no station, no video): a run without video exports
+without images and says so; an unfinished or cut file is named incomplete; a recording that is
+no episode is skipped; an existing output, or nothing to export, is refused."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+from clients.teleop.export_lerobot import export, main
+from services.decision_server.recording_mcap import Sources
+from services.decision_server.recordings import RecordingStore
+from services.decision_server.slave import SlaveState
+from tests.conftest import wait_for
+from tests.fakes.clock import FakeClock
+
+SAMPLES = 40
+
+
+def _record(directory: Path, name: str, task: str = "lift", outcome: str = "SUCCEEDED",
+            finish: bool = True) -> Path:
+    """An episode of SAMPLES samples 10 ms apart, the tool rising 1 mm each, with a matching
+    increment; the store's file (its partial one if not `finish`)."""
+    clock = FakeClock()
+    store = RecordingStore(directory, clock)
+    z = [0.0]
+    sampled: list[float] = []  # the heights the recording's writer has taken
+
+    def state():
+        sampled.append(z[0])
+        return SlaveState(pin.SE3(np.eye(3), np.array([0.4, 0.0, z[0]])), "READY",
+                          clock.time_ns(), joint_positions_rad=(0.1, 0.2, z[0], 0.0, 0.0, 0.0))
+
+    store.start(name, "MCAP", Sources(state=state), task)
+    for _ in range(SAMPLES):
+        z[0] += 0.001
+        store.add("BASE", np.array([0.0, 0.0, 0.001]), np.eye(3), np.array([0.4, 0.0, z[0]]))
+        clock.advance(0.01)
+        height = z[0]
+        if task:  # an episode samples every 10 ms (another recording every 50)
+            wait_for(lambda height=height: sampled and sampled[-1] == height, timeout_s=5,
+                     what="the sample taken")
+    if finish:
+        store.stop(outcome)
+        return directory / f"{name}.mcap"
+    return directory / f"{name}.mcap.partial"
+
+
+def test_an_episode_without_video_exports_without_images_and_says_so(tmp_path):
+    _record(tmp_path / "runs", "ep0")
+    lines: list[str] = []
+    info = export([tmp_path / "runs"], tmp_path / "out", fps=50, report=lines.append)
+    assert any("without images" in line for line in lines), lines
+    assert info["video_path"] is None
+    assert not any(key.startswith("observation.images") for key in info["features"])
+    assert info["total_episodes"] == 1 and info["total_frames"] >= SAMPLES // 2
+    assert not (tmp_path / "out" / "videos").exists()
+
+
+def test_unfinished_cut_and_foreign_files_are_named_and_the_rest_exports(tmp_path):
+    runs = tmp_path / "runs"
+    _record(runs, "a-whole")
+    cut = _record(runs, "b-cut")
+    cut.write_bytes(cut.read_bytes()[: cut.stat().st_size // 2])
+    _record(runs, "c-no-task", task="")
+    _record(runs, "d-discarded", outcome="DISCARDED")
+    _record(runs, "e-failed", outcome="FAILED")
+    unfinished = _record(runs, "f-killed", finish=False)
+    lines: list[str] = []
+    info = export([runs], tmp_path / "out", report=lines.append)
+    assert info["total_episodes"] == 1, lines  # a-whole
+    said = "\n".join(lines)
+    assert f"incomplete: {unfinished}" in said and "never finished" in said
+    assert "incomplete: " + str(runs / "b-cut.mcap") in said
+    assert "c-no-task.mcap: a recording without a task" in said
+    assert "d-discarded.mcap ('lift') is marked DISCARDED" in said
+    assert "e-failed.mcap ('lift') is marked FAILED" in said
+    info = export([runs], tmp_path / "with-failed", include_failed=True, report=lambda _: None)
+    assert info["total_episodes"] == 2
+
+
+def test_an_existing_output_or_nothing_to_export_ends_with_status_2(tmp_path, capsys):
+    runs = tmp_path / "runs"
+    _record(runs, "ep0", outcome="DISCARDED")
+    assert main([str(runs), "--out", str(tmp_path / "out")]) == 2
+    assert "no episode to export" in capsys.readouterr().err
+    (tmp_path / "exists").mkdir()
+    assert main([str(runs), "--out", str(tmp_path / "exists")]) == 2
+    assert "exists" in capsys.readouterr().err
+    assert main([str(tmp_path / "missing"), "--out", str(tmp_path / "o")]) == 2
+    assert "no such file" in capsys.readouterr().err
+
+
+def test_the_actions_and_the_state_of_a_known_motion(tmp_path):
+    """1 mm up every 10 ms: at 50 fps, each frame's action is 2 mm up and the state's z climbs
+    2 mm a frame."""
+    _record(tmp_path / "runs", "ep0")
+    export([tmp_path / "runs"], tmp_path / "out", fps=50, report=lambda _: None)
+    import pyarrow.parquet as pq
+
+    data = pq.read_table(tmp_path / "out" / "data" / "chunk-000" / "file-000.parquet")
+    action = np.array(data.column("action").to_pylist())
+    state = np.array(data.column("observation.state").to_pylist())
+    np.testing.assert_allclose(action[:-1, 2], 0.002, atol=1e-6)
+    np.testing.assert_allclose(action[:, [0, 1, 3, 4, 5]], 0.0, atol=1e-6)
+    np.testing.assert_allclose(np.diff(state[:, 8]), 0.002, atol=1e-5)  # tool_z_m
+    np.testing.assert_allclose(state[:, 2], state[:, 8], atol=1e-6)  # joint_3 follows it here
+    info = json.loads((tmp_path / "out" / "meta" / "info.json").read_text())
+    assert info["fps"] == 50
+    shutil.rmtree(tmp_path / "out")
