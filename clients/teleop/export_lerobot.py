@@ -9,12 +9,14 @@ or directories of them (the DecisionServer's --recordings-dir), in name order.
 - An episode whose file was never finished (the server was killed mid-episode: the file ends
   in .mcap.partial, or is cut short) is named and left out; the earlier ones export whole.
 - Without video, the dataset has no image features, and says so.
-- DIR must not exist: a dataset is written whole, never merged into.
+- DIR must not exist: a dataset is written whole (beside, as DIR.partial, and renamed when
+  done), never merged into.
 """
 
 from __future__ import annotations
 
 import argparse
+import shutil
 import sys
 from pathlib import Path
 
@@ -75,7 +77,16 @@ def export(runs: list[Path], out: Path, fps: int = 30, include_failed: bool = Fa
         for episode in episodes:
             episode.video_frames, episode.eye_size = [], None
     frames = [on_grid(episode, fps) for episode in episodes]
-    info = write_dataset(out, frames, fps, robot_type)
+    # Written beside and renamed when whole: an export that fails (a full disk, an episode
+    # whose video will not decode) leaves no half dataset behind to be trained on.
+    partial = out.with_name(out.name + PARTIAL)
+    shutil.rmtree(partial, ignore_errors=True)
+    try:
+        info = write_dataset(partial, frames, fps, robot_type)
+    except BaseException:
+        shutil.rmtree(partial, ignore_errors=True)
+        raise
+    partial.rename(out)
     for number, f in enumerate(frames):
         report(f"episode {number}: {f.episode.path.name}, {f.episode.task!r}, "
                f"{f.episode.outcome}, {len(f.times_ns)} frames")

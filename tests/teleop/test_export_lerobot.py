@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
+import pytest
 
 from clients.teleop.export_lerobot import export, main
 from services.decision_server.recording_mcap import Sources
@@ -113,3 +114,18 @@ def test_the_actions_and_the_state_of_a_known_motion(tmp_path):
     info = json.loads((tmp_path / "out" / "meta" / "info.json").read_text())
     assert info["fps"] == 50
     shutil.rmtree(tmp_path / "out")
+
+
+def test_an_export_that_fails_leaves_no_half_dataset(tmp_path, monkeypatch):
+    from clients.teleop import export_lerobot
+
+    _record(tmp_path / "runs", "ep0")
+
+    def fail(out, *args):
+        (out / "meta").mkdir(parents=True)  # some of it written, then the disk fills
+        raise OSError("No space left on device")
+
+    monkeypatch.setattr(export_lerobot, "write_dataset", fail)
+    with pytest.raises(OSError, match="No space left"):
+        export([tmp_path / "runs"], tmp_path / "out", report=lambda _: None)
+    assert not (tmp_path / "out").exists() and not (tmp_path / "out.partial").exists()
