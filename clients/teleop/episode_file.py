@@ -23,6 +23,8 @@ from mcap.exceptions import McapError
 from mcap.reader import make_reader
 from mcap_protobuf.decoder import DecoderFactory
 
+from wire.convert import rotation_value, vector3_value
+
 METADATA = "recording"
 STATE, WRENCH, INCREMENT = "/robot/state", "/robot/wrench", "/recording/increment"
 STEREO_HEADER, STEREO_VIDEO = "/camera/stereo_header", "/camera/stereo/video"
@@ -103,20 +105,19 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
         if topic == STATE and decoded.joint_positions_rad:
             state_ns.append(message.publish_time)
             joints.append(list(decoded.joint_positions_rad))
-            positions.append(_vector(decoded.tool_pose.position_m))
-            rotations.append(np.reshape(decoded.tool_pose.rotation.row_major, (3, 3)))
+            positions.append(vector3_value(decoded.tool_pose.position_m))
+            rotations.append(rotation_value(decoded.tool_pose.rotation))
         elif topic == WRENCH:
             wrench_ns.append(message.publish_time)
-            wrenches.append([*_vector(decoded.force_n), *_vector(decoded.torque_nm)])
+            wrenches.append([*vector3_value(decoded.force_n), *vector3_value(decoded.torque_nm)])
         elif topic == INCREMENT:
             if decoded.frame not in FRAMES:
                 raise NotAnEpisode(f"{path}: joint increments cannot be exported (the "
                                    "dataset's action is a Cartesian increment)")
             inc_ns.append(created + decoded.offset.ToNanoseconds())
             inc_frames.append(FRAMES[decoded.frame])
-            inc_positions.append(_vector(decoded.delta_position_m))
-            inc_rotations.append(np.reshape(decoded.delta_rotation.row_major, (3, 3))
-                                 if decoded.delta_rotation.row_major else np.eye(3))
+            inc_positions.append(vector3_value(decoded.delta_position_m))
+            inc_rotations.append(rotation_value(decoded.delta_rotation))
         elif topic == STEREO_HEADER:
             header = decoded
         elif topic == STEREO_VIDEO:
@@ -133,7 +134,3 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
         np.array(inc_positions).reshape(-1, 3), np.array(inc_rotations).reshape(-1, 3, 3),
         np.array(video_ns, np.int64), video,
         (header.width_px, header.height_px) if header is not None and video else None)
-
-
-def _vector(vector) -> list[float]:
-    return [vector.x, vector.y, vector.z]

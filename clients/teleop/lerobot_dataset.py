@@ -39,6 +39,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from clients.teleop.episode_file import Episode
+from wire.checks import gram_schmidt
 from wire.video import H264Decoder, VideoDecodeError
 
 CODEBASE_VERSION = "v3.0"
@@ -106,7 +107,7 @@ def _tool_at(episode: Episode, times: np.ndarray) -> np.ndarray:
     nearest = _nearest(episode.state_ns, times)
     quaternions = []
     for rotation in episode.tool_rotation[nearest]:
-        q = pin.Quaternion(_orthonormal(rotation))
+        q = pin.Quaternion(gram_schmidt(rotation))
         w, x, y, z = q.w, q.x, q.y, q.z
         quaternions.append([w, x, y, z] if w >= 0 else [-w, -x, -y, -z])
     return np.hstack([position, np.array(quaternions).reshape(-1, 4)])
@@ -129,10 +130,10 @@ def _actions(episode: Episode, times: np.ndarray, step_ns: int) -> np.ndarray:
     tool = _nearest(episode.state_ns, episode.increment_ns)
     rotations = [np.eye(3) for _ in times]
     for k in np.flatnonzero(inside):
-        delta_p, delta_r = episode.increment_position_m[k], _orthonormal(
+        delta_p, delta_r = episode.increment_position_m[k], gram_schmidt(
             episode.increment_rotation[k])
         if episode.increment_frame[k] != "BASE":  # TOOL or WRIST axes: into the base frame
-            axes = _orthonormal(episode.tool_rotation[tool[k]])
+            axes = gram_schmidt(episode.tool_rotation[tool[k]])
             delta_p, delta_r = axes @ delta_p, axes @ delta_r @ axes.T
         frame = frame_of[k]
         actions[frame, :3] += delta_p
@@ -146,11 +147,6 @@ def _nearest(sample_ns: np.ndarray, times: np.ndarray) -> np.ndarray:
     before = np.clip(after - 1, 0, len(sample_ns) - 1)
     closer_before = np.abs(times - sample_ns[before]) <= np.abs(sample_ns[after] - times)
     return np.where(closer_before, before, after)
-
-
-def _orthonormal(rotation: np.ndarray) -> np.ndarray:
-    u, _, vt = np.linalg.svd(np.asarray(rotation, dtype=float))
-    return u @ np.diag([1.0, 1.0, np.linalg.det(u @ vt)]) @ vt
 
 
 # -- the stats ----------------------------------------------------------------------------------

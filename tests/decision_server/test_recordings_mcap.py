@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import subprocess
+import threading
 import time
 from collections import Counter, defaultdict
 from pathlib import Path
@@ -21,6 +22,7 @@ from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import event_to_proto
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, types_pb2
+from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
 from tests.processes import BUF
@@ -362,16 +364,11 @@ class FakeCamera:
     DecisionServer's CameraFeed does; the first frames are not key frames."""
 
     def __init__(self, frames: int = 6, first_key: int = 2):
-        import threading
-
-        self._threading = threading
         self.frames, self.first_key = frames, first_key
-        self.fed = self._threading.Event()
+        self.fed = threading.Event()
         self.stopped = False
 
     def __call__(self, sink):
-        from telerobot.v1 import stereo_camera_pb2 as sc_pb
-
         header = sc_pb.StereoHeader(width_px=4, height_px=2,
                                     encoding=sc_pb.IMAGE_ENCODING_H264)
 
@@ -383,7 +380,7 @@ class FakeCamera:
                 sink(header, pair)
             self.fed.set()
 
-        thread = self._threading.Thread(target=feed, daemon=True)
+        thread = threading.Thread(target=feed, daemon=True)
         thread.start()
 
         def stop():

@@ -12,7 +12,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from fractions import Fraction
 from pathlib import Path
 
@@ -29,6 +28,7 @@ from clients.teleop.lerobot_dataset import ACTION_NAMES, state_names
 from clients.teleop.replay_dataset import replay
 from clients.teleop.stack import local_station
 from services.launcher import STATION
+from tests.conftest import wait_for
 from tests.processes import REPO, unique_shm_name
 
 pytestmark = pytest.mark.e2e
@@ -69,10 +69,8 @@ def _kill_mid_episode(address: str, recordings: Path, shm: str) -> None:
         client.acquire_control("test", lease_duration_s=30.0)
         client.start_episode(TASK, name="killed")
         partial = recordings / "killed.mcap.partial"
-        deadline = time.monotonic() + 30
-        while not (partial.exists() and partial.stat().st_size > 64_000):  # samples, frames
-            assert time.monotonic() < deadline, "the episode's file did not grow"
-            time.sleep(0.05)
+        wait_for(lambda: partial.exists() and partial.stat().st_size > 64_000,  # samples, frames
+                 timeout_s=30, what="the episode's file grown")
         os.kill(_decision_server_pid(shm), signal.SIGKILL)
 
 
