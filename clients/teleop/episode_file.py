@@ -7,7 +7,7 @@ What an episode holds, each on the station's clock (ns):
 - every applied increment (/recording/increment: frame, ΔX, ΔR, the tool target it led to);
 - the stereo video (/camera/stereo/video: H.264, both eyes side by side, at capture time) and
   its header (/camera/stereo_header: the per-eye size and calibration);
-- the "recording" metadata: name, task, outcome.
+- the "recording" metadata: name, task, outcome and the arm's name ("robot").
 
 A file the server did not finish (it was killed mid-episode: the file still ends in
 .mcap.partial, or has no footer) is `IncompleteEpisode`, naming the file and what is missing.
@@ -59,6 +59,7 @@ class Episode:
     video_ns: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # capture
     video_frames: list[bytes] = field(default_factory=list)  # H.264 access units (Annex B)
     eye_size: tuple[int, int] | None = None  # (width, height) per eye
+    robot: str = ""  # the arm's name, as the station recorded it (empty if it could not say)
 
     @property
     def has_video(self) -> bool:
@@ -133,4 +134,5 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
         np.array(wrenches).reshape(-1, 6), np.array(inc_ns, np.int64), inc_frames,
         np.array(inc_positions).reshape(-1, 3), np.array(inc_rotations).reshape(-1, 3, 3),
         np.array(video_ns, np.int64), video,
-        (header.width_px, header.height_px) if header is not None and video else None)
+        (header.width_px, header.height_px) if header is not None and video else None,
+        metadata.get("robot", ""))

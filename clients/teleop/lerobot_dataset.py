@@ -1,6 +1,7 @@
 """Episodes into a LeRobotDataset, format v3.0, as lerobot 0.4-0.6 reads it.
 
-The layout (one file of each kind; lerobot reads any number, in name order):
+The layout (one file of each kind per export: an append adds the next file-NNN of each kind;
+lerobot reads any number, in name order):
 
     meta/info.json                      fps, features, counts, path templates
     meta/tasks.parquet                  the task strings (pandas index "task") and task_index
@@ -226,19 +227,57 @@ def decoded_eyes(episode: Episode):
         yield last
 
 
-def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type: str) -> dict:
-    """The whole dataset into `out` (which must not exist yet); its info.json as a dict."""
-    out.mkdir(parents=True)
-    tasks = list(dict.fromkeys(frames.episode.task for frames in episodes))
+@dataclass
+class Appended:
+    """The dataset new episodes are appended to: where they continue from."""
+
+    info: dict
+    tasks: list[str]  # in task_index order
+    stats: dict[str, dict[str, np.ndarray]]
+    file_number: int  # the next file of each kind, counted across chunks
+
+
+def read_appended(root: Path) -> Appended:
+    """The dataset at `root`, to append to; ValueError naming what makes it unfit."""
+    info_path = root / "meta" / "info.json"
+    if not info_path.exists():
+        raise ValueError(f"{root}: no meta/info.json: not a LeRobot dataset to append to")
+    info = json.loads(info_path.read_text())
+    if info.get("codebase_version") != CODEBASE_VERSION:
+        raise ValueError(f"{root} is a LeRobot dataset {info.get('codebase_version')}, not "
+                         f"{CODEBASE_VERSION}: it cannot be appended to")
+    tasks = pd.read_parquet(root / "meta" / "tasks.parquet").sort_values("task_index")
+    stats = {feature: {stat: np.array(value) for stat, value in values.items()}
+             for feature, values in json.loads((root / "meta" / "stats.json").read_text()
+                                               ).items()}
+    files = list((root / "meta" / "episodes").glob("chunk-*/file-*.parquet"))
+    return Appended(info, list(tasks.index), stats, len(files))
+
+
+def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type: str,
+                  appended: Appended | None = None) -> dict:
+    """The whole dataset into `out` (which must not exist yet), or, with `appended`, the
+    episodes after those of the dataset already in `out`, in files of their own (the
+    dataset's meta files are written anew; nothing else is opened for writing). Its
+    info.json as a dict; ValueError when the episodes do not fit the appended dataset."""
+    tasks = list(dict.fromkeys([*(appended.tasks if appended else []),
+                                *(frames.episode.task for frames in episodes)]))
     with_video = all(frames.video_index is not None for frames in episodes)
     joints = episodes[0].state.shape[1] - len(TOOL_NAMES) - len(WRENCH_NAMES)
+    first_episode = appended.info["total_episodes"] if appended else 0
+    index = appended.info["total_frames"] if appended else 0
+    info = _info(episodes, tasks, fps, robot_type, joints, with_video, first_episode, index)
+    if appended:
+        _check_fits(appended.info, info)
+    out.mkdir(parents=True, exist_ok=appended is not None)
+    chunk, file = divmod(appended.file_number if appended else 0, info["chunks_size"])
+    where = {"chunk_index": chunk, "file_index": file}
     writers: dict[str, VideoWriter] = {}
     rows: list[dict] = []
     episode_rows: list[dict] = []
     per_episode_stats: list[dict[str, dict]] = []
-    index = 0
     try:
-        for number, frames in enumerate(episodes):
+        for number, frames in enumerate(episodes, start=first_episode):
             length = len(frames.times_ns)
             task_index = tasks.index(frames.episode.task)
             timestamps = (np.arange(length) / fps).astype(np.float32)
@@ -250,13 +289,13 @@ def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type
             rows.append(columns)
             stats = {key: vector_stats(value) for key, value in columns.items()}
             row = {"episode_index": number, "tasks": [frames.episode.task], "length": length,
-                   "data/chunk_index": 0, "data/file_index": 0,
+                   "data/chunk_index": chunk, "data/file_index": file,
                    "dataset_from_index": index, "dataset_to_index": index + length}
             if with_video:
-                samples = _write_eyes(out, frames, fps, writers, row)
+                samples = _write_eyes(out, frames, fps, writers, row, where)
                 for eye in EYES:
                     stats[IMAGE_KEY.format(eye=eye)] = image_stats(samples[eye])
-            row.update({"meta/episodes/chunk_index": 0, "meta/episodes/file_index": 0})
+            row.update({"meta/episodes/chunk_index": chunk, "meta/episodes/file_index": file})
             for feature, values in stats.items():
                 for stat, value in values.items():
                     row[f"stats/{feature}/{stat}"] = value.tolist()
@@ -266,31 +305,44 @@ def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type
     finally:
         for writer in writers.values():
             writer.close()
-    _write_data(out, rows, episodes[0].state.shape[1])
+    _write_data(out / DATA_PATH.format(**where), rows, episodes[0].state.shape[1])
+    _write_parquet(out / EPISODES_PATH.format(**where), pa.Table.from_pylist(episode_rows))
+    # The meta files last, each anew (unlinked first: an append's are links to the original's).
     _write_tasks(out, tasks)
-    _write_parquet(out / EPISODES_PATH.format(chunk_index=0, file_index=0),
-                   pa.Table.from_pylist(episode_rows))
-    dataset_stats = {feature: merge_stats([s[feature] for s in per_episode_stats])
+    earlier = [appended.stats] if appended else []
+    dataset_stats = {feature: merge_stats([s[feature] for s in earlier + per_episode_stats])
                      for feature in per_episode_stats[0]}
-    (out / "meta" / "stats.json").write_text(json.dumps(
+    _write_anew(out / "meta" / "stats.json", json.dumps(
         {feature: {stat: value.tolist() for stat, value in stats.items()}
          for feature, stats in dataset_stats.items()}, indent=2))
-    info = _info(episodes, tasks, fps, robot_type, joints, with_video)
-    (out / "meta" / "info.json").write_text(json.dumps(info, indent=2))
+    _write_anew(out / "meta" / "info.json", json.dumps(info, indent=2))
     return info
 
 
+def _check_fits(existing: dict, new: dict) -> None:
+    """ValueError naming each way the new episodes differ from the dataset's."""
+    differences = [f"{key} {new[key]!r} (the dataset's: {existing.get(key)!r})"
+                   for key in ("fps", "robot_type") if new[key] != existing.get(key)]
+    for name in sorted(set(new["features"]) | set(existing.get("features", {}))):
+        if new["features"].get(name) != existing["features"].get(name):
+            differences.append(f"feature {name}")
+    if differences:
+        raise ValueError("the episodes do not fit the dataset they would be appended to: "
+                         + "; ".join(differences))
+
+
 def _write_eyes(out: Path, frames: EpisodeFrames, fps: int, writers: dict,
-                row: dict) -> dict[str, list[np.ndarray]]:
+                row: dict, where: dict) -> dict[str, list[np.ndarray]]:
     """The episode's grid frames into each eye's mp4; the episode row's video columns; a
     sample of the frames for the stats."""
     width, height = frames.episode.eye_size
     for eye in EYES:
         key = IMAGE_KEY.format(eye=eye)
         if key not in writers:
-            writers[key] = VideoWriter(out / VIDEO_PATH.format(video_key=key, chunk_index=0,
-                                                               file_index=0), width, height, fps)
-        row.update({f"videos/{key}/chunk_index": 0, f"videos/{key}/file_index": 0,
+            writers[key] = VideoWriter(out / VIDEO_PATH.format(video_key=key, **where),
+                                       width, height, fps)
+        row.update({f"videos/{key}/chunk_index": where["chunk_index"],
+                    f"videos/{key}/file_index": where["file_index"],
                     f"videos/{key}/from_timestamp": writers[key].frames / fps})
     wanted = frames.video_index
     every = max(1, math.ceil(len(wanted) / IMAGE_STATS_FRAMES))
@@ -312,7 +364,7 @@ def _write_eyes(out: Path, frames: EpisodeFrames, fps: int, writers: dict,
     return samples
 
 
-def _write_data(out: Path, rows: list[dict], state_size: int) -> None:
+def _write_data(path: Path, rows: list[dict], state_size: int) -> None:
     def vectors(key: str, size: int) -> pa.Array:
         values = np.concatenate([r[key] for r in rows]).astype(np.float32).reshape(-1)
         return pa.FixedSizeListArray.from_arrays(pa.array(values, pa.float32()), size)
@@ -328,14 +380,15 @@ def _write_data(out: Path, rows: list[dict], state_size: int) -> None:
         "episode_index": column("episode_index", pa.int64()),
         "index": column("index", pa.int64()),
         "task_index": column("task_index", pa.int64())})
-    _write_parquet(out / DATA_PATH.format(chunk_index=0, file_index=0), table)
+    _write_parquet(path, table)
 
 
 def _write_tasks(out: Path, tasks: list[str]) -> None:
     """Indexed by the task string: lerobot reads a sample's task as its row's index."""
     table = pd.DataFrame({"task_index": range(len(tasks))}, index=pd.Index(tasks, name="task"))
-    _write_parquet(out / "meta" / "tasks.parquet", pa.Table.from_pandas(table,
-                                                                        preserve_index=True))
+    path = out / "meta" / "tasks.parquet"
+    path.unlink(missing_ok=True)
+    _write_parquet(path, pa.Table.from_pandas(table, preserve_index=True))
 
 
 def _write_parquet(path: Path, table: pa.Table) -> None:
@@ -343,9 +396,15 @@ def _write_parquet(path: Path, table: pa.Table) -> None:
     pq.write_table(table, path, compression="snappy")
 
 
+def _write_anew(path: Path, text: str) -> None:
+    path.unlink(missing_ok=True)
+    path.write_text(text)
+
+
 def _info(episodes: list[EpisodeFrames], tasks: list[str], fps: int, robot_type: str,
-          joints: int, with_video: bool) -> dict:
-    total = sum(len(frames.times_ns) for frames in episodes)
+          joints: int, with_video: bool, earlier_episodes: int, earlier_frames: int) -> dict:
+    total = earlier_frames + sum(len(frames.times_ns) for frames in episodes)
+    total_episodes = earlier_episodes + len(episodes)
     features = {
         "observation.state": {"dtype": "float32", "shape": [episodes[0].state.shape[1]],
                               "names": state_names(joints)},
@@ -366,7 +425,7 @@ def _info(episodes: list[EpisodeFrames], tasks: list[str], fps: int, robot_type:
         features[name] = {"dtype": "float32" if name == "timestamp" else "int64",
                           "shape": [1], "names": None}
     return {"codebase_version": CODEBASE_VERSION, "robot_type": robot_type,
-            "total_episodes": len(episodes), "total_frames": total, "total_tasks": len(tasks),
+            "total_episodes": total_episodes, "total_frames": total, "total_tasks": len(tasks),
             "chunks_size": 1000, "data_files_size_in_mb": 100, "video_files_size_in_mb": 200,
-            "fps": fps, "splits": {"train": f"0:{len(episodes)}"}, "data_path": DATA_PATH,
+            "fps": fps, "splits": {"train": f"0:{total_episodes}"}, "data_path": DATA_PATH,
             "video_path": VIDEO_PATH if with_video else None, "features": features}

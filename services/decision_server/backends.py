@@ -116,6 +116,7 @@ class GrpcSlave:
         self.on_state: Callable[[SlaveState], None] = lambda state: None
         self.on_robot_event: Callable[[object], None] = lambda message: None
         self._state: SlaveState | None = None
+        self._arm_name: str | None = None
         self._wrench: SlaveWrench | None = None
         self._closed = threading.Event()
         self._streams_lock = threading.Lock()
@@ -213,6 +214,11 @@ class GrpcSlave:
 
     def reset(self) -> str:
         return status_name(call(self.robot.Reset, proxy_robot_pb2.ResetRequest()).status)
+
+    def arm_name(self) -> str:
+        if self._arm_name is None:  # an arm's name does not change while its service runs
+            self._arm_name = call(self.robot.GetArmInfo, proxy_robot_pb2.GetArmInfoRequest()).name
+        return self._arm_name
 
     def set_tool_frame(self, flange_to_tool: pin.SE3) -> pin.SE3:
         reply = call(self.robot.SetToolFrame, proxy_robot_pb2.SetToolFrameRequest(

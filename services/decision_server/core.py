@@ -485,8 +485,17 @@ class DecisionCore:
         when the server has a camera."""
         self.locks.require(lease_id)
         return self.recordings.start(name, format, Sources(
-            lambda: self._state or self.slave.state(), self.slave.wrench, self.video_feed),
-            task)
+            lambda: self._state or self.slave.state(), self.slave.wrench, self.video_feed,
+            self._arm_name() if task else ""), task)
+
+    def _arm_name(self) -> str:
+        """The arm's name for an episode's metadata; empty (the export then asks for one)
+        when ProxyRobot cannot say."""
+        try:
+            return self.slave.arm_name()
+        except TelerobotError as error:
+            log.warning("an episode without the arm's name: %s", error.message)
+            return ""
 
     def stop_recording(self, lease_id: str | None, outcome: str = "UNSPECIFIED"
                        ) -> RecordingInfo:

@@ -174,10 +174,11 @@ def metadata_for(name: str, create_time_ns: int, commands, counts,
 
 
 def metadata_of(name: str, create_time_ns: int, command_count: int, duration_s: float, counts,
-                dropped: Counter | None = None, task: str = "", outcome: str = ""
-                ) -> dict[str, str]:
+                dropped: Counter | None = None, task: str = "", outcome: str = "",
+                robot: str = "") -> dict[str, str]:
     """The "recording" metadata; "dropped" (by channel) only when a gap dropped messages;
-    "task" and "outcome" (an EpisodeOutcome name without its prefix) for an episode."""
+    "task", "outcome" (an EpisodeOutcome name without its prefix) and "robot" (the arm's
+    name, when known) for an episode."""
     metadata = {"name": name, "create_time_ns": str(create_time_ns),
                 "duration_s": repr(float(duration_s)), "command_count": str(command_count),
                 "counts": json.dumps(dict(counts))}
@@ -186,6 +187,8 @@ def metadata_of(name: str, create_time_ns: int, command_count: int, duration_s: 
     if task:
         metadata["task"] = task
         metadata["outcome"] = outcome or "UNSPECIFIED"
+        if robot:
+            metadata["robot"] = robot
     return metadata
 
 
@@ -220,6 +223,8 @@ class Sources:
     # stream), it feeds the sink from a thread of its own until the function it returns is
     # called. Only MCAP recordings take it.
     video: Callable[[Callable[[object, object], None]], Callable[[], None]] | None = None
+    # The arm's name (GetArmInfo's), which an episode's metadata records as "robot".
+    arm_name: str = ""
 
 
 @dataclass
@@ -421,7 +426,7 @@ class McapRecorder(Recorder):
         self._sample()
         self._file.finish(metadata_of(self.name, self.create_time_ns, self.command_count,
                                       self.duration_s, self._file.counts, self.dropped,
-                                      self.task, self.outcome))
+                                      self.task, self.outcome, self._sources.arm_name))
 
     def abandon(self) -> None:
         self._file.abandon()

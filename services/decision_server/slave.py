@@ -82,6 +82,10 @@ class Slave(Protocol):
     def reset(self) -> str:
         """Clear a latch; returns the status after it."""
 
+    def arm_name(self) -> str:
+        """The arm's name, as its description declares it (ProxyRobot.GetArmInfo's)."""
+        ...
+
     def set_tool_frame(self, flange_to_tool: pin.SE3) -> pin.SE3:
         """Set the tool frame on the arm and on the sensor alike; returns the one in force."""
 

@@ -26,7 +26,7 @@ from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
 from tests.processes import BUF
-from wire.errors import FailedPreconditionError
+from wire.errors import FailedPreconditionError, UnavailableError
 
 
 def _rotation_z(angle: float) -> np.ndarray:
@@ -404,7 +404,9 @@ def test_an_episode_keeps_its_task_outcome_and_video(rig):
     assert rig.core.recordings.info("episode-1") == saved.__class__(
         "episode-1", saved.create_time_ns, saved.duration_s, 1, "MCAP", "", "insert the peg",
         "FAILED", 4)
-    contents = _read(rig.core.recordings.directory / "episode-1.mcap")
+    path = rig.core.recordings.directory / "episode-1.mcap"
+    assert recording_mcap.read_summary(path)["robot"] == "puma560"  # the arm's name
+    contents = _read(path)
     assert len(contents[recording_mcap.STEREO_HEADER]) == 1
     video = contents[recording_mcap.STEREO_VIDEO]
     # from the first key frame on, each at its capture time, as it came
@@ -412,6 +414,18 @@ def test_an_episode_keeps_its_task_outcome_and_video(rig):
     assert [v.timestamp.ToNanoseconds() for _, v in video] == [
         1_000_000_000 + k * 33_000_000 for k in (2, 3, 4, 5)]
     assert all(v.format == "h264" for _, v in video)
+
+
+def test_an_episode_whose_arm_cannot_say_its_name_records_without_it(rig):
+    lease = rig.lease.lease_id
+    def unreachable() -> str:
+        raise UnavailableError("ProxyRobot is down")
+
+    rig.slave.arm_name = unreachable
+    rig.core.start_recording(lease, "episode-2", "MCAP", "wipe")
+    rig.core.stop_recording(lease, "SUCCEEDED")
+    summary = recording_mcap.read_summary(rig.core.recordings.directory / "episode-2.mcap")
+    assert summary["task"] == "wipe" and "robot" not in summary
 
 
 def test_a_task_is_refused_without_mcap_or_when_it_is_not_a_label(rig):

@@ -238,6 +238,10 @@ class FakeSlave:
             self.commands.append(Command("reset"))
             return self.status
 
+    def arm_name(self) -> str:
+        self._check_reachable()
+        return self.kinematics.arm.name
+
     def set_tool_frame(self, flange_to_tool: pin.SE3) -> pin.SE3:
         self._check_reachable()
         with self._lock:

@@ -234,3 +234,30 @@ def test_episode_0_replays_to_where_the_recording_had_the_tool(recorded):
     replayed = recorded[2]
     assert replayed["frames"] > 100, replayed
     assert replayed["final_error_mm"] <= 2.0, replayed
+
+
+def test_appended_episodes_join_the_dataset_in_files_of_their_own(dataset, recorded,
+                                                                   tmp_path):
+    """The export of all episodes at once, and the first one exported then the rest appended,
+    hold the same rows; the appended frames are in their own mp4s, from their own t = 0."""
+    whole, info, _ = dataset
+    recordings, summary, _ = recorded
+    files = [recordings / f"{e['name']}.mcap" for e in summary["episodes"]
+             if e["outcome"] == "SUCCEEDED"]
+    grown = tmp_path / "grown"
+    export(files[:1], grown, FPS, report=lambda line: None)
+    assert export(files[1:], grown, FPS, append=True, report=lambda line: None) == info
+    data = [pq.read_table(grown / "data" / "chunk-000" / f"file-00{i}.parquet")
+            for i in (0, 1)]
+    assert pa.concat_tables(data).equals(
+        pq.read_table(whole / "data" / "chunk-000" / "file-000.parquet"))
+    episodes = pd.read_parquet(grown / "meta" / "episodes" / "chunk-000" / "file-001.parquet")
+    first_appended = data[0].num_rows
+    assert episodes["dataset_from_index"].iloc[0] == first_appended
+    for eye in ("left", "right"):
+        key = f"videos/observation.images.{eye}"
+        assert episodes[f"{key}/file_index"].tolist() == [1] * len(episodes)
+        assert episodes[f"{key}/from_timestamp"].iloc[0] == 0.0
+        with av.open(str(grown / key / "chunk-000" / "file-001.mp4")) as container:
+            frames = sum(1 for _ in container.decode(video=0))
+        assert frames == data[1].num_rows == episodes["length"].sum()

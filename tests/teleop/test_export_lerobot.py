@@ -1,7 +1,9 @@
 """The export's bad input, on episodes the DecisionServer's own recording store writes (a fake
 clock and an arm that moves 1 mm a sample; no station, no video): a run without video exports
 without images and says so; an unfinished or cut file is named incomplete; a recording that is
-no episode is skipped; an existing output, or nothing to export, is refused."""
+no episode is skipped; an existing output, or nothing to export, is refused; the arm's name
+comes from the episodes; --append numbers new episodes on and leaves a dataset it cannot
+extend as it was."""
 
 from __future__ import annotations
 
@@ -10,7 +12,9 @@ import shutil
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pinocchio as pin
+import pyarrow.parquet as pq
 import pytest
 
 from clients.teleop.export_lerobot import export, main
@@ -24,7 +28,7 @@ SAMPLES = 40
 
 
 def _record(directory: Path, name: str, task: str = "lift", outcome: str = "SUCCEEDED",
-            finish: bool = True) -> Path:
+            finish: bool = True, arm: str = "puma560", rise_m: float = 0.001) -> Path:
     """An episode of SAMPLES samples 10 ms apart, the tool rising 1 mm each, with a matching
     increment; the store's file (its partial one if not `finish`)."""
     clock = FakeClock()
@@ -37,10 +41,10 @@ def _record(directory: Path, name: str, task: str = "lift", outcome: str = "SUCC
         return SlaveState(pin.SE3(np.eye(3), np.array([0.4, 0.0, z[0]])), "READY",
                           clock.time_ns(), joint_positions_rad=(0.1, 0.2, z[0], 0.0, 0.0, 0.0))
 
-    store.start(name, "MCAP", Sources(state=state), task)
+    store.start(name, "MCAP", Sources(state=state, arm_name=arm), task)
     for _ in range(SAMPLES):
-        z[0] += 0.001
-        store.add("BASE", np.array([0.0, 0.0, 0.001]), np.eye(3), np.array([0.4, 0.0, z[0]]))
+        z[0] += rise_m
+        store.add("BASE", np.array([0.0, 0.0, rise_m]), np.eye(3), np.array([0.4, 0.0, z[0]]))
         clock.advance(0.01)
         height = z[0]
         if task:  # an episode samples every 10 ms (another recording every 50)
@@ -102,8 +106,6 @@ def test_the_actions_and_the_state_of_a_known_motion(tmp_path):
     2 mm a frame."""
     _record(tmp_path / "runs", "ep0")
     export([tmp_path / "runs"], tmp_path / "out", fps=50, report=lambda _: None)
-    import pyarrow.parquet as pq
-
     data = pq.read_table(tmp_path / "out" / "data" / "chunk-000" / "file-000.parquet")
     action = np.array(data.column("action").to_pylist())
     state = np.array(data.column("observation.state").to_pylist())
@@ -129,3 +131,82 @@ def test_an_export_that_fails_leaves_no_half_dataset(tmp_path, monkeypatch):
     with pytest.raises(OSError, match="No space left"):
         export([tmp_path / "runs"], tmp_path / "out", report=lambda _: None)
     assert not (tmp_path / "out").exists() and not (tmp_path / "out.partial").exists()
+
+
+def test_the_robot_type_is_the_arm_the_episodes_name(tmp_path, capsys):
+    _record(tmp_path / "fr3", "ep0", arm="fr3")
+    info = export([tmp_path / "fr3"], tmp_path / "out", report=lambda _: None)
+    assert info["robot_type"] == "fr3"
+    _record(tmp_path / "fr3", "ep1", arm="puma560")
+    with pytest.raises(ValueError, match="different arms.*ep0.mcap: fr3, ep1.mcap: puma560"):
+        export([tmp_path / "fr3"], tmp_path / "mixed", report=lambda _: None)
+    _record(tmp_path / "unnamed", "ep0", arm="")
+    assert main([str(tmp_path / "unnamed"), "--out", str(tmp_path / "o")]) == 2
+    assert "do not name their arm: give --robot-type" in capsys.readouterr().err
+    assert main([str(tmp_path / "unnamed"), "--out", str(tmp_path / "o"),
+                 "--robot-type", "my_arm"]) == 0
+    assert json.loads((tmp_path / "o" / "meta" / "info.json").read_text())["robot_type"] == \
+        "my_arm"
+
+
+def _dataset(root: Path) -> dict:
+    """Everything a reader sees of a dataset, its files concatenated in name order."""
+    def tables(kind: str) -> pd.DataFrame:
+        return pd.concat([pd.read_parquet(path) for path in
+                          sorted((root / kind).glob("chunk-*/file-*.parquet"))],
+                         ignore_index=True)
+
+    return {"info": json.loads((root / "meta" / "info.json").read_text()),
+            "stats": json.loads((root / "meta" / "stats.json").read_text()),
+            "tasks": pd.read_parquet(root / "meta" / "tasks.parquet"),
+            "data": tables("data"), "episodes": tables("meta/episodes")}
+
+
+def test_append_numbers_the_new_episodes_on_as_one_export_would(tmp_path):
+    runs = tmp_path / "runs"
+    for name, task, rise in (("a", "lift", 0.001), ("b", "lift", 0.002), ("c", "lower", -0.001)):
+        _record(runs, name, task=task, rise_m=rise)
+    files = sorted(runs.iterdir())
+    export(files, tmp_path / "whole", report=lambda _: None)
+    export(files[:1], tmp_path / "grown", report=lambda _: None)
+    lines: list[str] = []
+    info = export(files[1:], tmp_path / "grown", append=True, report=lines.append)
+    assert "3 episodes (2 appended)" in lines[-1]
+    assert any(line.startswith("episode 1: b.mcap, 'lift'") for line in lines), lines
+    whole, grown = _dataset(tmp_path / "whole"), _dataset(tmp_path / "grown")
+    assert grown["info"] == whole["info"] == info
+    assert (grown["tasks"].index.tolist(), grown["tasks"]["task_index"].tolist()) == \
+        (["lift", "lower"], [0, 1])
+    pd.testing.assert_frame_equal(grown["data"], whole["data"])
+    assert sorted(p.name for p in (tmp_path / "grown" / "data" / "chunk-000").iterdir()) == \
+        ["file-000.parquet", "file-001.parquet"]
+    assert grown["episodes"]["data/file_index"].tolist() == [0, 1, 1]
+    assert grown["episodes"]["meta/episodes/file_index"].tolist() == [0, 1, 1]
+    same = [c for c in whole["episodes"].columns if "file_index" not in c and
+            not c.startswith("stats/")]
+    pd.testing.assert_frame_equal(grown["episodes"][same], whole["episodes"][same])
+    for feature, stats in whole["stats"].items():
+        for stat in ("min", "max", "mean", "std", "count"):  # exact; quantiles are estimates
+            np.testing.assert_allclose(grown["stats"][feature][stat], stats[stat], atol=1e-9,
+                                       err_msg=f"{feature} {stat}")
+    assert not list(tmp_path.glob("grown.*"))  # no partial or replaced copy left
+
+
+def test_an_append_that_does_not_fit_leaves_the_dataset_as_it_was(tmp_path, capsys):
+    _record(tmp_path / "runs", "a")
+    _record(tmp_path / "fr3", "b", arm="fr3")
+    export([tmp_path / "runs"], tmp_path / "out", fps=50, report=lambda _: None)
+    before = {p: p.read_bytes() for p in (tmp_path / "out").rglob("*") if p.is_file()}
+    assert main([str(tmp_path / "fr3"), "--out", str(tmp_path / "out"), "--append",
+                 "--fps", "30"]) == 2
+    error = capsys.readouterr().err
+    assert "do not fit" in error and "fps 30 (the dataset's: 50)" in error
+    assert "robot_type 'fr3' (the dataset's: 'puma560')" in error
+    assert main([str(tmp_path / "runs"), "--out", str(tmp_path / "nothing-here.json"),
+                 "--append"]) == 0  # an append to nothing starts the dataset
+    (tmp_path / "not-a-dataset").mkdir()
+    assert main([str(tmp_path / "runs"), "--out", str(tmp_path / "not-a-dataset"),
+                 "--append"]) == 2
+    assert "not a LeRobot dataset to append to" in capsys.readouterr().err
+    after = {p: p.read_bytes() for p in (tmp_path / "out").rglob("*") if p.is_file()}
+    assert after == before and not list(tmp_path.glob("out.*"))

@@ -2440,7 +2440,8 @@ export enum RecordingFormat {
    * count per channel). A writer that fell behind drops new messages until it catches up: each
    * gap is a "recording_gap" metadata record (first_ns, last_ns, dropped: JSON counts by
    * channel), and the "recording" metadata gets "dropped" (the totals), and an episode's
-   * "task" and "outcome". With a camera behind the server, the stereo video too:
+   * "task", "outcome" and "robot" (the arm's name, when ProxyRobot says). With a camera
+   * behind the server, the stereo video too:
    *   /camera/stereo_header  StereoHeader, once (the calibration of both eyes)
    *   /camera/stereo/video   foxglove.CompressedVideo (format h264), both eyes side by side,
    *                          log time the capture time, from the stream's first key frame
