@@ -19,6 +19,7 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
     types_pb2,
 )
+from wire.local_call import LOCAL_CALLS_ENV
 from wire.tls import TLS_DIR_ENV, ChannelSecurity, open_channel
 
 SETUP_TIMEOUT_S = 10.0
@@ -42,8 +43,10 @@ class Station:
         self.shm = shm_name
         self.tls_dir = tls_dir
         self.security = ChannelSecurity(tls_dir, ADMIN_IDENTITY)  # plaintext without tls_dir
-        self.env = ({TLS_DIR_ENV: str(tls_dir), AUDIT_DIR_ENV: str(audit_dir)}
-                    if tls_dir else {})
+        # A plaintext station's DecisionServer moves the arm over ProxyRobot's local socket,
+        # as `make serve` starts one; over TLS, every call is gRPC (audited).
+        self.env = ({TLS_DIR_ENV: str(tls_dir), AUDIT_DIR_ENV: str(audit_dir)} if tls_dir
+                    else {LOCAL_CALLS_ENV: str(procs.scratch / f"proxy_robot-{shm_name}.sock")})
         self.suffix = "_tls" if tls_dir else ""  # of its processes' names
         self.world = world
         self.address: dict[str, str] = {}  # service -> host:port, from its ready line

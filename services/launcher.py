@@ -78,6 +78,7 @@ from services.runtime.supervisor_state import (
 from services.runtime.tls import station_channel_security
 from services.web_console.https import certificate_files
 from wire.addresses import env_name
+from wire.local_call import LOCAL_CALLS_ENV
 from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
 
@@ -189,6 +190,8 @@ def main(argv: list[str] | None = None) -> int:
     services = station_services(args.driver)
     with tempfile.TemporaryDirectory(prefix="telerobot-station-") as run_dir:
         env[SUPERVISOR_STATE_ENV] = str(Path(run_dir) / "supervisor.json")
+        if not args.tls_dir:  # over TLS, every call is gRPC: authenticated and audited
+            env[LOCAL_CALLS_ENV] = str(Path(run_dir) / "proxy_robot.sock")
         station = _Station(env, health_security, stop, wake,
                            RestartPolicy(max_failures=args.max_failures), services)
         try:

@@ -31,6 +31,7 @@ from services.runtime.service import HealthReporter, Service
 from services.runtime.tls import station_channel_security
 from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
 from wire.addresses import address_for
+from wire.local_call import LOCAL_CALLS_ENV
 from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import open_channel
 
@@ -60,7 +61,8 @@ class DecisionService(Service):
         # The inner links present the DecisionServer's own certificate when TLS is on.
         security = station_channel_security(self.args.tls_dir or None, "decision_server")
         slave = GrpcSlave(self.args.proxy_robot_address, self.args.force_sensor_address,
-                          self.args.emergency_stop_address or None, security)
+                          self.args.emergency_stop_address or None, security,
+                          local_calls=self.args.proxy_robot_local_calls or None)
         # A window of about one pair: the forward then reads a pair only as its client takes
         # one, so it holds no backlog of its own (wire/stereo.py).
         self._stereo_channel = open_channel(self.args.stereo_camera_address,
@@ -137,6 +139,11 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
                             help=f"where {name} listens (env TELEROBOT_{name.upper()}_ADDRESS)"
                                  + ("; empty: stop through ProxyRobot only"
                                     if name == "emergency_stop" else ""))
+    parser.add_argument("--proxy-robot-local-calls", metavar="PATH",
+                        default=os.environ.get(LOCAL_CALLS_ENV, ""),
+                        help="move the arm through ProxyRobot's local socket at PATH (its "
+                             "--local-calls, on this host) instead of gRPC: about 20 µs a "
+                             f"move instead of 0.5 ms (env {LOCAL_CALLS_ENV}; empty: gRPC)")
     parser.add_argument("--recordings-dir",
                         default=os.environ.get("TELEROBOT_RECORDINGS_DIR", "var/recordings"),
                         help="where recordings are kept (env TELEROBOT_RECORDINGS_DIR)")

@@ -32,6 +32,7 @@ from wire.errors import (
     UnavailableError,
     error_for_status,
 )
+from wire.local_call import LocalCallClient, method_path
 from wire.metadata import LANE_METADATA_KEY, LEASE_METADATA_KEY
 from wire.tls import ChannelSecurity, open_channel
 
@@ -53,6 +54,9 @@ STATE_FRESH_S = 0.1  # an older cached pose is fetched anew
 # An older cached wrench is left out of acks: the sensor stopped reading or its stream stalled,
 # and a stale force shown as current is worse than none.
 WRENCH_FRESH_S = 0.05
+_PROXY_ROBOT = proxy_robot_pb2.DESCRIPTOR.services_by_name["ProxyRobot"]
+_MOVE_PATHS = {name: method_path(_PROXY_ROBOT, name)
+               for name in ("MoveCartesianIncremental", "MoveJointsIncremental")}
 _FRAMES = {"BASE": types_pb2.REFERENCE_FRAME_BASE, "WRIST": types_pb2.REFERENCE_FRAME_WRIST,
            "TOOL": types_pb2.REFERENCE_FRAME_TOOL}
 # Metadata a forwarded call carries on: the lane and the lease, nothing gRPC-internal.
@@ -96,7 +100,7 @@ class GrpcSlave:
 
     def __init__(self, proxy_address: str, sensor_address: str,
                  emergency_stop_address: str | None = None,
-                 security: ChannelSecurity | None = None):
+                 security: ChannelSecurity | None = None, local_calls: str | None = None):
         security = security or ChannelSecurity()  # plaintext unless told
 
         def channel(address: str, service: str) -> grpc.Channel:
@@ -106,6 +110,10 @@ class GrpcSlave:
         self.robot_channel = channel(proxy_address, "proxy_robot")
         self.sensor_channel = channel(sensor_address, "force_sensor")
         self.robot = proxy_robot_pb2_grpc.ProxyRobotStub(self.robot_channel)
+        # The moves, every command's, over ProxyRobot's local socket when it is on this host
+        # (wire/local_call.py); every other call over gRPC.
+        self.local_moves = (LocalCallClient(local_calls, CALL_TIMEOUT_S) if local_calls
+                            else None)
         self.sensor = force_sensor_pb2_grpc.ForceSensorStub(self.sensor_channel)
         # The emergency-stop band (services/emergency_stop): the same EmergencyStop contract,
         # in a process that no ProxyRobot load can delay.
@@ -139,6 +147,8 @@ class GrpcSlave:
             streams = [*self._streams, *self._health_calls]
         for stream in streams:
             stream.cancel()
+        if self.local_moves is not None:
+            self.local_moves.close()
         self.robot_channel.close()
         self.sensor_channel.close()
         if self.emergency_channel is not None:
@@ -147,18 +157,24 @@ class GrpcSlave:
     # -- Slave ------------------------------------------------------------------------------
 
     def move_cartesian(self, delta_position, delta_rotation, frame: str) -> MoveResult:
-        reply = call(self.robot.MoveCartesianIncremental,
-                     proxy_robot_pb2.MoveCartesianIncrementalRequest(
-                         delta_position_m=convert.vector3_to_proto(delta_position),
-                         delta_rotation=convert.rotation_to_proto(delta_rotation),
-                         frame=_FRAMES[frame]))
+        reply = self._move("MoveCartesianIncremental",
+                           proxy_robot_pb2.MoveCartesianIncrementalRequest(
+                               delta_position_m=convert.vector3_to_proto(delta_position),
+                               delta_rotation=convert.rotation_to_proto(delta_rotation),
+                               frame=_FRAMES[frame]))
         return MoveResult(se3.trusted_pose(reply.target_tool_pose), reply.applied_fraction)
 
     def move_joints(self, delta_joints_rad) -> MoveResult:
-        reply = call(self.robot.MoveJointsIncremental,
-                     proxy_robot_pb2.MoveJointsIncrementalRequest(
-                         delta_joint_positions_rad=[float(v) for v in delta_joints_rad]))
+        reply = self._move("MoveJointsIncremental",
+                           proxy_robot_pb2.MoveJointsIncrementalRequest(
+                               delta_joint_positions_rad=[float(v) for v in delta_joints_rad]))
         return MoveResult(se3.trusted_pose(reply.target_tool_pose), 1.0)
+
+    def _move(self, name: str, request):
+        if self.local_moves is None:
+            return call(getattr(self.robot, name), request)
+        return self.local_moves.call(_MOVE_PATHS[name], request,
+                                     getattr(proxy_robot_pb2, f"{name}Response"))
 
     def hold(self, reason: str) -> tuple[pin.SE3, pin.SE3]:
         reply = call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))

@@ -16,10 +16,12 @@ from services.proxy_robot.status import (
     RobotStatus,
     StatusChanged,
 )
+from services.runtime.validation import check_request
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
 from wire import convert
 from wire.errors import FailedPreconditionError, InvalidArgumentError, UnavailableError
+from wire.local_call import Handler, method_path
 
 _FRAMES = {
     types_pb2.REFERENCE_FRAME_BASE: "BASE",
@@ -214,3 +216,24 @@ class ProxyRobotServicer(proxy_robot_pb2_grpc.ProxyRobotServicer):
 
     def Reset(self, request, context):
         return pb.ResetResponse(status=status_to_proto(self._core.reset()))
+
+
+# The calls the DecisionServer makes for every command, which it makes on the local socket
+# when it runs on this host (wire/local_call.py).
+LOCAL_MOVES = ("MoveCartesianIncremental", "MoveJointsIncremental")
+
+
+def local_moves(servicer: ProxyRobotServicer) -> dict[str, Handler]:
+    """LOCAL_MOVES for a LocalCallServer: the servicer's own handlers, behind the request
+    checks a gRPC call gets (services/runtime/validation.py)."""
+    service = pb.DESCRIPTOR.services_by_name["ProxyRobot"]
+
+    def checked(handler):
+        def handle(request):
+            check_request(request)
+            return handler(request, None)
+        return handle
+
+    return {method_path(service, name): (getattr(pb, f"{name}Request"),
+                                         checked(getattr(servicer, name)))
+            for name in LOCAL_MOVES}

@@ -250,3 +250,49 @@ def test_hold_answers_the_braking_target(rig, robot):
     assert position < target[0] < position + 0.06  # at most the braking distance from 1 rad/s
     rig.run_until_status(RobotStatus.READY)
     assert robot.GetStatus(pb.GetStatusRequest()).status == types_pb2.ROBOT_STATUS_READY
+
+
+def test_the_local_moves_answer_as_grpc_does(rig, robot, tmp_path):
+    """The DecisionServer's moves on the local socket (wire/local_call.py) reach the same
+    handlers behind the same checks: the same replies, and each refusal's class and reason."""
+    from wire.errors import FailedPreconditionError, InvalidArgumentError, OutOfRangeError
+    from wire.local_call import LocalCallClient, LocalCallServer
+
+    server = LocalCallServer(tmp_path / "moves.sock",
+                             servicer_module.local_moves(ProxyRobotServicer(rig.core)))
+    server.start()
+    client = LocalCallClient(server.path, timeout_s=5.0)
+    path = "/telerobot.v1.ProxyRobot/{}".format
+
+    def move(request):
+        return client.call(path("MoveCartesianIncremental"), request,
+                           pb.MoveCartesianIncrementalResponse)
+
+    try:
+        with pytest.raises(FailedPreconditionError):
+            move(pb.MoveCartesianIncrementalRequest(frame=BASE))  # not READY
+        ready(robot)
+        commands_before = len(rig.arm.commands)
+        skewed = types_pb2.Matrix3(row_major=[1, 0.2, 0, 0, 1, 0, 0, 0, 1])
+        for request, error in (
+                (pb.MoveCartesianIncrementalRequest(delta_rotation=skewed, frame=TOOL),
+                 InvalidArgumentError),
+                (pb.MoveCartesianIncrementalRequest(frame=99), InvalidArgumentError),
+                (pb.MoveCartesianIncrementalRequest(
+                    delta_position_m=types_pb2.Vector3(z=0.2), frame=BASE), OutOfRangeError)):
+            with pytest.raises(error):
+                move(request)
+        with pytest.raises(InvalidArgumentError, match="needs 6 values, got 7"):
+            client.call(path("MoveJointsIncremental"), pb.MoveJointsIncrementalRequest(
+                delta_joint_positions_rad=[0.01] * 7), pb.MoveJointsIncrementalResponse)
+        assert len(rig.arm.commands) == commands_before  # nothing reached the arm
+        local = move(pb.MoveCartesianIncrementalRequest(
+            delta_position_m=types_pb2.Vector3(z=0.01), frame=BASE))
+        over_grpc = robot.MoveCartesianIncremental(pb.MoveCartesianIncrementalRequest(
+            delta_position_m=types_pb2.Vector3(z=0.01), frame=BASE), timeout=5)
+        assert local.applied_fraction == over_grpc.applied_fraction == 1.0
+        assert math.isclose(over_grpc.target_tool_pose.position_m.z
+                            - local.target_tool_pose.position_m.z, 0.01, abs_tol=1e-4)
+    finally:
+        client.close()
+        server.stop()
