@@ -9,6 +9,10 @@ takes. It prints figures and judges nothing; what it showed: docs/probes.md.
    handler on grpcio's sync server (the transport's floor), the real handler on a bare sync
    server, and the real handler behind the station's server stack (lanes, interceptors,
    metrics: services/runtime/server.py).
+3. The same lockstep over one open gRPC stream (the no-op and the bare handler).
+4. The same lockstep over ProxyRobot's local socket (wire/local_call.py), as the station's
+   DecisionServer moves the arm: a no-op handler, and the real one behind ProxyRobot's request
+   checks (services/proxy_robot/servicer.py's local_moves).
 """
 
 from __future__ import annotations
@@ -17,21 +21,27 @@ import argparse
 import queue
 import subprocess
 import sys
+import tempfile
 import time
 from concurrent import futures
+from pathlib import Path
 
 import grpc
 import numpy as np
 
 from bench.probes.arm import proxy_robot_servicer
+from services.proxy_robot.servicer import local_moves
 from services.runtime.process import GIL_SWITCH_INTERVAL_S
 from telerobot.v1 import proxy_robot_pb2 as pb
 from telerobot.v1 import proxy_robot_pb2_grpc, types_pb2
 from wire import convert
+from wire.local_call import LocalCallClient, LocalCallServer
 
 KINDS = ("noop", "bare", "stack")
 STREAM_KINDS = ("noop", "bare")  # the kinds also served over a persistent stream
+LOCAL_KINDS = ("noop", "bare")  # and over the local socket (bare: behind ProxyRobot's checks)
 STREAM_METHOD = "/bench.probes.Hop/Moves"
+MOVE_METHOD = "/telerobot.v1.ProxyRobot/MoveCartesianIncremental"
 WARMUP = 200
 
 
@@ -85,6 +95,41 @@ def serve(kind: str) -> None:
     print(port, flush=True)
     sys.stdin.read()
     server.stop(0)
+
+
+def serve_local(kind: str, path: str) -> None:
+    """Serve `kind` on a local socket at `path`, say so, run until stdin closes."""
+    sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
+    if kind == "noop":
+        noop = _Noop()
+        methods = {MOVE_METHOD: (pb.MoveCartesianIncrementalRequest,
+                                 lambda request: noop.MoveCartesianIncremental(request, None))}
+    else:
+        methods = local_moves(proxy_robot_servicer())
+    server = LocalCallServer(path, methods)
+    server.start()
+    print("ready", flush=True)
+    sys.stdin.read()
+    server.stop()
+
+
+def local_round_trips(kind: str, calls: int, rate_hz: float) -> None:
+    with tempfile.TemporaryDirectory() as scratch:
+        path = str(Path(scratch) / "moves.sock")
+        server = subprocess.Popen([sys.executable, "-m", "bench.probes.hop", "--serve-local",
+                                   kind, "--path", path],
+                                  stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        try:
+            server.stdout.readline()
+            client = LocalCallClient(path, timeout_s=5.0)
+            took = _lockstep(lambda i: client.call(MOVE_METHOD, _request(1 if i % 2 else -1),
+                                                   pb.MoveCartesianIncrementalResponse),
+                             calls, rate_hz)
+            client.close()
+            print(f"same, the local socket, {kind}:".ljust(34), _percentiles(took))
+        finally:
+            server.stdin.close()
+            server.wait(10)
 
 
 def _stream_handler(servicer) -> grpc.GenericRpcHandler:
@@ -155,15 +200,22 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.probes.hop",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--serve", choices=KINDS, help=argparse.SUPPRESS)
+    parser.add_argument("--serve-local", choices=LOCAL_KINDS, help=argparse.SUPPRESS)
+    parser.add_argument("--path", help=argparse.SUPPRESS)
     parser.add_argument("--calls", type=int, default=2000)
     parser.add_argument("--rate", type=float, default=1000.0)
     args = parser.parse_args(argv)
     if args.serve:
         serve(args.serve)
         return 0
+    if args.serve_local:
+        serve_local(args.serve_local, args.path)
+        return 0
     handler_alone(args.calls)
     for kind in KINDS:
         round_trips(kind, args.calls, args.rate)
+    for kind in LOCAL_KINDS:
+        local_round_trips(kind, args.calls, args.rate)
     return 0
 
 

@@ -31,7 +31,8 @@ def test_every_kind_prints_its_percentiles(capsys):
         "handler, 0.0 ms apart", "handler, 0.5 ms apart", "handler, 2.0 ms apart",
         "round trip at 500 Hz, noop", "same, one open stream, noop",
         "round trip at 500 Hz, bare", "same, one open stream, bare",
-        "round trip at 500 Hz, stack"]
+        "round trip at 500 Hz, stack", "same, the local socket, noop",
+        "same, the local socket, bare"]
     for line in lines:
         p50, p90, p99 = (float(v) for v in re.findall(r"p\d\d ([\d.]+)", line))
         assert np.isfinite(p50) and 0 < p50 <= p90 <= p99

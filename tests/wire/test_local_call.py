@@ -10,6 +10,7 @@ import threading
 import pytest
 
 from telerobot.v1 import proxy_robot_pb2 as pb
+from tests.conftest import wait_for
 from wire.errors import (
     DeadlineExceededError,
     FailedPreconditionError,
@@ -18,7 +19,6 @@ from wire.errors import (
     UnavailableError,
     UnimplementedError,
 )
-from tests.conftest import wait_for
 from wire.local_call import LocalCallClient, LocalCallServer
 
 METHOD = "/telerobot.v1.ProxyRobot/MoveJointsIncremental"
