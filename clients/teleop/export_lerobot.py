@@ -35,8 +35,6 @@ from clients.teleop.episode_file import (
 )
 from clients.teleop.lerobot_dataset import on_grid, read_appended, write_dataset
 
-EXPORTED = ("SUCCEEDED", "UNSPECIFIED")
-
 
 def episode_files(runs: list[Path]) -> list[Path]:
     """The episode files among `runs` (files, or directories holding them), in name order."""

@@ -323,8 +323,9 @@ def _check_fits(existing: dict, new: dict) -> None:
     """ValueError naming each way the new episodes differ from the dataset's."""
     differences = [f"{key} {new[key]!r} (the dataset's: {existing.get(key)!r})"
                    for key in ("fps", "robot_type") if new[key] != existing.get(key)]
-    for name in sorted(set(new["features"]) | set(existing.get("features", {}))):
-        if new["features"].get(name) != existing["features"].get(name):
+    features = existing.get("features", {})
+    for name in sorted(set(new["features"]) | set(features)):
+        if new["features"].get(name) != features.get(name):
             differences.append(f"feature {name}")
     if differences:
         raise ValueError("the episodes do not fit the dataset they would be appended to: "
