@@ -16,8 +16,10 @@ receive on the caller's own thread, and one waiting thread on the server's
   own, as the station's shared memory is.
 - A caller's call waits at most `timeout_s`. A call whose request went out and whose reply did
   not come back (the server died or timed out) is never sent again: a move may have been
-  applied. Only a request that could not be sent at all is sent again, once, on a new
-  connection (the server restarted since the last call).
+  applied (UNAVAILABLE LOCAL_CALL_LOST, or DEADLINE_EXCEEDED). Only a request that could not
+  be sent at all is sent again, once, on a new connection (the server restarted since the
+  last call); if that fails too, the error's reason is NOT_SENT, and the caller may send it
+  another way.
 """
 
 from __future__ import annotations
@@ -51,6 +53,8 @@ log = logging.getLogger(__name__)
 LOCAL_CALLS_ENV = env_name("proxy_robot", "local_calls")
 
 OK, ERROR = 0, 1
+# The reason of an UnavailableError whose request never left: nothing was applied.
+NOT_SENT = "LOCAL_CALL_UNAVAILABLE"
 MAX_PACKET = 1 << 16
 ERROR_DOMAIN = "telerobot.v1"
 
@@ -226,12 +230,10 @@ class LocalCallClient:
                 reason="LOCAL_CALL_TIMEOUT", method=method) from None
         except OSError as error:
             self._disconnect()
-            raise self._unavailable(method, error) from None
+            raise self._lost(method, error.strerror or str(error)) from None
         if not reply:
             self._disconnect()
-            raise UnavailableError(f"{method}: the server closed {self.path} before it "
-                                   "replied (the call may have been applied)",
-                                   reason="LOCAL_CALL_LOST", method=method)
+            raise self._lost(method, "the server closed the socket")
         return reply
 
     def _connect(self, method: str) -> socket.socket:
@@ -252,5 +254,11 @@ class LocalCallClient:
             self._socket = None
 
     def _unavailable(self, method: str, error: OSError) -> UnavailableError:
+        """The request was not sent: the caller may send it another way."""
         return UnavailableError(f"{method}: {self.path}: {error.strerror or error}",
-                                reason="LOCAL_CALL_UNAVAILABLE", method=method)
+                                reason=NOT_SENT, method=method)
+
+    def _lost(self, method: str, why: str) -> UnavailableError:
+        return UnavailableError(f"{method}: {why} on {self.path} before it replied (the call "
+                                "may have been applied)", reason="LOCAL_CALL_LOST",
+                                method=method)

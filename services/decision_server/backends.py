@@ -32,7 +32,7 @@ from wire.errors import (
     UnavailableError,
     error_for_status,
 )
-from wire.local_call import LocalCallClient, method_path
+from wire.local_call import NOT_SENT, LocalCallClient, method_path
 from wire.metadata import LANE_METADATA_KEY, LEASE_METADATA_KEY
 from wire.tls import ChannelSecurity, open_channel
 
@@ -54,6 +54,7 @@ STATE_FRESH_S = 0.1  # an older cached pose is fetched anew
 # An older cached wrench is left out of acks: the sensor stopped reading or its stream stalled,
 # and a stale force shown as current is worse than none.
 WRENCH_FRESH_S = 0.05
+LOCAL_WARN_EVERY_S = 60.0  # a local socket that cannot be reached is said this often
 _PROXY_ROBOT = proxy_robot_pb2.DESCRIPTOR.services_by_name["ProxyRobot"]
 _MOVE_PATHS = {name: method_path(_PROXY_ROBOT, name)
                for name in ("MoveCartesianIncremental", "MoveJointsIncremental")}
@@ -114,6 +115,7 @@ class GrpcSlave:
         # (wire/local_call.py); every other call over gRPC.
         self.local_moves = (LocalCallClient(local_calls, CALL_TIMEOUT_S) if local_calls
                             else None)
+        self._local_warned_until = 0.0
         self.sensor = force_sensor_pb2_grpc.ForceSensorStub(self.sensor_channel)
         # The emergency-stop band (services/emergency_stop): the same EmergencyStop contract,
         # in a process that no ProxyRobot load can delay.
@@ -171,10 +173,19 @@ class GrpcSlave:
         return MoveResult(se3.trusted_pose(reply.target_tool_pose), 1.0)
 
     def _move(self, name: str, request):
-        if self.local_moves is None:
-            return call(getattr(self.robot, name), request)
-        return self.local_moves.call(_MOVE_PATHS[name], request,
-                                     getattr(proxy_robot_pb2, f"{name}Response"))
+        if self.local_moves is not None:
+            try:
+                return self.local_moves.call(_MOVE_PATHS[name], request,
+                                             getattr(proxy_robot_pb2, f"{name}Response"))
+            except UnavailableError as error:
+                if error.reason != NOT_SENT:
+                    raise  # it may have moved the arm: never sent twice
+                # Not sent (no socket there, not ours to open): the same move over gRPC.
+                if time.monotonic() >= self._local_warned_until:
+                    self._local_warned_until = time.monotonic() + LOCAL_WARN_EVERY_S
+                    log.warning("moving over gRPC: ProxyRobot's local socket: %s",
+                                error.message)
+        return call(getattr(self.robot, name), request)
 
     def hold(self, reason: str) -> tuple[pin.SE3, pin.SE3]:
         reply = call(self.robot.Hold, proxy_robot_pb2.HoldRequest(reason=reason))

@@ -1,5 +1,6 @@
 """GrpcSlave, the DecisionServer's port to the slave over gRPC, against in-process fakes of
-ProxyRobot and ForceSensor on port 0: what acks may show, and streams that come and go."""
+ProxyRobot and ForceSensor on port 0: what acks may show, streams that come and go, and the
+moves over ProxyRobot's local socket."""
 
 from __future__ import annotations
 
@@ -7,13 +8,20 @@ import queue
 import threading
 import time
 
+import numpy as np
 import pytest
 
 from services.decision_server import backends
 from services.decision_server.backends import GrpcSlave
 from services.runtime.server import binding, create_server
-from telerobot.v1 import force_sensor_pb2, force_sensor_pb2_grpc, proxy_robot_pb2_grpc
+from telerobot.v1 import (
+    force_sensor_pb2,
+    force_sensor_pb2_grpc,
+    proxy_robot_pb2,
+    proxy_robot_pb2_grpc,
+)
 from tests.conftest import wait_for
+from wire.errors import UnavailableError
 
 
 class Sensor(force_sensor_pb2_grpc.ForceSensorServicer):
@@ -146,3 +154,80 @@ def test_a_wrench_stream_is_forgotten_when_cancelled(slave):
     stream.cancel()
     assert list(samples) == []
     assert slave.open_streams() == before
+
+
+class Mover(Robot):
+    """A Robot that answers moves over gRPC, counting them."""
+
+    def __init__(self):
+        super().__init__()
+        self.moves = 0
+
+    def MoveCartesianIncremental(self, request, context):
+        self.moves += 1
+        return proxy_robot_pb2.MoveCartesianIncrementalResponse(applied_fraction=1.0)
+
+
+def test_moves_go_over_the_local_socket_and_over_grpc_only_when_it_cannot_be_reached(
+        tmp_path, caplog):
+    from wire.local_call import LocalCallServer
+
+    robot = Mover()
+    server, port = create_server("127.0.0.1:0", [
+        binding(proxy_robot_pb2_grpc, "ProxyRobot", robot)])
+    server.start()
+    local_moves: list[object] = []
+    path = tmp_path / "moves.sock"
+
+    def local_move(request):
+        local_moves.append(request)
+        return proxy_robot_pb2.MoveCartesianIncrementalResponse(applied_fraction=0.5)
+
+    local = LocalCallServer(path, {
+        "/telerobot.v1.ProxyRobot/MoveCartesianIncremental":
+            (proxy_robot_pb2.MoveCartesianIncrementalRequest, local_move)})
+    local.start()
+    slave = GrpcSlave(f"127.0.0.1:{port}", f"127.0.0.1:{port}", local_calls=str(path))
+    step = (np.array([0.0, 0.0, 0.001]), np.eye(3), "BASE")
+    try:
+        assert slave.move_cartesian(*step).applied_fraction == 0.5
+        assert (len(local_moves), robot.moves) == (1, 0)
+        local.stop()  # no socket there any more: the move was never sent, so gRPC takes it
+        assert slave.move_cartesian(*step).applied_fraction == 1.0
+        assert slave.move_cartesian(*step).applied_fraction == 1.0
+        assert (len(local_moves), robot.moves) == (1, 2)
+        warnings = [r for r in caplog.records if "moving over gRPC" in r.getMessage()]
+        assert len(warnings) == 1  # said once, not per move
+    finally:
+        slave.close()
+        server.stop(0)
+
+
+def test_a_local_move_whose_reply_was_lost_is_not_sent_over_grpc(tmp_path):
+    from wire.local_call import LocalCallServer
+
+    robot = Mover()
+    server, port = create_server("127.0.0.1:0", [
+        binding(proxy_robot_pb2_grpc, "ProxyRobot", robot)])
+    server.start()
+    path = tmp_path / "moves.sock"
+    holder: list[LocalCallServer] = []
+
+    def dies_mid_call(request):
+        holder[0].stop()  # the move is taken, then ProxyRobot goes before it replies
+        return proxy_robot_pb2.MoveCartesianIncrementalResponse(applied_fraction=1.0)
+
+    local = LocalCallServer(path, {
+        "/telerobot.v1.ProxyRobot/MoveCartesianIncremental":
+            (proxy_robot_pb2.MoveCartesianIncrementalRequest, dies_mid_call)})
+    holder.append(local)
+    local.start()
+    slave = GrpcSlave(f"127.0.0.1:{port}", f"127.0.0.1:{port}", local_calls=str(path))
+    try:
+        with pytest.raises(UnavailableError) as lost:
+            slave.move_cartesian(np.zeros(3), np.eye(3), "BASE")
+        assert lost.value.reason == "LOCAL_CALL_LOST"
+        assert robot.moves == 0  # never sent a second time
+    finally:
+        slave.close()
+        server.stop(0)
