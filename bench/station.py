@@ -40,14 +40,16 @@ class Station:
     def __init__(self, procs: ProcessSet, shm_name: str, tls_dir: Path | None = None,
                  audit_dir: Path | None = None, world: Child | None = None):
         self.procs = procs
+        self.suffix = "_tls" if tls_dir else ""  # of its processes' names
         self.shm = shm_name
         self.tls_dir = tls_dir
         self.security = ChannelSecurity(tls_dir, ADMIN_IDENTITY)  # plaintext without tls_dir
-        # A plaintext station's DecisionServer moves the arm over ProxyRobot's local socket,
-        # as `make serve` starts one; over TLS, every call is gRPC (audited).
+        # The DecisionServer moves the arm over ProxyRobot's local socket, as `make serve`
+        # starts a station.
         self.env = ({TLS_DIR_ENV: str(tls_dir), AUDIT_DIR_ENV: str(audit_dir)} if tls_dir
-                    else {LOCAL_CALLS_ENV: str(procs.scratch / f"proxy_robot-{shm_name}.sock")})
-        self.suffix = "_tls" if tls_dir else ""  # of its processes' names
+                    else {})
+        self.env[LOCAL_CALLS_ENV] = str(procs.scratch / f"proxy_robot{self.suffix}-{shm_name}"
+                                        f".sock")
         self.world = world
         self.address: dict[str, str] = {}  # service -> host:port, from its ready line
 

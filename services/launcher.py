@@ -190,8 +190,8 @@ def main(argv: list[str] | None = None) -> int:
     services = station_services(args.driver)
     with tempfile.TemporaryDirectory(prefix="telerobot-station-") as run_dir:
         env[SUPERVISOR_STATE_ENV] = str(Path(run_dir) / "supervisor.json")
-        if not args.tls_dir:  # over TLS, every call is gRPC: authenticated and audited
-            env[LOCAL_CALLS_ENV] = str(Path(run_dir) / "proxy_robot.sock")
+        # The moves between the station's own processes, off gRPC (wire/local_call.py).
+        env[LOCAL_CALLS_ENV] = str(Path(run_dir) / "proxy_robot.sock")
         station = _Station(env, health_security, stop, wake,
                            RestartPolicy(max_failures=args.max_failures), services)
         try:

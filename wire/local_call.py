@@ -13,7 +13,8 @@ receive on the caller's own thread, and one waiting thread on the server's
   with a google.rpc.ErrorInfo, as gRPC's rich errors carry them. The caller gets the same
   TelerobotError it would have got over gRPC.
 - Access is the socket file's: it is made owner-only (0600), in a directory of the station's
-  own, as the station's shared memory is.
+  own, as the station's shared memory is. Each call answered can be told to an audit log,
+  with the caller's user id from the socket's peer credentials.
 - A caller's call waits at most `timeout_s`. A call whose request went out and whose reply did
   not come back (the server died or timed out) is never sent again: a move may have been
   applied (UNAVAILABLE LOCAL_CALL_LOST, or DEADLINE_EXCEEDED). Only a request that could not
@@ -28,6 +29,7 @@ import contextlib
 import logging
 import os
 import socket
+import struct
 import threading
 from collections.abc import Callable
 from pathlib import Path
@@ -90,14 +92,20 @@ def method_path(service, name: str) -> str:
     return f"/{service.full_name}/{service.methods_by_name[name].name}"
 
 
+# Told of each call answered: its method, its outcome (OK or the error's status name) and the
+# user id of the process that called (the socket's peer credentials). It must not raise.
+Answered = Callable[[str, str, int], None]
+
+
 class LocalCallServer:
     """Answers `methods` (full method name -> Handler) on the socket at `path`: a thread
-    accepts, and a thread per connection reads a request, calls its handler and replies.
-    Threads start from the thread that calls `start`, so they share its scheduling (a
-    real-time service's, when it runs at SCHED_FIFO)."""
+    accepts, and a thread per connection reads a request, calls its handler and replies, then
+    tells `on_answered` (an audit log's hook) if set. Threads start from the thread that calls
+    `start`, so they share its scheduling (a real-time service's, at SCHED_FIFO)."""
 
     def __init__(self, path: str | Path, methods: dict[str, Handler]):
         self.path = Path(path)
+        self.on_answered: Answered | None = None
         self._methods = methods
         self._listener: socket.socket | None = None
         self._connections: set[socket.socket] = set()
@@ -144,6 +152,8 @@ class LocalCallServer:
                              daemon=True).start()
 
     def _serve(self, connection: socket.socket) -> None:
+        _, peer_uid, _ = struct.unpack("3i", connection.getsockopt(
+            socket.SOL_SOCKET, socket.SO_PEERCRED, struct.calcsize("3i")))
         try:
             while True:
                 try:
@@ -152,10 +162,13 @@ class LocalCallServer:
                     return
                 if not packet:
                     return  # the caller closed
+                method, reply, outcome = self._answer(packet)
                 try:
-                    connection.send(self.answer(packet))
+                    connection.send(reply)
                 except OSError:
                     return
+                if self.on_answered is not None:
+                    self.on_answered(method, outcome, peer_uid)
         finally:
             with self._lock:
                 self._connections.discard(connection)
@@ -163,6 +176,10 @@ class LocalCallServer:
 
     def answer(self, packet: bytes) -> bytes:
         """The reply to one request packet."""
+        return self._answer(packet)[1]
+
+    def _answer(self, packet: bytes) -> tuple[str, bytes, str]:
+        """The method asked for, the reply, and its outcome (OK or the error's status)."""
         name, _, body = packet.partition(b"\0")
         method = name.decode("ascii", "replace")
         try:
@@ -175,12 +192,12 @@ class LocalCallServer:
             except DecodeError as error:
                 raise InvalidArgumentError(f"the request does not decode: {error}",
                                            reason="BAD_REQUEST") from None
-            return bytes([OK]) + handler(request).SerializeToString()
+            return method, bytes([OK]) + handler(request).SerializeToString(), "OK"
         except TelerobotError as error:
-            return encode_error(error)
+            return method, encode_error(error), error.status_name
         except Exception as error:  # a bug: said, and the caller gets it, never a dead socket
             log.exception("local call %s failed", method)
-            return encode_error(InternalError(f"{method} failed: {error!r}"))
+            return method, encode_error(InternalError(f"{method} failed: {error!r}")), "INTERNAL"
 
 
 class LocalCallClient:

@@ -22,6 +22,7 @@ from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from services.runtime.process import run_service
 from services.runtime.server import binding
 from services.runtime.supervisor_state import RESTARTED_BECAUSE_ENV
+from services.security.audit import AuditLog
 from services.world.shm_layout import add_shm_name_argument
 from services.world.shm_link import SharedMemoryArmLink
 from telerobot.v1 import proxy_robot_pb2_grpc
@@ -56,7 +57,7 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"also answer the moves (MoveCartesianIncremental, MoveJointsIncremental) on an "
              f"owner-only Unix socket at PATH, for the DecisionServer on this host: "
              f"0.1 ms a call instead of gRPC's 0.65 ms (wire/local_call.py; env "
-             f"{LOCAL_CALLS_ENV}, which `make serve` sets for a plaintext station)")
+             f"{LOCAL_CALLS_ENV}, which `make serve` sets; audited as the station's moves are)")
     parser.add_argument(
         "--aio-server", action=argparse.BooleanOptionalAction,
         default=os.environ.get("TELEROBOT_PROXY_ROBOT_AIO_SERVER", "") == "1",
@@ -119,7 +120,20 @@ def build(args: argparse.Namespace) -> CoreService:
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", servicer)],
                        close, emergency_latch=core.hold_now, on_start=start,
                        fanouts={"robot_states": core.states, "robot_events": core.events},
-                       aio_server=args.aio_server)
+                       aio_server=args.aio_server,
+                       audit_to=(lambda audit: _audit_local_calls(local, audit)) if local
+                       else None)
+
+
+def _audit_local_calls(local: LocalCallServer, audit: AuditLog | None) -> None:
+    """The moves on the local socket are audited as the station's gRPC moves are: summarized,
+    a line a minute per method, the first of each outcome in full. The caller is named by its
+    user id, as the socket's peer credentials give it: only the station's user can open it."""
+    if audit is None:
+        return
+    peer = f"unix:{local.path}"
+    local.on_answered = lambda method, outcome, uid: audit.summarized(
+        identity=f"uid {uid}", role="station", method=method, outcome=outcome, peer=peer)
 
 
 if __name__ == "__main__":

@@ -9,6 +9,7 @@ from services.common.fanout import Fanout
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import ServiceBinding
 from services.runtime.service import HealthReporter, Service
+from services.security.audit import AuditLog
 
 
 @dataclass
@@ -27,6 +28,8 @@ class CoreService(Service):
     # Serve on grpc.aio (services/runtime/aio_server.py): an emergency stop's arrival then
     # does not queue behind a flood of other calls' events.
     aio_server: bool = False
+    # Told the process's audit log (Service.keep_audit): ProxyRobot's local socket audits there.
+    audit_to: Callable[[AuditLog | None], None] | None = None
 
     def configure(self, health: HealthReporter, metrics: ServiceMetrics | None) -> None:
         if metrics is None:
@@ -37,6 +40,10 @@ class CoreService(Service):
 
     def bindings(self) -> Sequence[ServiceBinding]:
         return self.served
+
+    def keep_audit(self, audit: AuditLog | None) -> None:
+        if self.audit_to is not None:
+            self.audit_to(audit)
 
     def start(self) -> None:
         if self.on_start is not None:

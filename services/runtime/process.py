@@ -146,6 +146,7 @@ def run_service(
     service.configure(lambda service_name, serving: server.health.set(
         service_name, health_pb2.HealthCheckResponse.SERVING if serving
         else health_pb2.HealthCheckResponse.NOT_SERVING), metrics)
+    service.keep_audit(audit)
     server.start()
     try:
         service.start()

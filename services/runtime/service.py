@@ -9,6 +9,8 @@ overrides it, so the runtime calls them all and a reader sees the whole contract
                           reports a health entry of the service's own, from any thread;
                           `metrics` is the process's ServiceMetrics, or None when metrics
                           are off
+    keep_audit(audit)     then: the process's AuditLog (services/security/audit.py), or None
+                          when it keeps none, for calls the service answers beside gRPC
     start()               become ready to serve (open hardware, start threads); raise to
                           abort start-up
     on_emergency_call()   an EmergencyStop call arrived: latch the stop now. It runs on gRPC's
@@ -30,6 +32,7 @@ from collections.abc import Callable, Sequence
 from services.runtime.lanes import Lane, LaneConfig
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.server import ServiceBinding
+from services.security.audit import AuditLog
 
 HealthReporter = Callable[[str, bool], None]
 
@@ -46,6 +49,10 @@ class Service:
 
     def configure(self, health: HealthReporter, metrics: ServiceMetrics | None) -> None:
         """Once the server exists, before start()."""
+
+    def keep_audit(self, audit: AuditLog | None) -> None:
+        """Once the server exists, before start(): where calls answered beside gRPC are
+        audited."""
 
     def start(self) -> None:
         """Become ready to serve."""

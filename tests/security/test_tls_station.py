@@ -9,6 +9,7 @@ port and on each service's own (inner) port, and gets the code its role earns.
 from __future__ import annotations
 
 import json
+import os
 import signal
 import subprocess
 import time
@@ -371,3 +372,38 @@ def test_the_live_view_serves_wss_and_reads_the_station_as_an_observer(station, 
         client.collect(lambda got: len(got[fx.JOINT_STATES]) >= 2, timeout_s=30)
     with pytest.raises(InvalidHandshake):  # plain ws:// gets no WebSocket upgrade
         FoxgloveClient(f"ws://{station['address']['foxglove']}").close()
+
+
+def test_the_decision_servers_moves_on_the_local_socket_are_audited(station, pki):
+    """On a TLS station too the DecisionServer moves the arm over ProxyRobot's local socket
+    (wire/local_call.py); ProxyRobot's audit log summarizes those moves as the station's, the
+    caller named by the user id the socket's peer credentials give."""
+    from telerobot.v1 import types_pb2
+
+    with _channel(station, "proxy_robot", pki, "admin") as channel:  # a test before stopped it
+        robot = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+        if robot.Reset(pr.ResetRequest(), timeout=10).status != types_pb2.ROBOT_STATUS_READY:
+            robot.Initialize(pr.InitializeRequest(), timeout=30)
+    with _channel(station, "decision_server", pki, "operator") as channel:
+        door = decision_server_pb2_grpc.DecisionServerStub(channel)
+        lease = door.AcquireControl(ds.AcquireControlRequest(
+            mode=ds.CONTROL_MODE_EXCLUSIVE), timeout=10).lease_id
+        metadata = ((LEASE_METADATA_KEY, lease),)
+        try:
+            increments = [ds.RecordedIncrement(
+                offset={"nanos": k * 10_000_000}, frame=types_pb2.REFERENCE_FRAME_BASE,
+                delta_position_m=types_pb2.Vector3(z=0.0001 * (-1) ** k)) for k in range(4)]
+            door.StartReplay(ds.StartReplayRequest(name="local-moves", speed=1.0,
+                                                   increments=increments),
+                             timeout=10, metadata=metadata)
+
+            def local_moves():
+                return [r for r in _audit(station["audit"], "proxy_robot")
+                        if r.get("method", "").endswith("/MoveCartesianIncremental")
+                        and r.get("peer", "").startswith("unix:")] or None
+
+            records = wait_for(local_moves, what="the replay's moves in ProxyRobot's audit log")
+        finally:
+            door.ReleaseControl(ds.ReleaseControlRequest(lease_id=lease), timeout=10)
+    assert {(r["identity"], r["role"], r["outcome"]) for r in records} == {
+        (f"uid {os.getuid()}", "station", "OK")}

@@ -4,6 +4,7 @@ reply was lost is never sent twice; a late reply never answers the next call."""
 
 from __future__ import annotations
 
+import os
 import stat
 import threading
 
@@ -70,7 +71,11 @@ def _move(client: LocalCallClient, delta: float = 0.1, joints: int = 6):
 
 def test_a_call_gets_its_reply_and_the_socket_is_the_owners_only(served):
     arm, server, client = served
+    answered: list[tuple] = []
+    server.on_answered = lambda *call: answered.append(call)
     assert list(_move(client).target_joint_positions_rad) == pytest.approx([0.1] * 6)
+    wait_for(lambda: answered, timeout_s=5, what="the call told to the audit hook")
+    assert answered == [(METHOD, "OK", os.getuid())]  # the caller's user id, from the socket
     assert list(_move(client).target_joint_positions_rad) == pytest.approx([0.2] * 6)
     assert stat.S_IMODE(server.path.stat().st_mode) == 0o600
     assert arm.calls == 2
@@ -82,9 +87,13 @@ def test_errors_come_back_as_the_callers_own_classes(served):
         _move(client, joints=5)
     assert (bad.value.reason, bad.value.method) == ("BAD_DELTA", METHOD)
     arm.refuse = True
+    answered: list[tuple] = []
+    served[1].on_answered = lambda *call: answered.append(call)
     with pytest.raises(FailedPreconditionError, match="Reset first") as refused:
         _move(client)
     assert refused.value.reason == "ESTOPPED"
+    wait_for(lambda: answered, timeout_s=5, what="the refusal told to the audit hook")
+    assert answered[0][1] == "FAILED_PRECONDITION"
     arm.refuse, arm.fail = False, True
     with pytest.raises(InternalError, match="a bug"):
         _move(client)
