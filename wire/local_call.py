@@ -51,7 +51,7 @@ from wire.errors import (
 log = logging.getLogger(__name__)
 
 # Where ProxyRobot answers its moves on this host (its --local-calls, the DecisionServer's
-# --proxy-robot-local-calls): `make serve` sets it for a plaintext station.
+# --proxy-robot-local-calls): `make serve` sets it for every station.
 LOCAL_CALLS_ENV = env_name("proxy_robot", "local_calls")
 
 OK, ERROR = 0, 1
