@@ -152,9 +152,9 @@ class LocalCallServer:
                              daemon=True).start()
 
     def _serve(self, connection: socket.socket) -> None:
-        _, peer_uid, _ = struct.unpack("3i", connection.getsockopt(
-            socket.SOL_SOCKET, socket.SO_PEERCRED, struct.calcsize("3i")))
         try:
+            _, peer_uid, _ = struct.unpack("3i", connection.getsockopt(
+                socket.SOL_SOCKET, socket.SO_PEERCRED, struct.calcsize("3i")))
             while True:
                 try:
                     packet = connection.recv(MAX_PACKET)
@@ -167,8 +167,9 @@ class LocalCallServer:
                     connection.send(reply)
                 except OSError:
                     return
-                if self.on_answered is not None:
-                    self.on_answered(method, outcome, peer_uid)
+                finally:  # answered, whether the reply reached the caller or not
+                    if self.on_answered is not None:
+                        self.on_answered(method, outcome, peer_uid)
         finally:
             with self._lock:
                 self._connections.discard(connection)
