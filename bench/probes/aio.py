@@ -5,7 +5,11 @@ three ways, each in a process of its own, driven at 1 kHz (pipelined) by one grp
 - ``sync``: grpcio's sync server; the handler does the work and yields the ack;
 - ``aio-inline``: grpc.aio, the work done in the event loop;
 - ``aio-executor``: grpc.aio, the work handed to a thread (run_in_executor) and awaited, as
-  blocking domain code would have to be.
+  blocking domain code would have to be;
+- ``sync-bare``: grpcio's sync server with no work and no busy threads: the transport's own
+  cost.
+
+Each line also gives the server process's CPU time per message (user and system, from /proc).
 
 "Work" is WORK_S of pure Python per message (about a merged move's CPU in the DecisionServer),
 and three threads in the server burn the GIL 1 ms in every 10 (the DecisionServer's followers,
@@ -17,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import os
 import subprocess
 import sys
 import tempfile
@@ -33,7 +38,7 @@ from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc as pb_grpc
 
 WORK_S = 0.0003
-KINDS = ("sync", "aio-inline", "aio-executor")
+KINDS = ("sync", "aio-inline", "aio-executor", "sync-bare")
 
 
 def _work() -> None:
@@ -59,9 +64,13 @@ def _ack(request: pb.TeleoperateRequest) -> pb.TeleoperateResponse:
 
 
 class SyncEcho(pb_grpc.DecisionServerServicer):
+    def __init__(self, work: bool = True):
+        self._work = work
+
     def Teleoperate(self, requests, context):
         for request in requests:
-            _work()
+            if self._work:
+                _work()
             yield _ack(request)
 
 
@@ -82,10 +91,11 @@ class AioEcho(pb_grpc.DecisionServerServicer):
 
 def serve(kind: str, port_file: Path) -> None:
     sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
-    _busy_threads()
-    if kind == "sync":
+    if kind != "sync-bare":
+        _busy_threads()
+    if kind in ("sync", "sync-bare"):
         server = grpc.server(futures.ThreadPoolExecutor(16))
-        pb_grpc.add_DecisionServerServicer_to_server(SyncEcho(), server)
+        pb_grpc.add_DecisionServerServicer_to_server(SyncEcho(work=kind == "sync"), server)
         port_file.write_text(str(server.add_insecure_port("127.0.0.1:0")))
         server.start()
         server.wait_for_termination()
@@ -129,6 +139,12 @@ async def drive(port: int, rate_hz: float, seconds: float) -> tuple[int, int, np
         return count, len(round_trips), np.asarray(round_trips) / 1e6
 
 
+def _cpu_s(pid: int) -> float:
+    """The process's user and system CPU time so far (s)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.probes.aio",
                                      description=__doc__.split("\n\n")[0])
@@ -150,13 +166,15 @@ def main(argv: list[str] | None = None) -> int:
                     if server.poll() is not None:
                         raise RuntimeError(f"the {kind} server exited")
                     time.sleep(0.05)
+                cpu_before = _cpu_s(server.pid)
                 sent, acked, ms = asyncio.run(drive(int(port_file.read_text()), args.rate,
                                                     args.seconds))
+                cpu_ms = (_cpu_s(server.pid) - cpu_before) * 1e3 / sent
             finally:
                 server.terminate()
                 server.wait(5)
         print(f"{kind:13s} acked {acked}/{sent}  round trip p50 {np.percentile(ms, 50):7.2f}"
-              f"  p99 {np.percentile(ms, 99):7.2f} ms")
+              f"  p99 {np.percentile(ms, 99):7.2f} ms  server CPU {cpu_ms:.3f} ms/message")
     return 0
 
 
