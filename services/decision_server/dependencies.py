@@ -125,10 +125,12 @@ class DependencyWatch:
     def poll(self) -> list[Dependency]:
         """Look once: update every dependency's state, tell the listeners of each change, and
         return them all (in ORDER)."""
-        answers = self._health()
-        supervised = {name: child for name, child in self._supervisor_state().items()
-                      if _well_formed(child)}
         with self._lock:
+            # Read under the lock too: two polls at once (the watch's and a GetDependencies')
+            # must not let the one that read first write last, and turn a fresh state stale.
+            answers = self._health()
+            supervised = {name: child for name, child in self._supervisor_state().items()
+                          if _well_formed(child)}
             now_ns = self._clock.time_ns()
             for name, answer in answers.items():
                 state, reason, restarts = assess(answer, supervised.get(name), now_ns * 1e-9)

@@ -177,6 +177,53 @@ def test_a_failing_listener_does_not_stop_the_others(watched):
     assert len(changes) == 4
 
 
+def test_two_polls_at_once_never_leave_the_older_reading_last():
+    """The watch's poll and a GetDependencies' poll run at once: the one that read the health
+    first must not write its (older) reading after the other's newer one, or a camera seen
+    gone would be SERVING again until the next poll."""
+    import threading
+
+    readings = iter([{"stereo_camera": "ok"}, {"stereo_camera": REFUSED}])
+    first_reading, release_first = threading.Event(), threading.Event()
+
+    def health() -> dict[str, str]:
+        reading = next(readings)
+        if reading["stereo_camera"] == "ok":  # the first poll reads, then is descheduled
+            first_reading.set()
+            release_first.wait(10)
+        return reading
+
+    watch = DependencyWatch(health, FakeClock(), lambda: {})
+
+    class Contended:
+        """The watch's lock, telling when a poll has to wait for it."""
+
+        def __init__(self, lock):
+            self._lock, self.waited = lock, threading.Event()
+
+        def __enter__(self):
+            if not self._lock.acquire(blocking=False):
+                self.waited.set()
+                self._lock.acquire()
+
+        def __exit__(self, *exc):
+            self._lock.release()
+
+    lock = Contended(watch._lock)  # noqa: SLF001 - to see the second poll wait
+    watch._lock = lock  # noqa: SLF001
+    older = threading.Thread(target=watch.poll)
+    older.start()
+    assert first_reading.wait(10)
+    newer = threading.Thread(target=watch.poll)
+    newer.start()
+    wait_for(lambda: lock.waited.is_set() or not newer.is_alive(), timeout_s=10,
+             what="the second poll waiting for the first, or done")
+    release_first.set()
+    older.join(10)
+    newer.join(10)
+    assert by_name(watch.dependencies())["stereo_camera"].state == NOT_SERVING
+
+
 # -- through the DecisionServer's contract ----------------------------------------------------
 
 def test_get_dependencies_and_the_event_through_grpc(fake_station):
