@@ -29,7 +29,8 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 # wake, which is what real-time is for on a station and not what a test of something else
 # needs. So the suite's stations run them as ordinary threads; tests/runtime/test_realtime.py
 # checks the real-time start, and `make bench` (soak_overload) measures what it buys.
-for _service in ("decision_server", "proxy_robot", "force_sensor", "emergency_stop"):
+COMMAND_PATH_SERVICES = ("decision_server", "proxy_robot", "force_sensor", "emergency_stop")
+for _service in COMMAND_PATH_SERVICES:
     os.environ.setdefault(f"TELEROBOT_{_service.upper()}_RT_PRIORITY", "0")
 
 from services.runtime import children  # noqa: E402

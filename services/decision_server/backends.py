@@ -56,8 +56,10 @@ STATE_FRESH_S = 0.1  # an older cached pose is fetched anew
 WRENCH_FRESH_S = 0.05
 LOCAL_WARN_EVERY_S = 60.0  # a local socket that cannot be reached is said this often
 _PROXY_ROBOT = proxy_robot_pb2.DESCRIPTOR.services_by_name["ProxyRobot"]
-_MOVE_PATHS = {name: method_path(_PROXY_ROBOT, name)
-               for name in ("MoveCartesianIncremental", "MoveJointsIncremental")}
+# The moves ProxyRobot also answers on its local socket: each one's path and response type.
+_LOCAL_MOVES = {name: (method_path(_PROXY_ROBOT, name),
+                       getattr(proxy_robot_pb2, f"{name}Response"))
+                for name in ("MoveCartesianIncremental", "MoveJointsIncremental")}
 _FRAMES = {"BASE": types_pb2.REFERENCE_FRAME_BASE, "WRIST": types_pb2.REFERENCE_FRAME_WRIST,
            "TOOL": types_pb2.REFERENCE_FRAME_TOOL}
 # Metadata a forwarded call carries on: the lane and the lease, nothing gRPC-internal.
@@ -174,15 +176,16 @@ class GrpcSlave:
 
     def _move(self, name: str, request):
         if self.local_moves is not None:
+            path, response_type = _LOCAL_MOVES[name]
             try:
-                return self.local_moves.call(_MOVE_PATHS[name], request,
-                                             getattr(proxy_robot_pb2, f"{name}Response"))
+                return self.local_moves.call(path, request, response_type)
             except UnavailableError as error:
                 if error.reason != NOT_SENT:
                     raise  # it may have moved the arm: never sent twice
                 # Not sent (no socket there, not ours to open): the same move over gRPC.
-                if time.monotonic() >= self._local_warned_until:
-                    self._local_warned_until = time.monotonic() + LOCAL_WARN_EVERY_S
+                now = time.monotonic()
+                if now >= self._local_warned_until:
+                    self._local_warned_until = now + LOCAL_WARN_EVERY_S
                     log.warning("moving over gRPC: ProxyRobot's local socket: %s",
                                 error.message)
         return call(getattr(self.robot, name), request)

@@ -20,6 +20,7 @@ from services.launcher import GRPC_CHILDREN, HARDWARE_STATION, STATION
 from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from services.runtime.process import metrics_port_name
 from services.security import pki
+from tests.conftest import COMMAND_PATH_SERVICES
 from tests.processes import REPO, scrape_metrics, unique_shm_name
 from wire.addresses import env_name
 
@@ -125,7 +126,7 @@ def test_teleop_inserts_the_peg_on_a_franka_under_compliance(tmp_path):
     env.update(TELEROBOT_WORLD_SHM=unique_shm_name(), TELEROBOT_ARM="fr3",
                TELEROBOT_PROXY_ROBOT_DRIVER="franka-sim")
     env.update({env_name(name, "rt_priority"): str(COMMAND_PATH_FIFO_PRIORITY)
-                for name in ("decision_server", "proxy_robot", "force_sensor", "emergency_stop")})
+                for name in COMMAND_PATH_SERVICES})
     out = tmp_path / "run"
     with local_station(env=env) as addresses:
         assert set(HARDWARE_STATION) - {"web_console", "foxglove"} <= set(addresses)
