@@ -393,9 +393,11 @@ def test_the_decision_servers_moves_on_the_local_socket_are_audited(station, pki
             increments = [ds.RecordedIncrement(
                 offset={"nanos": k * 10_000_000}, frame=types_pb2.REFERENCE_FRAME_BASE,
                 delta_position_m=types_pb2.Vector3(z=0.0001 * (-1) ** k)) for k in range(4)]
-            door.StartReplay(ds.StartReplayRequest(name="local-moves", speed=1.0,
-                                                   increments=increments),
-                             timeout=10, metadata=metadata)
+            request = ds.StartReplayRequest(name="local-moves", speed=1.0,
+                                            increments=increments)
+            # Taken once the DecisionServer's state stream has the reset arm READY.
+            wait_for(lambda: _code(door.StartReplay, request, metadata)[0] == grpc.StatusCode.OK,
+                     what="the replay started on the reset arm")
 
             def local_moves():
                 return [r for r in _audit(station["audit"], "proxy_robot")

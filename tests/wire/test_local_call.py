@@ -82,18 +82,18 @@ def test_a_call_gets_its_reply_and_the_socket_is_the_owners_only(served):
 
 
 def test_errors_come_back_as_the_callers_own_classes(served):
-    arm, _, client = served
+    arm, server, client = served
+    answered: list[tuple] = []  # told after each reply is sent: set before the first call
+    server.on_answered = lambda *call: answered.append(call)
     with pytest.raises(InvalidArgumentError) as bad:
         _move(client, joints=5)
     assert (bad.value.reason, bad.value.method) == ("BAD_DELTA", METHOD)
     arm.refuse = True
-    answered: list[tuple] = []
-    served[1].on_answered = lambda *call: answered.append(call)
     with pytest.raises(FailedPreconditionError, match="Reset first") as refused:
         _move(client)
     assert refused.value.reason == "ESTOPPED"
-    wait_for(lambda: answered, timeout_s=5, what="the refusal told to the audit hook")
-    assert answered[0][1] == "FAILED_PRECONDITION"
+    wait_for(lambda: len(answered) == 2, timeout_s=5, what="both refusals told to the hook")
+    assert [outcome for _, outcome, _ in answered] == ["INVALID_ARGUMENT", "FAILED_PRECONDITION"]
     arm.refuse, arm.fail = False, True
     with pytest.raises(InternalError, match="a bug"):
         _move(client)
