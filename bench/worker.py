@@ -58,6 +58,11 @@ def _command(p: dict) -> dict:
 
 def _teleop(p: dict) -> dict:
     from bench.teleop import measure
+    from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY, raise_thread_priority
+
+    # The sender keeps its 1 kHz deadlines as a haptic master's loop does: real-time where
+    # the host allows it (its threads started later do not inherit it).
+    raise_thread_priority(COMMAND_PATH_FIFO_PRIORITY, -10, what="master's sender")
 
     options = {key: p[key] for key in ("swing", "window_s", "drain_s", "first_sign",
                                        "record_dir", "server_pid", "episode_task")

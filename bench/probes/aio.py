@@ -3,6 +3,9 @@ figures and judges nothing; what it showed: docs/probes.md. The same bidirection
 three ways, each in a process of its own, driven at 1 kHz (pipelined) by one grpc.aio client:
 
 - ``sync``: grpcio's sync server; the handler does the work and yields the ack;
+- ``sync-threads``: grpcio's sync server in the DecisionServer's three threads
+  (services/common/inbox.py): one reads, one does the work on each batch, the handler yields
+  the acks;
 - ``aio-inline``: grpc.aio, the work done in the event loop;
 - ``aio-executor``: grpc.aio, the work handed to a thread (run_in_executor) and awaited, as
   blocking domain code would have to be;
@@ -33,12 +36,14 @@ from pathlib import Path
 import grpc
 import numpy as np
 
+from bench.probes.tenant import start_tenant
+from services.common.inbox import Inbox, Producer
 from services.runtime.process import GIL_SWITCH_INTERVAL_S
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import decision_server_pb2_grpc as pb_grpc
 
 WORK_S = 0.0003
-KINDS = ("sync", "aio-inline", "aio-executor", "sync-bare")
+KINDS = ("sync", "sync-threads", "aio-inline", "aio-executor", "sync-bare")
 
 
 def _work() -> None:
@@ -74,6 +79,22 @@ class SyncEcho(pb_grpc.DecisionServerServicer):
             yield _ack(request)
 
 
+class ThreadedEcho(pb_grpc.DecisionServerServicer):
+    def Teleoperate(self, requests, context):
+        inbox = Inbox(requests, lambda request: request)
+
+        def serve(emit) -> None:
+            while batch := inbox.take():
+                _work()
+                for request in batch:
+                    emit(_ack(request))
+
+        try:
+            yield from Producer(serve)
+        finally:
+            inbox.close()
+
+
 class AioEcho(pb_grpc.DecisionServerServicer):
     def __init__(self, inline: bool):
         self._inline = inline
@@ -93,9 +114,10 @@ def serve(kind: str, port_file: Path) -> None:
     sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
     if kind != "sync-bare":
         _busy_threads()
-    if kind in ("sync", "sync-bare"):
+    if kind.startswith("sync"):
         server = grpc.server(futures.ThreadPoolExecutor(16))
-        pb_grpc.add_DecisionServerServicer_to_server(SyncEcho(work=kind == "sync"), server)
+        echo = ThreadedEcho() if kind == "sync-threads" else SyncEcho(work=kind == "sync")
+        pb_grpc.add_DecisionServerServicer_to_server(echo, server)
         port_file.write_text(str(server.add_insecure_port("127.0.0.1:0")))
         server.start()
         server.wait_for_termination()
@@ -152,30 +174,44 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--port-file", help=argparse.SUPPRESS)
     parser.add_argument("--rate", type=float, default=1000.0)
     parser.add_argument("--seconds", type=float, default=3.0)
+    parser.add_argument("--tenants", type=float, nargs="*", default=[],
+                        help="shares of a core computed by tenant processes beside the server "
+                             "(bench/probes/tenant.py), e.g. 0.6 0.6: a machine the station "
+                             "keeps busy")
     args = parser.parse_args(argv)
     if args.serve:
         serve(args.serve, Path(args.port_file))
         return 0
-    for kind in KINDS:
-        with tempfile.TemporaryDirectory() as scratch:
-            port_file = Path(scratch) / "port"
-            server = subprocess.Popen([sys.executable, "-m", "bench.probes.aio", "--serve", kind,
-                                       "--port-file", str(port_file)])
-            try:
-                while not port_file.exists() or not port_file.read_text():
-                    if server.poll() is not None:
-                        raise RuntimeError(f"the {kind} server exited")
-                    time.sleep(0.05)
-                cpu_before = _cpu_s(server.pid)
-                sent, acked, ms = asyncio.run(drive(int(port_file.read_text()), args.rate,
-                                                    args.seconds))
-                cpu_ms = (_cpu_s(server.pid) - cpu_before) * 1e3 / sent
-            finally:
-                server.terminate()
-                server.wait(5)
-        print(f"{kind:13s} acked {acked}/{sent}  round trip p50 {np.percentile(ms, 50):7.2f}"
-              f"  p99 {np.percentile(ms, 99):7.2f} ms  server CPU {cpu_ms:.3f} ms/message")
+    tenants = [start_tenant(share) for share in args.tenants]
+    try:
+        for kind in KINDS:
+            _measure(kind, args.rate, args.seconds)
+    finally:
+        for tenant in tenants:
+            tenant.stdin.close()
+            tenant.wait(5)
     return 0
+
+
+def _measure(kind: str, rate: float, seconds: float) -> None:
+    with tempfile.TemporaryDirectory() as scratch:
+        port_file = Path(scratch) / "port"
+        server = subprocess.Popen([sys.executable, "-m", "bench.probes.aio", "--serve", kind,
+                                   "--port-file", str(port_file)])
+        try:
+            while not port_file.exists() or not port_file.read_text():
+                if server.poll() is not None:
+                    raise RuntimeError(f"the {kind} server exited")
+                time.sleep(0.05)
+            cpu_before = _cpu_s(server.pid)
+            sent, acked, ms = asyncio.run(drive(int(port_file.read_text()), rate, seconds))
+            cpu_ms = (_cpu_s(server.pid) - cpu_before) * 1e3 / sent
+        finally:
+            server.terminate()
+            server.wait(5)
+    print(f"{kind:13s} acked {acked}/{sent}  round trip p50 {np.percentile(ms, 50):7.2f}"
+          f"  p99 {np.percentile(ms, 99):7.2f} ms  server CPU {cpu_ms:.3f} ms/message",
+          flush=True)
 
 
 if __name__ == "__main__":

@@ -64,6 +64,7 @@ STREAM_POLL_S = 0.1
 # A Teleoperate stream takes one of the server's capped stream slots from its first byte: its
 # init must come within this, or the stream is cancelled and the slot freed.
 INIT_TIMEOUT_S = 10.0
+MAX_COMMANDS_PER_MESSAGE = 1000  # TeleoperateRequest.commands: a second's worth at 1 kHz
 # Calls through the facades that command the arm or the sensor need the control lock.
 PROXY_COMMANDS = {"Connect", "Initialize", "Disconnect", "SetToolFrame", "MoveJointsIncremental",
                   "MoveCartesianIncremental", "Hold", "Reset"}
@@ -391,8 +392,8 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             # Three threads (services/common/inbox.py): the inbox reads, the producer moves the
             # arm, this one writes the acks; the arm never waits for an ack to be written.
             inbox = Inbox(request_iterator, self._received, name=f"teleop-in-{session.session_id}")
-            # (None, None): no message; the batch it ends is decided, late commands with it.
-            session.wake_server = lambda: inbox.put((None, None))
+            # (None, []): no message; the batch it ends is decided, late commands with it.
+            session.wake_server = lambda: inbox.put((None, []))
 
             grouped = first.init.grouped_acks
 
@@ -436,25 +437,36 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         return session, session.stream
 
     def _received(self, request: pb.TeleoperateRequest
-                  ) -> tuple[pb.TeleoperateRequest, MasterIncrement | None]:
-        """A Teleoperate message as it arrives (on the inbox's thread): a command is checked,
-        converted and stamped with its receive time then."""
+                  ) -> tuple[pb.TeleoperateRequest, list[MasterIncrement]]:
+        """A Teleoperate message as it arrives (on the inbox's thread), with its commands (none
+        for a heartbeat or an end), each checked, converted and stamped with its receive time
+        then."""
         kind = request.WhichOneof("message")
         if kind == "heartbeat":
             _master_energy_in(request.heartbeat)  # checked as it arrives, like a command
         if kind in ("heartbeat", "end"):
-            return request, None
-        if kind != "command":
+            return request, []
+        if kind == "command":
+            commands = [request.command]
+        elif kind == "commands":
+            commands = request.commands.commands
+            if not 1 <= len(commands) <= MAX_COMMANDS_PER_MESSAGE:
+                raise InvalidArgumentError(
+                    f"commands carries 1 to {MAX_COMMANDS_PER_MESSAGE} commands, not "
+                    f"{len(commands)}", reason="BAD_COMMANDS")
+        else:
             raise InvalidArgumentError("only commands, heartbeats and an end may follow the init",
                                        reason="BAD_MESSAGE")
-        command = request.command
+        received_ns = self._core.clock.time_ns()
+        return request, [self._increment(command, received_ns) for command in commands]
+
+    def _increment(self, command: pb.MasterCommand, received_ns: int) -> MasterIncrement:
         if command.sequence < 0:
             raise InvalidArgumentError("sequence must be ≥ 0", reason="BAD_SEQUENCE")
-        received_ns = self._core.clock.time_ns()
         on_command_age = self.on_command_age
         if on_command_age is not None and command.HasField("send_time"):
             on_command_age((received_ns - convert.time_ns(command.send_time)) / 1e9)
-        return request, MasterIncrement(
+        return MasterIncrement(
             convert.vector3_from_proto(command.delta_position_m, "delta_position_m"),
             convert.rotation_from_proto(command.delta_rotation, "delta_rotation"),
             command.clutch_engaged, received_ns, command.sequence,
@@ -489,14 +501,13 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
         """Acks, in order, for messages that arrived together: the commands between heartbeats
         go to the session together (it may merge them into one move)."""
         increments: list[MasterIncrement] = []
-        for request, increment in [*batch, (None, None)]:
-            if request is not None and request.WhichOneof("message") != "end":
-                receipt = getattr(request, request.WhichOneof("message")).ack_receipt
+        for request, commands in [*batch, (None, [])]:
+            for receipt in _ack_receipts(request):
                 if receipt.sequence > 0:
                     session.clock_offset.receipt(receipt.sequence,
                                                  convert.time_ns(receipt.receive_time))
-            if increment is not None:
-                increments.append(increment)
+            if commands:
+                increments += commands
                 continue
             # (A late command's ack comes with that of the fresh command it joins.)
             for command, result in session.decide(increments, stream):
@@ -646,6 +657,17 @@ def _move_from_proto(core: DecisionCore, lease: str | None, kind: str, action):
         frame = frame_from_proto(action.frame)
         return lambda: core.move_cartesian(lease, delta_x, delta_m, frame)
     return None
+
+
+def _ack_receipts(request: pb.TeleoperateRequest | None) -> list[pb.AckReceipt]:
+    """The ack receipts a Teleoperate message carries: its command's or heartbeat's, or each
+    of its commands'."""
+    kind = request.WhichOneof("message") if request is not None else None
+    if kind in ("command", "heartbeat"):
+        return [getattr(request, kind).ack_receipt]
+    if kind == "commands":
+        return [command.ack_receipt for command in request.commands.commands]
+    return []
 
 
 def _busy_work_s(action: pb.BusyWorkAction) -> float:

@@ -223,8 +223,8 @@ class OperatorSession:
 
     Threads: one stream at a time calls `commands`/`heartbeat` (`_serving` keeps a superseded
     stream's last batch and a resuming one apart); the watchdog thread, `end`, `resume` and
-    `close` share `_lock`; `close` waits for a move in flight (`_moving`), so its hold is the
-    last word. `stream` numbers the streams: each resume supersedes the one before."""
+    `close` share `_lock`; every hold waits for a move in flight (`_moving`), so the hold is
+    the last word. `stream` numbers the streams: each resume supersedes the one before."""
 
     def __init__(self, core: SessionHost, operator_id: str, lease: Lease, mapping: str | None,
                  watchdog_s: float, resume_window_s: float = RESUME_WINDOW_S,
@@ -652,7 +652,8 @@ class OperatorSession:
                 self.close(f"not resumed within {self.resume_window_s:.0f} s")
                 return
             if fire:
-                self._hold("watchdog timeout: no command or heartbeat")
+                with self._moving:  # a move in flight lands first, so the hold is the last word
+                    self._hold("watchdog timeout: no command or heartbeat")
             elif check_sensor and (lost := self._sensor_check()):
                 with self._lock:
                     self._held = True  # held by the check; the next command asks again

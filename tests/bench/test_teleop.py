@@ -114,3 +114,19 @@ def test_windows_split_the_acks_by_when_they_were_sent():
     assert [(r["t_s"], r["acked"]) for r in rows] == [(0.0, 10), (1.0, 10)]
     assert rows[0]["max_ms"] == 10.0 and rows[1]["max_ms"] == 20.0
     assert teleop.windows(acks, None, 1.0) == []
+
+
+def _command(sequence: int) -> dpb.TeleoperateRequest:
+    return dpb.TeleoperateRequest(command=dpb.MasterCommand(sequence=sequence))
+
+
+def test_commands_that_waited_together_go_as_one_message_in_order(monkeypatch):
+    monkeypatch.setattr(teleop, "MAX_COMMANDS_PER_MESSAGE", 3)
+    heartbeat = dpb.TeleoperateRequest(heartbeat=dpb.Heartbeat())
+    waiting = [_command(1), _command(2), heartbeat, *(_command(i) for i in range(3, 8))]
+    packed = teleop._packed(waiting)
+    assert [m.WhichOneof("message") for m in packed] == [
+        "commands", "heartbeat", "commands", "commands"]
+    assert [[c.sequence for c in m.commands.commands] for m in packed if m.HasField("commands")
+            ] == [[1, 2], [3, 4, 5], [6, 7]]
+    assert teleop._packed([_command(1)]) == [_command(1)]  # alone: as it was

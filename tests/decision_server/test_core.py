@@ -261,6 +261,34 @@ def test_the_watchdog_holds_the_arm_exactly_at_its_timeout(rig):
     assert sum(c.kind == "hold" for c in rig.slave.commands) == 1  # no second hold
 
 
+def test_the_watchdog_holds_only_after_a_move_in_flight_lands(rig):
+    """A station so slow that the watchdog times out while a command's move is in flight: the
+    hold waits for that move to land. Sent beside it, the hold could reach the arm first and
+    the late move carry the held arm on."""
+    in_flight, land = threading.Event(), threading.Event()
+    move = rig.slave.move_cartesian
+
+    def slow_move(*args):
+        in_flight.set()
+        assert land.wait(10)
+        return move(*args)
+
+    rig.slave.move_cartesian = slow_move
+    armed = rig.clock.waiters()
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 0.05)
+    sender = threading.Thread(target=session.command,
+                              args=(np.array([0.0, 0.0, 0.001]), np.eye(3), False))
+    sender.start()
+    assert in_flight.wait(10)
+    rig.clock.advance(0.06)  # past the watchdog's timeout, with the move in flight
+    wait_for(lambda: rig.clock.waiters() == armed, what="the watchdog to wake and hold")
+    land.set()
+    sender.join(10)
+    wait_for(lambda: any(c.kind == "hold" for c in rig.slave.commands), what="a hold")
+    assert [c.kind for c in rig.slave.commands] == ["cartesian", "hold"]
+    session.close("done")
+
+
 # -- a backlog of commands: one move -------------------------------------------------------------
 
 def _increments(rig: Rig, steps, clutch=()):

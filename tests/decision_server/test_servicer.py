@@ -10,7 +10,7 @@ import pytest
 from clients.python.errors import from_rpc_error
 from services.common import se3
 from services.decision_server.clock_offset import ClockOffsetEstimator
-from services.decision_server.servicer import make_facades
+from services.decision_server.servicer import MAX_COMMANDS_PER_MESSAGE, make_facades
 from services.decision_server.sessions import CommandResult
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import options_pb2, proxy_robot_pb2, types_pb2
@@ -92,6 +92,62 @@ def test_grouped_acks_answer_every_command_in_order_in_acks_messages(fake_statio
     acks = [a for r in replies[1:] for a in r.acks.acks]
     assert [a.sequence for a in acks] == [*range(1, 11), 0, *range(11, 21)]
     assert all(a.HasField("tool_pose") for a in acks)
+
+
+def _packed_burst(lease: str) -> list[pb.TeleoperateRequest]:
+    """_burst with each run of commands in one `commands` message."""
+    packed: list[pb.TeleoperateRequest] = []
+    for request in _burst(lease, grouped_acks=True):
+        if request.WhichOneof("message") != "command":
+            packed.append(request)
+        elif packed[-1].WhichOneof("message") == "commands":
+            packed[-1].commands.commands.append(request.command)
+        else:
+            packed.append(pb.TeleoperateRequest(
+                commands=pb.MasterCommands(commands=[request.command])))
+    return packed
+
+
+def test_commands_sent_together_are_each_applied_and_acked_as_if_alone(fake_station):
+    """TeleoperateRequest.commands (a master whose link fell behind): each command gets its
+    own ack, in order, the heartbeat between two such messages in its place; the arm moves by
+    every increment."""
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    messages = _packed_burst(lease)
+    assert [m.WhichOneof("message") for m in messages] == [
+        "init", "commands", "heartbeat", "commands"]
+    replies = list(station.decisions.Teleoperate(iter(messages), timeout=30))
+    acks = [a for r in replies[1:] for a in r.acks.acks]
+    assert [a.sequence for a in acks] == [*range(1, 11), 0, *range(11, 21)]
+    assert {a.outcome for a in acks[:10] + acks[11:]} == {pb.COMMAND_OUTCOME_APPLIED}
+    moves = [c.detail[1] for c in slave.commands if c.kind == "cartesian"]
+    np.testing.assert_allclose(np.sum(moves, axis=0), [0.0, 0.0, 0.01], atol=1e-9)
+
+
+def test_each_command_of_a_commands_message_reports_its_ack_receipt(fake_station):
+    servicer = fake_station[0].servicer
+    message = pb.TeleoperateRequest(commands=pb.MasterCommands(commands=[
+        pb.MasterCommand(sequence=5, ack_receipt=pb.AckReceipt(sequence=3)),
+        pb.MasterCommand(sequence=6, ack_receipt=pb.AckReceipt(sequence=4))]))
+    session, receipts = _Session(), []
+    session.clock_offset.receipt = lambda sequence, _receive_ns: receipts.append(sequence)
+    replies = list(servicer._answers(session, 1, [servicer._received(message)], grouped=True))
+    assert [[a.sequence for a in r.acks.acks] for r in replies] == [[5, 6]]
+    assert receipts == [3, 4]
+
+
+@pytest.mark.parametrize("count", [0, MAX_COMMANDS_PER_MESSAGE + 1])
+def test_a_commands_message_with_no_command_or_too_many_is_refused(fake_station, count):
+    station, slave = fake_station
+    lease, _ = station.acquire()
+    messages = [*_burst(lease)[:1], pb.TeleoperateRequest(commands=pb.MasterCommands(
+        commands=[pb.MasterCommand(sequence=i + 1) for i in range(count)]))]
+    with pytest.raises(grpc.RpcError) as refused:
+        list(station.decisions.Teleoperate(iter(messages), timeout=30))
+    assert refused.value.code() == grpc.StatusCode.INVALID_ARGUMENT
+    assert f"1 to {MAX_COMMANDS_PER_MESSAGE} commands, not {count}" in refused.value.details()
+    assert not [c for c in slave.commands if c.kind == "cartesian"]
 
 
 class _Session:
@@ -422,3 +478,24 @@ def test_teleoperate_right_after_initialize_sees_its_ready_not_an_older_sample(r
     robot.Initialize(proxy_robot_pb2.InitializeRequest(), _Context(rig.lease.lease_id))
     session = rig.core.open_session("alice", rig.lease.lease_id, None, 1.0)
     session.close("done")
+
+
+def test_the_benchs_grpc_client_gets_every_command_acked_in_order(fake_station):
+    """bench/teleop.py's client (grpc.aio, a backlog packed into `commands` messages) against
+    the DecisionServer: every command sent is acked once, in order."""
+    from bench import teleop
+
+    station, _ = fake_station
+    client = teleop.GrpcTeleop(station.address)
+    try:
+        stream = client.open()
+        for sequence in range(1, 201):  # faster than the stream takes them: some wait together
+            stream.send(teleop._command(sequence, 1.0)[0])
+        stream.end()
+        replies = list(stream.responses())
+    finally:
+        client.close()
+    assert replies[0].HasField("ready")
+    acks = [a for r in replies[1:] for a in r.acks.acks]
+    assert [a.sequence for a in acks] == list(range(1, 201))
+    assert {a.outcome for a in acks} == {pb.COMMAND_OUTCOME_APPLIED}

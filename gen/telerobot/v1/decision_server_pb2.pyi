@@ -116,16 +116,24 @@ PASSIVITY_OFF: Passivity
 PASSIVITY_TDPA: Passivity
 
 class TeleoperateRequest(_message.Message):
-    __slots__ = ("init", "command", "heartbeat", "end")
+    __slots__ = ("init", "command", "heartbeat", "end", "commands")
     INIT_FIELD_NUMBER: _ClassVar[int]
     COMMAND_FIELD_NUMBER: _ClassVar[int]
     HEARTBEAT_FIELD_NUMBER: _ClassVar[int]
     END_FIELD_NUMBER: _ClassVar[int]
+    COMMANDS_FIELD_NUMBER: _ClassVar[int]
     init: TeleoperateInit
     command: MasterCommand
     heartbeat: Heartbeat
     end: TeleoperateEnd
-    def __init__(self, init: _Optional[_Union[TeleoperateInit, _Mapping]] = ..., command: _Optional[_Union[MasterCommand, _Mapping]] = ..., heartbeat: _Optional[_Union[Heartbeat, _Mapping]] = ..., end: _Optional[_Union[TeleoperateEnd, _Mapping]] = ...) -> None: ...
+    commands: MasterCommands
+    def __init__(self, init: _Optional[_Union[TeleoperateInit, _Mapping]] = ..., command: _Optional[_Union[MasterCommand, _Mapping]] = ..., heartbeat: _Optional[_Union[Heartbeat, _Mapping]] = ..., end: _Optional[_Union[TeleoperateEnd, _Mapping]] = ..., commands: _Optional[_Union[MasterCommands, _Mapping]] = ...) -> None: ...
+
+class MasterCommands(_message.Message):
+    __slots__ = ("commands",)
+    COMMANDS_FIELD_NUMBER: _ClassVar[int]
+    commands: _containers.RepeatedCompositeFieldContainer[MasterCommand]
+    def __init__(self, commands: _Optional[_Iterable[_Union[MasterCommand, _Mapping]]] = ...) -> None: ...
 
 class TeleoperateEnd(_message.Message):
     __slots__ = ()
