@@ -10,13 +10,18 @@ def _result(delivered_hz=None, p50_ms=None, p99_ms=None, **extra) -> dict:
             "p99_ms": p99_ms, "max_ms": p99_ms, "dropped": 0, **extra}
 
 
-def test_teleop_1000_passes_only_with_both_rate_and_latency():
-    fast = {"teleop_1000": _result(995.0, 0.8, 1.9)}
-    slow = {"teleop_1000": _result(980.0, 0.8, 1.9)}
-    late = {"teleop_1000": _result(995.0, 0.8, 2.1)}
+def test_teleop_1000_passes_only_with_rate_latency_and_latency_against_zmq():
+    zmq = {"teleop_1000_zmq": _result(999.0, 0.5, 1.5)}
+    fast = {"teleop_1000": _result(995.0, 0.8, 1.9), **zmq}
+    slow = {"teleop_1000": _result(980.0, 0.8, 1.9), **zmq}
+    late = {"teleop_1000": _result(995.0, 0.8, 2.1), **zmq}
+    behind = {"teleop_1000": _result(995.0, 0.8, 1.9),
+              "teleop_1000_zmq": _result(999.0, 0.5, 1.2)}
     assert goals.judge("teleop_1000", fast)["pass"] is True
     assert goals.judge("teleop_1000", slow)["misses"] == ["980 Hz < 990"]
     assert goals.judge("teleop_1000", late)["misses"] == ["p99 2.1 ms > 2"]
+    assert goals.judge("teleop_1000", behind)["misses"] == [
+        "p99 1.9 ms > 1.5 x 1.200"]
 
 
 def test_every_estop_scenario_has_the_5_ms_goal():
