@@ -89,6 +89,11 @@ def _observers(p: dict) -> dict:
 
 def _estop(p: dict) -> dict:
     from bench.estop import run_estop
+    from services.runtime.priority import BAND_FIFO_PRIORITY, raise_thread_priority
+
+    # An emergency-stop button is not a process the station's load can starve: its sender
+    # runs at the band's real-time priority where the host allows it.
+    raise_thread_priority(BAND_FIFO_PRIORITY, -10, what="emergency-stop sender")
 
     return run_estop(p["address"], p["shm"], p["trials"], p["label"],
                      p.get("decision_server", False), p.get("stop_address"), p.get("lease_id"))
