@@ -75,6 +75,12 @@ def _teleop(p: dict) -> dict:
 
 def _force(p: dict) -> dict:
     from bench.force import measure_stream
+    from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY, raise_thread_priority
+
+    # The operator's force feedback is a haptic master's 1 kHz loop: real-time where the host
+    # allows it, with the threads its stream's client starts.
+    raise_thread_priority(COMMAND_PATH_FIFO_PRIORITY, -10, what="operator's wrench reader",
+                          inherited=True)
 
     return measure_stream(p["transport"], p["address"], p["decimation"], p["duration_s"],
                           mcap_path=p.get("mcap_path"), watch_pids=p.get("watch_pids"))
