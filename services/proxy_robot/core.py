@@ -108,6 +108,9 @@ class ProxyRobotCore:
         self._target_q: np.ndarray | None = None
         self._latest: RobotSnapshot | None = None
         self._event_sequence = 0
+        # The first sample after the last Reset released the hardware's hold: an older one
+        # that shows a latch or a fault shows the one the Reset cleared, not a new one.
+        self._released_at_sequence = -1
         self._monitor: threading.Thread | None = None
         self._monitor_stop = threading.Event()
         self.states: Fanout[RobotSnapshot] = Fanout()
@@ -149,6 +152,7 @@ class ProxyRobotCore:
             if self._status != RobotStatus.NOT_CONNECTED:
                 return self._status
             link = self._link_factory()
+            self._released_at_sequence = -1  # (a new link counts its samples anew)
             sample, self._latest = self._sample(link, self._monitor_kinematics)
             self._link = link
             self._target_q = sample.joint_targets_rad.copy()
@@ -419,7 +423,7 @@ class ProxyRobotCore:
             if self._status not in (RobotStatus.ESTOPPED, RobotStatus.FAULT):
                 return self._status
             link.release_hold()
-            self._await_release(link)
+            self._released_at_sequence = self._await_release(link).sequence
             self._hold_at(link.read_arm().joint_positions_rad)
             after = RobotStatus.READY if self._initialized else RobotStatus.CONNECTED
             self._set_status(after, "reset; holding position")
@@ -448,16 +452,17 @@ class ProxyRobotCore:
         self._require_link().write_target(target)
         self._target_q = np.asarray(target, float).copy()
 
-    def _await_release(self, link: ArmLink) -> None:
+    def _await_release(self, link: ArmLink) -> ArmSample:
         """Wait until the hardware reports the hold released, so the monitor does not read the
-        old latch as a new stop."""
+        old latch as a new stop; the first sample that says so."""
         clock = self._clock
         deadline_ns = clock.monotonic_ns() + round(RELEASE_TIMEOUT_S * 1e9)
-        while link.read_arm().hold_latched:
+        while (sample := link.read_arm()).hold_latched:
             if clock.monotonic_ns() > deadline_ns:
                 raise UnavailableError("the hardware did not release its hold; check it and Reset "
                                        "again", reason="HOLD_STUCK")
             clock.sleep(RELEASE_POLL_S)
+        return sample
 
     # -- monitor ----------------------------------------------------------------------------
 
@@ -517,6 +522,8 @@ class ProxyRobotCore:
                         and np.max(np.abs(arm_qd)) < ARRIVAL_SPEED_RAD_PER_S):
                     self._set_status(RobotStatus.READY, "target reached")
                     self._emit(Moved(arm_q.copy(), snapshot.tool_pose))
+        if sample.sequence < self._released_at_sequence:
+            return  # read before the last Reset released the hold: its latch is the old one
         if sample.fault and self._status != RobotStatus.FAULT:
             self._emit(RobotErrorRaised("HARDWARE_FAULT", sample.fault))
             self._set_status(RobotStatus.FAULT, sample.fault)

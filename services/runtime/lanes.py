@@ -12,6 +12,7 @@ are a hint: the isolation that matters is that a high lane never waits behind a 
 
 from __future__ import annotations
 
+import contextlib
 import enum
 import functools
 import logging
@@ -19,7 +20,7 @@ import os
 import threading
 import time
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
@@ -59,6 +60,13 @@ class LaneConfig:
     max_threads: int
     queue_capacity: int
     nice: int = 0
+    # In a real-time process (services/runtime/priority.py), whether this lane's work keeps
+    # the process's real-time priority. Work of a lane that does not runs at the lowest one
+    # (ORDINARY_LANE_RT_PRIORITY), so it never keeps the command path's threads from a core,
+    # nor from the GIL: Linux wakes a contended lock's waiters in priority order. (Not at
+    # SCHED_OTHER: a GIL holder there waits behind every ordinary process for a core, and the
+    # command path waits behind it for the GIL.)
+    realtime: bool = False
 
     def __post_init__(self) -> None:
         if self.static_threads < 0 or self.max_threads < max(1, self.static_threads):
@@ -67,9 +75,15 @@ class LaneConfig:
             raise ValueError("queue_capacity must be >= 0")
 
 
+# The real-time priority the work of lanes that are not real-time runs at, in a real-time
+# process: the lowest there is.
+ORDINARY_LANE_RT_PRIORITY = 1
+
 DEFAULT_LANES: dict[Lane, LaneConfig] = {
-    Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=2, queue_capacity=16, nice=-5),
-    Lane.HIGH: LaneConfig(static_threads=2, max_threads=8, queue_capacity=64, nice=-2),
+    Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=2, queue_capacity=16, nice=-5,
+                               realtime=True),
+    Lane.HIGH: LaneConfig(static_threads=2, max_threads=8, queue_capacity=64, nice=-2,
+                          realtime=True),
     Lane.MEDIUM: LaneConfig(static_threads=1, max_threads=4, queue_capacity=64, nice=0),
     Lane.LOW: LaneConfig(static_threads=1, max_threads=4, queue_capacity=256, nice=2),
 }
@@ -208,7 +222,8 @@ class LaneExecutor:
         future.set_running_or_notify_cancel()
         outer, _current.lane = getattr(_current, "lane", None), lane
         try:
-            future.set_result(fn())
+            with scheduled_as(self._config[lane]):
+                future.set_result(fn())
         except BaseException as exc:  # noqa: BLE001 - handed to the caller through the future
             future.set_exception(exc)
         finally:
@@ -334,7 +349,8 @@ class LaneExecutor:
         self._waited(task.lane, (time.monotonic_ns() - task.enqueued_ns) / 1e9)
         _current.lane = task.lane
         try:
-            result = task.fn()
+            with scheduled_as(self._config[task.lane]):
+                result = task.fn()
         except BaseException as exc:  # noqa: BLE001 - handed to the caller through the future
             task.future.set_exception(exc)
         else:
@@ -344,6 +360,32 @@ class LaneExecutor:
             self._lock.acquire()
             counters.running -= 1
             counters.served += 1
+
+
+@contextlib.contextmanager
+def scheduled_as(config: LaneConfig, system=os) -> Iterator[None]:
+    """The block runs as `config`'s lane work: a real-time thread running the work of a lane
+    that is not real-time runs it at ORDINARY_LANE_RT_PRIORITY (see LaneConfig.realtime) and
+    takes its own priority back after. `system` stands for the os module (tests pass a
+    fake)."""
+    if config.realtime or not hasattr(system, "sched_getscheduler"):
+        yield
+        return
+    policy = system.sched_getscheduler(0)
+    if policy & ~getattr(system, "SCHED_RESET_ON_FORK", 0) not in (system.SCHED_FIFO,
+                                                                   system.SCHED_RR):
+        yield
+        return
+    param = system.sched_getparam(0)
+    system.sched_setscheduler(0, policy, system.sched_param(ORDINARY_LANE_RT_PRIORITY))
+    try:
+        yield
+    finally:
+        try:
+            system.sched_setscheduler(0, policy, param)
+        except OSError as exc:  # the privilege went away meanwhile: the thread stays lower
+            log.warning("%s could not take its real-time priority back after a lane's "
+                        "ordinary work: %s", threading.current_thread().name, exc)
 
 
 def _set_thread_nice(nice: int) -> None:

@@ -363,6 +363,30 @@ def test_a_stop_latched_by_the_band_shows_as_estopped_at_the_next_sample(rig, re
     assert ready.status[0] == S.READY  # the old latch is not read as a new stop
 
 
+def test_a_sample_read_before_a_reset_does_not_latch_the_stop_again(rig, ready, monkeypatch):
+    """The monitor read the arm while the stop was latched, and a Reset cleared it before the
+    monitor looked at that sample: the old latch is not a new stop (a Reset then a move, sent
+    at once, would be refused as ESTOPPED)."""
+    ready.emergency_stop("test")
+    rig.run(0.002)
+    read_arm, reset_between = FakeArmLink.read_arm, [True]
+
+    def a_reset_lands_after_this_read(link):
+        sample = read_arm(link)
+        if reset_between and sample.hold_latched:
+            reset_between.clear()
+            assert ready.reset() == S.READY
+        return sample
+
+    monkeypatch.setattr(FakeArmLink, "read_arm", a_reset_lands_after_this_read)
+    ready.sample_once()  # the monitor, with the sample it read before the Reset
+    assert not reset_between  # (the Reset came between)
+    assert ready.status[0] == S.READY
+    ready.move_joints([0.01, 0, 0, 0, 0, 0])
+    rig.arm.emergency_stop_link().stop()  # a stop after the Reset is still seen
+    rig.run_until_status(S.ESTOPPED)
+
+
 def test_reset_gives_up_on_a_hold_the_hardware_does_not_release(rig, ready, monkeypatch):
     ready.emergency_stop("test")
     rig.run(0.002)

@@ -8,7 +8,15 @@ import time
 
 import pytest
 
-from services.runtime.lanes import Lane, LaneConfig, LaneExecutor, LaneFull
+from services.runtime.lanes import (
+    DEFAULT_LANES,
+    ORDINARY_LANE_RT_PRIORITY,
+    Lane,
+    LaneConfig,
+    LaneExecutor,
+    LaneFull,
+    scheduled_as,
+)
 
 SMALL = {
     Lane.EMERGENCY: LaneConfig(static_threads=1, max_threads=1, queue_capacity=4),
@@ -211,3 +219,63 @@ def test_run_here_keeps_the_lane_within_max_threads(executor):
     assert "-high-" in on_thread.result(5)
     assert "-medium-" in third.result(5) or "-low-" in third.result(5)
     inline.join(5)
+
+
+class FakeScheduler:
+    """The os module's scheduling calls, for one thread: its policy and priority."""
+
+    SCHED_OTHER, SCHED_FIFO, SCHED_RR, SCHED_RESET_ON_FORK = 0, 1, 2, 0x40000000
+
+    def __init__(self, policy: int, priority: int = 0):
+        self.policy, self.priority = policy, priority
+        self.refuse_real_time = False
+
+    @staticmethod
+    def sched_param(priority: int) -> int:
+        return priority
+
+    def sched_getscheduler(self, _pid: int) -> int:
+        return self.policy
+
+    def sched_getparam(self, _pid: int) -> int:
+        return self.priority
+
+    def sched_setscheduler(self, _pid: int, policy: int, priority: int) -> None:
+        if self.refuse_real_time and priority > self.priority:
+            raise PermissionError(1, "Operation not permitted")
+        self.policy, self.priority = policy, priority
+
+
+def test_ordinary_lane_work_runs_at_the_lowest_real_time_priority_then_goes_back():
+    fifo = FakeScheduler.SCHED_FIFO | FakeScheduler.SCHED_RESET_ON_FORK
+    system = FakeScheduler(fifo, 5)
+    low = LaneConfig(static_threads=1, max_threads=1, queue_capacity=1, nice=2)
+    with scheduled_as(low, system):
+        assert (system.policy, system.priority) == (fifo, ORDINARY_LANE_RT_PRIORITY)
+    assert (system.policy, system.priority) == (fifo, 5)
+
+
+def test_real_time_lane_work_and_ordinary_threads_keep_their_scheduling():
+    high = LaneConfig(static_threads=1, max_threads=1, queue_capacity=1, realtime=True)
+    low = LaneConfig(static_threads=1, max_threads=1, queue_capacity=1, nice=2)
+    real_time = FakeScheduler(FakeScheduler.SCHED_FIFO, 5)
+    with scheduled_as(high, real_time):
+        assert (real_time.policy, real_time.priority) == (FakeScheduler.SCHED_FIFO, 5)
+    ordinary = FakeScheduler(FakeScheduler.SCHED_OTHER)
+    with scheduled_as(low, ordinary):
+        assert (ordinary.policy, ordinary.priority) == (FakeScheduler.SCHED_OTHER, 0)
+
+
+def test_a_thread_refused_its_priority_back_goes_on_at_the_lower_one(caplog):
+    system = FakeScheduler(FakeScheduler.SCHED_FIFO, 5)
+    low = LaneConfig(static_threads=1, max_threads=1, queue_capacity=1)
+    with scheduled_as(low, system):
+        system.refuse_real_time = True  # the privilege went away meanwhile
+    assert (system.policy, system.priority) == (FakeScheduler.SCHED_FIFO,
+                                                ORDINARY_LANE_RT_PRIORITY)
+    assert "could not take its real-time priority back" in caplog.text
+
+
+def test_the_default_lanes_that_keep_real_time_are_the_emergency_and_high_ones():
+    assert [lane for lane, config in DEFAULT_LANES.items() if config.realtime] == [
+        Lane.EMERGENCY, Lane.HIGH]
