@@ -6,8 +6,9 @@ acknowledged: the Teleoperate stream is bidirectional so that it can. Measuring 
 rate at 1 / round trip and measures the client's patience, not the stream. So here:
 
 - a sender thread streams MasterCommands at the offered rate on absolute deadlines (tick k is due
-  at t0 + k/rate); a tick it wakes up a whole period or more late for is skipped and counted in
-  ``late_skipped`` (a master that fell behind sends the current command, not a backlog);
+  at t0 + k/rate), at SCHED_FIFO where the host allows it, as a haptic master's loop runs
+  (bench/worker.py); a tick it wakes up a whole period or more late for is skipped and counted
+  in ``late_skipped`` (a master that fell behind sends the current command, not a backlog);
 - a reader thread takes the acks as they come and matches them to commands by sequence number;
 - ``delivered_hz``: commands acked APPLIED or MODIFIED per second, over the sending schedule (or
   until the last such ack, if that came later: a server that queues shows its true rate);
@@ -39,8 +40,11 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
 
 Transports (the same MasterCommand and TeleoperateResponse bytes on both):
 
-- ``grpc``: DecisionServer.Teleoperate; grpcio's sync client consumes the request iterator on a
-  thread of its own;
+- ``grpc``: DecisionServer.Teleoperate on a grpc.aio channel whose event loop, a thread of
+  its own, writes what the sender hands it. A gRPC stream carries one message per write, and
+  a Python client gets to its next write only after a thread woke for the last one, so what
+  waited meanwhile goes as one ``commands`` message (TeleoperateRequest.commands), each
+  command in it acked as if alone (docs/performance.md, "The master's side of the stream");
 - ``zmq``: baseline_server.py's ``zmq-teleop`` (DEALER/ROUTER), the DecisionServer's own
   DecisionCore and GrpcSlave behind it. A zmq socket belongs to one thread, so the reader
   thread owns the DEALER and forwards what the sender pushes on an inproc pipe: one hand-off
@@ -121,41 +125,14 @@ def init_request(lease_id: str, watchdog_s: float = WATCHDOG_S) -> dpb.Teleopera
 # -- gRPC -------------------------------------------------------------------------------------
 
 class GrpcStream:
-    def __init__(self, stub, lease_id: str, watchdog_s: float = WATCHDOG_S):
-        self._requests: queue.SimpleQueue = queue.SimpleQueue()
-        self._call = stub.Teleoperate(iter(self._requests.get, None), timeout=STREAM_TIMEOUT_S)
-        self._requests.put(init_request(lease_id, watchdog_s))
-
-    def send(self, request: dpb.TeleoperateRequest) -> None:
-        self._requests.put(request)
-
-    def responses(self) -> Iterator[dpb.TeleoperateResponse]:
-        try:
-            yield from self._call
-        except grpc.RpcError as error:
-            if error.code() != grpc.StatusCode.CANCELLED:
-                raise StreamFailed(f"{error.code().name}: {error.details()}") from None
-
-    def end(self) -> None:
-        self._requests.put(None)
-
-    def cancel(self) -> None:
-        self._call.cancel()
-
-    def close(self) -> None:
-        pass
-
-
-class AioGrpcStream:
-    """The stream on a grpc.aio channel, driven from the sender's and the reader's threads: on
-    a busy machine this client keeps up with 1 kHz where grpcio's sync client falls behind
-    (see the module's docstring)."""
+    """The stream on a grpc.aio channel, driven from the sender's and the reader's threads; its
+    loop writes what waited as one message (see the module's docstring)."""
 
     def __init__(self, stub, loop: EventLoopThread, lease_id: str, watchdog_s: float):
         self._loop = loop.loop
         self._responses: queue.SimpleQueue = queue.SimpleQueue()
-        self._outgoing: asyncio.Queue = loop.run(_make_queue())
-        self._call = loop.run(_open_aio_call(stub))
+        self._outgoing: asyncio.Queue = asyncio.Queue()  # (bound to the loop at first use)
+        self._call = loop.run(_open_call(stub))
         asyncio.run_coroutine_threadsafe(self._write(), self._loop)
         asyncio.run_coroutine_threadsafe(self._read(), self._loop)
         self.send(init_request(lease_id, watchdog_s))
@@ -211,37 +188,28 @@ async def _waiting(outgoing: asyncio.Queue) -> list:
 
 
 def _packed(requests: list[dpb.TeleoperateRequest]) -> list[dpb.TeleoperateRequest]:
-    """`requests` with each run of commands that waited together for the link as one
-    `commands` message (TeleoperateRequest.commands), so a stream that fell behind catches up
-    in a few messages instead of one per command."""
+    """`requests` with each run of commands that waited together for the link as `commands`
+    messages (TeleoperateRequest.commands), so a stream that fell behind catches up in a few
+    messages instead of one per command; a command alone goes as it is."""
     packed: list[dpb.TeleoperateRequest] = []
-    for request in requests:
-        if request.WhichOneof("message") != "command":
-            packed.append(request)
+    for commands, run in itertools.groupby(requests, lambda request: request.HasField("command")):
+        run = list(run)
+        if not commands or len(run) == 1:
+            packed += run
             continue
-        last = packed[-1] if packed else None
-        if last is not None and last.WhichOneof("message") == "command":
-            packed[-1] = last = dpb.TeleoperateRequest(
-                commands=dpb.MasterCommands(commands=[last.command]))
-        if last is not None and last.WhichOneof("message") == "commands" and \
-                len(last.commands.commands) < MAX_COMMANDS_PER_MESSAGE:
-            last.commands.commands.append(request.command)
-        else:
-            packed.append(request)
+        for start in range(0, len(run), MAX_COMMANDS_PER_MESSAGE):
+            packed.append(dpb.TeleoperateRequest(commands=dpb.MasterCommands(
+                commands=[r.command for r in run[start:start + MAX_COMMANDS_PER_MESSAGE]])))
     return packed
 
 
-async def _make_queue() -> asyncio.Queue:
-    return asyncio.Queue()
-
-
-async def _open_aio_call(stub):
+async def _open_call(stub):  # (on the loop, which the call keeps)
     return stub.Teleoperate(timeout=STREAM_TIMEOUT_S)
 
 
 class GrpcTeleop:
     """DecisionServer.Teleoperate: one control lease for the run (each command renews it), a
-    stream per rate, on a grpc.aio channel of its own (AioGrpcStream). `security`: plaintext,
+    stream per rate, on a grpc.aio channel of its own (GrpcStream). `security`: plaintext,
     or mutual TLS with an operator's certificate (the lease is bound to that identity).
     `watchdog_s`: each session's watchdog."""
 
@@ -257,8 +225,8 @@ class GrpcTeleop:
         self._aio_channel = self._loop.run(_aio_channel(address, security))
         self._aio_stub = decision_server_pb2_grpc.DecisionServerStub(self._aio_channel)
 
-    def open(self) -> AioGrpcStream:
-        return AioGrpcStream(self._aio_stub, self._loop, self._lease, self._watchdog_s)
+    def open(self) -> GrpcStream:
+        return GrpcStream(self._aio_stub, self._loop, self._lease, self._watchdog_s)
 
     def start_recording(self, name: str, task: str = "") -> None:
         self._stub.StartRecording(

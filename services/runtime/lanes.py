@@ -6,8 +6,10 @@ may run work of a higher lane (borrowing); a higher lane's threads never run low
 saturated low lane cannot delay high-priority calls. Nothing here knows about gRPC; an RPC's
 lane comes from its proto's `default_lane` option (`declared_lane`).
 
-Thread priorities are set with per-thread nice values where the OS allows. Under the GIL they
-are a hint: the isolation that matters is that a high lane never waits behind a low queue.
+Thread priorities are set with per-thread nice values where the OS allows. In a real-time
+process the medium and low lanes' work runs at the lowest real-time priority
+(`scheduled_as`), so the GIL goes to the command path's threads first. The isolation that
+matters most is structural: a high lane never waits behind a low queue.
 """
 
 from __future__ import annotations
