@@ -230,7 +230,7 @@ class Session:
         except ChildFailed as error:
             return self.fail([name], error)
         result = report.interleaved(pairs)
-        if pairs[0][0] is not self.results.get(twin):  # the twin failed: pair 1 had its own
+        if reuse_twin and pairs[0][0] is not self.results.get(twin):  # the twin failed
             result["overhead_first_off"] = "a leg of its own (the twin's run failed)"
         self.record(name, result)
         self.progress.done(f"{self.headline(name)} (medians of {count} pairs, on / off: "

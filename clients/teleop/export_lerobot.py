@@ -12,7 +12,9 @@ or directories of them (the DecisionServer's --recordings-dir), in name order.
 - The dataset's robot_type is the arm the station recorded (--robot-type names it for
   episodes recorded without it); episodes of different arms are refused.
 - DIR must not exist, unless --append: the episodes then follow the dataset's own (the same
-  fps, arm and features), numbered on from its last, in files of their own.
+  fps, arm and features), numbered on from its last, in files of their own. An episode file
+  the dataset already holds (the same bytes) is skipped, so appending a recordings directory
+  again adds only the episodes recorded since (a file given twice is exported once).
 - Either way the dataset is written beside, as DIR.partial (an append's existing files as
   hard links, not copies), and takes DIR's place only when whole: an export that fails leaves
   DIR as it was.
@@ -33,7 +35,12 @@ from clients.teleop.episode_file import (
     NotAnEpisode,
     read_episode,
 )
-from clients.teleop.lerobot_dataset import on_grid, read_appended, write_dataset
+from clients.teleop.lerobot_dataset import (
+    file_digest,
+    on_grid,
+    read_appended,
+    write_dataset,
+)
 
 
 def episode_files(runs: list[Path]) -> list[Path]:
@@ -61,6 +68,8 @@ def export(runs: list[Path], out: Path, fps: int = 30, include_failed: bool = Fa
         raise ValueError(f"--fps must be 1..120, not {fps}")
     appended = read_appended(out) if out.exists() else None
     episodes = _exported_episodes(runs, include_failed, report)
+    episodes, digests = _new_episodes(episodes, [file_digest(e.path) for e in episodes],
+                                      appended.sources if appended else [], report)
     robot_type = robot_type or _recorded_robot(episodes)
     with_video = all(e.has_video for e in episodes)
     if not with_video:
@@ -76,7 +85,7 @@ def export(runs: list[Path], out: Path, fps: int = 30, include_failed: bool = Fa
     try:
         if appended:
             shutil.copytree(out, partial, copy_function=os.link)
-        info = write_dataset(partial, frames, fps, robot_type, appended)
+        info = write_dataset(partial, frames, fps, robot_type, appended, digests)
     except BaseException:
         shutil.rmtree(partial, ignore_errors=True)
         raise
@@ -111,6 +120,24 @@ def _exported_episodes(runs: list[Path], include_failed: bool, report) -> list[E
     if not episodes:
         raise ValueError("no episode to export (see above)")
     return episodes
+
+
+def _new_episodes(episodes: list[Episode], digests: list[str], sources: list[dict], report
+                  ) -> tuple[list[Episode], list[str]]:
+    """The episodes (and their digests) whose files are neither in the dataset (`sources`,
+    its SOURCES_PATH entries) nor given before them; ValueError when none is left."""
+    held = {source["sha256"]: f"already in the dataset, as episode {source['episode_index']}"
+            for source in sources}
+    kept = []
+    for episode, digest in zip(episodes, digests, strict=True):
+        if digest in held:
+            report(f"skipped: {episode.path.name} is {held[digest]}")
+            continue
+        held[digest] = f"the same file as {episode.path.name}"
+        kept.append((episode, digest))
+    if not kept:
+        raise ValueError("no new episode to export: the dataset holds them all (see above)")
+    return [episode for episode, _ in kept], [digest for _, digest in kept]
 
 
 def _recorded_robot(episodes: list[Episode]) -> str:

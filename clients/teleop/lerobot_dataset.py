@@ -8,6 +8,9 @@ lerobot reads any number, in name order):
     meta/episodes/chunk-000/file-000.parquet   a row per episode: where its rows and frames are,
                                         its task, length and stats
     meta/stats.json                     min, max, mean, std, count, q01..q99 per feature
+    meta/telerobot_sources.json         the episode file each episode came from, by its
+                                        SHA-256 (lerobot does not read it): an append skips
+                                        a file the dataset already holds
     data/chunk-000/file-000.parquet     a row per frame
     videos/observation.images.<eye>/chunk-000/file-000.mp4   every episode's frames, back to back
 
@@ -26,6 +29,7 @@ which is how lerobot finds a frame (from_timestamp + timestamp, within 1e-4 s).
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import json
 import math
 from dataclasses import dataclass
@@ -48,6 +52,7 @@ CHUNK_FILE = "chunk-{chunk_index:03d}/file-{file_index:03d}"
 DATA_PATH = "data/" + CHUNK_FILE + ".parquet"
 VIDEO_PATH = "videos/{video_key}/" + CHUNK_FILE + ".mp4"
 EPISODES_PATH = "meta/episodes/" + CHUNK_FILE + ".parquet"
+SOURCES_PATH = "meta/telerobot_sources.json"
 EYES = ("left", "right")
 IMAGE_KEY = "observation.images.{eye}"
 QUANTILES = (0.01, 0.10, 0.50, 0.90, 0.99)
@@ -235,6 +240,16 @@ class Appended:
     tasks: list[str]  # in task_index order
     stats: dict[str, dict[str, np.ndarray]]
     file_number: int  # the next file of each kind, counted across chunks
+    sources: list[dict]  # SOURCES_PATH's entries: episode_index, file, sha256
+
+
+def file_digest(path: Path) -> str:
+    """The SHA-256 of a file's bytes: a finished episode file's identity."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as handle:
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
 
 
 def read_appended(root: Path) -> Appended:
@@ -251,15 +266,18 @@ def read_appended(root: Path) -> Appended:
              for feature, values in json.loads((root / "meta" / "stats.json").read_text()
                                                ).items()}
     files = list((root / "meta" / "episodes").glob("chunk-*/file-*.parquet"))
-    return Appended(info, list(tasks.index), stats, len(files))
+    sources_path = root / SOURCES_PATH  # (none in a dataset another tool made)
+    sources = json.loads(sources_path.read_text())["episodes"] if sources_path.exists() else []
+    return Appended(info, list(tasks.index), stats, len(files), sources)
 
 
 def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type: str,
-                  appended: Appended | None = None) -> dict:
+                  appended: Appended | None = None, digests: list[str] | None = None) -> dict:
     """The whole dataset into `out` (which must not exist yet), or, with `appended`, the
     episodes after those of the dataset already in `out`, in files of their own (the
-    dataset's meta files are written anew; nothing else is opened for writing). Its
-    info.json as a dict; ValueError when the episodes do not fit the appended dataset."""
+    dataset's meta files are written anew; nothing else is opened for writing). `digests`:
+    each episode file's file_digest, in order, for SOURCES_PATH. Its info.json as a dict;
+    ValueError when the episodes do not fit the appended dataset."""
     tasks = list(dict.fromkeys([*(appended.tasks if appended else []),
                                 *(frames.episode.task for frames in episodes)]))
     with_video = all(frames.video_index is not None for frames in episodes)
@@ -315,6 +333,12 @@ def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type
     _write_anew(out / "meta" / "stats.json", json.dumps(
         {feature: {stat: value.tolist() for stat, value in stats.items()}
          for feature, stats in dataset_stats.items()}, indent=2))
+    sources = [*(appended.sources if appended else []),
+               *({"episode_index": number, "file": frames.episode.path.name, "sha256": digest}
+                 for number, (frames, digest) in enumerate(
+                     zip(episodes, digests or [""] * len(episodes), strict=True),
+                     start=first_episode))]
+    _write_anew(out / SOURCES_PATH, json.dumps({"episodes": sources}, indent=2))
     _write_anew(out / "meta" / "info.json", json.dumps(info, indent=2))
     return info
 

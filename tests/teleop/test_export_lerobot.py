@@ -210,3 +210,24 @@ def test_an_append_that_does_not_fit_leaves_the_dataset_as_it_was(tmp_path, caps
     assert "not a LeRobot dataset to append to" in capsys.readouterr().err
     after = {p: p.read_bytes() for p in (tmp_path / "out").rglob("*") if p.is_file()}
     assert after == before and not list(tmp_path.glob("out.*"))
+
+
+def test_an_append_skips_the_episode_files_the_dataset_holds(tmp_path, capsys):
+    """Appending the recordings directory again adds only what was recorded since; a file
+    given twice is exported once; an append with nothing new ends with status 2."""
+    runs = tmp_path / "runs"
+    _record(runs, "a")
+    export([runs], tmp_path / "out", report=lambda _: None)
+    _record(runs, "b", rise_m=0.002)
+    lines: list[str] = []
+    info = export([runs, runs / "b.mcap"], tmp_path / "out", append=True, report=lines.append)
+    assert "skipped: a.mcap is already in the dataset, as episode 0" in lines
+    assert "skipped: b.mcap is the same file as b.mcap" in lines
+    assert info["total_episodes"] == 2
+    sources = json.loads((tmp_path / "out" / "meta" / "telerobot_sources.json").read_text())
+    assert [(s["episode_index"], s["file"]) for s in sources["episodes"]] == [
+        (0, "a.mcap"), (1, "b.mcap")]
+    before = {p: p.read_bytes() for p in (tmp_path / "out").rglob("*") if p.is_file()}
+    assert main([str(runs), "--out", str(tmp_path / "out"), "--append"]) == 2
+    assert "no new episode to export" in capsys.readouterr().err
+    assert {p: p.read_bytes() for p in (tmp_path / "out").rglob("*") if p.is_file()} == before
