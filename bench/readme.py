@@ -54,6 +54,9 @@ WHAT = (
     ("teleop_1000_episode", "`teleop_1000` with the DecisionServer recording it as a "
                             "demonstration episode (MCAP with the test card's stereo video); "
                             "pairs off / on interleaved"),
+    ("teleop_1000_aa", "diagnostic: `teleop_1000` in pairs of identical legs, nothing "
+                       "recorded: the noise the `_mcap`, `_episode` and `_tls` ratios are "
+                       "judged in"),
     ("force_1000_mcap", "`force_1000` with the subscriber writing each sample to MCAP (wrench "
                         "and Foxglove arrow, as `make teleop --mcap`); pairs off / on "
                         "interleaved"),

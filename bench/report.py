@@ -118,7 +118,7 @@ def interleaved(pairs: list[tuple[dict, dict]]) -> dict:
     off leg's are the twin's), with `overhead_pairs` (each leg's figures, and the on leg's
     `recording`), `overhead_ratios` (on / off per pair, for each of OVERHEAD_RATIOS both
     legs have), `overhead_median` (their median: what goals.py judges) and `recordings`
-    (every on leg's, each checked by goals.recording_misses)."""
+    (every on leg's, each checked by goals.recording_misses; none when no leg recorded)."""
     row = dict(pairs[0][1])
     ratios: dict[str, list[float | None]] = {}
     for name, key in OVERHEAD_RATIOS.items():
@@ -131,7 +131,9 @@ def interleaved(pairs: list[tuple[dict, dict]]) -> dict:
         name: round(statistics.median(known), 3)
         for name, values in ratios.items()
         if (known := [value for value in values if value is not None])}
-    row["recordings"] = [on.get("recording") for _, on in pairs]
+    recordings = [on.get("recording") for _, on in pairs]
+    if any(recording is not None for recording in recordings):  # (none in an A/A row)
+        row["recordings"] = recordings
     return row
 
 

@@ -21,20 +21,21 @@ EPISODE_TASK = "bench: teleop_1000"
 
 
 def steps(plan: Plan) -> int:
-    return 8 + plan.profile
+    return 9 + plan.profile
 
 
 def run(bench: Session) -> None:
     """Through the DecisionServer, the operator's one address: teleop_<rate> (master
     commands streamed on Teleoperate, pipelined; teleop_1000_lockstep the same sent
     lockstep, a diagnostic; teleop_1000_mcap teleop_1000 recorded in MCAP, in pairs
-    interleaved with it), then
-    teleop_1000_tls through a DecisionServer of the TLS station, teleop_1000_zmq (the same
+    interleaved with it; teleop_1000_aa the same pairs with nothing recorded, a diagnostic),
+    then teleop_1000_tls through a DecisionServer of the TLS station, teleop_1000_zmq (the same
     DecisionCore over pyzmq) with the DecisionServer stopped, so nothing else follows
     ProxyRobot's streams meanwhile; then, through a fresh DecisionServer, the emergency
     stop idle and under its intended load (200 RunAction BusyWork on the low lane)."""
     teleop = [f"teleop_{rate}" for rate in bench.plan.command_rates]
-    bench.with_decision_server(teleop + ["teleop_1000_lockstep", "teleop_1000_mcap"],
+    bench.with_decision_server(teleop + ["teleop_1000_lockstep", "teleop_1000_mcap",
+                                         "teleop_1000_aa"],
                                lambda address: _teleop(bench, address))
     bench.tls_twin("teleop_1000", lambda tls: _teleop_tls(bench, tls))
     if bench.plan.profile:
@@ -65,7 +66,7 @@ def _teleop(bench: Session, address: str) -> None:
     try:
         results = bench.rate_worker("teleop", "grpc", address, plan.command_rates, server)
     except ChildFailed as error:  # the recording's twin has nothing to compare with
-        return bench.fail([*names, "teleop_1000_mcap"], error)
+        return bench.fail([*names, "teleop_1000_mcap", "teleop_1000_aa"], error)
     for rate in plan.command_rates:
         bench.record(f"teleop_{rate}", results[str(rate)])
     lockstep = bench.results.get(name, {})
@@ -83,6 +84,14 @@ def _teleop(bench: Session, address: str) -> None:
                     lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
                         "first_sign": -1.0, **leg,
                         "record_dir": str(bench.procs.scratch / "recordings")})["1000"])
+    # The same pairs with nothing recorded: how far two identical legs' figures differ in
+    # this run, the noise the ratio rows (_mcap, _episode, _tls) are judged in.
+    bench.mcap_twin("teleop_1000", "nothing recorded: identical legs, this run's noise",
+                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+                        "first_sign": 1.0, **leg})["1000"],
+                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+                        "first_sign": -1.0, **leg})["1000"],
+                    suffix="aa", reuse_twin=False)
 
 
 def _teleop_episode(bench: Session) -> None:

@@ -248,3 +248,13 @@ def test_when_the_teleop_streams_fail_their_recording_twin_is_a_failed_row_too()
     for name in ("teleop_50", "teleop_1000", "teleop_1000_lockstep", "teleop_1000_mcap"):
         assert bench.results[name]["status"] == "failed", name
     assert "decision_server exited" in bench.results["teleop_1000_mcap"]["reason"]
+
+
+def test_pairs_of_identical_legs_make_a_row_of_ratios_without_recordings():
+    """teleop_1000_aa: the same leg twice, nothing recorded: the ratios are the run's noise,
+    and the row carries no recordings to be checked or listed."""
+    leg = _row(995.0, 1.5, 4.0, **{goals.CPU_KEY: 0.65})
+    row = report.interleaved([(leg, _row(995.0, 1.5, 6.0, **{goals.CPU_KEY: 0.65}))] * 3)
+    assert row["overhead_median"]["p99"] == 1.5
+    assert "recordings" not in row
+    assert goals.goal_for("teleop_1000_aa") is None  # a diagnostic
