@@ -139,11 +139,11 @@ class GrpcStream:
 
     async def _write(self) -> None:
         try:
-            while (requests := await _waiting(self._outgoing))[-1] is not None:
+            ended = False
+            while not ended:
+                requests, ended = await _waiting(self._outgoing)
                 for request in _packed(requests):
                     await self._call.write(request)
-            for request in _packed(requests[:-1]):
-                await self._call.write(request)
             await self._call.done_writing()
         except (grpc.RpcError, asyncio.InvalidStateError):
             pass  # the call ended: the reader says how
@@ -179,12 +179,14 @@ class GrpcStream:
         pass
 
 
-async def _waiting(outgoing: asyncio.Queue) -> list:
-    """What `outgoing` holds (at least one item, waiting for it), up to its None (the end)."""
+async def _waiting(outgoing: asyncio.Queue) -> tuple[list, bool]:
+    """What `outgoing` holds (waiting for at least one item), up to its None, and whether
+    that None (the end) came."""
     items = [await outgoing.get()]
     while items[-1] is not None and not outgoing.empty():
         items.append(outgoing.get_nowait())
-    return items
+    ended = items[-1] is None
+    return items[:-1] if ended else items, ended
 
 
 def _packed(requests: list[dpb.TeleoperateRequest]) -> list[dpb.TeleoperateRequest]:

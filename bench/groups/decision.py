@@ -6,6 +6,7 @@ stop through it, idle and under its intended load."""
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 
 import grpc
 
@@ -78,20 +79,18 @@ def _teleop(bench: Session, address: str) -> None:
     # The same DecisionServer, right after. teleop_1000 moved +y: each on leg goes back
     # (-y), each off leg after it out again, so the arm swings about where it was.
     leg = {"duration_s": plan.overhead_teleop_leg_s, **server}
+
+    def teleop_leg(sign: float, **extra) -> Callable[[int], dict]:
+        return lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+            "first_sign": sign, **leg, **extra})["1000"]
+
     bench.mcap_twin("teleop_1000", "the DecisionServer recording the session in MCAP",
-                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
-                        "first_sign": 1.0, **leg})["1000"],
-                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
-                        "first_sign": -1.0, **leg,
-                        "record_dir": str(bench.procs.scratch / "recordings")})["1000"])
+                    teleop_leg(1.0),
+                    teleop_leg(-1.0, record_dir=str(bench.procs.scratch / "recordings")))
     # The same pairs with nothing recorded: how far two identical legs' figures differ in
     # this run, the noise the ratio rows (_mcap, _episode, _tls) are judged in.
     bench.mcap_twin("teleop_1000", "nothing recorded: identical legs, this run's noise",
-                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
-                        "first_sign": 1.0, **leg})["1000"],
-                    lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
-                        "first_sign": -1.0, **leg})["1000"],
-                    suffix="aa", reuse_twin=False)
+                    teleop_leg(1.0), teleop_leg(-1.0), suffix="aa", reuse_twin=False)
 
 
 def _teleop_episode(bench: Session) -> None:

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import os
 import subprocess
 import sys
 import tempfile
@@ -36,6 +35,7 @@ from pathlib import Path
 import grpc
 import numpy as np
 
+from bench.cpu import process_cpu_s
 from bench.probes.tenant import start_tenant
 from services.common.inbox import Inbox, Producer
 from services.runtime.process import GIL_SWITCH_INTERVAL_S
@@ -161,12 +161,6 @@ async def drive(port: int, rate_hz: float, seconds: float) -> tuple[int, int, np
         return count, len(round_trips), np.asarray(round_trips) / 1e6
 
 
-def _cpu_s(pid: int) -> float:
-    """The process's user and system CPU time so far (s)."""
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m bench.probes.aio",
                                      description=__doc__.split("\n\n")[0])
@@ -182,7 +176,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.serve:
         serve(args.serve, Path(args.port_file))
         return 0
-    tenants = [start_tenant(share) for share in args.tenants]
+    tenants = [tenant for share in args.tenants if (tenant := start_tenant(share))]
     try:
         for kind in KINDS:
             _measure(kind, args.rate, args.seconds)
@@ -203,9 +197,9 @@ def _measure(kind: str, rate: float, seconds: float) -> None:
                 if server.poll() is not None:
                     raise RuntimeError(f"the {kind} server exited")
                 time.sleep(0.05)
-            cpu_before = _cpu_s(server.pid)
+            cpu_before = process_cpu_s(server.pid)
             sent, acked, ms = asyncio.run(drive(int(port_file.read_text()), rate, seconds))
-            cpu_ms = (_cpu_s(server.pid) - cpu_before) * 1e3 / sent
+            cpu_ms = (process_cpu_s(server.pid) - cpu_before) * 1e3 / sent
         finally:
             server.terminate()
             server.wait(5)

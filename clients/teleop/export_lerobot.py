@@ -85,7 +85,7 @@ def export(runs: list[Path], out: Path, fps: int = 30, include_failed: bool = Fa
     try:
         if appended:
             shutil.copytree(out, partial, copy_function=os.link)
-        info = write_dataset(partial, frames, fps, robot_type, appended, digests)
+        info = write_dataset(partial, frames, digests, fps, robot_type, appended)
     except BaseException:
         shutil.rmtree(partial, ignore_errors=True)
         raise

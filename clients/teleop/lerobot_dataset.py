@@ -271,8 +271,8 @@ def read_appended(root: Path) -> Appended:
     return Appended(info, list(tasks.index), stats, len(files), sources)
 
 
-def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type: str,
-                  appended: Appended | None = None, digests: list[str] | None = None) -> dict:
+def write_dataset(out: Path, episodes: list[EpisodeFrames], digests: list[str], fps: int,
+                  robot_type: str, appended: Appended | None = None) -> dict:
     """The whole dataset into `out` (which must not exist yet), or, with `appended`, the
     episodes after those of the dataset already in `out`, in files of their own (the
     dataset's meta files are written anew; nothing else is opened for writing). `digests`:
@@ -336,7 +336,7 @@ def write_dataset(out: Path, episodes: list[EpisodeFrames], fps: int, robot_type
     sources = [*(appended.sources if appended else []),
                *({"episode_index": number, "file": frames.episode.path.name, "sha256": digest}
                  for number, (frames, digest) in enumerate(
-                     zip(episodes, digests or [""] * len(episodes), strict=True),
+                     zip(episodes, digests, strict=True),
                      start=first_episode))]
     _write_anew(out / SOURCES_PATH, json.dumps({"episodes": sources}, indent=2))
     _write_anew(out / "meta" / "info.json", json.dumps(info, indent=2))
