@@ -79,6 +79,7 @@ from services.runtime.tls import station_channel_security
 from services.web_console.https import certificate_files
 from wire.addresses import env_name
 from wire.local_call import LOCAL_CALLS_ENV
+from wire.observation import ROUTER_ENV, BadEndpoint, checked_endpoint, endpoint_for
 from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
 
@@ -87,7 +88,7 @@ log = logging.getLogger("launcher")
 # Start order: dependencies first (the world stands in for the hardware). Stop order is the
 # reverse, so the hardware goes last.
 STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
-           "decision_server", "web_console", "foxglove"]
+           "decision_server", "web_console", "foxglove", "zenoh_router", "observation"]
 # On a real arm ProxyRobot owns the hardware link and the shared memory, in the world's place.
 HARDWARE_STATION = ["proxy_robot", *(name for name in STATION
                                      if name not in ("world", "proxy_robot"))]
@@ -103,8 +104,12 @@ FRANKA_SIM_HOST = "127.0.0.1"
 HTTP_CHILDREN = {"web_console"}
 # Children that speak only WebSocket: they serve once they answer a handshake (the live view).
 WEBSOCKET_CHILDREN = {"foxglove"}
+# Children that speak only Zenoh: the router serves once it accepts a connection; the
+# publisher once it said so (its ready line comes after it joined the router).
+ZENOH_CHILDREN = {"zenoh_router", "observation"}
 # The gRPC services: health checked over gRPC, each with its Prometheus /metrics port.
-GRPC_CHILDREN = tuple(name for name in STATION if name not in HTTP_CHILDREN | WEBSOCKET_CHILDREN)
+GRPC_CHILDREN = tuple(name for name in STATION
+                      if name not in HTTP_CHILDREN | WEBSOCKET_CHILDREN | ZENOH_CHILDREN)
 STARTUP_TIMEOUT_S = 60.0
 # The banner's first line.
 UP_LINE = "Slave station is up"
@@ -113,9 +118,11 @@ STOP_MARGIN_S = 1.5
 _LOG_TAIL_LINES = 20
 
 
-def station_services(driver: str) -> list[str]:
-    """The station's services in start order, for the arm's `driver`."""
-    return STATION if driver == "sim" else HARDWARE_STATION
+def station_services(driver: str, own_router: bool = True) -> list[str]:
+    """The station's services in start order, for the arm's `driver`; without the Zenoh
+    router when the station joins another one (`own_router` False)."""
+    services = STATION if driver == "sim" else HARDWARE_STATION
+    return [name for name in services if own_router or name != "zenoh_router"]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -147,10 +154,19 @@ def main(argv: list[str] | None = None) -> int:
                              "default auto: when it listens beyond loopback)")
     parser.add_argument("--no-advertise", dest="advertise", action="store_const", const="0",
                         help="do not advertise the station")
+    parser.add_argument("--zenoh-router", default=os.environ.get(ROUTER_ENV, ""),
+                        help="publish the observation through this Zenoh router, tcp/HOST:PORT, "
+                             f"instead of starting one beside the station (env {ROUTER_ENV})")
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
     if not select_arm_from(args, log):  # every child inherits the choice
         return 2
+    if args.zenoh_router:
+        try:
+            checked_endpoint(args.zenoh_router)
+        except BadEndpoint as error:
+            log.error("--zenoh-router: %s", error)
+            return 2
     dump_stacks_on_signal()
     health_security = station_channel_security(args.tls_dir or None, "launcher")
 
@@ -187,7 +203,9 @@ def main(argv: list[str] | None = None) -> int:
     env[DRIVER_ENV] = "sim" if args.driver == "sim" else "franka"
     if args.driver != "sim":  # the Franka's own estimate of the push, mirrored by ProxyRobot
         env[FORCE_SENSOR_ENV] = "franka"
-    services = station_services(args.driver)
+    if args.zenoh_router:  # the publisher joins it (services.observation)
+        env[ROUTER_ENV] = args.zenoh_router
+    services = station_services(args.driver, own_router=not args.zenoh_router)
     with tempfile.TemporaryDirectory(prefix="telerobot-station-") as run_dir:
         env[SUPERVISOR_STATE_ENV] = str(Path(run_dir) / "supervisor.json")
         # The moves between the station's own processes, off gRPC (wire/local_call.py).
@@ -356,7 +374,8 @@ def _wait_until_serving(child: Child, stop: threading.Event,
     deadline = time.monotonic() + STARTUP_TIMEOUT_S
     address = child.wait_ready(timeout_s=STARTUP_TIMEOUT_S, cancel=stop)
     serving = (_http_serving if child.name in HTTP_CHILDREN
-               else _websocket_serving if child.name in WEBSOCKET_CHILDREN else _is_serving)
+               else _websocket_serving if child.name in WEBSOCKET_CHILDREN
+               else _zenoh_serving if child.name in ZENOH_CHILDREN else _is_serving)
     while address is not None and not serving(address, security, child.name):
         if child.returncode is not None:
             raise ChildFailed(child.describe())
@@ -401,6 +420,19 @@ def _http_serving(address: str, security: ChannelSecurity, _service: str) -> boo
         with urllib.request.urlopen(url, timeout=1.0, context=context) as reply:
             return reply.status == 200
     except OSError:  # (ssl.SSLError and urllib's URLError are)
+        return False
+
+
+def _zenoh_serving(address: str, _security: ChannelSecurity, service: str) -> bool:
+    """Whether the router accepts a TCP connection at `address`; the publisher serves once its
+    ready line is out (it joined the router first)."""
+    if service != "zenoh_router":
+        return True
+    host, _, port = dialable(address).rpartition(":")
+    try:
+        with socket.create_connection((host.strip("[]"), int(port)), timeout=1.0):
+            return True
+    except OSError:
         return False
 
 
@@ -455,6 +487,10 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
         lines += [f"The live view: {'wss' if tls_dir else 'ws'}://{live} (Foxglove or "
                   "Lichtblick: Open connection > Foxglove WebSocket; layout "
                   "docs/foxglove_layout.json)"]
+    router = next((c.address for c in station if c.name == "zenoh_router"), None)
+    if router:
+        lines += [f"Observers: python -m clients.observe --router {endpoint_for(router)} (Zenoh; "
+                  "docs/observers.md)"]
     lines += ["", f"The operator's address is {operator} (set "
                   f"{env_name('decision_server', 'address')} to move it). Try:"]
     if tls_dir:

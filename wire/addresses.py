@@ -21,6 +21,7 @@ DEFAULT_PORTS = {
     "emergency_stop": 50055,  # the emergency-stop band: ProxyRobot.EmergencyStop past the driver
     "web_console": 50080,  # HTTP: the browser console's page, Connect and WebSocket (#18)
     "foxglove": 8765,  # WebSocket: the live view for Foxglove or Lichtblick (Foxglove's port)
+    "zenoh_router": 7447,  # Zenoh: observers subscribe through it (Zenoh's own port)
 }
 
 

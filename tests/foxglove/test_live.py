@@ -16,7 +16,7 @@ from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
 from foxglove_schemas_protobuf.JointStates_pb2 import JointStates
 
 from domain.robot_model.kinematics import ArmKinematics
-from services.foxglove.feeds import Feed
+from services.common.feeds import Feed
 from services.foxglove.live import (
     FEED_TOPICS,
     LIVE_TOPICS,

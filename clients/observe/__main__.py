@@ -1,0 +1,93 @@
+"""python -m clients.observe: watch a station's observation through a Zenoh router.
+
+Subscribes to telerobot/<station>/{wrench,state,events} (wire/observation.py) through the
+router --router names and prints, each --every seconds, what each topic delivered: samples
+per second, samples lost, and the lag from when a sample was taken (on this host's clock).
+--events prints each event as it comes; --json prints one JSON summary at the end instead.
+Exits after --seconds, or on Ctrl-C; 1 if nothing arrived.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import signal
+import sys
+import threading
+import time
+
+import zenoh
+from google.protobuf import json_format
+
+from clients.observe import Observer
+from wire.observation import TOPICS, BadEndpoint, checked_endpoint, client, default_router
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="python -m clients.observe", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--router", default=default_router(),
+                        help="the router to subscribe through, tcp/HOST:PORT (env "
+                             "TELEROBOT_ZENOH_ROUTER; default: the station's own on this host)")
+    parser.add_argument("--station", default="*",
+                        help="the station to watch (default: every station behind the router)")
+    parser.add_argument("--topics", default=",".join(TOPICS),
+                        help=f"comma-separated, of {', '.join(TOPICS)}")
+    parser.add_argument("--seconds", type=float, default=0.0,
+                        help="stop after this long (default: until Ctrl-C)")
+    parser.add_argument("--every", type=float, default=1.0, help="seconds between lines")
+    parser.add_argument("--events", action="store_true", help="print each event as it comes")
+    parser.add_argument("--json", action="store_true", help="one JSON summary at the end")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    topics = tuple(t for t in args.topics.split(",") if t)
+    try:
+        router = checked_endpoint(args.router)
+        session = client(router)
+    except BadEndpoint as error:
+        print(f"observe: {error}", file=sys.stderr)
+        return 2
+    except zenoh.ZError as error:
+        print(f"observe: the router {args.router} does not answer: {error}", file=sys.stderr)
+        return 1
+
+    def show_event(topic: str, message) -> None:
+        if topic == "events" and args.events:
+            print(json.dumps(json_format.MessageToDict(message)), flush=True)
+
+    try:
+        observer = Observer(session, args.station, topics, on_message=show_event)
+    except ValueError as error:
+        session.close()
+        print(f"observe: {error}", file=sys.stderr)
+        return 2
+    stop = threading.Event()
+    signal.signal(signal.SIGINT, lambda *_: stop.set())
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    deadline = time.monotonic() + args.seconds if args.seconds > 0 else None
+    try:
+        while not stop.wait(args.every):
+            if not args.json:
+                print(_line(observer.summary()), flush=True)
+            if deadline is not None and time.monotonic() >= deadline:
+                break
+    finally:
+        summary = observer.summary()
+        observer.close()
+        session.close()
+    if args.json:
+        print(json.dumps(summary))
+    return 0 if any(count["messages"] for count in summary.values()) else 1
+
+
+def _line(summary: dict[str, dict]) -> str:
+    return "; ".join(
+        f"{topic} {c['samples_per_s']}/s, lost {c['lost']}, lag p50 {c['lag_p50_ms']} / "
+        f"p99 {c['lag_p99_ms']} ms" for topic, c in summary.items())
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

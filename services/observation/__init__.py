@@ -1,0 +1,1 @@
+"""The station's observation, published once into Zenoh (wire/observation.py)."""

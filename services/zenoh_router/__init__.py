@@ -1,0 +1,1 @@
+"""The station's Zenoh router (wire/observation.py): observers subscribe through it."""

@@ -1,0 +1,94 @@
+"""python -m services.zenoh_router: the station's Zenoh router, which observers subscribe
+through (docs/observers.md).
+
+It listens on --address (loopback; plaintext Zenoh is refused beyond it) and may join other
+routers with --connect, so that a router near a remote team relays the station's streams to
+its own subscribers: one copy crosses the link between routers, however many subscribe behind
+it. It carries observation only (wire/observation.py): commands stay on gRPC. Once it listens
+it prints its ready line with the address it bound (a port 0 picks a free one).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import os
+import signal
+import sys
+import threading
+
+import zenoh
+
+from services.runtime.config import configure_logging
+from services.runtime.process import wait_for_stop, watch_parent
+from wire.addresses import address_for, env_name
+from wire.observation import BadEndpoint, SessionPlan, endpoint_for
+from wire.processes import dump_stacks_on_signal, ready_line
+
+log = logging.getLogger("zenoh_router")
+
+NAME = "zenoh_router"
+CONNECT_ENV = env_name(NAME, "connect")
+LOOKUP_TIMEOUT_S = 5.0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="python -m services.zenoh_router", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--address", default=address_for(NAME),
+                        help=f"host:port to listen on (env {env_name(NAME, 'address')})")
+    parser.add_argument("--connect", action="append",
+                        default=[e for e in os.environ.get(CONNECT_ENV, "").split(",") if e],
+                        help="another router to join, tcp/HOST:PORT (repeat for several; env "
+                             f"{CONNECT_ENV}, comma-separated)")
+    parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
+    return parser
+
+
+def listening_on(session: zenoh.Session) -> list[str]:
+    """The endpoints the router bound, from its admin space (a port 0 made real)."""
+    for reply in session.get(f"@/{session.zid()}/router", timeout=LOOKUP_TIMEOUT_S):
+        if reply.ok is not None:
+            return json.loads(reply.ok.payload.to_string())["locators"]
+    return []
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    configure_logging(NAME, args.log_level)
+    dump_stacks_on_signal()
+    plan = SessionPlan("router", listen=(endpoint_for(args.address),),
+                       connect=tuple(args.connect))
+    try:
+        config = plan.config()
+        config.insert_json5("adminspace/enabled", "true")  # (read by listening_on)
+        session = zenoh.open(config)
+    except BadEndpoint as error:
+        print(f"{NAME}: {error}", file=sys.stderr)
+        return 2
+    except zenoh.ZError as error:  # the port taken, an endpoint Zenoh cannot parse
+        print(f"{NAME}: cannot listen on {args.address}: {error}", file=sys.stderr)
+        return 1
+    stop = threading.Event()
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, lambda *_: stop.set())
+    watch_parent(stop.set, stop)
+    try:
+        bound = listening_on(session)
+        if not bound:
+            print(f"{NAME}: listening on {args.address}, but its address is unknown",
+                  file=sys.stderr)
+            return 1
+        address = bound[0].removeprefix("tcp/")
+        log.info("routing on %s%s", bound[0],
+                 f", joined to {', '.join(args.connect)}" if args.connect else "")
+        print(ready_line(NAME, address), flush=True)
+        wait_for_stop(stop)
+    finally:
+        session.close()
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

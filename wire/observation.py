@@ -1,0 +1,132 @@
+"""Observation over Zenoh: what the station publishes, under which keys, and how to reach it.
+
+The station publishes each observed stream once into Zenoh (services.observation); routers
+carry one copy per link to any number of subscribers. Every payload is a message of the
+protos' own, serialized, the same one the service's gRPC stream sends:
+
+    telerobot/<station>/wrench   force_sensor.v1 StreamWrenchResponse: every 1 kHz sample, in
+                                 batches of WRENCH_BATCH (oldest first)
+    telerobot/<station>/state    proxy_robot StreamStateResponse: the arm's state, 100 Hz
+    telerobot/<station>/events   decision_server StreamEventsResponse: control, holds, sessions,
+                                 dependencies, and the arm's events forwarded
+
+Commands never travel here: they stay on gRPC, behind the DecisionServer's lock.
+
+Endpoints are Zenoh's (`tcp/HOST:PORT`). Plaintext is for loopback only: an endpoint beyond
+it is refused, as every other port of the station refuses plaintext beyond loopback.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from dataclasses import dataclass
+
+import zenoh
+
+from telerobot.v1 import decision_server_pb2, force_sensor_pb2, proxy_robot_pb2
+from wire.addresses import address_for, is_loopback
+
+KEY_ROOT = "telerobot"
+STATION_ENV = "TELEROBOT_STATION"
+DEFAULT_STATION = "station"
+ROUTER_ENV = "TELEROBOT_ZENOH_ROUTER"  # an endpoint to join instead of the station's own router
+WRENCH_BATCH = 10  # samples per wrench message: 100 messages a second at the sensor's 1 kHz
+STATE_PERIOD_S = 0.01
+
+# topic -> the message type of its payloads
+TOPICS = {
+    "wrench": force_sensor_pb2.StreamWrenchResponse,
+    "state": proxy_robot_pb2.StreamStateResponse,
+    "events": decision_server_pb2.StreamEventsResponse,
+}
+_STATION_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
+_ENDPOINT = re.compile(r"tcp/(?P<address>\[[0-9a-fA-F:]+\]:\d+|[^/:\[\]]+:\d+)")
+
+
+class BadEndpoint(ValueError):
+    """An endpoint this station will not listen on or connect to."""
+
+
+def station_name(name: str | None = None) -> str:
+    """The station's name in its keys: `name`, else $TELEROBOT_STATION, else "station".
+    ValueError unless it is 1-64 of A-Z a-z 0-9 _ - (a key expression's chunk, no wildcards)."""
+    name = name or os.environ.get(STATION_ENV) or DEFAULT_STATION
+    if not _STATION_NAME.fullmatch(name):
+        raise ValueError(f"station name {name!r}: use 1-64 of A-Z a-z 0-9 _ -")
+    return name
+
+
+def key(station: str, topic: str) -> str:
+    """telerobot/<station>/<topic>"""
+    if topic not in TOPICS:
+        raise KeyError(f"unknown topic {topic!r}; known: {', '.join(TOPICS)}")
+    return f"{KEY_ROOT}/{station}/{topic}"
+
+
+def topic_of(key_expr: str) -> tuple[str, str] | None:
+    """(station, topic) of a published key, or None for a key that is not one of ours."""
+    parts = str(key_expr).split("/")
+    if len(parts) == 3 and parts[0] == KEY_ROOT and parts[2] in TOPICS:
+        return parts[1], parts[2]
+    return None
+
+
+def decode(topic: str, payload: bytes):
+    """The message of a payload published on `topic` (google.protobuf DecodeError if bad)."""
+    message = TOPICS[topic]()
+    message.ParseFromString(payload)
+    return message
+
+
+def endpoint_for(address: str) -> str:
+    """host:port -> tcp/host:port"""
+    return f"tcp/{address}"
+
+
+def default_router() -> str:
+    """The router to join: $TELEROBOT_ZENOH_ROUTER, else the station's own (its address)."""
+    return os.environ.get(ROUTER_ENV) or endpoint_for(address_for("zenoh_router"))
+
+
+def checked_endpoint(endpoint: str) -> str:
+    """`endpoint` if it is tcp/HOST:PORT on loopback; BadEndpoint saying why otherwise."""
+    match = _ENDPOINT.fullmatch(endpoint)
+    if match is None:
+        raise BadEndpoint(f"endpoint {endpoint!r}: expected tcp/HOST:PORT")
+    if not is_loopback(match["address"]):
+        raise BadEndpoint(f"endpoint {endpoint!r} is beyond loopback: observation is plaintext "
+                          "Zenoh, which this station keeps on loopback")
+    return endpoint
+
+
+@dataclass(frozen=True)
+class SessionPlan:
+    """A Zenoh session's mode and endpoints (checked): a router listens and may join others;
+    a client connects to one router."""
+
+    mode: str  # "router" or "client"
+    listen: tuple[str, ...] = ()
+    connect: tuple[str, ...] = ()
+
+    def config(self) -> zenoh.Config:
+        config = zenoh.Config()
+        config.insert_json5("mode", json.dumps(self.mode))
+        # Nothing found by multicast: a station joins only the routers it is told of.
+        config.insert_json5("scouting/multicast/enabled", "false")
+        if self.listen:
+            config.insert_json5("listen/endpoints",
+                                json.dumps([checked_endpoint(e) for e in self.listen]))
+        if self.connect:
+            config.insert_json5("connect/endpoints",
+                                json.dumps([checked_endpoint(e) for e in self.connect]))
+        return config
+
+    def open(self) -> zenoh.Session:
+        return zenoh.open(self.config())
+
+
+def client(router: str) -> zenoh.Session:
+    """A client session through `router` (tcp/HOST:PORT)."""
+    return SessionPlan("client", connect=(router,)).open()
