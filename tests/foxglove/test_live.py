@@ -4,7 +4,6 @@ station is in tests/e2e/test_station.py)."""
 
 from __future__ import annotations
 
-import queue
 import threading
 
 import cv2
@@ -30,6 +29,7 @@ from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 from tests.conftest import wait_for
+from tests.fake_calls import FakeCall
 from tests.foxglove.test_channels import T0, stereo_header, world_poses
 from tests.foxglove.ws_client import FoxgloveClient
 from wire import convert
@@ -146,36 +146,6 @@ def test_the_cameras_images_and_calibration_flow_and_their_frames_join_tf(live):
     frames = {t.child_frame_id for t in
               FrameTransforms.FromString(client.received[fx.TF][0][1]).transforms}
     assert {fx.LEFT_CAMERA_FRAME, fx.RIGHT_CAMERA_FRAME} <= frames
-
-
-class FakeCall:
-    """A server stream's client side: yields what the test puts in, ends with an RpcError the
-    test raises, and is cancelled as grpc's is."""
-
-    class Ended(grpc.RpcError):
-        def __init__(self, code: grpc.StatusCode):
-            self._code = code
-
-        def code(self):
-            return self._code
-
-        def details(self):
-            return self._code.name.lower()
-
-    def __init__(self):
-        self.items: queue.Queue = queue.Queue()
-        self.cancelled = threading.Event()
-
-    def __iter__(self):
-        while True:
-            item = self.items.get()
-            if isinstance(item, grpc.StatusCode):
-                raise FakeCall.Ended(item)
-            yield item
-
-    def cancel(self):
-        self.cancelled.set()
-        self.items.put(grpc.StatusCode.CANCELLED)
 
 
 def test_a_feed_opens_while_wanted_closes_when_not_and_reopens_after_an_error():

@@ -1,0 +1,201 @@
+"""Observation over Zenoh: keys and endpoints, the publisher (a real Zenoh router and client
+sessions in this process, fake upstream streams) and the observer's counts. The station's own
+router and publisher, end to end, are in tests/observation/test_station_observation.py."""
+
+from __future__ import annotations
+
+import itertools
+
+import pytest
+import zenoh
+from google.protobuf.timestamp_pb2 import Timestamp
+
+from clients.observe import Observer
+from services.observation.publisher import ObservationPublisher
+from services.zenoh_router.__main__ import listening_on
+from telerobot.v1 import decision_server_pb2 as ds_pb
+from telerobot.v1 import force_sensor_pb2 as fs_pb
+from tests.conftest import wait_for
+from tests.fake_calls import FakeCall
+from wire.observation import (
+    BadEndpoint,
+    SessionPlan,
+    checked_endpoint,
+    client,
+    decode,
+    key,
+    station_name,
+    topic_of,
+)
+
+T0_NS = 1_700_000_000_000_000_000
+
+
+def test_keys_name_the_station_and_the_topic():
+    assert key("lab-3", "wrench") == "telerobot/lab-3/wrench"
+    assert topic_of("telerobot/lab-3/wrench") == ("lab-3", "wrench")
+    assert topic_of("telerobot/lab-3/other") is None
+    assert topic_of("elsewhere/lab-3/wrench") is None
+    with pytest.raises(KeyError, match="unknown topic"):
+        key("lab-3", "commands")
+
+
+@pytest.mark.parametrize("name", ["a/b", "*", "x" * 65, "lab 3"])
+def test_a_station_name_that_is_no_key_chunk_is_refused(name):
+    with pytest.raises(ValueError, match="station name"):
+        station_name(name)
+
+
+def test_the_station_name_defaults_to_its_variable_then_station(monkeypatch):
+    monkeypatch.delenv("TELEROBOT_STATION", raising=False)
+    assert station_name(None) == "station"
+    monkeypatch.setenv("TELEROBOT_STATION", "lab-3")
+    assert station_name(None) == "lab-3"
+
+
+@pytest.mark.parametrize("endpoint", ["tcp/127.0.0.1:7447", "tcp/localhost:7447",
+                                      "tcp/[::1]:7447", "tcp/127.0.0.1:0"])
+def test_loopback_endpoints_are_taken(endpoint):
+    assert checked_endpoint(endpoint) == endpoint
+
+
+@pytest.mark.parametrize("endpoint, why", [
+    ("tcp/10.0.0.2:7447", "beyond loopback"),
+    ("tcp/0.0.0.0:7447", "beyond loopback"),
+    ("tcp/robot.lab:7447", "beyond loopback"),
+    ("udp/127.0.0.1:7447", "expected tcp/HOST:PORT"),
+    ("127.0.0.1:7447", "expected tcp/HOST:PORT"),
+    ("tcp/127.0.0.1", "expected tcp/HOST:PORT"),
+])
+def test_other_endpoints_are_refused_saying_why(endpoint, why):
+    with pytest.raises(BadEndpoint, match=why):
+        checked_endpoint(endpoint)
+    with pytest.raises(BadEndpoint):
+        SessionPlan("client", connect=(endpoint,)).config()
+
+
+@pytest.fixture
+def router():
+    """A router in this process on a free loopback port: its endpoint."""
+    config = SessionPlan("router", listen=("tcp/127.0.0.1:0",)).config()
+    config.insert_json5("adminspace/enabled", "true")
+    session = zenoh.open(config)
+    try:
+        yield listening_on(session)[0]
+    finally:
+        session.close()
+
+
+@pytest.fixture
+def sessions(router):
+    """Client sessions through the router, closed after the test."""
+    opened = []
+
+    def open_one() -> zenoh.Session:
+        opened.append(client(router))
+        return opened[-1]
+
+    yield open_one
+    for session in opened:
+        session.close()
+
+
+def stamp(ns: int) -> Timestamp:
+    value = Timestamp()
+    value.FromNanoseconds(ns)
+    return value
+
+
+def wrench_message(*sequences: int) -> fs_pb.StreamWrenchResponse:
+    return fs_pb.StreamWrenchResponse(samples=[
+        fs_pb.WrenchSample(sequence=s, sample_time=stamp(T0_NS + s * 1_000_000))
+        for s in sequences])
+
+
+class Streams:
+    """Fake upstream streams, one FakeCall per open, by topic."""
+
+    def __init__(self, *topics: str):
+        self.calls: dict[str, list[FakeCall]] = {topic: [] for topic in topics}
+
+    def opener(self, topic: str):
+        def open_stream() -> FakeCall:
+            self.calls[topic].append(FakeCall())
+            return self.calls[topic][-1]
+        return open_stream
+
+    def all(self) -> dict:
+        return {topic: self.opener(topic) for topic in self.calls}
+
+
+def test_a_stream_is_followed_only_while_someone_subscribes_and_published_once(sessions):
+    streams = Streams("wrench", "events")
+    publisher = ObservationPublisher(sessions(), "lab-3", streams.all()).start()
+    try:
+        assert publisher.following() == {"wrench": False, "events": False}
+        assert streams.calls == {"wrench": [], "events": []}  # nobody watches: no stream
+        observers = [Observer(sessions(), "lab-3", ("wrench",)) for _ in range(2)]
+        wait_for(lambda: len(streams.calls["wrench"]) == 1, what="the wrench stream opened")
+        assert publisher.following() == {"wrench": True, "events": False}
+        streams.calls["wrench"][0].items.put(wrench_message(1, 2, 3))
+        wait_for(lambda: all(o.counts["wrench"].samples == 3 for o in observers),
+                 what="both observers got the samples")
+        assert len(streams.calls["wrench"]) == 1  # two subscribers, one upstream stream
+        assert publisher.published["wrench"] == 1
+        for observer in observers:
+            observer.close()
+        wait_for(lambda: streams.calls["wrench"][0].cancelled.is_set(),
+                 what="the stream cancelled once nobody watches")
+        assert streams.calls["events"] == []
+    finally:
+        publisher.close()
+
+
+def test_the_observer_decodes_counts_lost_samples_and_measures_lag(sessions):
+    clock = itertools.count(T0_NS + 10_000_000, 1_000_000)  # 10 ms after sample 0, then +1 ms
+    streams = Streams("wrench", "events")
+    publisher = ObservationPublisher(sessions(), "lab-3", streams.all()).start()
+    seen = []
+    observer = Observer(sessions(), "lab-3", ("wrench", "events"),
+                        on_message=lambda topic, message: seen.append(topic),
+                        clock_ns=lambda: next(clock))
+    try:
+        wait_for(lambda: streams.calls["wrench"] and streams.calls["events"],
+                 what="both streams opened")
+        wrench = streams.calls["wrench"][0]
+        wrench.items.put(wrench_message(1, 2))
+        wrench.items.put(wrench_message(6, 7))  # 3, 4 and 5 lost on the way
+        wait_for(lambda: observer.counts["wrench"].samples == 4, what="the wrench arrived")
+        streams.calls["events"][0].items.put(ds_pb.StreamEventsResponse(
+            sequence=1, event_time=stamp(T0_NS)))
+        wait_for(lambda: observer.counts["events"].messages == 1, what="the event arrived")
+        summary = observer.summary()
+        assert summary["wrench"]["messages"] == 2 and summary["wrench"]["lost"] == 3
+        assert summary["events"]["lost"] == 0
+        assert seen == ["wrench", "wrench", "events"]
+        # Each message is stamped once on arrival, 1 ms apart from 10 ms after sample 0.
+        assert observer.counts["wrench"].lags_ms == [9.0, 8.0, 5.0, 4.0]
+        assert observer.counts["events"].lags_ms == [12.0]
+    finally:
+        observer.close()
+        publisher.close()
+
+
+def test_a_payload_that_is_no_message_is_counted_not_raised(sessions):
+    observer = Observer(sessions(), "lab-3", ("wrench",))
+    try:
+        sessions().put("telerobot/lab-3/wrench", b"\xff\xff\xff")
+        wait_for(lambda: observer.counts["wrench"].undecodable == 1, what="counted")
+        assert observer.counts["wrench"].messages == 0
+    finally:
+        observer.close()
+
+
+def test_an_observer_of_an_unknown_topic_is_refused(sessions):
+    with pytest.raises(ValueError, match="unknown topics"):
+        Observer(sessions(), "lab-3", ("commands",))
+
+
+def test_the_payload_is_the_streams_own_message():
+    message = wrench_message(5)
+    assert decode("wrench", message.SerializeToString()) == message
