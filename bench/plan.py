@@ -6,7 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 # In the order they run; each is a module of bench/groups/ (bench/run.py dispatches to it).
-GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
+GROUPS = ("command", "force", "baselines", "observers", "observers_zenoh", "estop", "decision",
+          "closed_loop",
           "stereo", "franka", "soak", "soak_overload", "network", "video")
 # `make bench`; the soak and the network experiment (bench/network.py, and its video rows,
 # bench/video.py) take minutes. soak_overload (bench/overload.py) runs by default: 45 s, 15 s
@@ -21,6 +22,7 @@ class Plan:
     force_rates: tuple[tuple[int, int], ...] = ((1000, 1), (120, 8))  # (name, decimation)
     observer_counts: tuple[int, ...] = (0, 1, 4, 16, 32)
     observer_decimation: int = 10
+    zenoh_observer_counts: tuple[int, ...] = (1, 32, 256, 1024)  # observers_zenoh (issue #33)
     load_concurrency: int = 200
     stereo_sources: tuple[str, ...] = ("pattern", "sim")
     stereo_modes: tuple[str, ...] = ("single", "double")

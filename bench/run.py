@@ -45,6 +45,7 @@ from bench.groups import (
     force,
     franka,
     observers,
+    observers_zenoh,
     soak,
     soak_overload,
     stereo,
@@ -61,7 +62,8 @@ from services.security import pki
 RESULTS_DIR = Path(__file__).resolve().parent / "results"
 # Each group's module (bench/groups/), in the order they run: steps(plan), run(session).
 GROUP_MODULES = {"command": command, "force": force, "baselines": baselines,
-                 "observers": observers, "estop": estop, "decision": decision,
+                 "observers": observers, "observers_zenoh": observers_zenoh, "estop": estop,
+                 "decision": decision,
                  "closed_loop": closed_loop, "stereo": stereo, "franka": franka, "soak": soak,
                  "soak_overload": soak_overload, "network": network_group,
                  "video": video_group}

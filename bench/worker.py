@@ -93,6 +93,13 @@ def _observers(p: dict) -> dict:
     return observe(p["address"], p["count"], p["decimation"], p["max_s"], _ready, stop)
 
 
+def _zenoh_observers(p: dict) -> dict:
+    from bench.zenoh_observers import observe_zenoh
+
+    stop = _stop_on_signal()
+    return observe_zenoh(p["router"], p["station"], p["count"], p["max_s"], _ready, stop)
+
+
 def _estop(p: dict) -> dict:
     from bench.estop import run_estop
     from services.runtime.priority import BAND_FIFO_PRIORITY, raise_thread_priority
@@ -164,6 +171,7 @@ def _franka(p: dict) -> dict:
 
 
 KINDS = {"command": _command, "teleop": _teleop, "force": _force, "observers": _observers,
+         "zenoh_observers": _zenoh_observers,
          "estop": _estop, "load": _load, "closed_loop": _closed_loop, "stereo": _stereo,
          "events": _events, "overload": _overload, "network": _network, "video": _video,
          "video_console": _video_console, "franka": _franka}

@@ -115,6 +115,9 @@ class SessionPlan:
         config.insert_json5("mode", json.dumps(self.mode))
         # Nothing found by multicast: a station joins only the routers it is told of.
         config.insert_json5("scouting/multicast/enabled", "false")
+        # Plain TCP, even between processes of one host: with Zenoh's shared memory a router
+        # stopped taking clients after about 350, and its segments outlive killed processes.
+        config.insert_json5("transport/shared_memory/enabled", "false")
         if self.listen:
             config.insert_json5("listen/endpoints",
                                 json.dumps([checked_endpoint(e) for e in self.listen]))

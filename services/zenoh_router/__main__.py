@@ -31,6 +31,8 @@ log = logging.getLogger("zenoh_router")
 NAME = "zenoh_router"
 CONNECT_ENV = env_name(NAME, "connect")
 LOOKUP_TIMEOUT_S = 5.0
+# Zenoh's default is 1,000 sessions: a class or a remote team behind one router may be more.
+DEFAULT_MAX_SESSIONS = 4096
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -42,6 +44,8 @@ def build_parser() -> argparse.ArgumentParser:
                         default=[e for e in os.environ.get(CONNECT_ENV, "").split(",") if e],
                         help="another router to join, tcp/HOST:PORT (repeat for several; env "
                              f"{CONNECT_ENV}, comma-separated)")
+    parser.add_argument("--max-sessions", type=int, default=DEFAULT_MAX_SESSIONS,
+                        help="the most sessions (subscribers' and routers') it takes at once")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     return parser
 
@@ -57,12 +61,16 @@ def listening_on(session: zenoh.Session) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     configure_logging(NAME, args.log_level)
+    if args.max_sessions < 1:
+        print(f"{NAME}: --max-sessions must be at least 1", file=sys.stderr)
+        return 2
     dump_stacks_on_signal()
     plan = SessionPlan("router", listen=(endpoint_for(args.address),),
                        connect=tuple(args.connect))
     try:
         config = plan.config()
         config.insert_json5("adminspace/enabled", "true")  # (read by listening_on)
+        config.insert_json5("transport/unicast/max_sessions", str(args.max_sessions))
         session = zenoh.open(config)
     except BadEndpoint as error:
         print(f"{NAME}: {error}", file=sys.stderr)
