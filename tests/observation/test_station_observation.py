@@ -1,0 +1,123 @@
+"""The station's observation end to end: `make serve`'s launcher starts a Zenoh router and the
+publisher beside the services, and `python -m clients.observe` sees the wrench, the arm's
+state and the DecisionServer's events through the router; a router that dies takes nothing
+else down, and observers are back once the launcher restarted it."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+
+import grpc
+import pytest
+
+from clients.observe import Observer
+from telerobot.v1 import decision_server_pb2 as ds_pb
+from telerobot.v1 import (
+    decision_server_pb2_grpc,
+    force_sensor_pb2,
+    force_sensor_pb2_grpc,
+    proxy_robot_pb2,
+    proxy_robot_pb2_grpc,
+)
+from tests.conftest import wait_for
+from tests.processes import REPO, health_serving, service_pid, start_station, station_env
+from wire.observation import client
+
+pytestmark = pytest.mark.e2e
+
+STATION = "lab-3"
+
+
+@pytest.fixture(scope="module")
+def station():
+    launcher = start_station(station_env(TELEROBOT_STATION=STATION))
+    with grpc.insecure_channel(launcher.ready["proxy_robot"]) as channel:
+        robot = proxy_robot_pb2_grpc.ProxyRobotStub(channel)
+        robot.Connect(proxy_robot_pb2.ConnectRequest(), timeout=30)
+        robot.Initialize(proxy_robot_pb2.InitializeRequest(), timeout=30)
+    with grpc.insecure_channel(launcher.ready["force_sensor"]) as channel:
+        force_sensor_pb2_grpc.ForceSensorStub(channel).StartReading(
+            force_sensor_pb2.StartReadingRequest(), timeout=10)
+    yield launcher
+    if launcher.process.poll() is None:
+        launcher.stop(signal.SIGINT)
+
+
+def observe(router: str, *args: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "clients.observe", "--router",
+                             f"tcp/{router}", *args], cwd=REPO, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def summary_of(process: subprocess.Popen, nothing: bool = False) -> dict:
+    """Its --json summary; it exits with 1 when nothing arrived (`nothing`), else 0."""
+    out, err = process.communicate(timeout=60)
+    assert process.returncode == (1 if nothing else 0), (out, err)
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def test_the_observe_client_sees_every_wrench_sample_and_the_state(station):
+    summary = summary_of(observe(station.ready["zenoh_router"], "--station", STATION,
+                                 "--seconds", "3", "--json"))
+    wrench, state = summary["wrench"], summary["state"]
+    assert wrench["samples"] >= 10 * wrench["messages"] > 0  # every sample, 10 a message
+    assert state["messages"] > 0
+    assert all(summary[t]["undecodable"] == 0 for t in summary)
+    assert 0 <= wrench["lag_p50_ms"] < 1000, wrench  # taken on this host's clock
+
+
+def test_the_decision_servers_events_reach_observers(station):
+    session = client(f"tcp/{station.ready['zenoh_router']}")
+    observer = Observer(session, STATION, ("state", "events"))
+    try:
+        # The publisher follows the streams once it sees the subscribers: the state shows
+        # when they flow.
+        wait_for(lambda: observer.counts["state"].messages > 0, timeout_s=10,
+                 what="the state flowing")
+        with grpc.insecure_channel(station.ready["decision_server"]) as channel:
+            door = decision_server_pb2_grpc.DecisionServerStub(channel)
+            lease = door.AcquireControl(ds_pb.AcquireControlRequest(
+                operator_id="observed", mode=ds_pb.CONTROL_MODE_EXCLUSIVE), timeout=5)
+            door.ReleaseControl(ds_pb.ReleaseControlRequest(lease_id=lease.lease_id),
+                                timeout=5)
+        wait_for(lambda: observer.counts["events"].messages >= 2, timeout_s=10,
+                 what="the lock's two changes")
+    finally:
+        observer.close()
+        session.close()
+
+
+def test_observers_of_another_station_name_get_nothing(station):
+    summary = summary_of(observe(station.ready["zenoh_router"], "--station", "elsewhere",
+                                 "--seconds", "1", "--json"), nothing=True)
+    assert all(count["messages"] == 0 for count in summary.values())
+
+
+def test_a_killed_router_takes_nothing_else_down_and_observers_come_back(station):
+    router = station.ready["zenoh_router"]
+    victim = service_pid(station, "zenoh_router")
+    publisher = service_pid(station, "observation")
+    os.kill(victim, signal.SIGKILL)
+    assert health_serving(station.ready["decision_server"])
+    assert health_serving(station.ready["force_sensor"])
+    wait_for(lambda: service_pid(station, "zenoh_router") not in (None, victim)
+             and _accepts(router), timeout_s=10, what="the router restarted on its address")
+    assert service_pid(station, "observation") == publisher  # it rejoined by itself
+    summary = summary_of(observe(router, "--station", STATION, "--topics", "wrench",
+                                 "--seconds", "2", "--json"))
+    assert summary["wrench"]["messages"] > 0
+    assert station.process.poll() is None
+
+
+def _accepts(address: str) -> bool:
+    host, _, port = address.rpartition(":")
+    try:
+        with socket.create_connection((host, int(port)), timeout=1.0):
+            return True
+    except OSError:
+        return False
