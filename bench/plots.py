@@ -26,6 +26,46 @@ def _p99_goal(group: str) -> float | None:
     return goal.p99_ms if goal is not None else None
 
 
+ZENOH_ROWS = "observers_zenoh_"  # bench/groups/observers_zenoh.py
+
+
+def _zenoh_plot(plt, out_dir: Path, rows: list[tuple[int, dict]]) -> Path:
+    """observers_zenoh.png: the operator's stream, where the CPU goes, and what each
+    subscriber gets, against the number of subscribers behind the router."""
+    counts = [n for n, _ in rows]
+    figure, axes = plt.subplots(1, 3, figsize=(14, 4.4))
+    axes[0].plot(counts, [r["p50_ms"] for _, r in rows], "o-", label="p50")
+    axes[0].plot(counts, [r["p99_ms"] for _, r in rows], "s-", label="p99")
+    axes[0].axhline(_p99_goal("observers"), color="red", alpha=0.6, label="goal (p99)")
+    axes[0].set_title("operator's 1 kHz force stream: latency")
+    axes[0].set_ylabel("ms")
+    for key, label in (("station_cpu_pct", "station (its services and the publisher)"),
+                       ("world_cpu_pct", "of which the world (fixed work)"),
+                       ("router_cpu_pct", "the router"),
+                       ("subscribers_cpu_pct", "the subscribers' processes")):
+        axes[1].plot(counts, [r.get(key) for _, r in rows], "o-", label=label)
+    axes[1].set_title("CPU while measured")
+    axes[1].set_ylabel("% of one core")
+    axes[2].plot(counts, [r.get("subscriber_lag_p50_ms_median") for _, r in rows], "o-",
+                 label="lag p50 (median subscriber)")
+    axes[2].plot(counts, [r.get("subscriber_lag_p99_ms_median") for _, r in rows], "s-",
+                 label="lag p99 (median subscriber)")
+    axes[2].set_yscale("log")
+    axes[2].set_title("each subscriber: sample taken -> received")
+    axes[2].set_ylabel("ms")
+    for axis in axes:
+        axis.set_xlabel("Zenoh subscribers behind the router")
+        axis.set_xscale("symlog", linthresh=1)
+        axis.set_xticks(counts, [str(c) for c in counts])
+        axis.grid(True, alpha=0.3)
+        axis.legend(fontsize=8)
+    figure.tight_layout()
+    path = out_dir / "observers_zenoh.png"
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path
+
+
 def write_plots(out_dir: Path, results: dict[str, dict], raw: dict[str, list[float]]
                 ) -> list[Path]:
     """Write the PNGs into out_dir; returns their paths."""
@@ -81,7 +121,8 @@ def write_plots(out_dir: Path, results: dict[str, dict], raw: dict[str, list[flo
         written.append(path)
 
     observers = sorted((r["observers"], r) for n, r in results.items()
-                       if family(n) == "observers" and r.get("p99_ms") is not None)
+                       if family(n) == "observers" and not n.startswith(ZENOH_ROWS)
+                       and r.get("p99_ms") is not None)
     if observers:
         counts = [n for n, _ in observers]
         figure, axes = plt.subplots(1, 3, figsize=(14, 4.4))
@@ -114,6 +155,11 @@ def write_plots(out_dir: Path, results: dict[str, dict], raw: dict[str, list[flo
         figure.savefig(path, dpi=110)
         plt.close(figure)
         written.append(path)
+
+    zenoh = sorted((r["observers"], r) for n, r in results.items()
+                   if n.startswith(ZENOH_ROWS) and r.get("p99_ms") is not None)
+    if zenoh:
+        written.append(_zenoh_plot(plt, out_dir, zenoh))
 
     series = (results.get("soak") or {}).get("rss_series")
     if series and series.get("t_s"):

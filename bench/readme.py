@@ -62,6 +62,8 @@ WHAT = (
                         "interleaved"),
     ("teleop_*", "Teleoperate command → applied, streamed at the rate (pipelined)"),
     ("force_*", "wrench sampled → at the operator"),
+    ("observers_zenoh_*", "the operator's 1 kHz stream with n Zenoh subscribers to every wrench "
+                          "sample behind a router (the station publishes once)"),
     ("observers_*", "the operator's 1 kHz stream with n observers at 100 Hz"),
     ("estop_idle", "EmergencyStop on the band → hold latched at the servo"),
     ("estop_under_load", "same, 200 low-lane calls in flight on ProxyRobot"),
@@ -166,7 +168,8 @@ def _cpu_text(cpu: dict) -> str:
     the observer processes summed."""
     shares: dict[str, float] = {}
     for name, pct in cpu.get("cpu_pct", {}).items():
-        key = "observers" if name.startswith("observers") else name
+        key = ("observers" if name.startswith("observers")
+               else "subscribers" if name.startswith("subscribers") else name)
         shares[key] = shares.get(key, 0.0) + pct
     each = ", ".join(f"{name.replace('_', ' ')} {pct:.0f} %"
                      for name, pct in sorted(shares.items(), key=lambda item: -item[1]))

@@ -38,12 +38,15 @@ COMMANDS = (
         ("services.decision_server", "the DecisionServer"),
         ("services.web_console", "the web console"),
         ("services.foxglove", "the Foxglove live view"),
+        ("services.zenoh_router", "the Zenoh router observers subscribe through"),
+        ("services.observation", "the observation's publisher into Zenoh"),
         ("services.impairment", "the impairment link"),
     )),
     ("The operator's side", (
         ("clients.teleop", "`make teleop`: the operator station"),
         ("clients.teleop.mcap_inspect", "what a session.mcap holds"),
         ("clients.video_probe", "the stereo stream's rate and age"),
+        ("clients.observe", "watch a station through a Zenoh router"),
         ("discovery", "mDNS: list, watch and advertise stations"),
     )),
     ("Tools", (

@@ -155,15 +155,16 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--no-advertise", dest="advertise", action="store_const", const="0",
                         help="do not advertise the station")
     parser.add_argument("--zenoh-router", default=os.environ.get(ROUTER_ENV, ""),
-                        help="publish the observation through this Zenoh router, tcp/HOST:PORT, "
-                             f"instead of starting one beside the station (env {ROUTER_ENV})")
+                        help="publish the observation through this Zenoh router, tls/HOST:PORT "
+                             "(tcp/ on loopback), instead of starting one beside the station "
+                             f"(env {ROUTER_ENV})")
     args = parser.parse_args(argv)
     configure_logging("launcher", args.log_level)
     if not select_arm_from(args, log):  # every child inherits the choice
         return 2
     if args.zenoh_router:
         try:
-            checked_endpoint(args.zenoh_router)
+            checked_endpoint(args.zenoh_router, tls=bool(args.tls_dir))
         except BadEndpoint as error:
             log.error("--zenoh-router: %s", error)
             return 2
@@ -489,8 +490,8 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
                   "docs/foxglove_layout.json)"]
     router = next((c.address for c in station if c.name == "zenoh_router"), None)
     if router:
-        lines += [f"Observers: python -m clients.observe --router {endpoint_for(router)} (Zenoh; "
-                  "docs/observers.md)"]
+        lines += [f"Observers: python -m clients.observe --router "
+                  f"{endpoint_for(router, tls=bool(tls_dir))} (Zenoh; docs/observers.md)"]
     lines += ["", f"The operator's address is {operator} (set "
                   f"{env_name('decision_server', 'address')} to move it). Try:"]
     if tls_dir:

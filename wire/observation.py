@@ -12,8 +12,11 @@ protos' own, serialized, the same one the service's gRPC stream sends:
 
 Commands never travel here: they stay on gRPC, behind the DecisionServer's lock.
 
-Endpoints are Zenoh's (`tcp/HOST:PORT`). Plaintext is for loopback only: an endpoint beyond
-it is refused, as every other port of the station refuses plaintext beyond loopback.
+Endpoints are Zenoh's: `tcp/HOST:PORT`, plaintext, for loopback only (an endpoint beyond it is
+refused, as every other port of the station refuses plaintext beyond loopback), and
+`tls/HOST:PORT`, anywhere. Over TLS every link is mutual TLS with the station's PKI
+(services.security.pki, `make certs`): each end presents its certificate, and a router
+lets only the station's publisher and other routers put into telerobot/** (ACCESS_CONTROL).
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ import json
 import os
 import re
 from dataclasses import dataclass
+from pathlib import Path
 
 import zenoh
 
@@ -29,7 +33,7 @@ from telerobot.v1 import decision_server_pb2, force_sensor_pb2, proxy_robot_pb2
 from wire.addresses import address_for, is_loopback
 
 KEY_ROOT = "telerobot"
-STATION_ENV = "TELEROBOT_STATION"
+STATION_ENV = "TELEROBOT_STATION"  # the station's name in its Zenoh keys (default station)
 DEFAULT_STATION = "station"
 ROUTER_ENV = "TELEROBOT_ZENOH_ROUTER"  # an endpoint to join instead of the station's own router
 WRENCH_BATCH = 10  # samples per wrench message: 100 messages a second at the sensor's 1 kHz
@@ -42,7 +46,10 @@ TOPICS = {
     "events": decision_server_pb2.StreamEventsResponse,
 }
 _STATION_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
-_ENDPOINT = re.compile(r"tcp/(?P<address>\[[0-9a-fA-F:]+\]:\d+|[^/:\[\]]+:\d+)")
+_ENDPOINT = re.compile(r"(?P<protocol>tcp|tls)/(?P<address>\[[0-9a-fA-F:]+\]:\d+|[^/:\[\]]+:\d+)")
+# Who may put into the station's keys over TLS (certificate common names): its publisher, and
+# routers relaying it. Anyone with a certificate of the station's CA may subscribe.
+PUBLISHERS = ("observation", "zenoh_router")
 
 
 class BadEndpoint(ValueError):
@@ -80,25 +87,80 @@ def decode(topic: str, payload: bytes):
     return message
 
 
-def endpoint_for(address: str) -> str:
-    """host:port -> tcp/host:port"""
-    return f"tcp/{address}"
+def endpoint_for(address: str, tls: bool = False) -> str:
+    """host:port -> tcp/host:port (tls/host:port)"""
+    return f"{'tls' if tls else 'tcp'}/{address}"
 
 
-def default_router() -> str:
-    """The router to join: $TELEROBOT_ZENOH_ROUTER, else the station's own (its address)."""
-    return os.environ.get(ROUTER_ENV) or endpoint_for(address_for("zenoh_router"))
+def default_router(tls_dir: str | None = None) -> str:
+    """The router to join: $TELEROBOT_ZENOH_ROUTER, else the station's own (its address, over
+    TLS when there is a TLS directory)."""
+    return os.environ.get(ROUTER_ENV) or endpoint_for(address_for("zenoh_router"),
+                                                      tls=bool(tls_dir))
 
 
-def checked_endpoint(endpoint: str) -> str:
-    """`endpoint` if it is tcp/HOST:PORT on loopback; BadEndpoint saying why otherwise."""
+def checked_endpoint(endpoint: str, tls: bool = False) -> str:
+    """`endpoint` if it is tcp/HOST:PORT on loopback, or tls/HOST:PORT with `tls` (a TLS
+    directory to use); BadEndpoint saying why otherwise."""
     match = _ENDPOINT.fullmatch(endpoint)
     if match is None:
-        raise BadEndpoint(f"endpoint {endpoint!r}: expected tcp/HOST:PORT")
-    if not is_loopback(match["address"]):
-        raise BadEndpoint(f"endpoint {endpoint!r} is beyond loopback: observation is plaintext "
-                          "Zenoh, which this station keeps on loopback")
+        raise BadEndpoint(f"endpoint {endpoint!r}: expected tcp/HOST:PORT or tls/HOST:PORT")
+    if match["protocol"] == "tls" and not tls:
+        raise BadEndpoint(f"endpoint {endpoint!r} is TLS: give the station's TLS directory "
+                          "(--tls-dir, or TELEROBOT_TLS_DIR)")
+    if match["protocol"] == "tcp" and not is_loopback(match["address"]):
+        raise BadEndpoint(f"endpoint {endpoint!r} is plaintext beyond loopback, which this "
+                          f"station refuses: use tls/{match['address']} with the station's "
+                          "TLS directory")
     return endpoint
+
+
+@dataclass(frozen=True)
+class ZenohTls:
+    """Mutual TLS from a directory of the station's PKI: its CA, and the certificate of
+    `identity` (<identity>.pem / .key), presented both as a client and as a listener."""
+
+    tls_dir: Path
+    identity: str
+
+    def files(self) -> dict[str, Path]:
+        directory = Path(self.tls_dir)
+        files = {"ca": directory / "ca.pem", "cert": directory / f"{self.identity}.pem",
+                 "key": directory / f"{self.identity}.key"}
+        missing = [str(path) for path in files.values() if not path.exists()]
+        if missing:
+            raise BadEndpoint(f"TLS needs {', '.join(missing)}: `make certs` issues them")
+        return files
+
+    def insert(self, config: zenoh.Config, listens: bool) -> None:
+        files = self.files()
+        settings = {"root_ca_certificate": files["ca"], "enable_mtls": True,
+                    "connect_certificate": files["cert"], "connect_private_key": files["key"]}
+        if listens:
+            settings |= {"listen_certificate": files["cert"], "listen_private_key": files["key"]}
+        for name, value in settings.items():
+            config.insert_json5(f"transport/link/tls/{name}",
+                                json.dumps(value if isinstance(value, bool) else str(value)))
+
+
+# A TLS router's rules: anyone with a certificate of the CA subscribes and is delivered to;
+# only PUBLISHERS put into the station's keys. Everything else is denied.
+ACCESS_CONTROL = {
+    "enabled": True,
+    "default_permission": "deny",
+    "rules": [
+        {"id": "subscribe", "permission": "allow", "flows": ["ingress"],
+         "messages": ["declare_subscriber"], "key_exprs": [f"{KEY_ROOT}/**"]},
+        {"id": "deliver", "permission": "allow", "flows": ["egress"],
+         "messages": ["put", "delete", "declare_subscriber"], "key_exprs": [f"{KEY_ROOT}/**"]},
+        {"id": "publish", "permission": "allow", "flows": ["ingress"],
+         "messages": ["put", "delete"], "key_exprs": [f"{KEY_ROOT}/**"]},
+    ],
+    "subjects": [{"id": "anyone"},
+                 {"id": "publishers", "cert_common_names": list(PUBLISHERS)}],
+    "policies": [{"id": "observers", "rules": ["subscribe", "deliver"], "subjects": ["anyone"]},
+                 {"id": "station", "rules": ["publish"], "subjects": ["publishers"]}],
+}
 
 
 @dataclass(frozen=True)
@@ -109,6 +171,7 @@ class SessionPlan:
     mode: str  # "router" or "client"
     listen: tuple[str, ...] = ()
     connect: tuple[str, ...] = ()
+    tls: ZenohTls | None = None  # mutual TLS (and, for a router, ACCESS_CONTROL)
 
     def config(self) -> zenoh.Config:
         config = zenoh.Config()
@@ -118,18 +181,28 @@ class SessionPlan:
         # Plain TCP, even between processes of one host: with Zenoh's shared memory a router
         # stopped taking clients after about 350, and its segments outlive killed processes.
         config.insert_json5("transport/shared_memory/enabled", "false")
+        tls = self.tls is not None
         if self.listen:
             config.insert_json5("listen/endpoints",
-                                json.dumps([checked_endpoint(e) for e in self.listen]))
+                                json.dumps([checked_endpoint(e, tls) for e in self.listen]))
         if self.connect:
             config.insert_json5("connect/endpoints",
-                                json.dumps([checked_endpoint(e) for e in self.connect]))
+                                json.dumps([checked_endpoint(e, tls) for e in self.connect]))
+        if self.tls is not None:
+            self.tls.insert(config, listens=bool(self.listen))
+            if self.mode == "router":
+                config.insert_json5("access_control", json.dumps(ACCESS_CONTROL))
         return config
 
     def open(self) -> zenoh.Session:
         return zenoh.open(self.config())
 
 
-def client(router: str) -> zenoh.Session:
-    """A client session through `router` (tcp/HOST:PORT)."""
-    return SessionPlan("client", connect=(router,)).open()
+def client(router: str, tls: ZenohTls | None = None) -> zenoh.Session:
+    """A client session through `router` (tcp/HOST:PORT, or tls/HOST:PORT with `tls`)."""
+    return SessionPlan("client", connect=(router,), tls=tls).open()
+
+
+def tls_from(tls_dir: str | None, identity: str) -> ZenohTls | None:
+    """ZenohTls for `identity` from a TLS directory; None without one."""
+    return ZenohTls(Path(tls_dir), identity) if tls_dir else None

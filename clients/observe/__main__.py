@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import signal
 import sys
 import threading
@@ -20,15 +21,30 @@ import zenoh
 from google.protobuf import json_format
 
 from clients.observe import Observer
-from wire.observation import TOPICS, BadEndpoint, checked_endpoint, client, default_router
+from wire.observation import (
+    TOPICS,
+    BadEndpoint,
+    checked_endpoint,
+    client,
+    default_router,
+    tls_from,
+)
+from wire.tls import IDENTITY_ENV, TLS_DIR_ENV
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="python -m clients.observe", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--router", default=default_router(),
-                        help="the router to subscribe through, tcp/HOST:PORT (env "
-                             "TELEROBOT_ZENOH_ROUTER; default: the station's own on this host)")
+    parser.add_argument("--router", default=None,
+                        help="the router to subscribe through, tcp/HOST:PORT (loopback) or "
+                             "tls/HOST:PORT (env TELEROBOT_ZENOH_ROUTER; default: the "
+                             "station's own on this host)")
+    parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
+                        help=f"a TLS directory of the station's PKI (env {TLS_DIR_ENV}): mutual "
+                             "TLS with --identity's certificate")
+    parser.add_argument("--identity", default=os.environ.get(IDENTITY_ENV, "observer"),
+                        help=f"whose certificate to present (env {IDENTITY_ENV}; default "
+                             "observer)")
     parser.add_argument("--station", default="*",
                         help="the station to watch (default: every station behind the router)")
     parser.add_argument("--topics", default=",".join(TOPICS),
@@ -45,8 +61,9 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     topics = tuple(t for t in args.topics.split(",") if t)
     try:
-        router = checked_endpoint(args.router)
-        session = client(router)
+        router = checked_endpoint(args.router or default_router(args.tls_dir),
+                                  tls=bool(args.tls_dir))
+        session = client(router, tls_from(args.tls_dir, args.identity))
     except BadEndpoint as error:
         print(f"observe: {error}", file=sys.stderr)
         return 2

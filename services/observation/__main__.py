@@ -30,10 +30,12 @@ from wire.addresses import address_for, env_name
 from wire.observation import (
     STATION_ENV,
     BadEndpoint,
+    ZenohTls,
     checked_endpoint,
     client,
     default_router,
     station_name,
+    tls_from,
 )
 from wire.processes import dump_stacks_on_signal, ready_line
 from wire.tls import TLS_DIR_ENV, open_channel
@@ -48,10 +50,10 @@ UPSTREAM = ("proxy_robot", "force_sensor", "decision_server")
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="python -m services.observation", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--router", default=default_router(),
-                        help="the Zenoh router to publish through, tcp/HOST:PORT (env "
-                             "TELEROBOT_ZENOH_ROUTER; default: the station's own, "
-                             f"{env_name('zenoh_router', 'address')})")
+    parser.add_argument("--router", default=None,
+                        help="the Zenoh router to publish through, tcp/HOST:PORT or "
+                             "tls/HOST:PORT (env TELEROBOT_ZENOH_ROUTER; default: the "
+                             f"station's own, {env_name('zenoh_router', 'address')})")
     parser.add_argument("--station", default=os.environ.get(STATION_ENV),
                         help=f"the station's name in the keys (env {STATION_ENV}; default "
                              "station)")
@@ -60,7 +62,7 @@ def build_parser() -> argparse.ArgumentParser:
                             help=f"its address (env {env_name(service, 'address')})")
     parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
                         help=f"the station's TLS directory (env {TLS_DIR_ENV}): the services are "
-                             "read with this process's certificate")
+                             f"read, and the router joined over mutual TLS, with {NAME}.pem")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     return parser
 
@@ -71,7 +73,11 @@ def main(argv: list[str] | None = None) -> int:
     dump_stacks_on_signal()
     try:
         station = station_name(args.station)
-        router = checked_endpoint(args.router)
+        router = checked_endpoint(args.router or default_router(args.tls_dir),
+                                  tls=bool(args.tls_dir))
+        tls = tls_from(args.tls_dir, NAME)
+        if tls is not None:
+            tls.files()  # there, before waiting for a router
     except (ValueError, BadEndpoint) as error:
         print(f"{NAME}: {error}", file=sys.stderr)
         return 2
@@ -79,7 +85,7 @@ def main(argv: list[str] | None = None) -> int:
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda *_: stop.set())
     watch_parent(stop.set, stop)
-    session = _join(router, stop)
+    session = _join(router, tls, stop)
     if session is None:
         return 0
     security = station_channel_security(args.tls_dir or None, NAME)
@@ -90,7 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         log.info("publishing telerobot/%s/... through %s while anyone subscribes", station,
                  router)
-        print(ready_line(NAME, router.removeprefix("tcp/")), flush=True)
+        print(ready_line(NAME, router.split("/", 1)[1]), flush=True)
         wait_for_stop(stop)
     finally:
         publisher.close()
@@ -101,13 +107,13 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def _join(router: str, stop: threading.Event) -> zenoh.Session | None:
+def _join(router: str, tls: ZenohTls | None, stop: threading.Event) -> zenoh.Session | None:
     """A client session through `router`, asking again every RETRY_S until it answers; None
     if a stop came first."""
     said = False
     while not stop.is_set():
         try:
-            return client(router)
+            return client(router, tls)
         except zenoh.ZError as error:
             if not said:
                 log.warning("the router %s does not answer (%s); asking again every %.0f s",

@@ -49,9 +49,9 @@ DEFAULT_PKI_DIR = "var/pki"
 # Every process of the station, and the identities a fresh station hands out.
 STATION_SERVICES = ("world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
                     "decision_server")
-# Station services that only read, as observers: the live view (services.foxglove) and the
-# observation's publisher (services.observation).
-VIEWER_SERVICES = ("foxglove", "observation")
+# Station processes with an observer's role: the live view (services.foxglove), the
+# observation's publisher (services.observation) and the Zenoh router that carries it.
+VIEWER_SERVICES = ("foxglove", "observation", "zenoh_router")
 # Servers that are no client of the station: the web console's HTTPS (a server certificate
 # only, so its key speaks for no identity at the gRPC ports).
 WEB_SERVICES = ("web_console",)

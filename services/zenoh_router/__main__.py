@@ -1,7 +1,9 @@
 """python -m services.zenoh_router: the station's Zenoh router, which observers subscribe
 through (docs/observers.md).
 
-It listens on --address (loopback; plaintext Zenoh is refused beyond it) and may join other
+It listens on --address: plaintext on loopback, or with the station's TLS directory (--tls-dir)
+mutual TLS anywhere, where only the station's publisher and other routers may put into its keys
+(wire/observation.py ACCESS_CONTROL); plaintext beyond loopback is refused. It may join other
 routers with --connect, so that a router near a remote team relays the station's streams to
 its own subscribers: one copy crosses the link between routers, however many subscribe behind
 it. It carries observation only (wire/observation.py): commands stay on gRPC. Once it listens
@@ -17,14 +19,16 @@ import os
 import signal
 import sys
 import threading
+from pathlib import Path
 
 import zenoh
 
 from services.runtime.config import configure_logging
 from services.runtime.process import wait_for_stop, watch_parent
 from wire.addresses import address_for, env_name
-from wire.observation import BadEndpoint, SessionPlan, endpoint_for
+from wire.observation import BadEndpoint, SessionPlan, ZenohTls, endpoint_for
 from wire.processes import dump_stacks_on_signal, ready_line
+from wire.tls import TLS_DIR_ENV
 
 log = logging.getLogger("zenoh_router")
 
@@ -42,8 +46,12 @@ def build_parser() -> argparse.ArgumentParser:
                         help=f"host:port to listen on (env {env_name(NAME, 'address')})")
     parser.add_argument("--connect", action="append",
                         default=[e for e in os.environ.get(CONNECT_ENV, "").split(",") if e],
-                        help="another router to join, tcp/HOST:PORT (repeat for several; env "
+                        help="another router to join, tls/HOST:PORT, or tcp/HOST:PORT on loopback "
+                             "(repeat for several; env "
                              f"{CONNECT_ENV}, comma-separated)")
+    parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
+                        help=f"the station's TLS directory (env {TLS_DIR_ENV}): mutual TLS with "
+                             f"{NAME}.pem, and the access rules")
     parser.add_argument("--max-sessions", type=int, default=DEFAULT_MAX_SESSIONS,
                         help="the most sessions (subscribers' and routers') it takes at once")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
@@ -65,8 +73,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{NAME}: --max-sessions must be at least 1", file=sys.stderr)
         return 2
     dump_stacks_on_signal()
-    plan = SessionPlan("router", listen=(endpoint_for(args.address),),
-                       connect=tuple(args.connect))
+    tls = ZenohTls(Path(args.tls_dir), NAME) if args.tls_dir else None
+    plan = SessionPlan("router", listen=(endpoint_for(args.address, tls=bool(tls)),),
+                       connect=tuple(args.connect), tls=tls)
     try:
         config = plan.config()
         config.insert_json5("adminspace/enabled", "true")  # (read by listening_on)
@@ -88,7 +97,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{NAME}: listening on {args.address}, but its address is unknown",
                   file=sys.stderr)
             return 1
-        address = bound[0].removeprefix("tcp/")
+        address = bound[0].split("/", 1)[1]
         log.info("routing on %s%s", bound[0],
                  f", joined to {', '.join(args.connect)}" if args.connect else "")
         print(ready_line(NAME, address), flush=True)

@@ -14,7 +14,13 @@ import numpy as np
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
-from services.launcher import GRPC_CHILDREN, HTTP_CHILDREN, STATION, WEBSOCKET_CHILDREN
+from services.launcher import (
+    GRPC_CHILDREN,
+    HTTP_CHILDREN,
+    STATION,
+    WEBSOCKET_CHILDREN,
+    ZENOH_CHILDREN,
+)
 from services.runtime.children import refused_address
 from services.runtime.process import metrics_port_name
 from tests.conftest import wait_for
@@ -53,6 +59,8 @@ def test_every_process_is_serving_where_the_launcher_says(station):
         assert not addresses[name].endswith(":0"), addresses
         if name in WEBSOCKET_CHILDREN:  # the live view: WebSocket only (test_the_live_view_…)
             continue
+        if name in ZENOH_CHILDREN:  # Zenoh only (tests/observation/test_station_observation.py)
+            continue
         if name in HTTP_CHILDREN:  # the web console: HTTP, its health at /healthz
             with urllib.request.urlopen(f"http://{addresses[name]}/healthz", timeout=5) as r:
                 assert r.status == 200, name
@@ -61,6 +69,7 @@ def test_every_process_is_serving_where_the_launcher_says(station):
     banner = "\n".join(launcher.lines)
     assert f"The operator's address is {addresses['decision_server']}" in banner
     assert f"The live view: ws://{addresses['foxglove']}" in banner
+    assert f"python -m clients.observe --router tcp/{addresses['zenoh_router']}" in banner
     # The launcher's check that the live view serves shakes hands as a client would: the live
     # view logs no failed handshake for it.
     assert "handshake failed" not in banner

@@ -12,6 +12,7 @@ from google.protobuf.timestamp_pb2 import Timestamp
 
 from clients.observe import Observer
 from services.observation.publisher import ObservationPublisher
+from services.security import pki
 from services.zenoh_router.__main__ import listening_on
 from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import force_sensor_pb2 as fs_pb
@@ -20,6 +21,7 @@ from tests.fake_calls import FakeCall
 from wire.observation import (
     BadEndpoint,
     SessionPlan,
+    ZenohTls,
     checked_endpoint,
     client,
     decode,
@@ -199,3 +201,63 @@ def test_an_observer_of_an_unknown_topic_is_refused(sessions):
 def test_the_payload_is_the_streams_own_message():
     message = wrench_message(5)
     assert decode("wrench", message.SerializeToString()) == message
+
+
+# -- mutual TLS and the router's access rules ------------------------------------------------
+
+@pytest.fixture(scope="module")
+def pki_dir(tmp_path_factory):
+    directory = tmp_path_factory.mktemp("pki")
+    pki.init(directory)
+    return directory
+
+
+@pytest.fixture
+def tls_router(pki_dir):
+    """A TLS router in this process, with the access rules: its endpoint."""
+    config = SessionPlan("router", listen=("tls/127.0.0.1:0",),
+                         tls=ZenohTls(pki_dir, "zenoh_router")).config()
+    config.insert_json5("adminspace/enabled", "true")
+    session = zenoh.open(config)
+    try:
+        yield listening_on(session)[0]
+    finally:
+        session.close()
+
+
+def test_over_tls_only_the_station_publishes_and_observers_subscribe(pki_dir, tls_router):
+    station = client(tls_router, ZenohTls(pki_dir, "observation"))
+    observer = client(tls_router, ZenohTls(pki_dir, "observer"))
+    try:
+        counts = Observer(observer, "lab-3", ("wrench",)).counts["wrench"]
+        watcher = Observer(station, "lab-3", ("events",)).counts["events"]
+        publisher = station.declare_publisher(key("lab-3", "wrench"))
+        wait_for(lambda: publisher.matching_status.matching, what="the observer subscribed")
+        forged = ds_pb.StreamEventsResponse(sequence=1, event_time=stamp(T0_NS))
+        observer.put(key("lab-3", "events"), forged.SerializeToString())  # refused
+        publisher.put(wrench_message(1).SerializeToString())
+        wait_for(lambda: counts.messages == 1, what="the station's sample delivered")
+        publisher.put(wrench_message(2).SerializeToString())  # after the forged one
+        wait_for(lambda: counts.messages == 2, what="the next sample")
+        assert watcher.messages == 0  # the observer's put never got through the router
+    finally:
+        observer.close()
+        station.close()
+
+
+def test_a_tls_router_takes_no_plaintext_and_no_stranger(pki_dir, tls_router, tmp_path):
+    port = tls_router.rsplit(":", 1)[1]
+    with pytest.raises(zenoh.ZError):
+        client(f"tcp/127.0.0.1:{port}")
+    pki.init(tmp_path / "other")  # another CA: its certificates mean nothing here
+    with pytest.raises(zenoh.ZError):
+        client(tls_router, ZenohTls(tmp_path / "other", "observer"))
+
+
+def test_tls_endpoints_need_a_tls_directory_and_its_files(pki_dir, tmp_path):
+    with pytest.raises(BadEndpoint, match="give the station's TLS directory"):
+        checked_endpoint("tls/10.0.0.2:7447")
+    assert checked_endpoint("tls/10.0.0.2:7447", tls=True) == "tls/10.0.0.2:7447"
+    with pytest.raises(BadEndpoint, match="make certs"):
+        SessionPlan("client", connect=("tls/127.0.0.1:7447",),
+                    tls=ZenohTls(tmp_path, "observer")).config()
