@@ -4,12 +4,19 @@ each get every wrench sample, which the station publishes once (services.observa
 
 The station's CPU is its services' (world, ProxyRobot, ForceSensor, the DecisionServer) and
 the publisher's, which serve one stream whatever N is; the router's, which sends each
-subscriber its copy, and the subscribers' own are reported beside it."""
+subscriber its copy, and the subscribers' own are reported beside it. The subscribers stand
+for hosts of their own: together they are capped at SUBSCRIBER_CORES (bench/cgroup.py), so
+that they fall behind, as a subscriber on a slow host does, instead of taking the station's
+cores (a saturated machine stretches the CPU time of every process on it, the world's fixed
+work included: +24 % at 256 uncapped subscribers)."""
 
 from __future__ import annotations
 
+import signal
 import statistics
+import time
 
+from bench.cgroup import cpu_capped
 from bench.plan import Plan
 from bench.procs import ChildFailed
 from bench.session import Session
@@ -17,6 +24,9 @@ from bench.session import Session
 # A process's subscribers share its GIL: 32 each keeps one process from being the bottleneck
 # of the ones it holds at the lower counts (128 each fell seconds behind at 100 messages/s).
 SUBSCRIBERS_PER_PROCESS = 32
+SUBSCRIBER_CORES = 0.5  # all subscriber processes together
+READY_TIMEOUT_S = 300.0  # for every subscriber process to be up
+STOP_TIMEOUT_S = 120.0
 STATION_NAME = "bench"
 # Whose CPU is the station's: one stream each, whatever the number of subscribers.
 STATION_PROCESSES = ("world", "proxy_robot", "force_sensor", "decision_server", "observation")
@@ -66,34 +76,41 @@ def _row(bench: Session, count: int, router: str, router_pid: int) -> None:
                         f"wrench sample, behind the router (in {processes} processes)")
     plan = bench.plan
     groups = []
-    try:
-        left = count
-        while left > 0:
-            size = min(SUBSCRIBERS_PER_PROCESS, left)
-            left -= size
-            groups.append(bench.procs.start_worker("zenoh_observers", {
-                "router": router, "station": STATION_NAME, "count": size,
-                "max_s": plan.observers_s + 120}))
-        for group in groups:
-            bench.procs.wait_worker_ready(group, 120.0)
-        watched = {n: pid for n in STATION_PROCESSES if (pid := bench.pid(n)) is not None}
-        watched["zenoh_router"] = router_pid
-        watched.update({f"subscribers {i + 1}": group.pid for i, group in enumerate(groups)})
-        result = bench.procs.run_worker("force", {
-            "transport": "grpc", "address": bench.station.address["force_sensor"],
-            "decimation": 1, "duration_s": plan.observers_s, "watch_pids": watched},
-            60 + 3 * plan.observers_s)
-        observed = []
-        for group in groups:
-            group.stop(grace_s=60.0)  # (closing a session takes a while when busy)
-            observed.append(bench.procs.finish_worker(group, 30.0))
-    except ChildFailed as error:
-        return bench.fail([name], error)
-    finally:
-        for group in groups:
-            if group.process.poll() is None:
-                bench.procs.stop(group)
+    with cpu_capped(SUBSCRIBER_CORES) as cap:
+        try:
+            left = count
+            while left > 0:
+                size = min(SUBSCRIBERS_PER_PROCESS, left)
+                left -= size
+                groups.append(bench.procs.start_worker("zenoh_observers", {
+                    "router": router, "station": STATION_NAME, "count": size,
+                    "max_s": READY_TIMEOUT_S + plan.observers_s + 60}))
+            deadline = time.monotonic() + READY_TIMEOUT_S
+            for group in groups:
+                bench.procs.wait_worker_ready(group, max(1.0, deadline - time.monotonic()))
+            for group in groups:  # capped while measured (starting up, they would crawl)
+                if cap is not None:
+                    cap.add(group.pid)
+            watched = {n: pid for n in STATION_PROCESSES if (pid := bench.pid(n)) is not None}
+            watched["zenoh_router"] = router_pid
+            watched.update({f"subscribers {i + 1}": group.pid for i, group in enumerate(groups)})
+            result = bench.procs.run_worker("force", {
+                "transport": "grpc", "address": bench.station.address["force_sensor"],
+                "decimation": 1, "duration_s": plan.observers_s, "watch_pids": watched},
+                60 + 3 * plan.observers_s)
+            if cap is not None:
+                cap.lift()
+            for group in groups:  # all at once: each closes its sessions
+                group.process.send_signal(signal.SIGTERM)
+            observed = [bench.procs.finish_worker(group, STOP_TIMEOUT_S) for group in groups]
+        except ChildFailed as error:
+            return bench.fail([name], error)
+        finally:
+            for group in groups:
+                if group.process.poll() is None:
+                    bench.procs.stop(group)
     result.update(_subscribers(observed, result.get("cpu") or {}))
+    result["subscriber_cores_cap"] = SUBSCRIBER_CORES if cap is not None else None
     bench.record(name, result)
     bench.progress.done(bench.headline(name) + f"; station CPU {result['station_cpu_pct']} %, "
                         f"router {result['router_cpu_pct']} %, each subscriber "

@@ -2,6 +2,10 @@
 what arrives per topic: messages, samples, samples lost (gaps in the sequence numbers) and
 each sample's lag (received minus taken, on this host's clock).
 
+Each topic's samples wait in a ring of RING_MESSAGES, read by a thread of its own: an observer
+that falls behind (a slow host, a busy interpreter) gets the newest messages, with gaps, never a
+growing queue of stale ones.
+
 Lag across hosts includes the two clocks' offset: both ends on one host (or hosts kept in step
 by PTP or NTP) make it a delay.
 """
@@ -20,6 +24,8 @@ from google.protobuf.message import DecodeError
 from wire.observation import KEY_ROOT, TOPICS, decode, topic_of
 
 LAG_KEEP = 200_000  # lags kept per topic for the percentiles (the newest)
+RING_MESSAGES = 8  # per topic: 80 ms of the wrench
+CLOSE_TIMEOUT_S = 2.0
 
 
 @dataclass
@@ -55,7 +61,7 @@ def _samples(topic: str, message) -> list[tuple[int, int]]:
 
 class Observer:
     """Subscribes on `session` to `topics` of `station` ("*" for every station) and counts.
-    `on_message(topic, message)` sees each decoded message (on Zenoh's thread)."""
+    `on_message(topic, message)` sees each decoded message (on the topic's reader thread)."""
 
     def __init__(self, session: zenoh.Session, station: str = "*",
                  topics: tuple[str, ...] = tuple(TOPICS),
@@ -70,8 +76,17 @@ class Observer:
         self._lock = threading.Lock()
         self.started = time.monotonic()
         self._subscribers = [session.declare_subscriber(f"{KEY_ROOT}/{station}/{topic}",
-                                                        self._received)
+                                                        zenoh.handlers.RingChannel(RING_MESSAGES))
                              for topic in topics]
+        self._readers = [threading.Thread(target=self._read, args=(subscriber,), daemon=True,
+                                          name=f"observe-{topic}")
+                         for topic, subscriber in zip(topics, self._subscribers, strict=True)]
+        for reader in self._readers:
+            reader.start()
+
+    def _read(self, subscriber: zenoh.Subscriber) -> None:
+        for sample in subscriber:  # until undeclared
+            self._received(sample)
 
     def _received(self, sample: zenoh.Sample) -> None:
         now = self._clock_ns()
@@ -109,3 +124,5 @@ class Observer:
     def close(self) -> None:
         for subscriber in self._subscribers:
             subscriber.undeclare()
+        for reader in self._readers:
+            reader.join(CLOSE_TIMEOUT_S)
