@@ -6,9 +6,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 # In the order they run; each is a module of bench/groups/ (bench/run.py dispatches to it).
-GROUPS = ("command", "force", "baselines", "observers", "observers_zenoh", "estop", "decision",
-          "closed_loop",
-          "stereo", "franka", "soak", "soak_overload", "network", "video")
+GROUPS = ("command", "force", "baselines", "observers", "estop", "decision", "closed_loop",
+          "stereo", "franka",
+          # After the rows it could disturb: 1,024 subscribers take a while to go.
+          "observers_zenoh", "soak", "soak_overload", "network", "video")
 # `make bench`; the soak and the network experiment (bench/network.py, and its video rows,
 # bench/video.py) take minutes. soak_overload (bench/overload.py) runs by default: 45 s, 15 s
 # with --quick.

@@ -62,9 +62,9 @@ from services.security import pki
 RESULTS_DIR = Path(__file__).resolve().parent / "results"
 # Each group's module (bench/groups/), in the order they run: steps(plan), run(session).
 GROUP_MODULES = {"command": command, "force": force, "baselines": baselines,
-                 "observers": observers, "observers_zenoh": observers_zenoh, "estop": estop,
-                 "decision": decision,
-                 "closed_loop": closed_loop, "stereo": stereo, "franka": franka, "soak": soak,
+                 "observers": observers, "estop": estop, "decision": decision,
+                 "closed_loop": closed_loop, "stereo": stereo, "franka": franka,
+                 "observers_zenoh": observers_zenoh, "soak": soak,
                  "soak_overload": soak_overload, "network": network_group,
                  "video": video_group}
 # Groups whose row carries its own run, so that a run of them alone merges into a latest.json;
