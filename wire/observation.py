@@ -4,11 +4,11 @@ The station publishes each observed stream once into Zenoh (services.observation
 carry one copy per link to any number of subscribers. Every payload is a message of the
 protos' own, serialized, the same one the service's gRPC stream sends:
 
-    telerobot/<station>/wrench   force_sensor.v1 StreamWrenchResponse: every 1 kHz sample, in
+    telerobot/<station>/wrench   telerobot.v1.StreamWrenchResponse: every 1 kHz sample, in
                                  batches of WRENCH_BATCH (oldest first)
-    telerobot/<station>/state    proxy_robot StreamStateResponse: the arm's state, 100 Hz
-    telerobot/<station>/events   decision_server StreamEventsResponse: control, holds, sessions,
-                                 dependencies, and the arm's events forwarded
+    telerobot/<station>/state    telerobot.v1.StreamStateResponse: the arm's state, 100 Hz
+    telerobot/<station>/events   telerobot.v1.StreamEventsResponse (the DecisionServer's):
+                                 control, holds, sessions, dependencies, the arm's events
 
 Commands never travel here: they stay on gRPC, behind the DecisionServer's lock.
 

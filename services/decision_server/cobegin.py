@@ -121,6 +121,11 @@ class SimulatedProcessor:
         self._waiting: list[int] = []  # priorities of actions wanting the next slice
         self._busy = False
 
+    @property
+    def busy(self) -> bool:
+        """Whether an action holds the processor now (it has started, and has a slice)."""
+        return self._busy
+
     def run(self, priority: int, duration_s: float,
             cancelled: Callable[[], bool] = lambda: False) -> tuple[int, int]:
         """Compute for `duration_s` of processor time, or until `cancelled()`; returns (start,

@@ -77,8 +77,8 @@ def test_parma_precedence_without_and_with_cobegin(fake_station):
     station, _ = fake_station
     _, metadata = station.acquire()
     low = busy(station, metadata, 60, "low", action_id="low")
-    wait_for(lambda: station.server.executor.counters()[Lane.LOW].running >= 1,
-             what="the low action to start")
+    # Started on the processor, not only on its lane's thread: it holds its first slice.
+    wait_for(lambda: station.core.processor.busy, what="the low action to start")
     higher = busy(station, metadata, 60, "medium", action_id="medium")
     low, higher = low.result(), higher.result()
     assert low.lane == options_pb2.LANE_LOW and higher.lane == options_pb2.LANE_MEDIUM

@@ -76,16 +76,21 @@ def test_other_endpoints_are_refused_saying_why(endpoint, why):
         SessionPlan("client", connect=(endpoint,)).config()
 
 
-@pytest.fixture
-def router():
-    """A router in this process on a free loopback port: its endpoint."""
-    config = SessionPlan("router", listen=("tcp/127.0.0.1:0",)).config()
-    config.insert_json5("adminspace/enabled", "true")
+def routing(plan: SessionPlan):
+    """A router of `plan` in this process: its endpoint (a port 0 made real), until closed."""
+    config = plan.config()
+    config.insert_json5("adminspace/enabled", "true")  # (read by listening_on)
     session = zenoh.open(config)
     try:
         yield listening_on(session)[0]
     finally:
         session.close()
+
+
+@pytest.fixture
+def router():
+    """A router in this process on a free loopback port: its endpoint."""
+    yield from routing(SessionPlan("router", listen=("tcp/127.0.0.1:0",)))
 
 
 @pytest.fixture
@@ -215,14 +220,8 @@ def pki_dir(tmp_path_factory):
 @pytest.fixture
 def tls_router(pki_dir):
     """A TLS router in this process, with the access rules: its endpoint."""
-    config = SessionPlan("router", listen=("tls/127.0.0.1:0",),
-                         tls=ZenohTls(pki_dir, "zenoh_router")).config()
-    config.insert_json5("adminspace/enabled", "true")
-    session = zenoh.open(config)
-    try:
-        yield listening_on(session)[0]
-    finally:
-        session.close()
+    yield from routing(SessionPlan("router", listen=("tls/127.0.0.1:0",),
+                                   tls=ZenohTls(pki_dir, "zenoh_router")))
 
 
 def test_over_tls_only_the_station_publishes_and_observers_subscribe(pki_dir, tls_router):
