@@ -19,10 +19,8 @@ from __future__ import annotations
 import argparse
 import logging
 import os
-import signal
 import ssl
 import sys
-import threading
 from pathlib import Path
 
 import foxglove
@@ -32,7 +30,7 @@ from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
 from services.foxglove.live import Demand, LiveChannels
 from services.foxglove.origin_gate import DEFAULT_ORIGINS, OriginGate, loopback_certificate
 from services.runtime.config import configure_logging
-from services.runtime.process import wait_for_stop, watch_parent
+from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name, is_loopback
 from wire.processes import dump_stacks_on_signal, ready_line
@@ -126,10 +124,7 @@ def main(argv: list[str] | None = None) -> int:
     demand = Demand(lambda feed, wanted: feeds[feed].want(wanted), channels.viewer_joined)
     for feed in feeds.values():
         feed.start()
-    stop = threading.Event()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda *_: stop.set())
-    watch_parent(stop.set, stop)
+    stop = stop_requested()
     server = gate = None
     try:
         # The SDK's server on loopback, behind the gate that checks each viewer's Origin (the

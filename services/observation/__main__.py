@@ -16,7 +16,6 @@ from __future__ import annotations
 import argparse
 import logging
 import os
-import signal
 import sys
 import threading
 
@@ -24,7 +23,7 @@ import zenoh
 
 from services.observation.publisher import ObservationPublisher, station_streams
 from services.runtime.config import configure_logging
-from services.runtime.process import wait_for_stop, watch_parent
+from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name
 from wire.observation import (
@@ -81,10 +80,7 @@ def main(argv: list[str] | None = None) -> int:
     except (ValueError, BadEndpoint) as error:
         print(f"{NAME}: {error}", file=sys.stderr)
         return 2
-    stop = threading.Event()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda *_: stop.set())
-    watch_parent(stop.set, stop)
+    stop = stop_requested()
     session = _join(router, tls, stop)
     if session is None:
         return 0

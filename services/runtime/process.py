@@ -240,6 +240,16 @@ def _close_audit(audit: AuditLog | None) -> None:
         audit.close()
 
 
+def stop_requested() -> threading.Event:
+    """An event set on SIGINT or SIGTERM, or when the supervising parent (PARENT_PID_ENV) goes
+    away: a process without a gRPC server of its own waits on it (wait_for_stop)."""
+    stop = threading.Event()
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, lambda *_: stop.set())
+    watch_parent(stop.set, stop)
+    return stop
+
+
 def wait_for_stop(stop: threading.Event) -> None:
     """Block the main thread until `stop` is set, by a signal's handler too (SIGNAL_POLL_S)."""
     while not stop.wait(SIGNAL_POLL_S):

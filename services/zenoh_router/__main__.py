@@ -16,15 +16,13 @@ import argparse
 import json
 import logging
 import os
-import signal
 import sys
-import threading
 from pathlib import Path
 
 import zenoh
 
 from services.runtime.config import configure_logging
-from services.runtime.process import wait_for_stop, watch_parent
+from services.runtime.process import stop_requested, wait_for_stop
 from wire.addresses import address_for, env_name
 from wire.observation import BadEndpoint, SessionPlan, ZenohTls, endpoint_for
 from wire.processes import dump_stacks_on_signal, ready_line
@@ -87,10 +85,7 @@ def main(argv: list[str] | None = None) -> int:
     except zenoh.ZError as error:  # the port taken, an endpoint Zenoh cannot parse
         print(f"{NAME}: cannot listen on {args.address}: {error}", file=sys.stderr)
         return 1
-    stop = threading.Event()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda *_: stop.set())
-    watch_parent(stop.set, stop)
+    stop = stop_requested()
     try:
         bound = listening_on(session)
         if not bound:
