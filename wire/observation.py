@@ -9,6 +9,13 @@ protos' own, serialized, the same one the service's gRPC stream sends:
     telerobot/<station>/state    telerobot.v1.StreamStateResponse: the arm's state, 100 Hz
     telerobot/<station>/events   telerobot.v1.StreamEventsResponse (the DecisionServer's):
                                  control, holds, sessions, dependencies, the arm's events
+    telerobot/<station>/video    telerobot.v1.StreamPairsResponse (the StereoCamera's): both
+                                 eyes side by side in H.264 at VIDEO_FPS, a key frame at least
+                                 every VIDEO_KEYFRAME_S, each one right after the stream's
+                                 header (the calibrations), so that a newcomer can start there
+
+An observer follows DEFAULT_TOPICS unless it names the video too: following the video makes
+the station's cameras render.
 
 Commands never travel here: they stay on gRPC, behind the DecisionServer's lock.
 
@@ -29,7 +36,12 @@ from pathlib import Path
 
 import zenoh
 
-from telerobot.v1 import decision_server_pb2, force_sensor_pb2, proxy_robot_pb2
+from telerobot.v1 import (
+    decision_server_pb2,
+    force_sensor_pb2,
+    proxy_robot_pb2,
+    stereo_camera_pb2,
+)
 from wire.addresses import address_for, is_loopback
 
 KEY_ROOT = "telerobot"
@@ -38,13 +50,18 @@ DEFAULT_STATION = "station"
 ROUTER_ENV = "TELEROBOT_ZENOH_ROUTER"  # an endpoint to join instead of the station's own router
 WRENCH_BATCH = 10  # samples per wrench message: 100 messages a second at the sensor's 1 kHz
 STATE_PERIOD_S = 0.01
+VIDEO_FPS = 10.0  # the camera's pace on this machine (a stereo pair renders in ~85 ms)
+VIDEO_KBIT = 1000  # the bitrate ceiling, kbit/s: 640x480 per eye at 10 fps
+VIDEO_KEYFRAME_S = 2.0  # the longest a newcomer waits for a key frame
 
 # topic -> the message type of its payloads
 TOPICS = {
     "wrench": force_sensor_pb2.StreamWrenchResponse,
     "state": proxy_robot_pb2.StreamStateResponse,
     "events": decision_server_pb2.StreamEventsResponse,
+    "video": stereo_camera_pb2.StreamPairsResponse,
 }
+DEFAULT_TOPICS = ("wrench", "state", "events")
 _STATION_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
 _ENDPOINT = re.compile(r"(?P<protocol>tcp|tls)/(?P<address>\[[0-9a-fA-F:]+\]:\d+|[^/:\[\]]+:\d+)")
 # Who may put into the station's keys over TLS (certificate common names): its publisher, and

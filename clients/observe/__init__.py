@@ -21,7 +21,7 @@ import numpy as np
 import zenoh
 from google.protobuf.message import DecodeError
 
-from wire.observation import KEY_ROOT, TOPICS, decode, topic_of
+from wire.observation import DEFAULT_TOPICS, KEY_ROOT, TOPICS, decode, topic_of
 
 LAG_KEEP = 200_000  # lags kept per topic for the percentiles (the newest)
 RING_MESSAGES = 8  # per topic: 80 ms of the wrench
@@ -51,11 +51,15 @@ class TopicCount:
 def _samples(topic: str, message) -> list[tuple[int, int]]:
     """(sequence, taken at ns) of each sample in a message. The sequence is 0 where its gaps
     mean nothing: the state is published at 100 Hz of the arm's 1 kHz samples, and events
-    number themselves per stream. The wrench carries every sample."""
+    number themselves per stream, and the video skips pairs by design when its link is slow.
+The wrench carries every sample."""
     if topic == "wrench":
         return [(s.sequence, s.sample_time.ToNanoseconds()) for s in message.samples]
     if topic == "state":
         return [(0, message.state.sample_time.ToNanoseconds())]
+    if topic == "video":  # a pair, taken when its left eye was captured; a header is none
+        return [(0, message.pair.left_capture_time.ToNanoseconds())] \
+            if message.WhichOneof("content") == "pair" else []
     return [(0, message.event_time.ToNanoseconds())]
 
 
@@ -64,7 +68,7 @@ class Observer:
     `on_message(topic, message)` sees each decoded message (on the topic's reader thread)."""
 
     def __init__(self, session: zenoh.Session, station: str = "*",
-                 topics: tuple[str, ...] = tuple(TOPICS),
+                 topics: tuple[str, ...] = DEFAULT_TOPICS,
                  on_message: Callable[[str, object], None] | None = None,
                  clock_ns: Callable[[], int] = time.time_ns):
         unknown = set(topics) - set(TOPICS)

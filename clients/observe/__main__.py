@@ -22,6 +22,7 @@ from google.protobuf import json_format
 
 from clients.observe import Observer
 from wire.observation import (
+    DEFAULT_TOPICS,
     TOPICS,
     BadEndpoint,
     checked_endpoint,
@@ -47,8 +48,9 @@ def build_parser() -> argparse.ArgumentParser:
                              "observer)")
     parser.add_argument("--station", default="*",
                         help="the station to watch (default: every station behind the router)")
-    parser.add_argument("--topics", default=",".join(TOPICS),
-                        help=f"comma-separated, of {', '.join(TOPICS)}")
+    parser.add_argument("--topics", default=",".join(DEFAULT_TOPICS),
+                        help=f"comma-separated, of {', '.join(TOPICS)} (default "
+                             f"{','.join(DEFAULT_TOPICS)}: the video makes the cameras render)")
     parser.add_argument("--seconds", type=float, default=0.0,
                         help="stop after this long (default: until Ctrl-C)")
     parser.add_argument("--every", type=float, default=1.0, help="seconds between lines")

@@ -5,7 +5,9 @@ eye's JPEG, and both side by side as H.264 video), in the same channels as the M
 WebSocket" > ws://127.0.0.1:8765, with the layout docs/foxglove_layout.json.
 
 It reads ProxyRobot, ForceSensor and StereoCamera as an observer, each stream only while a
-viewer watches one of its topics. It listens on loopback by default. The Foxglove protocol has
+viewer watches one of its topics. With --router it reads the station's observation from a Zenoh
+router instead (services.foxglove.router_feeds): the view then runs anywhere behind a router,
+without the per-eye JPEG images. It listens on loopback by default. The Foxglove protocol has
 no client authentication, so beyond loopback it listens only when told so explicitly
 (--allow-network or TELEROBOT_ALLOW_LIVE_VIEW_NETWORK=1): anyone who reaches the port then sees
 the arm and the video (never moves it: the view is read-only). With the station's TLS
@@ -24,15 +26,18 @@ import sys
 from pathlib import Path
 
 import foxglove
+import zenoh
 from foxglove import Context, StatusLevel
 
 from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
 from services.foxglove.live import Demand, LiveChannels
 from services.foxglove.origin_gate import DEFAULT_ORIGINS, OriginGate, loopback_certificate
+from services.foxglove.router_feeds import ROUTER_FEEDS, router_feeds
 from services.runtime.config import configure_logging
 from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name, is_loopback
+from wire.observation import STATION_ENV, checked_endpoint, client, station_name, tls_from
 from wire.processes import dump_stacks_on_signal, ready_line
 from wire.tls import TLS_DIR_ENV, open_channel
 
@@ -52,9 +57,16 @@ def build_parser() -> argparse.ArgumentParser:
     for service in ("proxy_robot", "force_sensor", "stereo_camera"):
         parser.add_argument(f"--{service.replace('_', '-')}", default=address_for(service),
                             help=f"its address (env {env_name(service, 'address')})")
+    parser.add_argument("--router", default=None,
+                        help="watch through this Zenoh router, tcp/HOST:PORT (loopback) or "
+                             "tls/HOST:PORT, instead of the services' own ports")
+    parser.add_argument("--station", default=os.environ.get(STATION_ENV),
+                        help=f"with --router: the station to watch (env {STATION_ENV}; "
+                             "default station)")
     parser.add_argument("--tls-dir", default=os.environ.get(TLS_DIR_ENV, ""),
                         help=f"the station's TLS directory (env {TLS_DIR_ENV}): wss:// with "
-                             "foxglove.pem, and the services read with that certificate")
+                             "foxglove.pem, and the services (or the router) read with that "
+                             "certificate")
     parser.add_argument("--allow-network", action="store_true",
                         default=os.environ.get(NETWORK_ENV) == "1",
                         help=f"listen beyond loopback (env {NETWORK_ENV}=1): viewers are not "
@@ -109,18 +121,39 @@ def main(argv: list[str] | None = None) -> int:
                   file=sys.stderr)
             return 2
 
-    security = station_channel_security(args.tls_dir or None, NAME)
-    # Over TLS each service's certificate must name that service (wire.tls).
-    upstream = [open_channel(address, security=security, service=service)
-                for address, service in ((args.proxy_robot, "proxy_robot"),
-                                         (args.force_sensor, "force_sensor"),
-                                         (args.stereo_camera, "stereo_camera"))]
     context = Context()
-    channels = LiveChannels(context)
     viewers = _Viewers()
-    feeds = station_feeds(channels, *upstream, state_hz=args.state_hz,
-                          wrench_hz=args.wrench_hz, stereo_fps=args.stereo_fps,
-                          video_kbit=args.video_kbit, on_status=viewers.show_feed_status)
+    upstream: list = []  # what the feeds read through, closed at the end
+    if args.router:
+        try:
+            station = station_name(args.station)
+            router = checked_endpoint(args.router, tls=bool(args.tls_dir))
+            zenoh_tls = tls_from(args.tls_dir, NAME)
+            if zenoh_tls is not None:
+                zenoh_tls.files()  # there, or said so
+        except ValueError as error:  # (BadEndpoint is one)
+            print(f"{NAME}: {error}", file=sys.stderr)
+            return 2
+        try:
+            session = client(router, zenoh_tls)
+        except zenoh.ZError as error:
+            print(f"{NAME}: the router {router} does not answer: {error}", file=sys.stderr)
+            return 1
+        upstream.append(session)
+        channels = LiveChannels(context, feeds=ROUTER_FEEDS)
+        feeds = router_feeds(channels, session, station, state_hz=args.state_hz,
+                             wrench_hz=args.wrench_hz)
+    else:
+        security = station_channel_security(args.tls_dir or None, NAME)
+        # Over TLS each service's certificate must name that service (wire.tls).
+        upstream += [open_channel(address, security=security, service=service)
+                     for address, service in ((args.proxy_robot, "proxy_robot"),
+                                              (args.force_sensor, "force_sensor"),
+                                              (args.stereo_camera, "stereo_camera"))]
+        channels = LiveChannels(context)
+        feeds = station_feeds(channels, *upstream, state_hz=args.state_hz,
+                              wrench_hz=args.wrench_hz, stereo_fps=args.stereo_fps,
+                              video_kbit=args.video_kbit, on_status=viewers.show_feed_status)
     demand = Demand(lambda feed, wanted: feeds[feed].want(wanted), channels.viewer_joined)
     for feed in feeds.values():
         feed.start()
@@ -154,8 +187,8 @@ def main(argv: list[str] | None = None) -> int:
         for feed in feeds.values():
             feed.stop()
         channels.close()
-        for channel in upstream:
-            channel.close()
+        for link in upstream:
+            link.close()
     log.info("stopped; published %s", dict(channels.published))
     return 0
 

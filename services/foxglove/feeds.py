@@ -1,21 +1,20 @@
 """The live view's upstream streams: a Feed (services.common.feeds) each, open while a viewer
 watches one of its topics. Read-only calls (role observer).
 
-The video feed's stream takes receipts: each pair is reported (ReportReceipt, sent without
-waiting for its answer), which keeps the frames in flight within the path and lets a receipt
-ask for a key frame when the live view needs one (LiveChannels.take_keyframe_request); its
-bitrate adapts below --video-kbit."""
+The video feed's stream takes receipts (services.common.video_receipts), which ask for a key
+frame when the live view needs one (LiveChannels.take_keyframe_request); its bitrate adapts
+below --video-kbit."""
 
 from __future__ import annotations
 
 import logging
-import threading
 from collections.abc import Callable
 
 import grpc
 from google.protobuf import duration_pb2
 
 from services.common.feeds import Feed
+from services.common.video_receipts import VideoReceipts
 from services.foxglove.live import STATE, STEREO, VIDEO, WRENCH, LiveChannels
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import force_sensor_pb2_grpc, proxy_robot_pb2_grpc, stereo_camera_pb2_grpc
@@ -24,42 +23,7 @@ from telerobot.v1 import stereo_camera_pb2 as sc_pb
 
 log = logging.getLogger(__name__)
 
-RECEIPT_TIMEOUT_S = 5.0
 DEFAULT_VIDEO_KBIT = 1000  # 640x480 per eye, 10 fps (docs/services/live-view.md)
-
-
-class VideoReceipts:
-    """The video stream's side of receipts: the stream's id from its header, then for each
-    pair a ReportReceipt sent without waiting (asking for a key frame when `channels` wants
-    one). A receipt that fails is not retried: the next one carries the bytes anyway."""
-
-    def __init__(self, camera: stereo_camera_pb2_grpc.StereoCameraStub, channels: LiveChannels):
-        self._camera = camera
-        self._channels = channels
-        self._stream_id = ""
-        self._received_bytes = 0
-        self._lock = threading.Lock()
-        self._pending: set = set()  # the calls in flight (a future nobody holds is cancelled)
-
-    def opened(self, header: sc_pb.StereoHeader) -> None:
-        self._stream_id, self._received_bytes = header.stream_id, 0
-
-    def received(self, pair: sc_pb.StereoPair) -> None:
-        self._received_bytes += len(pair.video_frame) + len(pair.left_image) + \
-            len(pair.right_image)
-        if not self._stream_id:
-            return
-        future = self._camera.ReportReceipt.future(sc_pb.ReportReceiptRequest(
-            stream_id=self._stream_id, sequence=pair.sequence,
-            received_bytes=self._received_bytes,
-            want_keyframe=self._channels.take_keyframe_request()), timeout=RECEIPT_TIMEOUT_S)
-        with self._lock:
-            self._pending.add(future)
-        future.add_done_callback(self._done)
-
-    def _done(self, future) -> None:
-        with self._lock:
-            self._pending.discard(future)
 
 
 def station_feeds(channels: LiveChannels, proxy_robot: grpc.Channel, force_sensor: grpc.Channel,
@@ -98,7 +62,7 @@ def station_feeds(channels: LiveChannels, proxy_robot: grpc.Channel, force_senso
             encoding=sc_pb.IMAGE_ENCODING_H264, max_fps=stereo_fps, receipts=True,
             max_kbit_per_s=video_kbit))
 
-    receipts = VideoReceipts(camera, channels)
+    receipts = VideoReceipts(camera, channels.take_keyframe_request)
 
     def on_video(response: sc_pb.StreamPairsResponse) -> None:
         if response.WhichOneof("content") == "header":

@@ -120,10 +120,15 @@ class LiveChannels:
     calls its own methods from one thread; a message is converted and serialized only when its
     channel has a subscriber."""
 
-    def __init__(self, context: Context, clock: Callable[[], float] = time.monotonic):
+    def __init__(self, context: Context, clock: Callable[[], float] = time.monotonic,
+                 feeds: tuple[str, ...] = tuple(FEED_TOPICS)):
+        """Advertises the topics of `feeds` (of FEED_TOPICS): a feed the view cannot follow
+        shows no topic."""
+        advertised = {topic for feed in feeds for topic in FEED_TOPICS[feed]}
         self._channels = {topic: Channel(topic, schema=protobuf_schema(message_class),
                                          message_encoding="protobuf", context=context)
-                          for topic, message_class in LIVE_TOPICS.items()}
+                          for topic, message_class in LIVE_TOPICS.items()
+                          if topic in advertised}
         self._arm = fox.ArmTransforms()  # the state feed's thread only
         self._header: sc_pb.StereoHeader | None = None
         self._lock = threading.Lock()

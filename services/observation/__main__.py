@@ -1,11 +1,12 @@
 """python -m services.observation: the station's observation, published once into Zenoh.
 
-It reads ForceSensor (every wrench sample), ProxyRobot (the arm's state at 100 Hz) and the
-DecisionServer (its events) as an observer, each stream only while someone subscribes to its
-topic, and publishes them through the station's router (services.zenoh_router, or the one
---router names) under telerobot/<station>/... (wire/observation.py). Subscribers anywhere
-behind the router get them: `python -m clients.observe`, Zenoh's clients in any language with
-the protos as the schema. Commands stay on gRPC.
+It reads ForceSensor (every wrench sample), ProxyRobot (the arm's state at 100 Hz), the
+DecisionServer (its events) and the StereoCamera (its H.264 video) as an observer, each stream
+only while someone subscribes to its topic, and publishes them through the station's router
+(services.zenoh_router, or the one --router names) under telerobot/<station>/...
+(wire/observation.py). Subscribers anywhere behind the router get them: `python -m
+clients.observe`, Zenoh's clients in any language with the protos as the schema. Commands stay
+on gRPC.
 
 The router going away stops nothing at the station: the puts are dropped meanwhile, this
 process says so once, and Zenoh reconnects when the router is back.
@@ -43,7 +44,7 @@ log = logging.getLogger("observation")
 
 NAME = "observation"
 RETRY_S = 1.0  # a router that is not there yet is asked again this often
-UPSTREAM = ("proxy_robot", "force_sensor", "decision_server")
+UPSTREAM = ("proxy_robot", "force_sensor", "decision_server", "stereo_camera")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -23,8 +23,14 @@ import zenoh
 from google.protobuf import duration_pb2
 
 from services.common.feeds import Feed
+from services.observation.video import VideoStream
 from telerobot.v1 import decision_server_pb2 as ds_pb
-from telerobot.v1 import decision_server_pb2_grpc, force_sensor_pb2_grpc, proxy_robot_pb2_grpc
+from telerobot.v1 import (
+    decision_server_pb2_grpc,
+    force_sensor_pb2_grpc,
+    proxy_robot_pb2_grpc,
+    stereo_camera_pb2_grpc,
+)
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import proxy_robot_pb2 as pr_pb
 from wire.observation import STATE_PERIOD_S, TOPICS, WRENCH_BATCH, key
@@ -39,11 +45,14 @@ OpenStream = Callable[[], Iterator]
 
 
 def station_streams(proxy_robot: grpc.Channel, force_sensor: grpc.Channel,
-                    decision_server: grpc.Channel) -> dict[str, OpenStream]:
-    """topic -> how to open the service stream it publishes (read-only calls, role observer)."""
+                    decision_server: grpc.Channel,
+                    stereo_camera: grpc.Channel) -> dict[str, OpenStream]:
+    """topic -> how to open the service stream it publishes (read-only calls, role observer;
+    the video's receipts only report and ask for key frames)."""
     robot = proxy_robot_pb2_grpc.ProxyRobotStub(proxy_robot)
     sensor = force_sensor_pb2_grpc.ForceSensorStub(force_sensor)
     door = decision_server_pb2_grpc.DecisionServerStub(decision_server)
+    camera = stereo_camera_pb2_grpc.StereoCameraStub(stereo_camera)
     period = duration_pb2.Duration()
     period.FromNanoseconds(int(STATE_PERIOD_S * 1e9))
     streams = {
@@ -51,6 +60,7 @@ def station_streams(proxy_robot: grpc.Channel, force_sensor: grpc.Channel,
             batch_size=WRENCH_BATCH, queue_capacity=WRENCH_QUEUE_BATCHES)),
         "state": lambda: robot.StreamState(pr_pb.StreamStateRequest(period=period)),
         "events": lambda: door.StreamEvents(ds_pb.StreamEventsRequest()),
+        "video": lambda: VideoStream(camera),
     }
     assert streams.keys() == TOPICS.keys()
     return streams

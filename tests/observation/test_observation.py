@@ -13,11 +13,11 @@ from google.protobuf.timestamp_pb2 import Timestamp
 from clients.observe import Observer
 from services.observation.publisher import ObservationPublisher
 from services.security import pki
-from services.zenoh_router.__main__ import listening_on
 from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from tests.conftest import wait_for
 from tests.fake_calls import FakeCall
+from tests.observation.conftest import routing
 from wire.observation import (
     BadEndpoint,
     SessionPlan,
@@ -74,37 +74,6 @@ def test_other_endpoints_are_refused_saying_why(endpoint, why):
         checked_endpoint(endpoint)
     with pytest.raises(BadEndpoint):
         SessionPlan("client", connect=(endpoint,)).config()
-
-
-def routing(plan: SessionPlan):
-    """A router of `plan` in this process: its endpoint (a port 0 made real), until closed."""
-    config = plan.config()
-    config.insert_json5("adminspace/enabled", "true")  # (read by listening_on)
-    session = zenoh.open(config)
-    try:
-        yield listening_on(session)[0]
-    finally:
-        session.close()
-
-
-@pytest.fixture
-def router():
-    """A router in this process on a free loopback port: its endpoint."""
-    yield from routing(SessionPlan("router", listen=("tcp/127.0.0.1:0",)))
-
-
-@pytest.fixture
-def sessions(router):
-    """Client sessions through the router, closed after the test."""
-    opened = []
-
-    def open_one() -> zenoh.Session:
-        opened.append(client(router))
-        return opened[-1]
-
-    yield open_one
-    for session in opened:
-        session.close()
 
 
 def stamp(ns: int) -> Timestamp:

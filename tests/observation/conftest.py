@@ -1,0 +1,40 @@
+"""A Zenoh router in the test's own process, and client sessions through it."""
+
+from __future__ import annotations
+
+import pytest
+import zenoh
+
+from services.zenoh_router.__main__ import listening_on
+from wire.observation import SessionPlan, client
+
+
+def routing(plan: SessionPlan):
+    """A router of `plan` in this process: its endpoint (a port 0 made real), until closed."""
+    config = plan.config()
+    config.insert_json5("adminspace/enabled", "true")  # (read by listening_on)
+    session = zenoh.open(config)
+    try:
+        yield listening_on(session)[0]
+    finally:
+        session.close()
+
+
+@pytest.fixture
+def router():
+    """A router in this process on a free loopback port: its endpoint."""
+    yield from routing(SessionPlan("router", listen=("tcp/127.0.0.1:0",)))
+
+
+@pytest.fixture
+def sessions(router):
+    """Client sessions through the router, closed after the test."""
+    opened = []
+
+    def open_one() -> zenoh.Session:
+        opened.append(client(router))
+        return opened[-1]
+
+    yield open_one
+    for session in opened:
+        session.close()
