@@ -7,7 +7,8 @@
 --up-… and --down-… forms override one (up: client to target). Once listening it prints
 `TELEROBOT_READY impairment <host:port>` (the address it bound, for --listen …:0), then a
 line per connection and cut. SIGUSR1 cuts the link now, for --cut-for in --cut-mode (a cut
-by hand, or at the moment a test chooses).
+by hand, or at the moment a test chooses); SIGUSR2 prints what it carried so far (`stats:
+…`), as it does on stopping.
 """
 
 from __future__ import annotations
@@ -117,10 +118,11 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as error:
         print(f"impairment: {error}", file=sys.stderr)
         return 2
-    stop, cut_now = threading.Event(), threading.Event()
+    stop, cut_now, tell = threading.Event(), threading.Event(), threading.Event()
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda *_: stop.set())
     signal.signal(signal.SIGUSR1, lambda *_: cut_now.set())
+    signal.signal(signal.SIGUSR2, lambda *_: tell.set())
     with ImpairmentProxy(args.listen, args.target, up, down,
                          report=lambda line: print(line, flush=True)) as proxy:
         print(ready_line("impairment", proxy.address), flush=True)
@@ -131,6 +133,9 @@ def main(argv: list[str] | None = None) -> int:
             if cut_now.wait(0.05):
                 cut_now.clear()
                 proxy.cut(args.cut_for, args.cut_mode)
+            if tell.is_set():
+                tell.clear()
+                print(f"stats: {proxy.stats}", flush=True)
         print(f"stopping: {proxy.stats}", flush=True)
     return 0
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import signal
+import socket
 
 import grpc
 import pytest
@@ -93,6 +94,27 @@ def test_sigusr1_cuts_the_link_when_asked():
         assert proxy.stop(signal.SIGTERM) == 0
     finally:
         proxy.stop()
+
+
+@pytest.mark.e2e
+def test_sigusr2_prints_what_it_carried_so_far():
+    with socket.create_server(("127.0.0.1", 0)) as target:  # (the kernel takes the bytes)
+        proxy = start_process(["-m", "services.impairment", "--listen", "127.0.0.1:0",
+                               "--target", f"127.0.0.1:{target.getsockname()[1]}"])
+        try:
+            host, port = proxy.wait_ready("impairment", timeout_s=30).rsplit(":", 1)
+            with socket.create_connection((host, int(port)), timeout=5) as connection:
+                connection.sendall(b"x" * 1000)
+
+                def told_1000() -> bool:
+                    proxy.send_signal(signal.SIGUSR2)
+                    return any("'up': 1000" in line for line in proxy.lines
+                               if line.startswith("stats:"))
+
+                wait_for(told_1000, 10, "the 1000 bytes in its stats")
+            assert proxy.stop(signal.SIGTERM) == 0  # still serving after the signals
+        finally:
+            proxy.stop()
 
 
 @pytest.mark.parametrize("listen", ["0.0.0.0:0", "10.0.0.2:50061", "[::]:0"])
