@@ -64,6 +64,8 @@ from services.runtime.config import (
     configure_logging,
     select_arm_from,
 )
+from services.runtime.port_watch import OK as PORT_OK
+from services.runtime.port_watch import accepts
 from services.runtime.process import metrics_port_name, token_port_name, watch_parent
 from services.runtime.restart import RestartPolicy, RestartTracker
 from services.runtime.supervisor_state import (
@@ -79,7 +81,7 @@ from services.runtime.tls import station_channel_security
 from services.web_console.https import certificate_files
 from wire.addresses import env_name
 from wire.local_call import LOCAL_CALLS_ENV
-from wire.observation import ROUTER_ENV, BadEndpoint, checked_endpoint, endpoint_for
+from wire.observation import ROUTER_ENV, BadEndpoint, address_of, checked_endpoint, endpoint_for
 from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
 
@@ -88,7 +90,7 @@ log = logging.getLogger("launcher")
 # Start order: dependencies first (the world stands in for the hardware). Stop order is the
 # reverse, so the hardware goes last.
 STATION = ["world", "emergency_stop", "proxy_robot", "force_sensor", "stereo_camera",
-           "decision_server", "web_console", "foxglove", "zenoh_router", "observation"]
+           "zenoh_router", "decision_server", "web_console", "foxglove", "observation"]
 # On a real arm ProxyRobot owns the hardware link and the shared memory, in the world's place.
 HARDWARE_STATION = ["proxy_robot", *(name for name in STATION
                                      if name not in ("world", "proxy_robot"))]
@@ -204,8 +206,9 @@ def main(argv: list[str] | None = None) -> int:
     env[DRIVER_ENV] = "sim" if args.driver == "sim" else "franka"
     if args.driver != "sim":  # the Franka's own estimate of the push, mirrored by ProxyRobot
         env[FORCE_SENSOR_ENV] = "franka"
-    if args.zenoh_router:  # the publisher joins it (services.observation)
+    if args.zenoh_router:  # the publisher joins it (services.observation), the door watches it
         env[ROUTER_ENV] = args.zenoh_router
+        env[env_name("zenoh_router", "address")] = address_of(args.zenoh_router)
     services = station_services(args.driver, own_router=not args.zenoh_router)
     with tempfile.TemporaryDirectory(prefix="telerobot-station-") as run_dir:
         env[SUPERVISOR_STATE_ENV] = str(Path(run_dir) / "supervisor.json")
@@ -427,14 +430,7 @@ def _http_serving(address: str, security: ChannelSecurity, _service: str) -> boo
 def _zenoh_serving(address: str, _security: ChannelSecurity, service: str) -> bool:
     """Whether the router accepts a TCP connection at `address`; the publisher serves once its
     ready line is out (it joined the router first)."""
-    if service != "zenoh_router":
-        return True
-    host, _, port = dialable(address).rpartition(":")
-    try:
-        with socket.create_connection((host.strip("[]"), int(port)), timeout=1.0):
-            return True
-    except OSError:
-        return False
+    return service != "zenoh_router" or accepts(address) == PORT_OK
 
 
 def _websocket_serving(address: str, security: ChannelSecurity, _service: str) -> bool:

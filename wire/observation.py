@@ -109,6 +109,14 @@ def endpoint_for(address: str, tls: bool = False) -> str:
     return f"{'tls' if tls else 'tcp'}/{address}"
 
 
+def address_of(endpoint: str) -> str:
+    """tcp/HOST:PORT or tls/HOST:PORT -> HOST:PORT (BadEndpoint for anything else)."""
+    match = _ENDPOINT.fullmatch(endpoint)
+    if match is None:
+        raise BadEndpoint(f"endpoint {endpoint!r}: expected tcp/HOST:PORT or tls/HOST:PORT")
+    return match["address"]
+
+
 def default_router(tls_dir: str | None = None) -> str:
     """The router to join: $TELEROBOT_ZENOH_ROUTER, else the station's own (its address, over
     TLS when there is a TLS directory)."""

@@ -24,13 +24,14 @@ from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.metrics import ServiceMetrics
+from services.runtime.port_watch import PortWatch
 from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
 from services.runtime.service import HealthReporter, Service
 from services.runtime.tls import station_channel_security
 from telerobot.v1 import decision_server_pb2_grpc, stereo_camera_pb2_grpc
-from wire.addresses import address_for
+from wire.addresses import address_for, env_name
 from wire.local_call import LOCAL_CALLS_ENV
 from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import open_channel
@@ -55,6 +56,7 @@ class DecisionService(Service):
     dependencies: DependencyWatch | None = None
     _slave: GrpcSlave | None = None
     _stereo_channel: grpc.Channel | None = None
+    _router_watch: PortWatch | None = None
     _servicer: DecisionServerServicer | None = None
 
     def bindings(self) -> Sequence[ServiceBinding]:
@@ -77,7 +79,11 @@ class DecisionService(Service):
         self._slave = slave
         # Each dependency's state, from its health and the launcher's state file; every change
         # is an event (and, once attached, a health entry).
-        self.dependencies = DependencyWatch(slave.health, self.core.clock)
+        health = slave.health
+        if self.args.zenoh_router_address:  # the observers' router: is it there?
+            router = self._router_watch = PortWatch(self.args.zenoh_router_address)
+            health = lambda: {**slave.health(), "zenoh_router": router.answer()}  # noqa: E731
+        self.dependencies = DependencyWatch(health, self.core.clock)
         self.dependencies.subscribe(self.core.emit)
         self._servicer = DecisionServerServicer(self.core, self.dependencies)
         return [binding(decision_server_pb2_grpc, "DecisionServer", self._servicer),
@@ -104,6 +110,8 @@ class DecisionService(Service):
         # first health answers come within milliseconds: wait for them, so the first states
         # are not "no answer yet".
         self._slave.wait_health(HEALTH_ANSWER_TIMEOUT_S)
+        if self._router_watch is not None:
+            self._router_watch.start()
         self.dependencies.start()
 
     def on_emergency_call(self) -> None:
@@ -113,6 +121,8 @@ class DecisionService(Service):
     def close(self) -> None:
         if self.dependencies is not None:
             self.dependencies.close()
+        if self._router_watch is not None:
+            self._router_watch.close()
         if self.core is not None:
             self.core.close()
             self.core.slave.close()
@@ -139,6 +149,11 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
                             help=f"where {name} listens (env TELEROBOT_{name.upper()}_ADDRESS)"
                                  + ("; empty: stop through ProxyRobot only"
                                     if name == "emergency_stop" else ""))
+    parser.add_argument("--zenoh-router-address",
+                        default=os.environ.get(env_name("zenoh_router", "address"), ""),
+                        help="the station's Zenoh router (host:port), reported among the "
+                             "dependencies (env TELEROBOT_ZENOH_ROUTER_ADDRESS, which the "
+                             "launcher sets; empty: none)")
     parser.add_argument("--proxy-robot-local-calls", metavar="PATH",
                         default=os.environ.get(LOCAL_CALLS_ENV, ""),
                         help="move the arm through ProxyRobot's local socket at PATH (its "

@@ -4,7 +4,8 @@ reason for people. No transport code.
 Two sources, combined on every poll:
 
 - whether the dependency answers: the `Slave` port's `health()`, "ok" or why not (over gRPC,
-  each dependency's standard health, watched; see backends.py);
+  each dependency's standard health, watched; see backends.py), and for the station's Zenoh
+  router, whether its port accepts a connection (services.runtime.port_watch);
 - what the station's launcher knows (services.runtime.supervisor_state): whether it is
   restarting the dependency, how its last process ended, how often it restarted it.
 
@@ -45,7 +46,7 @@ SERVING, NOT_SERVING = "SERVING", "NOT_SERVING"
 RESTARTING_STATE = "RESTARTING"
 UNSPECIFIED = "UNSPECIFIED"  # a dependency not seen before
 # The order GetDependencies lists them in; any other name health() reports comes after.
-ORDER = ("proxy_robot", "force_sensor", "stereo_camera", "emergency_stop")
+ORDER = ("proxy_robot", "force_sensor", "stereo_camera", "emergency_stop", "zenoh_router")
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import re
 import signal
+import socket
 import time
 
 import grpc
@@ -344,6 +345,38 @@ def test_a_killed_sensor_is_not_serving_then_restarting_then_serving(world, back
                 ("force_sensor", pb.DEPENDENCY_STATE_RESTARTING, pb.DEPENDENCY_STATE_SERVING)]
     finally:
         children.stop_all(started)
+
+
+@pytest.mark.e2e
+def test_the_observers_router_is_a_dependency_that_goes_and_comes_back(backends, tmp_path):
+    """A DecisionServer told of the station's Zenoh router (a port of this test's own here)
+    lists it last, NOT_SERVING while nothing accepts on its port, SERVING when it does again."""
+    router = socket.create_server(("127.0.0.1", 0))
+    address = f"127.0.0.1:{router.getsockname()[1]}"
+    door = start_service(
+        "decision_server", "--proxy-robot-address", backends.proxy_address,
+        "--force-sensor-address", backends.sensor_address,
+        "--emergency-stop-address", backends.emergency_address,
+        "--zenoh-router-address", address, "--recordings-dir", str(tmp_path / "recordings"))
+    try:
+        with grpc.insecure_channel(door.address) as channel:
+            stub = decision_server_pb2_grpc.DecisionServerStub(channel)
+            wait_for(lambda: _dependencies(stub)["zenoh_router"].state ==
+                     pb.DEPENDENCY_STATE_SERVING, 10, "the router serving")
+            assert list(_dependencies(stub))[-1] == "zenoh_router"
+            router.close()
+            gone = wait_for(lambda: (d := _dependencies(stub)["zenoh_router"]).state ==
+                            pb.DEPENDENCY_STATE_NOT_SERVING and d, 10, "the router gone")
+            assert gone.reason.startswith("UNAVAILABLE") and address in gone.reason
+            assert _health(channel, "zenoh_router") == \
+                health_pb2.HealthCheckResponse.NOT_SERVING
+            assert _health(channel, None) == health_pb2.HealthCheckResponse.SERVING  # itself
+            router = socket.create_server(("127.0.0.1", int(address.rsplit(":", 1)[1])))
+            wait_for(lambda: _dependencies(stub)["zenoh_router"].state ==
+                     pb.DEPENDENCY_STATE_SERVING, 10, "the router back")
+    finally:
+        router.close()
+        door.stop()
 
 
 # -- GrpcSlave's health watches, against an in-process server ----------------------------------

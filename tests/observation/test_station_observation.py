@@ -1,7 +1,8 @@
 """The station's observation end to end: `make serve`'s launcher starts a Zenoh router and the
 publisher beside the services, and `python -m clients.observe` sees the wrench, the arm's
 state and the DecisionServer's events through the router; a router that dies takes nothing
-else down, and observers are back once the launcher restarted it."""
+else down, observers are back once the launcher restarted it, and the DecisionServer reports
+it among its dependencies."""
 
 from __future__ import annotations
 
@@ -112,6 +113,15 @@ def test_a_killed_router_takes_nothing_else_down_and_observers_come_back(station
                                  "--seconds", "2", "--json"))
     assert summary["wrench"]["messages"] > 0
     assert station.process.poll() is None
+    # The DecisionServer reports the router among its dependencies, restarted once.
+    with grpc.insecure_channel(station.ready["decision_server"]) as channel:
+        door = decision_server_pb2_grpc.DecisionServerStub(channel)
+        back = wait_for(lambda: next(
+            (d for d in door.GetDependencies(ds_pb.GetDependenciesRequest(),
+                                             timeout=5).dependencies
+             if d.name == "zenoh_router" and d.state == ds_pb.DEPENDENCY_STATE_SERVING
+             and d.restarts == 1), None), 10, "the router serving, restarted once")
+    assert back.reason == ""
 
 
 def _accepts(address: str) -> bool:
