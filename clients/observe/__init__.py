@@ -52,7 +52,7 @@ def _samples(topic: str, message) -> list[tuple[int, int]]:
     """(sequence, taken at ns) of each sample in a message. The sequence is 0 where its gaps
     mean nothing: the state is published at 100 Hz of the arm's 1 kHz samples, and events
     number themselves per stream, and the video skips pairs by design when its link is slow.
-The wrench carries every sample."""
+    The wrench carries every sample."""
     if topic == "wrench":
         return [(s.sequence, s.sample_time.ToNanoseconds()) for s in message.samples]
     if topic == "state":

@@ -125,20 +125,10 @@ def main(argv: list[str] | None = None) -> int:
     viewers = _Viewers()
     upstream: list = []  # what the feeds read through, closed at the end
     if args.router:
-        try:
-            station = station_name(args.station)
-            router = checked_endpoint(args.router, tls=bool(args.tls_dir))
-            zenoh_tls = tls_from(args.tls_dir, NAME)
-            if zenoh_tls is not None:
-                zenoh_tls.files()  # there, or said so
-        except ValueError as error:  # (BadEndpoint is one)
-            print(f"{NAME}: {error}", file=sys.stderr)
-            return 2
-        try:
-            session = client(router, zenoh_tls)
-        except zenoh.ZError as error:
-            print(f"{NAME}: the router {router} does not answer: {error}", file=sys.stderr)
-            return 1
+        joined = _join_router(args)
+        if isinstance(joined, int):
+            return joined
+        station, session = joined
         upstream.append(session)
         channels = LiveChannels(context, feeds=ROUTER_FEEDS)
         feeds = router_feeds(channels, session, station, state_hz=args.state_hz,
@@ -191,6 +181,25 @@ def main(argv: list[str] | None = None) -> int:
             link.close()
     log.info("stopped; published %s", dict(channels.published))
     return 0
+
+
+def _join_router(args: argparse.Namespace) -> tuple[str, zenoh.Session] | int:
+    """(the station's name, a session through --router), or the exit code after saying why
+    not: 2 for a bad name, endpoint or TLS directory, 1 for a router that does not answer."""
+    try:
+        station = station_name(args.station)
+        router = checked_endpoint(args.router, tls=bool(args.tls_dir))
+        tls = tls_from(args.tls_dir, NAME)
+        if tls is not None:
+            tls.files()  # there, or said so
+    except ValueError as error:  # (BadEndpoint is one)
+        print(f"{NAME}: {error}", file=sys.stderr)
+        return 2
+    try:
+        return station, client(router, tls)
+    except zenoh.ZError as error:
+        print(f"{NAME}: the router {router} does not answer: {error}", file=sys.stderr)
+        return 1
 
 
 class _Viewers:

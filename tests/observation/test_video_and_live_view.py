@@ -12,7 +12,7 @@ from foxglove_schemas_protobuf.CompressedVideo_pb2 import CompressedVideo
 
 from clients.observe import Observer
 from services.foxglove.live import FEED_TOPICS, STEREO, Demand, LiveChannels
-from services.foxglove.router_feeds import ROUTER_FEEDS, Decimation, router_feeds
+from services.foxglove.router_feeds import RING_MESSAGES, ROUTER_FEEDS, Decimation, router_feeds
 from services.observation.publisher import ObservationPublisher
 from services.observation.video import KeyframePacing, VideoStream
 from services.stereo_camera.pattern import PatternSource
@@ -128,19 +128,21 @@ def test_the_live_view_from_a_router_shows_the_arm_the_force_and_the_video(
             client.subscribe(topics)
             wait_for(lambda: fakes.calls["wrench"] and fakes.calls["state"],
                      what="the station's streams followed for the view")
-            # 40 ms of the 1 kHz wrench and 100 ms of the 100 Hz state: the view keeps one
-            # sample per 20 ms (50 Hz) and one state per 33 ms (30 Hz).
+            # 40 ms of the 1 kHz wrench and 80 ms of the 100 Hz state (no more messages than
+            # the view's ring holds): the view keeps one sample per 20 ms (50 Hz) and one
+            # state per 33 ms (30 Hz).
             fakes.calls["wrench"][0].items.put(wrench_message(*range(0, 20)))
             fakes.calls["wrench"][0].items.put(wrench_message(*range(20, 40)))
-            for ms in range(0, 100, 10):
+            assert RING_MESSAGES >= 8
+            for ms in range(0, 80, 10):
                 fakes.calls["state"][0].items.put(state_message(ms))
             client.collect(lambda got: len(got[fx.ROBOT_WRENCH]) == 2
-                           and len(got[fx.JOINT_STATES]) == 3
+                           and len(got[fx.JOINT_STATES]) == 2
                            and len(got[fx.STEREO_VIDEO]) >= 3, timeout_s=30)
             assert [stamp for stamp, _ in client.received[fx.ROBOT_WRENCH]] == [
                 T0_NS, T0_NS + 20_000_000]
             assert [stamp for stamp, _ in client.received[fx.JOINT_STATES]] == [
-                T0_NS + ms * 1_000_000 for ms in (0, 40, 80)]
+                T0_NS + ms * 1_000_000 for ms in (0, 40)]
             video = [CompressedVideo.FromString(data)
                      for _, data in client.received[fx.STEREO_VIDEO]]
             assert fx.h264_is_keyframe(video[0].data)  # a viewer starts at a key frame
@@ -152,3 +154,16 @@ def test_the_live_view_from_a_router_shows_the_arm_the_force_and_the_video(
                      what="the streams let go once the view stopped watching")
     finally:
         publisher.close()
+
+
+@pytest.mark.parametrize("args, code, why", [
+    (["--router", "tcp/10.0.0.2:7447"], 2, "beyond loopback"),
+    (["--router", "tls/127.0.0.1:7447"], 2, "give the station's TLS directory"),
+    (["--router", "tcp/127.0.0.1:7447", "--station", "a/b"], 2, "station name"),
+    (["--router", "tcp/127.0.0.1:1"], 1, "does not answer"),
+])
+def test_a_live_view_given_a_router_it_cannot_use_says_why(args, code, why, capsys):
+    from services.foxglove.__main__ import main
+
+    assert main(["--address", "127.0.0.1:0", *args]) == code
+    assert why in capsys.readouterr().err
