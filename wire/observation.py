@@ -9,6 +9,9 @@ protos' own, serialized, the same one the service's gRPC stream sends:
     telerobot/<station>/state    telerobot.v1.StreamStateResponse: the arm's state, 100 Hz
     telerobot/<station>/events   telerobot.v1.StreamEventsResponse (the DecisionServer's):
                                  control, holds, sessions, dependencies, the arm's events
+    telerobot/<station>/status   telerobot.v1.SessionStatus: who holds control and who waits,
+                                 the assistance in force, each dependency's state; after each
+                                 change and every STATUS_PERIOD_S
     telerobot/<station>/video    telerobot.v1.StreamPairsResponse (the StereoCamera's): both
                                  eyes side by side in H.264 at VIDEO_FPS, a key frame at least
                                  every VIDEO_KEYFRAME_S, each one right after the stream's
@@ -50,6 +53,7 @@ DEFAULT_STATION = "station"
 ROUTER_ENV = "TELEROBOT_ZENOH_ROUTER"  # an endpoint to join instead of the station's own router
 WRENCH_BATCH = 10  # samples per wrench message: 100 messages a second at the sensor's 1 kHz
 STATE_PERIOD_S = 0.01
+STATUS_PERIOD_S = 1.0  # the session's status is put at least this often
 VIDEO_FPS = 10.0  # the camera's pace on this machine (a stereo pair renders in ~85 ms)
 VIDEO_KBIT = 1000  # the bitrate ceiling, kbit/s: 640x480 per eye at 10 fps
 VIDEO_KEYFRAME_S = 2.0  # the longest a newcomer waits for a key frame
@@ -59,9 +63,10 @@ TOPICS = {
     "wrench": force_sensor_pb2.StreamWrenchResponse,
     "state": proxy_robot_pb2.StreamStateResponse,
     "events": decision_server_pb2.StreamEventsResponse,
+    "status": decision_server_pb2.SessionStatus,
     "video": stereo_camera_pb2.StreamPairsResponse,
 }
-DEFAULT_TOPICS = ("wrench", "state", "events")
+DEFAULT_TOPICS = ("wrench", "state", "events", "status")
 _STATION_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
 _ENDPOINT = re.compile(r"(?P<protocol>tcp|tls)/(?P<address>\[[0-9a-fA-F:]+\]:\d+|[^/:\[\]]+:\d+)")
 # Who may put into the station's keys over TLS (certificate common names): its publisher, and

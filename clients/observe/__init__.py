@@ -57,6 +57,8 @@ def _samples(topic: str, message) -> list[tuple[int, int]]:
         return [(s.sequence, s.sample_time.ToNanoseconds()) for s in message.samples]
     if topic == "state":
         return [(0, message.state.sample_time.ToNanoseconds())]
+    if topic == "status":
+        return [(0, message.status_time.ToNanoseconds())]
     if topic == "video":  # a pair, taken when its left eye was captured; a header is none
         return [(0, message.pair.left_capture_time.ToNanoseconds())] \
             if message.WhichOneof("content") == "pair" else []

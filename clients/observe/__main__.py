@@ -1,9 +1,10 @@
 """python -m clients.observe: watch a station's observation through a Zenoh router.
 
-Subscribes to telerobot/<station>/{wrench,state,events} (wire/observation.py) through the
-router --router names and prints, each --every seconds, what each topic delivered: samples
-per second, samples lost, and the lag from when a sample was taken (on this host's clock).
---events prints each event as it comes; --json prints one JSON summary at the end instead.
+Subscribes to telerobot/<station>/{wrench,state,events,status} (wire/observation.py; --topics
+adds the video) through the router --router names and prints, each --every seconds, what each
+topic delivered: samples per second, samples lost, and the lag from when a sample was taken (on
+this host's clock). --events prints each event as it comes, --status the session's status each
+time it changes; --json prints one JSON summary at the end instead.
 Exits after --seconds, or on Ctrl-C; 1 if nothing arrived.
 """
 
@@ -55,6 +56,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="stop after this long (default: until Ctrl-C)")
     parser.add_argument("--every", type=float, default=1.0, help="seconds between lines")
     parser.add_argument("--events", action="store_true", help="print each event as it comes")
+    parser.add_argument("--status", action="store_true",
+                        help="print the session's status (control, assistance, dependencies) "
+                             "as JSON each time it changes")
     parser.add_argument("--json", action="store_true", help="one JSON summary at the end")
     return parser
 
@@ -73,9 +77,18 @@ def main(argv: list[str] | None = None) -> int:
         print(f"observe: the router {args.router} does not answer: {error}", file=sys.stderr)
         return 1
 
+    shown_status: list[str] = [""]  # the last status printed, without its time
+
     def show_event(topic: str, message) -> None:
         if topic == "events" and args.events:
             print(json.dumps(json_format.MessageToDict(message)), flush=True)
+        elif topic == "status" and args.status:
+            status = json_format.MessageToDict(message)
+            status.pop("statusTime", None)
+            text = json.dumps(status)
+            if text != shown_status[0]:
+                shown_status[0] = text
+                print(text, flush=True)
 
     try:
         observer = Observer(session, args.station, topics, on_message=show_event)

@@ -23,6 +23,7 @@ import zenoh
 from google.protobuf import duration_pb2
 
 from services.common.feeds import Feed
+from services.observation.status import StatusStream
 from services.observation.video import VideoStream
 from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import (
@@ -60,6 +61,7 @@ def station_streams(proxy_robot: grpc.Channel, force_sensor: grpc.Channel,
             batch_size=WRENCH_BATCH, queue_capacity=WRENCH_QUEUE_BATCHES)),
         "state": lambda: robot.StreamState(pr_pb.StreamStateRequest(period=period)),
         "events": lambda: door.StreamEvents(ds_pb.StreamEventsRequest()),
+        "status": lambda: StatusStream(door),
         "video": lambda: VideoStream(camera),
     }
     assert streams.keys() == TOPICS.keys()

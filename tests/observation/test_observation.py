@@ -6,12 +6,14 @@ from __future__ import annotations
 
 import itertools
 
+import grpc
 import pytest
 import zenoh
 from google.protobuf.timestamp_pb2 import Timestamp
 
 from clients.observe import Observer
 from services.observation.publisher import ObservationPublisher
+from services.observation.status import StatusStream
 from services.security import pki
 from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import force_sensor_pb2 as fs_pb
@@ -229,3 +231,46 @@ def test_tls_endpoints_need_a_tls_directory_and_its_files(pki_dir, tmp_path):
     with pytest.raises(BadEndpoint, match="make certs"):
         SessionPlan("client", connect=("tls/127.0.0.1:7447",),
                     tls=ZenohTls(tmp_path, "observer")).config()
+
+
+# -- the session's status ---------------------------------------------------------------------
+
+class FakeDoor:
+    """A DecisionServer's read side: its events stream (a FakeCall) and its lock, which the
+    test changes; counts the status reads (one GetControlState each)."""
+
+    def __init__(self):
+        self.events = FakeCall()
+        self.holder = ""
+        self.reads = 0
+
+    def StreamEvents(self, request):
+        return self.events
+
+    def GetControlState(self, request, timeout):
+        self.reads += 1
+        holders = [ds_pb.ControlHolder(operator_id=self.holder)] if self.holder else []
+        return ds_pb.GetControlStateResponse(state=ds_pb.ControlState(holders=holders))
+
+    def GetAssistance(self, request, timeout):
+        return ds_pb.GetAssistanceResponse()
+
+    def GetDependencies(self, request, timeout):
+        return ds_pb.GetDependenciesResponse(dependencies=[ds_pb.Dependency(
+            name="proxy_robot", state=ds_pb.DEPENDENCY_STATE_SERVING)])
+
+
+def test_the_status_is_read_at_once_then_after_each_change_of_the_session():
+    door = FakeDoor()
+    statuses = iter(StatusStream(door, period_s=3600, clock_ns=lambda: T0_NS))
+    first = next(statuses)
+    assert first.status_time == stamp(T0_NS) and not first.control.holders
+    assert [d.name for d in first.dependencies] == ["proxy_robot"]
+    door.holder = "ada"
+    door.events.items.put(ds_pb.StreamEventsResponse(
+        control_changed=ds_pb.ControlChangedEvent()))
+    second = next(statuses)  # read again after the lock's event, not an hour later
+    assert [h.operator_id for h in second.control.holders] == ["ada"] and door.reads == 2
+    door.events.items.put(grpc.StatusCode.UNAVAILABLE)
+    with pytest.raises(grpc.RpcError):  # the events ended: the Feed reopens the stream
+        next(statuses)

@@ -93,6 +93,37 @@ def test_the_decision_servers_events_reach_observers(station):
         session.close()
 
 
+def test_an_observer_gets_the_sessions_status_at_once_and_as_the_lock_changes(station):
+    session = client(f"tcp/{station.ready['zenoh_router']}")
+    statuses: list[ds_pb.SessionStatus] = []
+    observer = Observer(session, STATION, ("status",),
+                        on_message=lambda topic, status: statuses.append(status))
+    try:
+        # The first status comes as the stream opens, with every dependency of the station.
+        wait_for(lambda: statuses, timeout_s=10, what="a status")
+        assert {d.name: d.state for d in statuses[0].dependencies} == {
+            name: ds_pb.DEPENDENCY_STATE_SERVING for name in (
+                "proxy_robot", "force_sensor", "stereo_camera", "emergency_stop",
+                "zenoh_router")}
+        assert not statuses[0].control.holders
+        with grpc.insecure_channel(station.ready["decision_server"]) as channel:
+            door = decision_server_pb2_grpc.DecisionServerStub(channel)
+            lease = door.AcquireControl(ds_pb.AcquireControlRequest(
+                operator_id="observed", mode=ds_pb.CONTROL_MODE_EXCLUSIVE), timeout=5)
+            held = wait_for(lambda: next((s for s in list(statuses) if s.control.holders),
+                                         None), timeout_s=10, what="the holder in a status")
+            assert [h.operator_id for h in held.control.holders] == ["observed"]
+            assert held.control.mode == ds_pb.CONTROL_MODE_EXCLUSIVE
+            seen = len(statuses)
+            door.ReleaseControl(ds_pb.ReleaseControlRequest(lease_id=lease.lease_id),
+                                timeout=5)
+        wait_for(lambda: any(not s.control.holders for s in list(statuses)[seen:]),
+                 timeout_s=10, what="the lock free again in a status")
+    finally:
+        observer.close()
+        session.close()
+
+
 def test_observers_of_another_station_name_get_nothing(station):
     summary = summary_of(observe(station.ready["zenoh_router"], "--station", "elsewhere",
                                  "--seconds", "1", "--json"), nothing=True)

@@ -758,3 +758,15 @@ class Scaling(_message.Message):
     translation_scale: float
     rotation_scale: float
     def __init__(self, translation_scale: _Optional[float] = ..., rotation_scale: _Optional[float] = ...) -> None: ...
+
+class SessionStatus(_message.Message):
+    __slots__ = ("status_time", "control", "assistance", "dependencies")
+    STATUS_TIME_FIELD_NUMBER: _ClassVar[int]
+    CONTROL_FIELD_NUMBER: _ClassVar[int]
+    ASSISTANCE_FIELD_NUMBER: _ClassVar[int]
+    DEPENDENCIES_FIELD_NUMBER: _ClassVar[int]
+    status_time: _timestamp_pb2.Timestamp
+    control: ControlState
+    assistance: AssistanceConfig
+    dependencies: _containers.RepeatedCompositeFieldContainer[Dependency]
+    def __init__(self, status_time: _Optional[_Union[datetime.datetime, _timestamp_pb2.Timestamp, _Mapping]] = ..., control: _Optional[_Union[ControlState, _Mapping]] = ..., assistance: _Optional[_Union[AssistanceConfig, _Mapping]] = ..., dependencies: _Optional[_Iterable[_Union[Dependency, _Mapping]]] = ...) -> None: ...
