@@ -13,6 +13,7 @@ from __future__ import annotations
 import _posixsubprocess
 import os
 import subprocess
+import sys
 import time
 from dataclasses import dataclass
 from multiprocessing import process as multiprocessing_process
@@ -35,6 +36,7 @@ for _service in COMMAND_PATH_SERVICES:
 
 from services.runtime import children  # noqa: E402
 from services.runtime.children import Child  # noqa: E402
+from services.runtime.process import GIL_SWITCH_INTERVAL_S  # noqa: E402
 from tests.processes import (  # noqa: E402
     SHM_DIR,
     start_process,
@@ -42,6 +44,12 @@ from tests.processes import (  # noqa: E402
     start_world,
     stop_world,
 )
+
+# The services a test runs in this process (in-process servers, the DecisionServer's force
+# control, the Franka link's loop) switch the GIL as their own processes do
+# (services/runtime/process.py), not at Python's 5 ms: a busy thread of the runner would
+# otherwise hold them up to 5 ms at a time, longer than their control periods.
+sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
 
 
 def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
