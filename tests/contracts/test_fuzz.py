@@ -375,6 +375,7 @@ class BidiSession:
             self.outcome = Outcome(code, error.details() or "", [], time.monotonic() - started)
         finally:
             timer.cancel()
+        self._outbox.put(None)  # ended: grpc's thread reading the requests may stop too
         return None
 
     def close(self) -> Outcome:
