@@ -50,14 +50,17 @@ class StatusStream:
         self._changed.set()
 
     def __iter__(self) -> Iterator[ds_pb.SessionStatus]:
-        while True:
-            yield self.read()
-            self._changed.wait(self._period_s)
-            self._changed.clear()
-            if self._ended:
-                if self._ended[0] is not None:
-                    raise self._ended[0]
-                return
+        try:
+            while True:
+                yield self.read()
+                self._changed.wait(self._period_s)
+                self._changed.clear()
+                if self._ended:
+                    if self._ended[0] is not None:
+                        raise self._ended[0]
+                    return
+        finally:  # a read that failed ends the events stream too
+            self._events.cancel()
 
     def read(self) -> ds_pb.SessionStatus:
         status = ds_pb.SessionStatus(

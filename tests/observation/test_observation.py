@@ -243,11 +243,14 @@ class FakeDoor:
         self.events = FakeCall()
         self.holder = ""
         self.reads = 0
+        self.down = False  # the DecisionServer not answering its reads
 
     def StreamEvents(self, request):
         return self.events
 
     def GetControlState(self, request, timeout):
+        if self.down:
+            raise FakeCall.Ended(grpc.StatusCode.UNAVAILABLE)
         self.reads += 1
         holders = [ds_pb.ControlHolder(operator_id=self.holder)] if self.holder else []
         return ds_pb.GetControlStateResponse(state=ds_pb.ControlState(holders=holders))
@@ -274,3 +277,11 @@ def test_the_status_is_read_at_once_then_after_each_change_of_the_session():
     door.events.items.put(grpc.StatusCode.UNAVAILABLE)
     with pytest.raises(grpc.RpcError):  # the events ended: the Feed reopens the stream
         next(statuses)
+
+
+def test_a_status_read_that_fails_ends_the_stream_and_its_events():
+    door = FakeDoor()
+    door.down = True
+    with pytest.raises(grpc.RpcError):
+        next(iter(StatusStream(door, period_s=3600)))
+    assert door.events.cancelled.is_set()
