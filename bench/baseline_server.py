@@ -54,7 +54,7 @@ from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import force_sensor_pb2, proxy_robot_pb2, types_pb2
 from wire import convert
 from wire.errors import InvalidArgumentError, TelerobotError
-from wire.processes import ready_line
+from wire.processes import say_ready
 
 log = logging.getLogger("baseline")
 POLL_S = 0.1  # how often idle loops look at the stop flag
@@ -148,8 +148,8 @@ def serve_zmq(cores: Cores, stop: threading.Event) -> list[threading.Thread]:
 
     threads = [threading.Thread(target=commands, name="zmq-commands", daemon=True),
                threading.Thread(target=force, name="zmq-force", daemon=True)]
-    print(ready_line("baseline_command", f"127.0.0.1:{command_port}"), flush=True)
-    print(ready_line("baseline_force", f"127.0.0.1:{force_port}"), flush=True)
+    say_ready("baseline_command", f"127.0.0.1:{command_port}")
+    say_ready("baseline_force", f"127.0.0.1:{force_port}")
     return threads
 
 
@@ -197,8 +197,8 @@ def serve_tcp(cores: Cores, stop: threading.Event) -> list[threading.Thread]:
                              daemon=True).start()
         listener.close()
 
-    print(ready_line("baseline_command", f"127.0.0.1:{port}"), flush=True)
-    print(ready_line("baseline_force", f"127.0.0.1:{port}"), flush=True)
+    say_ready("baseline_command", f"127.0.0.1:{port}")
+    say_ready("baseline_force", f"127.0.0.1:{port}")
     return [threading.Thread(target=accept, name="tcp-accept", daemon=True)]
 
 
@@ -340,7 +340,7 @@ def serve_teleop_zmq(core: DecisionCore, stop: threading.Event) -> list[threadin
         sessions.close()
         router.close()
 
-    print(ready_line("baseline_teleop", f"127.0.0.1:{port}"), flush=True)
+    say_ready("baseline_teleop", f"127.0.0.1:{port}")
     return [threading.Thread(target=teleoperate, name="zmq-teleoperate", daemon=True)]
 
 

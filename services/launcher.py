@@ -82,7 +82,7 @@ from services.web_console.https import certificate_files
 from wire.addresses import env_name
 from wire.local_call import LOCAL_CALLS_ENV
 from wire.observation import ROUTER_ENV, BadEndpoint, address_of, checked_endpoint, endpoint_for
-from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line
+from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line, say
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
 
 log = logging.getLogger("launcher")
@@ -229,8 +229,8 @@ def main(argv: list[str] | None = None) -> int:
                     return 0
                 for other, other_address in station.children[name].ready.items():
                     if other != name:  # its token and metrics ports, if it has them
-                        _say(ready_line(other, other_address))
-                _say(ready_line(name, address))
+                        say(ready_line(other, other_address))
+                say(ready_line(name, address))
             _print_banner(list(station.children.values()), args.tls_dir)
             door = station.children["decision_server"]
             # Withdrawn on leaving the block, before the children stop: however it ends.
@@ -351,24 +351,12 @@ class _Station:
         write_state(self._state_path, self._states)
 
 
-_OUTPUT = threading.Lock()
-
-
-def _say(text: str, stream=None) -> None:
-    """`text` and a newline in one write, one writer at a time. Whoever started the launcher
-    may read its stdout and stderr from one pipe: print() writes the text and the newline
-    apart, so a child's log line forwarded meanwhile from another thread could land inside a
-    ready line and hide it."""
-    stream = stream or sys.stdout
-    with _OUTPUT:
-        stream.write(text + "\n")
-        stream.flush()
 
 
 def _forward(_child: Child, line: str) -> None:
     """A child's log line, to the launcher's stderr (its ready line is the launcher's to say)."""
     if parse_ready_line(line) is None:
-        _say(line, sys.stderr)
+        say(line, sys.stderr)
 
 
 def _wait_until_serving(child: Child, stop: threading.Event,
@@ -511,7 +499,7 @@ def _print_banner(station: list[Child], tls_dir: str) -> None:
             f"  npx buf curl --protocol grpc --http2-prior-knowledge --list-methods "
             f"http://{operator}",
         ]
-    _say("\n".join([*lines, ""]))
+    say("\n".join([*lines, ""]))
 
 
 if __name__ == "__main__":

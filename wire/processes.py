@@ -18,6 +18,7 @@ from __future__ import annotations
 import faulthandler
 import signal
 import sys
+import threading
 from collections.abc import Sequence
 
 READY_LINE_PREFIX = "TELEROBOT_READY"
@@ -27,6 +28,25 @@ PARENT_PID_ENV = "TELEROBOT_PARENT_PID"
 def ready_line(name: str, address: str) -> str:
     """The line a process prints once `name` serves on `address` (host:port)."""
     return f"{READY_LINE_PREFIX} {name} {address}"
+
+
+_OUTPUT = threading.Lock()
+
+
+def say(text: str, stream=None) -> None:
+    """`text` and a newline in one write (stdout by default), one writer at a time. print()
+    writes the text and the newline apart, so when stdout and stderr share one pipe (as a
+    supervisor reads them) and Python runs unbuffered, a log line written meanwhile from
+    another thread can land inside the line and hide it."""
+    stream = stream or sys.stdout
+    with _OUTPUT:
+        stream.write(text + "\n")
+        stream.flush()
+
+
+def say_ready(name: str, address: str) -> None:
+    """Print the ready line of `name` serving on `address`, whole."""
+    say(ready_line(name, address))
 
 
 def parse_ready_line(line: str) -> tuple[str, str] | None:

@@ -38,7 +38,7 @@ from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name, is_loopback
 from wire.observation import STATION_ENV, checked_endpoint, client, station_name, tls_from
-from wire.processes import dump_stacks_on_signal, ready_line
+from wire.processes import dump_stacks_on_signal, say_ready
 from wire.tls import TLS_DIR_ENV, open_channel
 
 log = logging.getLogger("foxglove")
@@ -167,7 +167,7 @@ def main(argv: list[str] | None = None) -> int:
         address = f"{host}:{bound}"
         log.info("the live view serves %s://%s/ to viewers from %s or with no Origin",
                  "wss" if tls else "ws", address, ", ".join(sorted(gate.allowed)))
-        print(ready_line(NAME, address), flush=True)
+        say_ready(NAME, address)
         wait_for_stop(stop)
     finally:
         if gate is not None:

@@ -37,7 +37,7 @@ from wire.observation import (
     station_name,
     tls_from,
 )
-from wire.processes import dump_stacks_on_signal, ready_line
+from wire.processes import dump_stacks_on_signal, say_ready
 from wire.tls import TLS_DIR_ENV, open_channel
 
 log = logging.getLogger("observation")
@@ -93,7 +93,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         log.info("publishing telerobot/%s/... through %s while anyone subscribes", station,
                  router)
-        print(ready_line(NAME, router.split("/", 1)[1]), flush=True)
+        say_ready(NAME, router.split("/", 1)[1])
         wait_for_stop(stop)
     finally:
         publisher.close()

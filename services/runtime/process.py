@@ -40,7 +40,7 @@ from services.security.audit import AUDIT_DIR_ENV, AuditLog, audit_log_for
 from services.security.tokens import TokenStore, tokens_file
 from wire.addresses import env_name, is_loopback
 from wire.errors import TelerobotError
-from wire.processes import PARENT_PID_ENV, dump_stacks_on_signal, ready_line
+from wire.processes import PARENT_PID_ENV, dump_stacks_on_signal, say_ready
 
 log = logging.getLogger(__name__)
 
@@ -174,11 +174,11 @@ def run_service(
         log.info("bearer tokens from %s are taken on %s (TLS, no client certificate)",
                  security.tokens.path, token_address)
         # Before the service's own line: whoever waits for that one knows this one too.
-        print(ready_line(token_port_name(name), token_address), flush=True)
+        say_ready(token_port_name(name), token_address)
     if metrics_address:
         log.info("Prometheus metrics on http://%s/metrics", metrics_address)
-        print(ready_line(metrics_port_name(name), metrics_address), flush=True)
-    print(ready_line(name, f"{host}:{port}"), flush=True)
+        say_ready(metrics_port_name(name), metrics_address)
+    say_ready(name, f"{host}:{port}")
 
     wait_for_stop(stop)
     log.info("stopping: draining calls for up to %.1f s", args.grace_s)

@@ -20,7 +20,7 @@ from services.web_console.app import ConsoleApp, TransportBoundProtocol
 from services.web_console.bridge import Upstream
 from services.web_console.https import RenewingCertificate, certificate_files, issue_command
 from wire.addresses import address_for, env_name, is_loopback
-from wire.processes import dump_stacks_on_signal, ready_line
+from wire.processes import dump_stacks_on_signal, say_ready
 from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import KEEPALIVE_OPTIONS, TLS_DIR_ENV, server_name_options
 
@@ -147,7 +147,7 @@ async def _serve(args, certificate: RenewingCertificate | None) -> int:
     log.info("serving the console on %s://%s/ for the DecisionServer at %s",
              "https" if certificate else "http", address,
              args.token_address if auth == "token" else args.decision_server)
-    print(ready_line(NAME, address), flush=True)
+    say_ready(NAME, address)
     await serving
     await upstream.channel.close()
     await upstream.stereo_channel.close()

@@ -25,7 +25,7 @@ from services.runtime.config import configure_logging
 from services.runtime.process import stop_requested, wait_for_stop
 from wire.addresses import address_for, env_name
 from wire.observation import BadEndpoint, SessionPlan, ZenohTls, endpoint_for
-from wire.processes import dump_stacks_on_signal, ready_line
+from wire.processes import dump_stacks_on_signal, say_ready
 from wire.tls import TLS_DIR_ENV
 
 log = logging.getLogger("zenoh_router")
@@ -95,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
         address = bound[0].split("/", 1)[1]
         log.info("routing on %s%s", bound[0],
                  f", joined to {', '.join(args.connect)}" if args.connect else "")
-        print(ready_line(NAME, address), flush=True)
+        say_ready(NAME, address)
         wait_for_stop(stop)
     finally:
         session.close()

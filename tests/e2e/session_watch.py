@@ -15,7 +15,7 @@ import time
 from google.protobuf.json_format import MessageToDict
 
 from clients.python import DecisionClient
-from wire.processes import ready_line
+from wire.processes import say_ready
 
 DESCENT_M = 0.02
 POLL_S = 0.02
@@ -33,7 +33,7 @@ def main(address: str) -> int:
     with DecisionClient(address, default_timeout=10.0) as client:
         events = client.stream_events()
         threading.Thread(target=report_sessions, args=(events, opened), daemon=True).start()
-        print(ready_line("session_watch", "0:0"), flush=True)
+        say_ready("session_watch", "0:0")
         opened.wait()
         start = client.robot.get_state().tool_pose.translation[2]
         while client.robot.get_state().tool_pose.translation[2] > start - DESCENT_M:

@@ -75,26 +75,6 @@ def test_every_process_is_serving_where_the_launcher_says(station):
     assert "handshake failed" not in banner
 
 
-def test_the_launchers_lines_are_whole_when_threads_write_at_once():
-    """A ready line printed while a child's log line is forwarded to stderr, and both read from
-    one pipe (as the tests and `make teleop` read the launcher): each line is one write."""
-    from services.launcher import _say
-
-    class Stream:
-        def __init__(self):
-            self.writes = []
-
-        def write(self, text):
-            self.writes.append(text)
-
-        def flush(self):
-            pass
-
-    stream = Stream()
-    _say("TELEROBOT_READY foxglove 127.0.0.1:8765", stream)
-    assert stream.writes == ["TELEROBOT_READY foxglove 127.0.0.1:8765\n"]
-
-
 def test_buf_curl_lists_every_rpc_of_all_four_services_on_the_operator_address(station):
     _, addresses = station
     address = addresses["decision_server"]
