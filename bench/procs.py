@@ -35,6 +35,12 @@ def unique_shm_name() -> str:
     return f"telerobot_bench_{os.getpid()}_{uuid.uuid4().hex[:8]}"
 
 
+def worker_sizes(count: int, per_worker: int) -> list[int]:
+    """How `count` subscribers (or observers) split over worker processes of at most
+    `per_worker` each: [32, 32, 6] for 70 by 32."""
+    return [min(per_worker, count - start) for start in range(0, count, per_worker)]
+
+
 class ProcessSet:
     """The children of one bench run; stop_all() stops every live one, newest first."""
 

@@ -4,7 +4,7 @@ stream at 100 Hz from processes of their own (the Parma table)."""
 from __future__ import annotations
 
 from bench.plan import Plan
-from bench.procs import ChildFailed
+from bench.procs import ChildFailed, worker_sizes
 from bench.session import Session, reason
 
 OBSERVERS_PER_PROCESS = 8
@@ -21,7 +21,7 @@ def run(bench: Session) -> None:
         name = f"observers_{count}"
         bench.progress.step(f"{name}: operator at 1 kHz with {count} observers at "
                             f"{1000 / plan.observer_decimation:.0f} Hz "
-                            f"(in {-(-count // OBSERVERS_PER_PROCESS)} processes)")
+                            f"(in {len(worker_sizes(count, OBSERVERS_PER_PROCESS))} processes)")
         retried = None
         try:
             try:
@@ -46,10 +46,7 @@ def _observers_once(bench: Session, count: int) -> dict:
     address = bench.station.address["force_sensor"]
     groups = []
     try:
-        left = count
-        while left > 0:
-            size = min(OBSERVERS_PER_PROCESS, left)
-            left -= size
+        for size in worker_sizes(count, OBSERVERS_PER_PROCESS):
             groups.append(bench.procs.start_worker("observers", {
                 "address": address, "count": size,
                 "decimation": plan.observer_decimation, "max_s": plan.observers_s + 60}))

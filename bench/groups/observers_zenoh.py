@@ -18,7 +18,7 @@ import time
 
 from bench.cgroup import cpu_capped
 from bench.plan import Plan
-from bench.procs import ChildFailed
+from bench.procs import ChildFailed, worker_sizes
 from bench.session import Session
 
 # A process's subscribers share its GIL: 32 each keeps one process from being the bottleneck
@@ -71,17 +71,14 @@ def run(bench: Session) -> None:
 
 def _row(bench: Session, count: int, router: str, router_pid: int) -> None:
     name = f"observers_zenoh_{count}"
-    processes = -(-count // SUBSCRIBERS_PER_PROCESS)
+    processes = len(worker_sizes(count, SUBSCRIBERS_PER_PROCESS))
     bench.progress.step(f"{name}: operator at 1 kHz with {count} Zenoh subscribers to every "
                         f"wrench sample, behind the router (in {processes} processes)")
     plan = bench.plan
     groups = []
     with cpu_capped(SUBSCRIBER_CORES) as cap:
         try:
-            left = count
-            while left > 0:
-                size = min(SUBSCRIBERS_PER_PROCESS, left)
-                left -= size
+            for size in worker_sizes(count, SUBSCRIBERS_PER_PROCESS):
                 groups.append(bench.procs.start_worker("zenoh_observers", {
                     "router": router, "station": STATION_NAME, "count": size,
                     "max_s": READY_TIMEOUT_S + plan.observers_s + 60}))

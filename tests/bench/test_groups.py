@@ -21,3 +21,12 @@ def test_the_progress_counts_the_station_the_groups_asked_for_and_the_world_loop
         assert bench.progress.total == 2 + 3 + 1
     finally:
         bench.procs.stop_all()
+
+
+def test_subscribers_split_over_workers_of_at_most_their_size_in_order():
+    from bench.procs import worker_sizes
+
+    assert worker_sizes(70, 32) == [32, 32, 6]
+    assert worker_sizes(1024, 32) == [32] * 32
+    assert worker_sizes(1, 8) == [1]
+    assert sum(worker_sizes(257, 32)) == 257
