@@ -22,7 +22,7 @@ import threading
 from services.impairment.link import LinkProfile
 from services.impairment.proxy import CUT_MODES, ImpairmentProxy
 from wire.addresses import is_loopback
-from wire.processes import dump_stacks_on_signal, say_ready
+from wire.processes import dump_stacks_on_signal, say, say_ready
 
 _DURATION_UNITS = {"us": 1e-6, "ms": 1e-3, "s": 1.0}
 _BANDWIDTH_UNITS = {"bit": 1.0, "kbit": 1e3, "mbit": 1e6, "gbit": 1e9}
@@ -124,7 +124,7 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGUSR1, lambda *_: cut_now.set())
     signal.signal(signal.SIGUSR2, lambda *_: tell.set())
     with ImpairmentProxy(args.listen, args.target, up, down,
-                         report=lambda line: print(line, flush=True)) as proxy:
+                         report=say) as proxy:
         say_ready("impairment", proxy.address)
         if args.cut_at is not None and not stop.wait(args.cut_at):
             proxy.cut(args.cut_for, args.cut_mode)
@@ -135,8 +135,8 @@ def main(argv: list[str] | None = None) -> int:
                 proxy.cut(args.cut_for, args.cut_mode)
             if tell.is_set():
                 tell.clear()
-                print(f"stats: {proxy.stats}", flush=True)
-        print(f"stopping: {proxy.stats}", flush=True)
+                say(f"stats: {proxy.stats}")
+        say(f"stopping: {proxy.stats}")
     return 0
 
 
