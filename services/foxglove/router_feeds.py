@@ -57,12 +57,13 @@ class RouterFeed:
     def __init__(self, name: str, session: zenoh.Session, station: str, topic: str,
                  handle: Callable):
         self.name = name
-        self._session, self._key, self._topic, self._handle = session, key(station, topic), \
-            topic, handle
+        self._session = session
+        self._key = key(station, topic)
+        self._topic = topic
+        self._handle = handle
         self._lock = threading.Lock()
         self._subscriber: zenoh.Subscriber | None = None
         self._told: set[str] = set()  # the kinds of failure logged already
-        self.received = 0
 
     def start(self) -> RouterFeed:
         return self
@@ -87,7 +88,6 @@ class RouterFeed:
             try:
                 message = decode(self._topic, sample.payload.to_bytes())
                 self._handle(message)
-                self.received += 1
             except (DecodeError, ValueError) as error:
                 kind = type(error).__name__
                 if kind not in self._told:
