@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import os
 import signal
-import socket
 import subprocess
 import sys
 
@@ -17,6 +16,7 @@ import grpc
 import pytest
 
 from clients.observe import Observer
+from services.runtime.port_watch import OK, accepts
 from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import (
     decision_server_pb2_grpc,
@@ -138,7 +138,7 @@ def test_a_killed_router_takes_nothing_else_down_and_observers_come_back(station
     assert health_serving(station.ready["decision_server"])
     assert health_serving(station.ready["force_sensor"])
     wait_for(lambda: service_pid(station, "zenoh_router") not in (None, victim)
-             and _accepts(router), timeout_s=10, what="the router restarted on its address")
+             and accepts(router) == OK, timeout_s=10, what="the router restarted on its address")
     assert service_pid(station, "observation") == publisher  # it rejoined by itself
     summary = summary_of(observe(router, "--station", STATION, "--topics", "wrench",
                                  "--seconds", "2", "--json"))
@@ -153,12 +153,3 @@ def test_a_killed_router_takes_nothing_else_down_and_observers_come_back(station
              if d.name == "zenoh_router" and d.state == ds_pb.DEPENDENCY_STATE_SERVING
              and d.restarts == 1), None), 10, "the router serving, restarted once")
     assert back.reason == ""
-
-
-def _accepts(address: str) -> bool:
-    host, _, port = address.rpartition(":")
-    try:
-        with socket.create_connection((host, int(port)), timeout=1.0):
-            return True
-    except OSError:
-        return False
