@@ -42,6 +42,7 @@ from collections.abc import Callable
 from foxglove import Channel, Context, Schema
 from mcap_protobuf.schema import build_file_descriptor_set
 
+from services.common.keyframes import KEYFRAME_RETRY_S, KeyframePacing
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
@@ -57,7 +58,6 @@ FEED_TOPICS: dict[str, tuple[str, ...]] = {
     VIDEO: (fox.STEREO_VIDEO,),
 }
 KEYFRAME_REFRESH_S = 4.0  # the video's longest run without a key frame
-KEYFRAME_RETRY_S = 0.5  # a key frame asked for and not come by then: asked for again
 LIVE_TOPICS: dict[str, type] = {**fox.FOXGLOVE_TOPICS, fox.ROBOT_STATE: types_pb2.RobotState,
                                 fox.ROBOT_WRENCH: types_pb2.Wrench}
 _FEED_OF_TOPIC = {topic: feed for feed, topics in FEED_TOPICS.items() for topic in topics}
@@ -135,11 +135,8 @@ class LiveChannels:
         self.published: Counter[str] = Counter()
         self.skipped: Counter[str] = Counter()  # messages with no Foxglove form (said once)
         # The video's key frames (under _lock): held back until one comes, after a newcomer.
-        self._clock = clock
         self._video_held = False  # frames are held back until the next key frame
-        self._keyframe_asked_s: float | None = None  # when one was asked for, if not yet come
-        self._keyframe_wanted = False  # one is to be asked for (take_keyframe_request)
-        self._last_keyframe_s = clock()
+        self._keyframes = KeyframePacing(KEYFRAME_REFRESH_S, KEYFRAME_RETRY_S, clock)
         self.held_back = 0  # video frames held back waiting for a key frame
 
     def cameras_unknown(self) -> bool:
@@ -180,16 +177,15 @@ class LiveChannels:
             return
         with self._lock:
             self._video_held = True
-            self._keyframe_wanted = True
+            self._keyframes.ask()
 
     def stereo_video(self, pair: sc_pb.StereoPair) -> None:
         """A pair of the H.264 stream: its access unit on /camera/stereo/video, unless frames
         are held back for a newcomer and this is not a key frame."""
         with self._lock:
             if pair.keyframe:
-                self._video_held = self._keyframe_wanted = False
-                self._keyframe_asked_s = None
-                self._last_keyframe_s = self._clock()
+                self._video_held = False
+                self._keyframes.keyframe()
             elif self._video_held:
                 self.held_back += 1
                 return
@@ -199,24 +195,14 @@ class LiveChannels:
     def video_stream_opened(self) -> None:
         """A new upstream video stream: its first frame is a key frame, no need to ask."""
         with self._lock:
-            self._keyframe_wanted = False
-            self._keyframe_asked_s = None
-            self._last_keyframe_s = self._clock()
+            self._keyframes.keyframe()
 
     def take_keyframe_request(self) -> bool:
         """Whether the video feed's next receipt should ask for a key frame: a newcomer waits
         for one (asked again every KEYFRAME_RETRY_S until it comes), or none came for
         KEYFRAME_REFRESH_S."""
         with self._lock:
-            now = self._clock()
-            asked = self._keyframe_asked_s
-            if (self._keyframe_wanted
-                    or (asked is not None and now - asked >= KEYFRAME_RETRY_S)
-                    or (asked is None and now - self._last_keyframe_s >= KEYFRAME_REFRESH_S)):
-                self._keyframe_wanted = False
-                self._keyframe_asked_s = now
-                return True
-            return False
+            return self._keyframes.due()
 
     def _publish(self, topic: str, convert, stamp_ns: int) -> None:
         channel = self._channels[topic]

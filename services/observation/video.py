@@ -11,40 +11,13 @@ header and its key frame.
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 
+from services.common.keyframes import KeyframePacing
 from services.common.video_receipts import VideoReceipts
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import stereo_camera_pb2_grpc
 from wire.observation import VIDEO_FPS, VIDEO_KBIT, VIDEO_KEYFRAME_S
-
-KEYFRAME_RETRY_S = 0.5  # a key frame asked for and not come by then: asked for again
-
-
-class KeyframePacing:
-    """Whether the next receipt should ask for a key frame: none came for `every_s`, or one
-    was asked for `retry_s` ago and has not come. `clock` is monotonic seconds."""
-
-    def __init__(self, every_s: float = VIDEO_KEYFRAME_S, retry_s: float = KEYFRAME_RETRY_S,
-                 clock: Callable[[], float] = time.monotonic):
-        self._every_s, self._retry_s, self._clock = every_s, retry_s, clock
-        self._last_keyframe_s = clock()
-        self._asked_s: float | None = None
-
-    def keyframe(self) -> None:
-        """A key frame came."""
-        self._last_keyframe_s, self._asked_s = self._clock(), None
-
-    def due(self) -> bool:
-        now = self._clock()
-        if self._asked_s is not None:
-            ask = now - self._asked_s >= self._retry_s
-        else:
-            ask = now - self._last_keyframe_s >= self._every_s
-        if ask:
-            self._asked_s = now
-        return ask
 
 
 class VideoStream:
@@ -53,7 +26,7 @@ class VideoStream:
 
     def __init__(self, camera: stereo_camera_pb2_grpc.StereoCameraStub,
                  pacing: KeyframePacing | None = None):
-        self._pacing = pacing or KeyframePacing()
+        self._pacing = pacing or KeyframePacing(VIDEO_KEYFRAME_S)
         self._receipts = VideoReceipts(camera, self._pacing.due)
         self._call = camera.StreamPairs(sc_pb.StreamPairsRequest(
             encoding=sc_pb.IMAGE_ENCODING_H264, max_fps=VIDEO_FPS, receipts=True,

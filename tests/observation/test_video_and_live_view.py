@@ -11,10 +11,11 @@ import pytest
 from foxglove_schemas_protobuf.CompressedVideo_pb2 import CompressedVideo
 
 from clients.observe import Observer
+from services.common.keyframes import KeyframePacing
 from services.foxglove.live import FEED_TOPICS, STEREO, Demand, LiveChannels
 from services.foxglove.router_feeds import RING_MESSAGES, ROUTER_FEEDS, Decimation, router_feeds
 from services.observation.publisher import ObservationPublisher
-from services.observation.video import KeyframePacing, VideoStream
+from services.observation.video import VideoStream
 from services.stereo_camera.pattern import PatternSource
 from telerobot.v1 import proxy_robot_pb2 as pr_pb
 from telerobot.v1 import types_pb2
