@@ -15,6 +15,8 @@ from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import stereo_camera_pb2_grpc
 
 RECEIPT_TIMEOUT_S = 5.0
+
+
 class VideoReceipts:
     """The stream's id from its header, then for each pair a ReportReceipt sent without
     waiting, with want_keyframe from `want_keyframe()`. A receipt that fails is not retried:
