@@ -233,6 +233,24 @@ def client(router: str, tls: ZenohTls | None = None) -> zenoh.Session:
     return SessionPlan("client", connect=(router,), tls=tls).open()
 
 
+class RouterUnreachable(ConnectionError):
+    """A router that did not answer."""
+
+
+def join_router(router: str, tls_dir: str | None, identity: str) -> zenoh.Session:
+    """A client session through `router`, presenting `identity`'s certificate from `tls_dir`
+    (none without it): BadEndpoint for an endpoint or TLS directory this station refuses,
+    RouterUnreachable when the router does not answer, each saying why."""
+    router = checked_endpoint(router, tls=bool(tls_dir))
+    tls = tls_from(tls_dir, identity)
+    if tls is not None:
+        tls.files()  # there, or said so
+    try:
+        return client(router, tls)
+    except zenoh.ZError as error:
+        raise RouterUnreachable(f"the router {router} does not answer: {error}") from None
+
+
 def tls_from(tls_dir: str | None, identity: str) -> ZenohTls | None:
     """ZenohTls for `identity` from a TLS directory; None without one."""
     return ZenohTls(Path(tls_dir), identity) if tls_dir else None

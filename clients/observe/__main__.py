@@ -18,7 +18,6 @@ import sys
 import threading
 import time
 
-import zenoh
 from google.protobuf import json_format
 
 from clients.observe import Observer
@@ -26,10 +25,9 @@ from wire.observation import (
     DEFAULT_TOPICS,
     TOPICS,
     BadEndpoint,
-    checked_endpoint,
-    client,
+    RouterUnreachable,
     default_router,
-    tls_from,
+    join_router,
 )
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV
 
@@ -67,14 +65,13 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     topics = tuple(t for t in args.topics.split(",") if t)
     try:
-        router = checked_endpoint(args.router or default_router(args.tls_dir),
-                                  tls=bool(args.tls_dir))
-        session = client(router, tls_from(args.tls_dir, args.identity))
+        session = join_router(args.router or default_router(args.tls_dir), args.tls_dir,
+                              args.identity)
     except BadEndpoint as error:
         print(f"observe: {error}", file=sys.stderr)
         return 2
-    except zenoh.ZError as error:
-        print(f"observe: the router {args.router} does not answer: {error}", file=sys.stderr)
+    except RouterUnreachable as error:
+        print(f"observe: {error}", file=sys.stderr)
         return 1
 
     shown_status: list[str] = [""]  # the last status printed, without its time

@@ -79,6 +79,36 @@ class StreamOptions:
                    queue_capacity or DEFAULT_QUEUE_CAPACITY)
 
 
+class WrenchSelection:
+    """Which samples a subscriber gets, and in which batches: every Nth sample, those that
+    changed enough since the last one let through, `batch_size` at a time."""
+
+    def __init__(self, options: StreamOptions):
+        self._decimation = options.decimation
+        self._batch_size = options.batch_size
+        self._thresholds = (options.threshold_force_n, options.threshold_torque_nm)
+        self._count = 0
+        self._last_forwarded: WrenchReading | None = None
+        self._batch: list[WrenchReading] = []
+
+    def take(self, item: WrenchReading) -> tuple[WrenchReading, ...] | None:
+        """Decimate, filter by change, batch: the readings of a batch this sample completes, or
+        None."""
+        self._count += 1
+        if (self._count - 1) % self._decimation:
+            return None
+        if not changed_enough(item, self._last_forwarded, *self._thresholds):
+            return None
+        self._last_forwarded = item
+        if self._batch_size == 1:
+            return (item,)
+        self._batch.append(item)
+        if len(self._batch) < self._batch_size:
+            return None
+        readings, self._batch = tuple(self._batch), []
+        return readings
+
+
 class WrenchBatch:
     """The samples of one message, oldest first, shared by every subscriber that chose the
     same ones at the same tick, with the message's bytes once someone has encoded them."""
@@ -116,12 +146,8 @@ class WrenchSubscription:
             raise ValueError("capacity must be at least 1")
         self.options = options
         self._fanout = fanout
-        self._decimation = options.decimation
-        self._batch_size = options.batch_size
-        self._thresholds = (options.threshold_force_n, options.threshold_torque_nm)
-        self._count = 0
-        self._last_forwarded: WrenchReading | None = None
-        self._batch: list[WrenchReading] = []
+        self._selection = WrenchSelection(options)
+        self.take = self._selection.take  # bound once: it runs per sample per subscriber
         # (queued at, batch): the fanout's on_lag hears how long each batch waited.
         self._items: deque[tuple[float, WrenchBatch]] = deque(maxlen=options.queue_capacity)
         self._lock = threading.Lock()  # the queue and `dropped` change together
@@ -134,23 +160,6 @@ class WrenchSubscription:
         self._waiting = False  # the stream is (about to be) in poll(): write to wake it
         self.dropped = 0
         self.closed = False
-
-    def take(self, item: WrenchReading) -> tuple[WrenchReading, ...] | None:
-        """Decimate, filter by change, batch: the readings of a batch this sample completes, or
-        None. Changes only this subscriber's filter state."""
-        self._count += 1
-        if (self._count - 1) % self._decimation:
-            return None
-        if not changed_enough(item, self._last_forwarded, *self._thresholds):
-            return None
-        self._last_forwarded = item
-        if self._batch_size == 1:
-            return (item,)
-        self._batch.append(item)
-        if len(self._batch) < self._batch_size:
-            return None
-        readings, self._batch = tuple(self._batch), []
-        return readings
 
     def deliver(self, batch: WrenchBatch) -> None:
         """Queue a batch, dropping (and counting) the oldest when full, and wake the stream."""

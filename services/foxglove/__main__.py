@@ -37,7 +37,7 @@ from services.runtime.config import configure_logging
 from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name, is_loopback
-from wire.observation import STATION_ENV, checked_endpoint, client, station_name, tls_from
+from wire.observation import STATION_ENV, RouterUnreachable, join_router, station_name
 from wire.processes import dump_stacks_on_signal, say_ready
 from wire.tls import TLS_DIR_ENV, open_channel
 
@@ -187,18 +187,12 @@ def _join_router(args: argparse.Namespace) -> tuple[str, zenoh.Session] | int:
     """(the station's name, a session through --router), or the exit code after saying why
     not: 2 for a bad name, endpoint or TLS directory, 1 for a router that does not answer."""
     try:
-        station = station_name(args.station)
-        router = checked_endpoint(args.router, tls=bool(args.tls_dir))
-        tls = tls_from(args.tls_dir, NAME)
-        if tls is not None:
-            tls.files()  # there, or said so
+        return station_name(args.station), join_router(args.router, args.tls_dir, NAME)
     except ValueError as error:  # (BadEndpoint is one)
         print(f"{NAME}: {error}", file=sys.stderr)
         return 2
-    try:
-        return station, client(router, tls)
-    except zenoh.ZError as error:
-        print(f"{NAME}: the router {router} does not answer: {error}", file=sys.stderr)
+    except RouterUnreachable as error:
+        print(f"{NAME}: {error}", file=sys.stderr)
         return 1
 
 

@@ -25,6 +25,7 @@ from collections.abc import Callable
 import zenoh
 from google.protobuf.message import DecodeError
 
+from services.common.decimation import Decimation
 from services.foxglove.live import STATE, VIDEO, WRENCH, LiveChannels
 from wire.observation import decode, key
 
@@ -32,21 +33,6 @@ log = logging.getLogger(__name__)
 
 RING_MESSAGES = 8  # per feed: 80 ms of the wrench, 0.8 s of the video
 ROUTER_FEEDS = (STATE, WRENCH, VIDEO)
-
-
-class Decimation:
-    """Keeps a sample when `1 / rate_hz` of sample time has passed since the last one kept (or
-    time went back: a restarted stream)."""
-
-    def __init__(self, rate_hz: float):
-        self._period_ns = int(1e9 / rate_hz)
-        self._last_ns: int | None = None
-
-    def keep(self, stamp_ns: int) -> bool:
-        if self._last_ns is not None and 0 <= stamp_ns - self._last_ns < self._period_ns:
-            return False
-        self._last_ns = stamp_ns
-        return True
 
 
 class RouterFeed:
@@ -99,7 +85,7 @@ class RouterFeed:
 def router_feeds(channels: LiveChannels, session: zenoh.Session, station: str, *,
                  state_hz: float, wrench_hz: float) -> dict[str, RouterFeed]:
     """The live view's feeds (ROUTER_FEEDS) from `station`'s observation on `session`."""
-    state_rate, wrench_rate = Decimation(state_hz), Decimation(wrench_hz)
+    state_rate, wrench_rate = Decimation.at_rate(state_hz), Decimation.at_rate(wrench_hz)
 
     def on_state(response) -> None:
         if state_rate.keep(response.state.sample_time.ToNanoseconds()):

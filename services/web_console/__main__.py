@@ -19,10 +19,18 @@ from services.runtime.server import PlaintextRefused
 from services.web_console.app import ConsoleApp, TransportBoundProtocol
 from services.web_console.bridge import Upstream
 from services.web_console.https import RenewingCertificate, certificate_files, issue_command
+from services.web_console.watch import RouterWatch
 from wire.addresses import address_for, env_name, is_loopback
+from wire.observation import (
+    DEFAULT_STATION,
+    STATION_ENV,
+    RouterUnreachable,
+    join_router,
+    station_name,
+)
 from wire.processes import dump_stacks_on_signal, say_ready
 from wire.stereo import LOW_LATENCY_OPTIONS
-from wire.tls import KEEPALIVE_OPTIONS, TLS_DIR_ENV, server_name_options
+from wire.tls import IDENTITY_ENV, KEEPALIVE_OPTIONS, TLS_DIR_ENV, server_name_options
 
 log = logging.getLogger("web_console")
 
@@ -63,6 +71,16 @@ def main(argv: list[str] | None = None) -> int:
                              "localhost (repeat for several; env "
                              f"{ALLOWED_HOSTS_ENV}, comma-separated): a request with any other "
                              "name in its Host header is refused, as a DNS-rebinding page's is")
+    parser.add_argument("--router", default=None,
+                        help="watch only, through this Zenoh router: tcp/HOST:PORT (loopback) "
+                             "or tls/HOST:PORT (with --tls-dir). The page shows the station's "
+                             "observation and refuses every command")
+    parser.add_argument("--station", default=None,
+                        help=f"with --router: the station to watch (env {STATION_ENV}; "
+                             f"default {DEFAULT_STATION})")
+    parser.add_argument("--identity", default=os.environ.get(IDENTITY_ENV, "observer"),
+                        help="with --router over TLS: the certificate presented to the router "
+                             f"(<identity>.pem in --tls-dir; env {IDENTITY_ENV})")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     args = parser.parse_args(argv)
     configure_logging(NAME, args.log_level)
@@ -130,10 +148,41 @@ def _channels(args) -> tuple[Upstream, str]:
         needs_token=True), "token"
 
 
+def _watch(args) -> RouterWatch | int:
+    """What a watch-only console (--router) reads, or the exit code after saying why not: 2 for
+    a bad name, endpoint or TLS directory, 1 for a router that does not answer."""
+    try:
+        station = station_name(args.station)
+        session = join_router(args.router, args.tls_dir, args.identity)
+    except ValueError as error:  # (BadEndpoint is one)
+        print(f"{NAME}: {error}", file=sys.stderr)
+        return 2
+    except RouterUnreachable as error:
+        print(f"{NAME}: {error}", file=sys.stderr)
+        return 1
+    return RouterWatch(session, station, args.router)
+
+
 async def _serve(args, certificate: RenewingCertificate | None) -> int:
+    if args.router:
+        watch = _watch(args)
+        if isinstance(watch, int):
+            return watch
+        try:
+            return await _serve_app(args, certificate, ConsoleApp(watch, "none",
+                                                                  args.allowed_hosts))
+        finally:
+            watch.session.close()
     upstream, auth = _channels(args)
+    try:
+        return await _serve_app(args, certificate, ConsoleApp(upstream, auth, args.allowed_hosts))
+    finally:
+        await upstream.channel.close()
+        await upstream.stereo_channel.close()
+
+
+async def _serve_app(args, certificate: RenewingCertificate | None, app: ConsoleApp) -> int:
     host, port = args.address.rsplit(":", 1)
-    app = ConsoleApp(upstream, auth, args.allowed_hosts)
     server = ConsoleServer(server_config(app, host.strip("[]"), int(port),
                                          certificate=certificate))
     watch_parent(lambda: setattr(server, "should_exit", True))
@@ -144,13 +193,12 @@ async def _serve(args, certificate: RenewingCertificate | None) -> int:
         await asyncio.sleep(0.01)
     bound = server.servers[0].sockets[0].getsockname()
     address = f"{bound[0]}:{bound[1]}"
-    log.info("serving the console on %s://%s/ for the DecisionServer at %s",
-             "https" if certificate else "http", address,
-             args.token_address if auth == "token" else args.decision_server)
+    upstream = args.token_address if args.tls_dir else args.decision_server
+    log.info("serving the console on %s://%s/ for %s", "https" if certificate else "http",
+             address, f"watching, the {app.watch.describe()}" if app.watch else
+             f"the DecisionServer at {upstream}")
     say_ready(NAME, address)
     await serving
-    await upstream.channel.close()
-    await upstream.stereo_channel.close()
     return 0
 
 

@@ -4,6 +4,7 @@ Teleoperate and receipts WebSockets, and /healthz for the launcher."""
 from __future__ import annotations
 
 import asyncio
+import html
 import ipaddress
 import json
 from collections.abc import Iterable
@@ -14,6 +15,7 @@ from uvicorn.protocols.http.h11_impl import H11Protocol
 
 from services.web_console import receipts, sockets, teleoperate
 from services.web_console.bridge import BODY_MAX_BYTES, ConnectBridge, Upstream
+from services.web_console.watch import SOCKET_REFUSALS, RouterWatch, watch_endpoints
 
 STATIC_DIR = Path(__file__).resolve().parent / "static"
 HEALTH_PATH = "/healthz"
@@ -111,7 +113,8 @@ class HostCheck:
 
 class ConsoleApp:
     """Routes: /telerobot.v1.* (Connect), /ws/teleoperate and /ws/receipts (WebSockets),
-    /healthz, assets."""
+    /healthz, assets. `upstream` is the DecisionServer's (Upstream), or a RouterWatch for a
+    watch-only console."""
 
     def __init__(self, upstream: Upstream, auth: str, allowed_hosts: Iterable[str] = (),
                  max_body_bytes: int = BODY_MAX_BYTES, max_sockets: int = MAX_SOCKETS,
@@ -123,7 +126,10 @@ class ConsoleApp:
         self.open_sockets = 0
         self.hosts = HostCheck(allowed_hosts)
         self.auth = auth  # "token" or "none": the page asks for a token only with "token"
-        self.bridge = ConnectBridge(upstream)
+        # A RouterWatch: the page watches through a router, and every command is refused.
+        self.watch = upstream if isinstance(upstream, RouterWatch) else None
+        self.bridge = (ConnectBridge(upstream, watch_endpoints) if self.watch
+                       else ConnectBridge(upstream))
         self.assets = _assets()
 
     async def __call__(self, scope, receive, send) -> None:
@@ -141,6 +147,8 @@ class ConsoleApp:
                 await receive()
                 await send({"type": "websocket.close", "code": CLOSE_TRY_AGAIN_LATER})
                 return
+            if self.watch is not None:
+                return await sockets.refuse(receive, send, *SOCKET_REFUSALS[path])
             self.open_sockets += 1
             try:
                 return await serve(scope, receive, send, self.upstream)
@@ -170,7 +178,9 @@ class ConsoleApp:
             return await _respond(send, 404, b"not found\n")
         body = asset.read_bytes()
         if asset.name == "index.html":
-            body = body.replace(b"{{AUTH}}", self.auth.encode())
+            watching = self.watch.describe() if self.watch else ""
+            body = (body.replace(b"{{AUTH}}", self.auth.encode())
+                    .replace(b"{{WATCH}}", html.escape(watching).encode()))
         kind = _TYPES.get(asset.suffix, "application/octet-stream")
         await _respond(send, 200, b"" if scope["method"] == "HEAD" else body, kind,
                        length=len(body))
@@ -179,8 +189,12 @@ class ConsoleApp:
         while True:
             message = await receive()
             if message["type"] == "lifespan.startup":
+                if self.watch is not None:
+                    self.watch.start()
                 await send({"type": "lifespan.startup.complete"})
             elif message["type"] == "lifespan.shutdown":
+                if self.watch is not None:
+                    self.watch.close()
                 await send({"type": "lifespan.shutdown.complete"})
                 return
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 import gzip
 import logging
 import zlib
-from collections.abc import AsyncIterator, Iterable, Mapping
+from collections.abc import AsyncIterator, Callable, Iterable, Iterator, Mapping
 
 import grpc
 from connectrpc import _codec
@@ -159,12 +159,29 @@ def _timeout_s(ctx: RequestContext) -> float:
     return timeout_ms / 1000.0 if timeout_ms is not None else DEFAULT_UNARY_TIMEOUT_S
 
 
+def served_methods() -> Iterator[tuple[ServiceDescriptor, MethodDescriptor]]:
+    """Every unary and server-streaming method of SERVICES (client and bidirectional streams
+    are not Connect-over-HTTP/1.1 material: Teleoperate has its WebSocket)."""
+    pool = descriptor_pool.Default()
+    for name in SERVICES:
+        service = pool.FindServiceByName(name)
+        for method in service.methods:
+            if not method.client_streaming:
+                yield service, method
+
+
+def method_info(service: ServiceDescriptor, method: MethodDescriptor) -> tuple[str, MethodInfo]:
+    """The method's path ("/telerobot.v1.Service/Method") and what connect-python needs of it."""
+    info = MethodInfo(name=method.name, service_name=service.full_name,
+                      input=message_factory.GetMessageClass(method.input_type),
+                      output=message_factory.GetMessageClass(method.output_type),
+                      idempotency_level=IdempotencyLevel.UNKNOWN)
+    return f"/{service.full_name}/{method.name}", info
+
+
 def _endpoint(upstream: Upstream, service: ServiceDescriptor, method: MethodDescriptor):
-    request_cls = message_factory.GetMessageClass(method.input_type)
-    response_cls = message_factory.GetMessageClass(method.output_type)
-    info = MethodInfo(name=method.name, service_name=service.full_name, input=request_cls,
-                      output=response_cls, idempotency_level=IdempotencyLevel.UNKNOWN)
-    path = f"/{service.full_name}/{method.name}"
+    path, info = method_info(service, method)
+    request_cls, response_cls = info.input, info.output
     channel = upstream.channel_for(service.full_name)
 
     def refuse_if_closed():
@@ -205,26 +222,17 @@ def _endpoint(upstream: Upstream, service: ServiceDescriptor, method: MethodDesc
 
 
 def endpoints(upstream: Upstream) -> dict[str, Endpoint]:
-    """Path -> endpoint for every unary and server-streaming method of SERVICES (client and
-    bidirectional streams are not Connect-over-HTTP/1.1 material: Teleoperate has its
-    WebSocket)."""
-    pool = descriptor_pool.Default()
-    served = {}
-    for name in SERVICES:
-        service = pool.FindServiceByName(name)
-        for method in service.methods:
-            if method.client_streaming:
-                continue
-            path, endpoint = _endpoint(upstream, service, method)
-            served[path] = endpoint
-    return served
+    """Path -> endpoint for every served method, forwarded to the DecisionServer."""
+    return dict(_endpoint(upstream, service, method) for service, method in served_methods())
 
 
 class ConnectBridge(ConnectASGIApplication):
-    """The ASGI application serving `endpoints(upstream)` over the Connect protocol."""
+    """The ASGI application serving `endpoints_of(upstream)` over the Connect protocol: the
+    DecisionServer's methods (`endpoints`), or the observation through a router's
+    (services.web_console.watch)."""
 
-    def __init__(self, upstream: Upstream):
-        super().__init__(service=upstream, endpoints=endpoints, read_max_bytes=READ_MAX_BYTES,
+    def __init__(self, upstream, endpoints_of: Callable[..., dict[str, Endpoint]] = endpoints):
+        super().__init__(service=upstream, endpoints=endpoints_of, read_max_bytes=READ_MAX_BYTES,
                          compressions=[BoundedGzip(READ_MAX_BYTES)])
 
     @property

@@ -59,3 +59,12 @@ async def accept(scope, receive, send, upstream: Upstream, subprotocol: str
                     "reason": reason(refusal)})
         return None
     return [("authorization", f"Bearer {tokens[0]}")] if tokens else []
+
+
+async def refuse(receive, send, code: grpc.StatusCode, why: str) -> None:
+    """Open a browser's socket and close it at once with a gRPC status (the page then shows
+    why, where a refused handshake would show only a failed connection)."""
+    if (await receive())["type"] != "websocket.connect":
+        return
+    await send({"type": "websocket.accept"})
+    await send({"type": "websocket.close", "code": close_code(code), "reason": reason(why)})

@@ -13,7 +13,8 @@ from foxglove_schemas_protobuf.CompressedVideo_pb2 import CompressedVideo
 from clients.observe import Observer
 from services.common.keyframes import KeyframePacing
 from services.foxglove.live import FEED_TOPICS, STEREO, Demand, LiveChannels
-from services.foxglove.router_feeds import RING_MESSAGES, ROUTER_FEEDS, Decimation, router_feeds
+from services.common.decimation import Decimation
+from services.foxglove.router_feeds import RING_MESSAGES, ROUTER_FEEDS, router_feeds
 from services.observation.publisher import ObservationPublisher
 from services.observation.video import VideoStream
 from services.stereo_camera.pattern import PatternSource
@@ -54,7 +55,7 @@ def test_a_key_frame_is_asked_for_when_none_came_for_a_while_and_again_until_it_
 
 
 def test_decimation_keeps_a_sample_per_period_of_sample_time():
-    rate = Decimation(50.0)  # 20 ms
+    rate = Decimation.at_rate(50.0)  # 20 ms
     kept = [ms for ms in range(0, 100) if rate.keep(T0_NS + ms * 1_000_000)]
     assert kept == [0, 20, 40, 60, 80]
     assert rate.keep(T0_NS)  # time went back: a restarted stream starts over

@@ -20,6 +20,16 @@ import { type Point, type Receipt, startVideo } from "./video";
 
 const $ = <T extends HTMLElement = HTMLElement>(id: string) => document.getElementById(id) as T;
 
+// A watch-only console (services/web_console/watch.py) says what it watches here: it shows the
+// station's observation through a Zenoh router, and has no control to offer.
+const watching = document.querySelector<HTMLMetaElement>('meta[name="telerobot-watch"]')?.content ?? "";
+if (watching) {
+  document.body.classList.add("watching");
+  $("watching").hidden = false;
+  $("watching").textContent = `watch only: ${watching}`;
+}
+const linkUp = watching ? "watching" : "station connected";
+
 // ---- session state --------------------------------------------------------------------------
 let token = sessionStorage.getItem("telerobot-token") ?? "";
 let leaseId = "";
@@ -137,15 +147,18 @@ function showStatusOnly(reason: string) {
   $("status-reason").textContent = reason;
 }
 
-// Which arm the station drives (its description file), asked once: it does not change.
-robot.getArmInfo({}).then(
-  (arm) => { $("arm-name").textContent = `${arm.name} · ${arm.jointNames.length} joints`; },
-  () => { $("arm-name").textContent = "arm unknown"; });
+// Which arm the station drives (its description file), asked once: it does not change. (A
+// router does not carry it.)
+if (!watching) {
+  robot.getArmInfo({}).then(
+    (arm) => { $("arm-name").textContent = `${arm.name} · ${arm.jointNames.length} joints`; },
+    () => { $("arm-name").textContent = "arm unknown"; });
+}
 
 follow("state", async (signal) => {
   const period = { seconds: 0n, nanos: 50_000_000 };
   for await (const r of robot.streamState({ period }, { signal })) {
-    setLink(true, "station connected");
+    setLink(true, linkUp);
     if (r.state) showState(r.state);
   }
 });
@@ -168,9 +181,11 @@ function openReceiptSocket() {
     receiptBackoff = Math.min(2 * receiptBackoff, REOPEN_MAX_MS);
   };
 }
-openReceiptSocket();
+// A watch-only console sends none: the router's video is paced by the station alone.
+if (!watching) openReceiptSocket();
 
 function sendReceipt(r: Receipt) {
+  if (watching) return;
   if (receiptSocket?.readyState === WebSocket.OPEN) {
     receiptSocket.send(toBinary(ReportReceiptRequestSchema, create(ReportReceiptRequestSchema, r)));
     video.receiptsBySocket++;
@@ -181,7 +196,7 @@ function sendReceipt(r: Receipt) {
 
 const video = startVideo({
   camera, follow, sendReceipt, toolPointAt,
-  connected: () => setLink(true, "station connected"),
+  connected: () => setLink(true, linkUp),
   left: $<HTMLCanvasElement>("left-eye"), right: $<HTMLCanvasElement>("right-eye"),
   info: $("video-info"),
 });
@@ -380,7 +395,7 @@ $("rec-stop").onclick = () => act("stop recording", async () => {
 });
 $("replay-start").onclick = () => act("replay", () => station.startReplay({ name: $<HTMLSelectElement>("rec-list").value, speed: 1 }));
 $("replay-stop").onclick = () => act("stop replay", () => station.stopReplay({}));
-void listRecordings();
+if (!watching) void listRecordings();
 
 // ---- events ------------------------------------------------------------------------------------
 function logEvent(text: string) {
@@ -538,7 +553,11 @@ $("drive-toggle").onclick = () => (socket ? stopDriving("stopped by the operator
 const KEYS: Record<string, string> = { w: "x+", s: "x-", a: "y+", d: "y-", r: "z+", f: "z-" };
 addEventListener("keydown", (e) => {
   if ((e.target as HTMLElement).tagName === "INPUT") return;
-  if (e.key === " " || e.key === "Escape") { e.preventDefault(); void emergencyStop(); return; }
+  if ((e.key === " " || e.key === "Escape") && !watching) {
+    e.preventDefault();
+    void emergencyStop();
+    return;
+  }
   const jog = KEYS[e.key.toLowerCase()];
   if (jog) { jogs.add(jog); e.preventDefault(); }
 });
