@@ -196,7 +196,7 @@ function sendReceipt(r: Receipt) {
 
 const video = startVideo({
   camera, follow, sendReceipt, toolPointAt,
-  connected: () => setLink(true, linkUp),
+  connected: () => setLink(true, linkUp), scalable: !watching,
   left: $<HTMLCanvasElement>("left-eye"), right: $<HTMLCanvasElement>("right-eye"),
   info: $("video-info"),
 });

@@ -239,6 +239,9 @@ export interface VideoOptions {
   /** The tool point the station measured nearest to a wall-clock time (ms). */
   toolPointAt: (timeMs: number) => Point | undefined;
   connected: () => void;
+  /** Whether the stream can be asked for a picture that fits the canvases (the station's own
+   * camera); a router's video comes at the size the station publishes. */
+  scalable: boolean;
   left: HTMLCanvasElement;
   right: HTMLCanvasElement;
   info: HTMLElement;
@@ -339,7 +342,8 @@ export function startVideo(o: VideoOptions): VideoStats {
     };
 
     try {
-      const source = (await o.camera.getStreamInfo({}, { signal: local.signal })).header;
+      const source = o.scalable
+        ? (await o.camera.getStreamInfo({}, { signal: local.signal })).header : undefined;
       const [widthPx, heightPx] = source
         ? streamSize(source.widthPx, source.heightPx, o.left.clientWidth * devicePixelRatio)
         : [0, 0];  // 0: the source's own size
