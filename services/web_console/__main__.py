@@ -81,10 +81,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--identity", default=os.environ.get(IDENTITY_ENV, "observer"),
                         help="with --router over TLS: the certificate presented to the router "
                              f"(<identity>.pem in --tls-dir; env {IDENTITY_ENV})")
+    parser.add_argument("--allow-network", action="store_true",
+                        help="with --router: serve browsers beyond loopback. A watch-only "
+                             "console asks nobody for a token, so anyone who reaches its port "
+                             "watches the arm and the cameras")
     parser.add_argument("--log-level", default=os.environ.get("TELEROBOT_LOG_LEVEL", "INFO"))
     args = parser.parse_args(argv)
     configure_logging(NAME, args.log_level)
     dump_stacks_on_signal()
+    if args.router and not is_loopback(args.address) and not args.allow_network:
+        print(f"{NAME}: refusing to watch on {args.address}: a watch-only console asks nobody "
+              "for a token, so anyone who reaches it would watch the arm and the cameras. "
+              "Listen on 127.0.0.1, or pass --allow-network", file=sys.stderr)
+        return 2
     files = certificate_files(args.tls_dir)
     try:
         check_listening(args.address, args.tls_dir, files is not None,

@@ -5,8 +5,9 @@ from __future__ import annotations
 import pytest
 import zenoh
 
+from services.security import pki
 from services.zenoh_router.__main__ import listening_on
-from wire.observation import SessionPlan, client
+from wire.observation import SessionPlan, ZenohTls, client
 
 
 def routing(plan: SessionPlan):
@@ -38,3 +39,18 @@ def sessions(router):
     yield open_one
     for session in opened:
         session.close()
+
+
+@pytest.fixture(scope="module")
+def pki_dir(tmp_path_factory):
+    """The station's PKI (`make certs`' certificates) in a directory of the module's."""
+    directory = tmp_path_factory.mktemp("pki")
+    pki.init(directory)
+    return directory
+
+
+@pytest.fixture
+def tls_router(pki_dir):
+    """A TLS router in this process, with the access rules: its endpoint."""
+    yield from routing(SessionPlan("router", listen=("tls/127.0.0.1:0",),
+                                   tls=ZenohTls(pki_dir, "zenoh_router")))

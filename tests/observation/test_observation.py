@@ -19,7 +19,6 @@ from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from tests.conftest import wait_for
 from tests.fake_calls import FakeCall
-from tests.observation.conftest import routing
 from wire.observation import (
     BadEndpoint,
     SessionPlan,
@@ -180,20 +179,6 @@ def test_the_payload_is_the_streams_own_message():
 
 
 # -- mutual TLS and the router's access rules ------------------------------------------------
-
-@pytest.fixture(scope="module")
-def pki_dir(tmp_path_factory):
-    directory = tmp_path_factory.mktemp("pki")
-    pki.init(directory)
-    return directory
-
-
-@pytest.fixture
-def tls_router(pki_dir):
-    """A TLS router in this process, with the access rules: its endpoint."""
-    yield from routing(SessionPlan("router", listen=("tls/127.0.0.1:0",),
-                                   tls=ZenohTls(pki_dir, "zenoh_router")))
-
 
 def test_over_tls_only_the_station_publishes_and_observers_subscribe(pki_dir, tls_router):
     station = client(tls_router, ZenohTls(pki_dir, "observation"))

@@ -11,9 +11,9 @@ import pytest
 from foxglove_schemas_protobuf.CompressedVideo_pb2 import CompressedVideo
 
 from clients.observe import Observer
+from services.common.decimation import Decimation
 from services.common.keyframes import KeyframePacing
 from services.foxglove.live import FEED_TOPICS, STEREO, Demand, LiveChannels
-from services.common.decimation import Decimation
 from services.foxglove.router_feeds import RING_MESSAGES, ROUTER_FEEDS, router_feeds
 from services.observation.publisher import ObservationPublisher
 from services.observation.video import VideoStream

@@ -26,7 +26,7 @@ from tests.conftest import wait_for
 from tests.observation.test_observation import T0_NS, stamp
 from tests.web_console.test_limits import serving
 from wire import convert
-from wire.observation import key
+from wire.observation import RouterUnreachable, ZenohTls, client, join_router, key
 
 STATION = "lab-3"
 
@@ -274,6 +274,28 @@ def test_commands_and_reads_the_router_does_not_carry_are_refused(console):
     assert f"station &#x27;{STATION}&#x27; through the router tcp/127.0.0.1".encode() in page
 
 
+def test_over_tls_the_console_watches_as_an_observer(pki_dir, tls_router):
+    station = client(tls_router, ZenohTls(pki_dir, "observation"))
+    watch = RouterWatch(join_router(tls_router, str(pki_dir), "observer"), STATION, tls_router)
+    try:
+        with serving(ConsoleApp(watch, "none")) as (_, port):
+            publisher = station.declare_publisher(key(STATION, "status"))
+            wait_for(lambda: publisher.matching_status.matching, timeout_s=10,
+                     what="the console subscribed to the status")
+            publisher.put(status("tls-ann").SerializeToString())
+            code, body = call(port, "DecisionServer/GetControlState",
+                              ds_pb.GetControlStateRequest())
+        assert code == 200, body
+        assert ds_pb.GetControlStateResponse.FromString(body).state.holders[0].operator_id == (
+            "tls-ann")
+    finally:
+        watch.session.close()
+        station.close()
+    # The console's HTTPS certificate is a server's only: it speaks for nobody at a router.
+    with pytest.raises(RouterUnreachable):
+        join_router(tls_router, str(pki_dir), "web_console").close()
+
+
 @pytest.mark.parametrize("args, code, says", [
     (["--router", "tcp/10.1.2.3:7447"], 2, "plaintext beyond loopback"),
     (["--router", "tls/127.0.0.1:7447"], 2, "give the station's TLS directory"),
@@ -283,3 +305,12 @@ def test_commands_and_reads_the_router_does_not_carry_are_refused(console):
 def test_bad_router_arguments_say_why(args, code, says, capsys):
     assert main(["--address", "127.0.0.1:0", *args]) == code
     assert says in capsys.readouterr().err
+
+
+def test_a_watch_only_console_beyond_loopback_needs_allow_network(capsys):
+    assert main(["--address", "0.0.0.0:0", "--router", "tcp/127.0.0.1:9"]) == 2
+    assert "anyone who reaches it would watch" in capsys.readouterr().err
+    # Allowed, it still needs HTTPS (or --allow-plaintext-network) beyond loopback.
+    assert main(["--address", "0.0.0.0:0", "--router", "tcp/127.0.0.1:9",
+                 "--allow-network"]) == 2
+    assert "over plain HTTP" in capsys.readouterr().err
