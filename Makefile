@@ -12,7 +12,7 @@ PROTOS := $(wildcard protos/telerobot/v1/*.proto)
 GEN_OUT ?= gen
 export MUJOCO_GL ?= egl
 
-.PHONY: install gen web lint docs test test-fast serve teleop bench certs clean
+.PHONY: install gen web lint docs test test-fast serve teleop bench certs clean c-observer
 
 install: $(VENV)/.installed node_modules/.installed web/node_modules/.installed $(FRANKA_VENV)/.installed
 
@@ -49,6 +49,18 @@ web/node_modules/.installed: web/package.json web/package-lock.json
 web: web/node_modules/.installed
 	cd web && npm run build --silent
 
+# The C observer (clients/c): zenoh-pico (third_party/) and the protos' C code from protoc-c.
+C_OBSERVER := build/c-observer/telerobot-observe
+c-observer: $(C_OBSERVER)
+$(C_OBSERVER): $(VENV)/.installed /usr/bin/protoc-c clients/c/observe.c clients/c/CMakeLists.txt $(PROTOS)
+	cmake -S clients/c -B build/c-observer -DCMAKE_BUILD_TYPE=Release -DWKT_DIR=$$($(PY) -c \
+		"import grpc_tools, os; print(os.path.join(os.path.dirname(grpc_tools.__file__), '_proto'))") >/dev/null
+	cmake --build build/c-observer -j2
+
+/usr/bin/protoc-c:
+	apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq cmake gcc \
+		protobuf-c-compiler libprotobuf-c-dev pkg-config
+
 # The web console's browser tests drive Debian's chromium (Playwright cannot download its own).
 /usr/bin/chromium:
 	apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium
@@ -71,7 +83,7 @@ docs: $(VENV)/.installed
 	NO_MKDOCS_2_WARNING=1 $(PY) -m mkdocs build --strict
 
 # Everything: the docs site, then every test (the end-to-end ones start real processes).
-test: install /usr/bin/chromium docs
+test: install /usr/bin/chromium docs $(C_OBSERVER)
 	$(PY) -m pytest $(PYTEST_ARGS)
 
 # Every test that starts no process (tests/conftest.py refuses one), in about a minute.

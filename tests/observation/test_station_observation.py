@@ -26,6 +26,7 @@ from telerobot.v1 import (
     proxy_robot_pb2_grpc,
 )
 from tests.conftest import wait_for
+from tests.observation.test_c_observer import c_observer, lines_of
 from tests.processes import REPO, health_serving, service_pid, start_station, station_env
 from wire.observation import client
 
@@ -70,6 +71,21 @@ def test_the_observe_client_sees_every_wrench_sample_and_the_state(station):
     assert state["messages"] > 0
     assert all(summary[t]["undecodable"] == 0 for t in summary)
     assert 0 <= wrench["lag_p50_ms"] < 1000, wrench  # taken on this host's clock
+
+
+def test_the_c_observer_follows_the_station(station):
+    """Zenoh's C client, with the protos' C code, sees the sensor's samples in order (a loaded
+    link may drop a message: never the station's time) and the arm."""
+    lines = lines_of(c_observer("--router", f"tcp/{station.ready['zenoh_router']}",
+                                "--station", STATION, "--topics", "wrench,state",
+                                "--seconds", "3"))
+    wrench = [line for line in lines if line.get("topic") == "wrench"]
+    assert len(wrench) >= 20 and all(line["samples"] == 10 for line in wrench)
+    assert all(b["first"] > a["last"] for a, b in zip(wrench, wrench[1:])), wrench
+    states = [line for line in lines if line.get("topic") == "state"]
+    assert states and len(states[-1]["joints_rad"]) == 6
+    assert states[-1]["status"] == "ROBOT_STATUS_READY"
+    assert lines[-1]["summary"]["wrench"]["undecodable"] == 0
 
 
 def test_the_decision_servers_events_reach_observers(station):

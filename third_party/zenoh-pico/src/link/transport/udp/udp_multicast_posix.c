@@ -1,0 +1,436 @@
+//
+// Copyright (c) 2026 ZettaScale Technology
+//
+// This program and the accompanying materials are made available under the
+// terms of the Eclipse Public License 2.0 which is available at
+// http://www.eclipse.org/legal/epl-2.0, or the Apache License, Version 2.0
+// which is available at https://www.apache.org/licenses/LICENSE-2.0.
+//
+// SPDX-License-Identifier: EPL-2.0 OR Apache-2.0
+//
+// Contributors:
+//   ZettaScale Zenoh Team, <zenoh@zettascale.tech>
+//
+
+#include "zenoh-pico/config.h"
+#include "zenoh-pico/link/transport/udp_multicast.h"
+
+#if defined(ZP_PLATFORM_SOCKET_POSIX) && (Z_FEATURE_LINK_UDP_MULTICAST == 1)
+
+#include <arpa/inet.h>
+#include <assert.h>
+#include <ifaddrs.h>
+#include <net/if.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <string.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include "zenoh-pico/collections/string.h"
+#include "zenoh-pico/utils/logging.h"
+#include "zenoh-pico/utils/pointers.h"
+
+static unsigned int __get_ip_from_iface(const char *iface, int sa_family, struct sockaddr **lsockaddr) {
+    unsigned int addrlen = 0U;
+
+    struct ifaddrs *l_ifaddr = NULL;
+    if (getifaddrs(&l_ifaddr) != -1) {
+        struct ifaddrs *tmp = NULL;
+        for (tmp = l_ifaddr; tmp != NULL; tmp = tmp->ifa_next) {
+            if (_z_str_eq(tmp->ifa_name, iface) == true) {
+                if (tmp->ifa_addr->sa_family == sa_family) {
+                    if (tmp->ifa_addr->sa_family == AF_INET) {
+                        *lsockaddr = (struct sockaddr *)z_malloc(sizeof(struct sockaddr_in));
+                        if (lsockaddr != NULL) {
+                            (void)memset(*lsockaddr, 0, sizeof(struct sockaddr_in));
+                            // flawfinder: ignore
+                            (void)memcpy(*lsockaddr, tmp->ifa_addr, sizeof(struct sockaddr_in));
+                            addrlen = sizeof(struct sockaddr_in);
+                        }
+                    } else if (tmp->ifa_addr->sa_family == AF_INET6) {
+                        *lsockaddr = (struct sockaddr *)z_malloc(sizeof(struct sockaddr_in6));
+                        if (lsockaddr != NULL) {
+                            (void)memset(*lsockaddr, 0, sizeof(struct sockaddr_in6));
+                            // flawfinder: ignore
+                            (void)memcpy(*lsockaddr, tmp->ifa_addr, sizeof(struct sockaddr_in6));
+                            addrlen = sizeof(struct sockaddr_in6);
+                        }
+                    } else {
+                        continue;
+                    }
+
+                    break;
+                }
+            }
+        }
+        freeifaddrs(l_ifaddr);
+    }
+
+    return addrlen;
+}
+
+z_result_t _z_open_udp_multicast(_z_sys_net_socket_t *sock, const _z_sys_net_endpoint_t rep, _z_sys_net_endpoint_t *lep,
+                                 uint32_t tout, const char *iface) {
+    z_result_t ret = _Z_RES_OK;
+
+    struct sockaddr *lsockaddr = NULL;
+    unsigned int addrlen = __get_ip_from_iface(iface, rep._iptcp->ai_family, &lsockaddr);
+    if (addrlen != 0U) {
+        sock->_fd = socket(rep._iptcp->ai_family, rep._iptcp->ai_socktype, rep._iptcp->ai_protocol);
+        if (sock->_fd != -1) {
+            z_time_t tv;
+            tv.tv_sec = (time_t)(tout / (uint32_t)1000);
+            tv.tv_usec = (suseconds_t)((tout % (uint32_t)1000) * (uint32_t)1000);
+            if ((ret == _Z_RES_OK) && (setsockopt(sock->_fd, SOL_SOCKET, SO_RCVTIMEO, (char *)&tv, sizeof(tv)) < 0)) {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+
+            if ((ret == _Z_RES_OK) && (bind(sock->_fd, lsockaddr, addrlen) < 0)) {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+
+            if ((ret == _Z_RES_OK) && (getsockname(sock->_fd, lsockaddr, &addrlen) < 0)) {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+
+#ifndef UNIX_NO_MULTICAST_IF
+            if (lsockaddr->sa_family == AF_INET) {
+                if ((ret == _Z_RES_OK) &&
+                    (setsockopt(sock->_fd, IPPROTO_IP, IP_MULTICAST_IF, &((struct sockaddr_in *)lsockaddr)->sin_addr,
+                                sizeof(struct in_addr)) < 0)) {
+                    _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                    ret = _Z_ERR_GENERIC;
+                }
+            } else if (lsockaddr->sa_family == AF_INET6) {
+                int ifindex = (int)if_nametoindex(iface);
+                if ((ret == _Z_RES_OK) &&
+                    (setsockopt(sock->_fd, IPPROTO_IPV6, IPV6_MULTICAST_IF, &ifindex, sizeof(ifindex)) < 0)) {
+                    _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                    ret = _Z_ERR_GENERIC;
+                }
+            } else {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+#endif
+
+            if (ret != _Z_RES_OK) {
+                close(sock->_fd);
+                sock->_fd = -1;
+                z_free(lsockaddr);
+                return ret;
+            }
+
+            struct addrinfo *laddr = (struct addrinfo *)z_malloc(sizeof(struct addrinfo));
+            if (laddr == NULL) {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                close(sock->_fd);
+                sock->_fd = -1;
+                z_free(lsockaddr);
+                return _Z_ERR_GENERIC;
+            }
+
+            laddr->ai_flags = 0;
+            laddr->ai_family = rep._iptcp->ai_family;
+            laddr->ai_socktype = rep._iptcp->ai_socktype;
+            laddr->ai_protocol = rep._iptcp->ai_protocol;
+            laddr->ai_addrlen = addrlen;
+            laddr->ai_addr = lsockaddr;
+            laddr->ai_canonname = NULL;
+            laddr->ai_next = NULL;
+            lep->_iptcp = laddr;
+        } else {
+            _Z_ERROR_LOG(_Z_ERR_GENERIC);
+            ret = _Z_ERR_GENERIC;
+        }
+
+        if (ret != _Z_RES_OK) {
+            z_free(lsockaddr);
+        }
+    } else {
+        _Z_ERROR_LOG(_Z_ERR_GENERIC);
+        ret = _Z_ERR_GENERIC;
+    }
+
+    return ret;
+}
+
+z_result_t _z_listen_udp_multicast(_z_sys_net_socket_t *sock, const _z_sys_net_endpoint_t rep, uint32_t tout,
+                                   const char *iface, const char *join) {
+    z_result_t ret = _Z_RES_OK;
+
+    struct sockaddr *lsockaddr = NULL;
+    unsigned int addrlen = __get_ip_from_iface(iface, rep._iptcp->ai_family, &lsockaddr);
+    if (addrlen != 0U) {
+        sock->_fd = socket(rep._iptcp->ai_family, rep._iptcp->ai_socktype, rep._iptcp->ai_protocol);
+        if (sock->_fd != -1) {
+            z_time_t tv;
+            tv.tv_sec = (time_t)(tout / (uint32_t)1000);
+            tv.tv_usec = (suseconds_t)((tout % (uint32_t)1000) * (uint32_t)1000);
+            if ((ret == _Z_RES_OK) && (setsockopt(sock->_fd, SOL_SOCKET, SO_RCVTIMEO, (char *)&tv, sizeof(tv)) < 0)) {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+
+            int value = true;
+            if ((ret == _Z_RES_OK) && (setsockopt(sock->_fd, SOL_SOCKET, SO_REUSEADDR, &value, sizeof(value)) < 0)) {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+#ifdef SO_REUSEPORT
+            if ((ret == _Z_RES_OK) && (setsockopt(sock->_fd, SOL_SOCKET, SO_REUSEPORT, &value, sizeof(value)) < 0)) {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+#endif
+
+            if (rep._iptcp->ai_family == AF_INET) {
+                struct sockaddr_in address;
+                (void)memset(&address, 0, sizeof(address));
+                address.sin_family = (sa_family_t)rep._iptcp->ai_family;
+                address.sin_port = ((struct sockaddr_in *)rep._iptcp->ai_addr)->sin_port;
+                inet_pton(address.sin_family, "0.0.0.0", &address.sin_addr);
+                if ((ret == _Z_RES_OK) && (bind(sock->_fd, (struct sockaddr *)&address, sizeof(address)) < 0)) {
+                    _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                    ret = _Z_ERR_GENERIC;
+                }
+            } else if (rep._iptcp->ai_family == AF_INET6) {
+                struct sockaddr_in6 address;
+                (void)memset(&address, 0, sizeof(address));
+                address.sin6_family = (sa_family_t)rep._iptcp->ai_family;
+                address.sin6_port = ((struct sockaddr_in6 *)rep._iptcp->ai_addr)->sin6_port;
+                inet_pton(address.sin6_family, "::", &address.sin6_addr);
+                if ((ret == _Z_RES_OK) && (bind(sock->_fd, (struct sockaddr *)&address, sizeof(address)) < 0)) {
+                    _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                    ret = _Z_ERR_GENERIC;
+                }
+            } else {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+
+            if (rep._iptcp->ai_family == AF_INET) {
+                struct ip_mreq mreq;
+                (void)memset(&mreq, 0, sizeof(mreq));
+                mreq.imr_multiaddr.s_addr = ((struct sockaddr_in *)rep._iptcp->ai_addr)->sin_addr.s_addr;
+                mreq.imr_interface.s_addr = ((struct sockaddr_in *)lsockaddr)->sin_addr.s_addr;
+                if ((ret == _Z_RES_OK) &&
+                    (setsockopt(sock->_fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &mreq, sizeof(mreq)) < 0)) {
+                    _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                    ret = _Z_ERR_GENERIC;
+                }
+            } else if (rep._iptcp->ai_family == AF_INET6) {
+                struct ipv6_mreq mreq;
+                (void)memset(&mreq, 0, sizeof(mreq));
+                // flawfinder: ignore
+                (void)memcpy(&mreq.ipv6mr_multiaddr, &((struct sockaddr_in6 *)rep._iptcp->ai_addr)->sin6_addr,
+                             sizeof(struct in6_addr));
+                mreq.ipv6mr_interface = if_nametoindex(iface);
+                if ((ret == _Z_RES_OK) &&
+                    (setsockopt(sock->_fd, IPPROTO_IPV6, IPV6_JOIN_GROUP, &mreq, sizeof(mreq)) < 0)) {
+                    _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                    ret = _Z_ERR_GENERIC;
+                }
+            } else {
+                _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                ret = _Z_ERR_GENERIC;
+            }
+
+            if (join != NULL) {
+                char *joins = _z_str_clone(join);
+                char *joins_cursor = joins;
+                for (char *ip = strsep(&joins_cursor, "|"); ip != NULL; ip = strsep(&joins_cursor, "|")) {
+                    if (rep._iptcp->ai_family == AF_INET) {
+                        struct ip_mreq mreq;
+                        (void)memset(&mreq, 0, sizeof(mreq));
+                        inet_pton(rep._iptcp->ai_family, ip, &mreq.imr_multiaddr);
+                        mreq.imr_interface.s_addr = ((struct sockaddr_in *)lsockaddr)->sin_addr.s_addr;
+                        if ((ret == _Z_RES_OK) &&
+                            (setsockopt(sock->_fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &mreq, sizeof(mreq)) < 0)) {
+                            _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                            ret = _Z_ERR_GENERIC;
+                        }
+                    } else if (rep._iptcp->ai_family == AF_INET6) {
+                        struct ipv6_mreq mreq;
+                        (void)memset(&mreq, 0, sizeof(mreq));
+                        inet_pton(rep._iptcp->ai_family, ip, &mreq.ipv6mr_multiaddr);
+                        mreq.ipv6mr_interface = if_nametoindex(iface);
+                        if ((ret == _Z_RES_OK) &&
+                            (setsockopt(sock->_fd, IPPROTO_IPV6, IPV6_JOIN_GROUP, &mreq, sizeof(mreq)) < 0)) {
+                            _Z_ERROR_LOG(_Z_ERR_GENERIC);
+                            ret = _Z_ERR_GENERIC;
+                        }
+                    }
+                }
+                z_free(joins);
+            }
+
+            if (ret != _Z_RES_OK) {
+                close(sock->_fd);
+                sock->_fd = -1;
+            }
+        } else {
+            _Z_ERROR_LOG(_Z_ERR_GENERIC);
+            ret = _Z_ERR_GENERIC;
+        }
+
+        z_free(lsockaddr);
+    } else {
+        _Z_ERROR_LOG(_Z_ERR_GENERIC);
+        ret = _Z_ERR_GENERIC;
+    }
+
+    return ret;
+}
+
+void _z_close_udp_multicast(_z_sys_net_socket_t *sockrecv, _z_sys_net_socket_t *socksend,
+                            const _z_sys_net_endpoint_t rep, const _z_sys_net_endpoint_t lep) {
+    if (sockrecv->_fd >= 0) {
+        if (rep._iptcp->ai_family == AF_INET) {
+            struct ip_mreq mreq;
+            (void)memset(&mreq, 0, sizeof(mreq));
+            mreq.imr_multiaddr.s_addr = ((struct sockaddr_in *)rep._iptcp->ai_addr)->sin_addr.s_addr;
+            mreq.imr_interface.s_addr = htonl(INADDR_ANY);
+            setsockopt(sockrecv->_fd, IPPROTO_IP, IP_DROP_MEMBERSHIP, &mreq, sizeof(mreq));
+        } else if (rep._iptcp->ai_family == AF_INET6) {
+            struct ipv6_mreq mreq;
+            (void)memset(&mreq, 0, sizeof(mreq));
+            // flawfinder: ignore
+            (void)memcpy(&mreq.ipv6mr_multiaddr, &((struct sockaddr_in6 *)rep._iptcp->ai_addr)->sin6_addr,
+                         sizeof(struct in6_addr));
+            setsockopt(sockrecv->_fd, IPPROTO_IPV6, IPV6_LEAVE_GROUP, &mreq, sizeof(mreq));
+        } else {
+            /* Do nothing. */
+        }
+    }
+#if defined(ZENOH_LINUX)
+    if (lep._iptcp != NULL) {
+        z_free(lep._iptcp->ai_addr);
+    }
+#else
+    _ZP_UNUSED(lep);
+#endif
+    if (sockrecv->_fd >= 0) {
+        close(sockrecv->_fd);
+        sockrecv->_fd = -1;
+    }
+    if (socksend->_fd >= 0) {
+        close(socksend->_fd);
+        socksend->_fd = -1;
+    }
+}
+
+size_t _z_read_udp_multicast(const _z_sys_net_socket_t sock, uint8_t *ptr, size_t len, const _z_sys_net_endpoint_t lep,
+                             _z_slice_t *addr) {
+    struct sockaddr_storage raddr;
+    unsigned int replen = sizeof(struct sockaddr_storage);
+
+    ssize_t rb = 0;
+    do {
+        rb = recvfrom(sock._fd, ptr, len, 0, (struct sockaddr *)&raddr, &replen);
+        if (rb < (ssize_t)0) {
+            return SIZE_MAX;
+        }
+
+        if (lep._iptcp->ai_family == AF_INET) {
+            struct sockaddr_in *a = ((struct sockaddr_in *)lep._iptcp->ai_addr);
+            struct sockaddr_in *b = ((struct sockaddr_in *)&raddr);
+            if (!((a->sin_port == b->sin_port) && (a->sin_addr.s_addr == b->sin_addr.s_addr))) {
+                if (addr != NULL) {
+                    assert(addr->len >= sizeof(in_addr_t) + sizeof(in_port_t));
+                    addr->len = sizeof(in_addr_t) + sizeof(in_port_t);
+                    // flawfinder: ignore
+                    (void)memcpy((uint8_t *)addr->start, &b->sin_addr.s_addr, sizeof(in_addr_t));
+                    // flawfinder: ignore
+                    (void)memcpy((uint8_t *)(addr->start + sizeof(in_addr_t)), &b->sin_port, sizeof(in_port_t));
+                }
+                break;
+            }
+        } else if (lep._iptcp->ai_family == AF_INET6) {
+            struct sockaddr_in6 *a = ((struct sockaddr_in6 *)lep._iptcp->ai_addr);
+            struct sockaddr_in6 *b = ((struct sockaddr_in6 *)&raddr);
+            if (!((a->sin6_port == b->sin6_port) &&
+                  (memcmp(a->sin6_addr.s6_addr, b->sin6_addr.s6_addr, sizeof(struct in6_addr)) == 0))) {
+                if (addr != NULL) {
+                    assert(addr->len >= sizeof(struct in6_addr) + sizeof(in_port_t));
+                    addr->len = sizeof(struct in6_addr) + sizeof(in_port_t);
+                    // flawfinder: ignore
+                    (void)memcpy((uint8_t *)addr->start, &b->sin6_addr.s6_addr, sizeof(struct in6_addr));
+                    // flawfinder: ignore
+                    (void)memcpy((uint8_t *)(addr->start + sizeof(struct in6_addr)), &b->sin6_port, sizeof(in_port_t));
+                }
+                break;
+            }
+        } else {
+            continue;
+        }
+    } while (1);
+
+    return (size_t)rb;
+}
+
+size_t _z_read_exact_udp_multicast(const _z_sys_net_socket_t sock, uint8_t *ptr, size_t len,
+                                   const _z_sys_net_endpoint_t lep, _z_slice_t *addr) {
+    size_t n = 0;
+    uint8_t *pos = &ptr[0];
+
+    do {
+        size_t rb = _z_read_udp_multicast(sock, pos, len - n, lep, addr);
+        if ((rb == SIZE_MAX) || (rb == 0)) {
+            n = rb;
+            break;
+        }
+
+        n = n + rb;
+        pos = _z_ptr_u8_offset(pos, (ptrdiff_t)rb);
+    } while (n != len);
+
+    return n;
+}
+
+size_t _z_send_udp_multicast(const _z_sys_net_socket_t sock, const uint8_t *ptr, size_t len,
+                             const _z_sys_net_endpoint_t rep) {
+    return (size_t)sendto(sock._fd, ptr, len, 0, rep._iptcp->ai_addr, rep._iptcp->ai_addrlen);
+}
+
+z_result_t _z_udp_multicast_endpoint_init_from_address(_z_sys_net_endpoint_t *ep, const _z_string_t *address) {
+    return _z_udp_multicast_default_endpoint_init_from_address(ep, address);
+}
+
+void _z_udp_multicast_endpoint_clear(_z_sys_net_endpoint_t *ep) { _z_udp_multicast_default_endpoint_clear(ep); }
+
+z_result_t _z_udp_multicast_open(_z_sys_net_socket_t *sock, const _z_sys_net_endpoint_t rep, _z_sys_net_endpoint_t *lep,
+                                 uint32_t tout, const char *iface) {
+    return _z_open_udp_multicast(sock, rep, lep, tout, iface);
+}
+
+z_result_t _z_udp_multicast_listen(_z_sys_net_socket_t *sock, const _z_sys_net_endpoint_t rep, uint32_t tout,
+                                   const char *iface, const char *join) {
+    return _z_listen_udp_multicast(sock, rep, tout, iface, join);
+}
+
+void _z_udp_multicast_close(_z_sys_net_socket_t *sockrecv, _z_sys_net_socket_t *socksend,
+                            const _z_sys_net_endpoint_t rep, const _z_sys_net_endpoint_t lep) {
+    _z_close_udp_multicast(sockrecv, socksend, rep, lep);
+}
+
+size_t _z_udp_multicast_read_exact(const _z_sys_net_socket_t sock, uint8_t *ptr, size_t len,
+                                   const _z_sys_net_endpoint_t lep, _z_slice_t *ep) {
+    return _z_read_exact_udp_multicast(sock, ptr, len, lep, ep);
+}
+
+size_t _z_udp_multicast_read(const _z_sys_net_socket_t sock, uint8_t *ptr, size_t len, const _z_sys_net_endpoint_t lep,
+                             _z_slice_t *ep) {
+    return _z_read_udp_multicast(sock, ptr, len, lep, ep);
+}
+
+size_t _z_udp_multicast_write(const _z_sys_net_socket_t sock, const uint8_t *ptr, size_t len,
+                              const _z_sys_net_endpoint_t rep) {
+    return _z_send_udp_multicast(sock, ptr, len, rep);
+}
+
+#endif
