@@ -34,6 +34,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -249,6 +250,21 @@ def join_router(router: str, tls_dir: str | None, identity: str) -> zenoh.Sessio
         return client(router, tls)
     except zenoh.ZError as error:
         raise RouterUnreachable(f"the router {router} does not answer: {error}") from None
+
+
+def join_or_exit_code(program: str, router: str, station: str | None, tls_dir: str | None,
+                      identity: str) -> tuple[str, zenoh.Session] | int:
+    """For a program's main: (the station's name, a session through `router`), or the exit
+    code after saying why not on stderr: 2 for a bad station name, endpoint or TLS directory, 1
+    for a router that does not answer."""
+    try:
+        return station_name(station), join_router(router, tls_dir, identity)
+    except ValueError as error:  # (BadEndpoint is one)
+        print(f"{program}: {error}", file=sys.stderr)
+        return 2
+    except RouterUnreachable as error:
+        print(f"{program}: {error}", file=sys.stderr)
+        return 1
 
 
 def tls_from(tls_dir: str | None, identity: str) -> ZenohTls | None:

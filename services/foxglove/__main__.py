@@ -26,7 +26,6 @@ import sys
 from pathlib import Path
 
 import foxglove
-import zenoh
 from foxglove import Context, StatusLevel
 
 from services.foxglove.feeds import DEFAULT_VIDEO_KBIT, station_feeds
@@ -37,7 +36,7 @@ from services.runtime.config import configure_logging
 from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name, is_loopback
-from wire.observation import STATION_ENV, RouterUnreachable, join_router, station_name
+from wire.observation import STATION_ENV, join_or_exit_code
 from wire.processes import dump_stacks_on_signal, say_ready
 from wire.tls import TLS_DIR_ENV, open_channel
 
@@ -125,7 +124,7 @@ def main(argv: list[str] | None = None) -> int:
     viewers = _Viewers()
     upstream: list = []  # what the feeds read through, closed at the end
     if args.router:
-        joined = _join_router(args)
+        joined = join_or_exit_code(NAME, args.router, args.station, args.tls_dir, NAME)
         if isinstance(joined, int):
             return joined
         station, session = joined
@@ -181,19 +180,6 @@ def main(argv: list[str] | None = None) -> int:
             link.close()
     log.info("stopped; published %s", dict(channels.published))
     return 0
-
-
-def _join_router(args: argparse.Namespace) -> tuple[str, zenoh.Session] | int:
-    """(the station's name, a session through --router), or the exit code after saying why
-    not: 2 for a bad name, endpoint or TLS directory, 1 for a router that does not answer."""
-    try:
-        return station_name(args.station), join_router(args.router, args.tls_dir, NAME)
-    except ValueError as error:  # (BadEndpoint is one)
-        print(f"{NAME}: {error}", file=sys.stderr)
-        return 2
-    except RouterUnreachable as error:
-        print(f"{NAME}: {error}", file=sys.stderr)
-        return 1
 
 
 class _Viewers:

@@ -21,13 +21,7 @@ from services.web_console.bridge import Upstream
 from services.web_console.https import RenewingCertificate, certificate_files, issue_command
 from services.web_console.watch import RouterWatch
 from wire.addresses import address_for, env_name, is_loopback
-from wire.observation import (
-    DEFAULT_STATION,
-    STATION_ENV,
-    RouterUnreachable,
-    join_router,
-    station_name,
-)
+from wire.observation import DEFAULT_STATION, STATION_ENV, join_or_exit_code
 from wire.processes import dump_stacks_on_signal, say_ready
 from wire.stereo import LOW_LATENCY_OPTIONS
 from wire.tls import IDENTITY_ENV, KEEPALIVE_OPTIONS, TLS_DIR_ENV, server_name_options
@@ -157,26 +151,12 @@ def _channels(args) -> tuple[Upstream, str]:
         needs_token=True), "token"
 
 
-def _watch(args) -> RouterWatch | int:
-    """What a watch-only console (--router) reads, or the exit code after saying why not: 2 for
-    a bad name, endpoint or TLS directory, 1 for a router that does not answer."""
-    try:
-        station = station_name(args.station)
-        session = join_router(args.router, args.tls_dir, args.identity)
-    except ValueError as error:  # (BadEndpoint is one)
-        print(f"{NAME}: {error}", file=sys.stderr)
-        return 2
-    except RouterUnreachable as error:
-        print(f"{NAME}: {error}", file=sys.stderr)
-        return 1
-    return RouterWatch(session, station, args.router)
-
-
 async def _serve(args, certificate: RenewingCertificate | None) -> int:
     if args.router:
-        watch = _watch(args)
-        if isinstance(watch, int):
-            return watch
+        joined = join_or_exit_code(NAME, args.router, args.station, args.tls_dir, args.identity)
+        if isinstance(joined, int):
+            return joined
+        watch = RouterWatch(joined[1], joined[0], args.router)
         try:
             return await _serve_app(args, certificate, ConsoleApp(watch, "none",
                                                                   args.allowed_hosts))

@@ -6,6 +6,7 @@ it among its dependencies."""
 
 from __future__ import annotations
 
+import itertools
 import json
 import os
 import signal
@@ -81,7 +82,7 @@ def test_the_c_observer_follows_the_station(station):
                                 "--seconds", "3"))
     wrench = [line for line in lines if line.get("topic") == "wrench"]
     assert len(wrench) >= 20 and all(line["samples"] == 10 for line in wrench)
-    assert all(b["first"] > a["last"] for a, b in zip(wrench, wrench[1:])), wrench
+    assert all(b["first"] > a["last"] for a, b in itertools.pairwise(wrench)), wrench
     states = [line for line in lines if line.get("topic") == "state"]
     assert states and len(states[-1]["joints_rad"]) == 6
     assert states[-1]["status"] == "ROBOT_STATUS_READY"
