@@ -19,6 +19,10 @@ PERMISSION_DENIED, a read the observation does not carry with UNIMPLEMENTED, eac
 go instead. The WebSockets are refused the same way (Teleoperate: PERMISSION_DENIED; receipts:
 UNIMPLEMENTED).
 
+A stream of the state, the wrench or the video that carried nothing for SILENCE_S ends with
+UNAVAILABLE, so the page says the station went quiet instead of showing its last message as
+live; the events may be quiet for any time.
+
 Each stream has a queue of its own that keeps the newest messages: a browser that reads slower
 than the station publishes loses the oldest (counted: the wrench's dropped_count, the events'
 sequence gaps, a log line at the stream's end), never the router's or the station's time. Video
@@ -69,6 +73,10 @@ VIDEO_QUEUE = 8
 # before the station counts as gone: two of its periods, then one more for the link.
 STATUS_WAIT_S = 2 * STATUS_PERIOD_S
 STATUS_STALE_S = 3 * STATUS_PERIOD_S
+# A stream of the state, the wrench or the video (100, 100 and 10 messages a second, a key frame
+# every 2 s) that carried nothing for this long ends with UNAVAILABLE: the page then says the
+# station stopped publishing it (or the link is down), instead of showing the last as live.
+SILENCE_S = 3.0
 
 
 class RouterWatch:
@@ -78,10 +86,11 @@ class RouterWatch:
 
     def __init__(self, session: zenoh.Session, station: str, router: str,
                  clock: Callable[[], float] = time.monotonic,
-                 status_wait_s: float = STATUS_WAIT_S):
+                 status_wait_s: float = STATUS_WAIT_S, silence_s: float = SILENCE_S):
         self.session = session
         self.station = station
         self.router = router
+        self.silence_s = silence_s
         self._clock = clock
         self._status_wait_s = status_wait_s
         self._status: tuple[float, ds_pb.SessionStatus] | None = None
@@ -105,8 +114,11 @@ class RouterWatch:
     def describe(self) -> str:
         return f"station {self.station!r} through the router {self.router}"
 
-    def queue(self, topic: str, capacity: int) -> TopicQueue:
-        return TopicQueue(self.session, key(self.station, topic), topic, capacity)
+    def queue(self, topic: str, capacity: int, steady: bool) -> TopicQueue:
+        """A queue of `topic`; a `steady` one (published at a rate) fails after silence_s
+        without a message."""
+        return TopicQueue(self.session, key(self.station, topic), topic, capacity,
+                          self.describe(), self.silence_s if steady else None)
 
     async def status(self) -> ds_pb.SessionStatus:
         """The newest status, waiting up to STATUS_WAIT_S for a first one; UNAVAILABLE when none
@@ -155,8 +167,11 @@ class TopicQueue:
     (and counted) when the stream reads slower than the station publishes. Zenoh's thread only
     hands each payload to the loop, so it never waits for a browser."""
 
-    def __init__(self, session: zenoh.Session, key_expr: str, topic: str, capacity: int):
+    def __init__(self, session: zenoh.Session, key_expr: str, topic: str, capacity: int,
+                 source: str = "", silence_s: float | None = None):
         self.topic = topic
+        self.source = source  # what it reads, for the errors it raises
+        self.silence_s = silence_s
         self.dropped = 0
         self._items: deque[bytes] = deque(maxlen=capacity)
         self._arrived = asyncio.Event()
@@ -177,23 +192,30 @@ class TopicQueue:
 
     async def messages(self) -> AsyncIterator:
         """The decoded messages, oldest first, until the stream is cancelled; one that does not
-        decode is logged and skipped."""
+        decode is logged and skipped. UNAVAILABLE once nothing came for `silence_s`."""
         while True:
             while not self._items:
                 self._arrived.clear()
-                await self._arrived.wait()
+                try:
+                    async with asyncio.timeout(self.silence_s):
+                        await self._arrived.wait()
+                except TimeoutError:
+                    raise ConnectError(
+                        Code.UNAVAILABLE, f"no {self.topic} from the {self.source} for "
+                        f"{self.silence_s:g} s: the station stopped publishing it, or the link "
+                        "is down") from None
             try:
                 yield decode(self.topic, self._items.popleft())
             except DecodeError as error:
                 log.warning("a %s message left out: %s", self.topic, error)
 
 
-def _queued(watch: RouterWatch, topic: str, capacity: int, stream):
-    """A server-stream function: `stream(request, queue)` over a queue of `topic`, which is
-    closed (and its drops logged) when the browser leaves."""
+def _queued(watch: RouterWatch, topic: str, capacity: int, stream, steady: bool = True):
+    """A server-stream function: `stream(request, queue)` over a queue of `topic` (`steady`:
+    see RouterWatch.queue), which is closed (and its drops logged) when the browser leaves."""
 
     async def serve(request, ctx: RequestContext) -> AsyncIterator:
-        queue = watch.queue(topic, capacity)
+        queue = watch.queue(topic, capacity, steady)
         try:
             async for response in stream(request, queue):
                 yield response
@@ -204,11 +226,6 @@ def _queued(watch: RouterWatch, topic: str, capacity: int, stream):
                          topic, queue.dropped)
 
     return serve
-
-
-def _checked(error: TelerobotError) -> ConnectError:
-    """A domain error as the Connect error of its code."""
-    return ConnectError(Code[error.status_name], error.message)
 
 
 async def _state(request, queue: TopicQueue) -> AsyncIterator:
@@ -227,7 +244,7 @@ async def _wrench(request, queue: TopicQueue) -> AsyncIterator:
             request.decimation, request.threshold_force_n, request.threshold_torque_nm,
             request.batch_size, request.queue_capacity))
     except TelerobotError as error:
-        raise _checked(error) from None
+        raise ConnectError(Code[error.status_name], error.message) from None
     async for response in queue.messages():
         for sample in response.samples:
             readings = selection.take(_reading(sample))
@@ -304,7 +321,7 @@ def watch_endpoints(watch: RouterWatch) -> dict[str, Endpoint]:
             watch, "wrench", DEFAULT_QUEUE_CAPACITY, _wrench),
         "/telerobot.v1.StereoCamera/StreamPairs": _queued(watch, "video", VIDEO_QUEUE, _pairs),
         "/telerobot.v1.DecisionServer/StreamEvents": _queued(watch, "events", EVENTS_QUEUE,
-                                                             _events),
+                                                             _events, steady=False),
     }
     unaries = {
         "/telerobot.v1.DecisionServer/GetControlState": _status_reply(

@@ -217,6 +217,19 @@ def test_the_video_starts_at_a_header_and_takes_h264_only(console, station):
     assert refused["code"] == "unimplemented" and "H.264" in refused["message"]
 
 
+def test_a_stream_the_station_stopped_publishing_ends_saying_so(router, sessions, station):
+    watch = RouterWatch(sessions(), STATION, router, silence_s=0.5)
+    with serving(ConsoleApp(watch, "none")) as (_, port):
+        with stream(port, "ProxyRobot/StreamState", pr_pb.StreamStateRequest()) as next_message:
+            station("state", arm_state(0))
+            next_message()
+            with pytest.raises(StreamEnded) as ended:  # nothing more: the station went quiet
+                next_message()
+    error = ended.value.end["error"]
+    assert error["code"] == "unavailable" and "no state from the station 'lab-3'" in (
+        error["message"])
+
+
 def test_the_events_pass_as_the_station_raised_them(console, station):
     port, _ = console
     with stream(port, "DecisionServer/StreamEvents", ds_pb.StreamEventsRequest()) as next_message:
