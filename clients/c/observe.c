@@ -12,10 +12,11 @@
  *   {"topic":"video","content":"pair","sequence":40,"keyframe":true,"bytes":5321}
  *   {"summary":{"wrench":{"messages":100,"undecodable":0}, ...}}
  *
- * The router must be on this host (tcp/ on loopback), as every plaintext port of the station:
- * the routers speak TLS 1.3, which zenoh-pico gets only from Mbed TLS 3, and a host that has
- * Mbed TLS 2 runs a router of its own that joins the station's over TLS
- * (python -m services.zenoh_router --connect tls/HOST:PORT) and observes through it.
+ * Endpoints follow the station's rule: tcp/HOST:PORT on loopback only, tls/HOST:PORT anywhere
+ * with the station's PKI (--tls-dir, or TELEROBOT_TLS_DIR): mutual TLS, presenting
+ * <identity>.pem (--identity, or TELEROBOT_IDENTITY; default observer) and checking the
+ * router's certificate against ca.pem and the name in the endpoint. zenoh-pico's TLS comes from
+ * Mbed TLS 3.6 (third_party/mbedtls): the routers speak TLS 1.3 only.
  *
  * Exit status: 0 when something arrived, 1 when nothing did (or the router did not answer),
  * 2 for bad arguments.
@@ -245,13 +246,39 @@ static void on_sample(z_loaned_sample_t *sample, void *context) {
     z_drop(z_move(payload));
 }
 
-/* tcp/ADDRESS:PORT with a loopback address, the only endpoint this client may use. */
+/* tcp/ADDRESS:PORT with a loopback address: the only plaintext endpoint this client may use. */
 static int loopback_endpoint(const char *endpoint) {
     static const char *const ALLOWED[] = {"tcp/127.", "tcp/localhost:", "tcp/[::1]:"};
     for (size_t i = 0; i < sizeof ALLOWED / sizeof *ALLOWED; i++) {
-        if (strncmp(endpoint, ALLOWED[i], strlen(ALLOWED[i])) == 0) return strrchr(endpoint, ':') != NULL;
+        if (strncmp(endpoint, ALLOWED[i], strlen(ALLOWED[i])) == 0) {
+            return strrchr(endpoint, ':') != NULL;
+        }
     }
     return 0;
+}
+
+/* <tls_dir>/<name><suffix>, if it is there; else says which file is missing. */
+static int tls_file(char *path, size_t size, const char *tls_dir, const char *name,
+                    const char *suffix) {
+    snprintf(path, size, "%s/%s%s", tls_dir, name, suffix);
+    if (access(path, R_OK) == 0) return 1;
+    fprintf(stderr, "telerobot-observe: TLS needs %s: `make certs` issues it\n", path);
+    return 0;
+}
+
+/* Mutual TLS with the station's PKI: ca.pem checks the router, <identity>.pem speaks for us. */
+static int insert_tls(z_owned_config_t *config, const char *tls_dir, const char *identity) {
+    char ca[4096], cert[4096], key[4096];
+    if (!tls_file(ca, sizeof ca, tls_dir, "ca", ".pem") ||
+        !tls_file(cert, sizeof cert, tls_dir, identity, ".pem") ||
+        !tls_file(key, sizeof key, tls_dir, identity, ".key")) {
+        return 0;
+    }
+    zp_config_insert(z_loan_mut(*config), Z_CONFIG_TLS_ROOT_CA_CERTIFICATE_KEY, ca);
+    zp_config_insert(z_loan_mut(*config), Z_CONFIG_TLS_ENABLE_MTLS_KEY, "true");
+    zp_config_insert(z_loan_mut(*config), Z_CONFIG_TLS_CONNECT_CERTIFICATE_KEY, cert);
+    zp_config_insert(z_loan_mut(*config), Z_CONFIG_TLS_CONNECT_PRIVATE_KEY_KEY, key);
+    return 1;
 }
 
 static int station_name_ok(const char *name) {
@@ -264,7 +291,8 @@ static int station_name_ok(const char *name) {
 static int usage(const char *why) {
     fprintf(stderr,
             "telerobot-observe: %s\n"
-            "usage: telerobot-observe --router tcp/127.0.0.1:PORT [--station NAME]\n"
+            "usage: telerobot-observe --router tcp/127.0.0.1:PORT | tls/HOST:PORT\n"
+            "       [--tls-dir DIR] [--identity NAME] [--station NAME]\n"
             "       [--topics wrench,state,events,status,video] [--count N] [--seconds S]\n",
             why);
     return 2;
@@ -272,6 +300,7 @@ static int usage(const char *why) {
 
 int main(int argc, char **argv) {
     const char *router = NULL, *station = getenv("TELEROBOT_STATION");
+    const char *tls_dir = getenv("TELEROBOT_TLS_DIR"), *identity = getenv("TELEROBOT_IDENTITY");
     char topics_arg[128];
     snprintf(topics_arg, sizeof topics_arg, "%s", DEFAULT_TOPICS);
     long count = 0;
@@ -279,7 +308,8 @@ int main(int argc, char **argv) {
     static const struct option OPTIONS[] = {
         {"router", required_argument, NULL, 'r'}, {"station", required_argument, NULL, 's'},
         {"topics", required_argument, NULL, 't'}, {"count", required_argument, NULL, 'n'},
-        {"seconds", required_argument, NULL, 'S'}, {NULL, 0, NULL, 0}};
+        {"seconds", required_argument, NULL, 'S'}, {"tls-dir", required_argument, NULL, 'd'},
+        {"identity", required_argument, NULL, 'i'}, {NULL, 0, NULL, 0}};
     for (int opt; (opt = getopt_long(argc, argv, "", OPTIONS, NULL)) != -1;) {
         switch (opt) {
             case 'r': router = optarg; break;
@@ -287,14 +317,21 @@ int main(int argc, char **argv) {
             case 't': snprintf(topics_arg, sizeof topics_arg, "%s", optarg); break;
             case 'n': count = atol(optarg); break;
             case 'S': seconds = atof(optarg); break;
+            case 'd': tls_dir = optarg; break;
+            case 'i': identity = optarg; break;
             default: return usage("unknown option");
         }
     }
     if (!station || !*station) station = "station";
+    if (!identity || !*identity) identity = "observer";
     if (!router) return usage("--router is required");
-    if (!loopback_endpoint(router)) {
-        return usage("the router must be tcp/ on loopback (plaintext goes no further); on "
-                     "another host run a router there that joins the station's over TLS");
+    int tls = strncmp(router, "tls/", 4) == 0 && strrchr(router, ':') != NULL;
+    if (tls && (!tls_dir || !*tls_dir)) {
+        return usage("the router's endpoint is TLS: give the station's TLS directory (--tls-dir, "
+                     "or TELEROBOT_TLS_DIR)");
+    }
+    if (!tls && !loopback_endpoint(router)) {
+        return usage("the router must be tcp/ on loopback (plaintext goes no further) or tls/");
     }
     if (!station_name_ok(station)) return usage("station name: use 1-64 of A-Z a-z 0-9 _ -");
     int wanted[TOPIC_COUNT] = {0};
@@ -312,6 +349,10 @@ int main(int argc, char **argv) {
     z_config_default(&config);
     zp_config_insert(z_loan_mut(config), Z_CONFIG_MODE_KEY, "client");
     zp_config_insert(z_loan_mut(config), Z_CONFIG_CONNECT_KEY, router);
+    if (tls && !insert_tls(&config, tls_dir, identity)) {
+        z_drop(z_move(config));
+        return 2;
+    }
     z_owned_session_t session;
     if (z_open(&session, z_move(config), NULL) < 0) {
         fprintf(stderr, "telerobot-observe: the router %s does not answer\n", router);

@@ -1,6 +1,7 @@
 """The C observer (clients/c, built by `make c-observer`): Zenoh's own C client, zenoh-pico,
 with protoc-c's code of the protos, reading what the test puts under a station's keys through
-a real router in this process. Against the whole station: test_station_observation.py."""
+a real router in this process, plaintext on loopback and over mutual TLS. Against the whole
+station: test_station_observation.py."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import subprocess
 
 import pytest
 
+from services.security import pki
 from telerobot.v1 import decision_server_pb2 as ds_pb
 from telerobot.v1 import force_sensor_pb2 as fs_pb
 from telerobot.v1 import proxy_robot_pb2 as pr_pb
@@ -17,7 +19,7 @@ from telerobot.v1 import types_pb2
 from tests.conftest import wait_for
 from tests.observation.test_observation import T0_NS, stamp
 from tests.processes import REPO
-from wire.observation import TOPICS, key
+from wire.observation import TOPICS, ZenohTls, client, key
 
 pytestmark = pytest.mark.e2e
 
@@ -85,7 +87,7 @@ def test_it_decodes_every_topic_with_the_protos_as_the_schema(router, sessions):
 
 @pytest.mark.parametrize("args, why", [
     (["--router", "tcp/10.1.2.3:7447"], "must be tcp/ on loopback"),
-    (["--router", "tls/127.0.0.1:7447"], "must be tcp/ on loopback"),
+    (["--router", "tls/127.0.0.1:7447"], "give the station's TLS directory"),
     (["--router", "tcp/127.0.0.1:7447", "--station", "a/b"], "station name"),
     (["--router", "tcp/127.0.0.1:7447", "--topics", "wrench,pictures"], "unknown topic"),
 ])
@@ -99,3 +101,30 @@ def test_a_router_that_does_not_answer_exits_1():
     process = c_observer("--router", "tcp/127.0.0.1:9", "--seconds", "1")
     _, err = process.communicate(timeout=60)
     assert process.returncode == 1 and "does not answer" in err, err
+
+
+def test_over_tls_it_joins_as_the_observer_and_checks_the_router(pki_dir, tls_router, tmp_path):
+    observer = c_observer("--router", tls_router, "--tls-dir", str(pki_dir), "--station",
+                          STATION, "--topics", "status", "--count", "1", "--seconds", "60")
+    station = client(tls_router, ZenohTls(pki_dir, "observation"))
+    try:
+        publisher = station.declare_publisher(key(STATION, "status"))
+        wait_for(lambda: publisher.matching_status.matching, timeout_s=30,
+                 what="the C observer subscribed through the TLS router")
+        publisher.put(ds_pb.SessionStatus(control=ds_pb.ControlState(
+            holders=[ds_pb.ControlHolder(operator_id="tls-ann")])).SerializeToString())
+        assert lines_of(observer)[0]["holders"] == ["tls-ann"]
+    finally:
+        station.close()
+    # A certificate of another CA speaks for nobody here, and the router's is checked too.
+    pki.init(tmp_path / "other")
+    refused = c_observer("--router", tls_router, "--tls-dir", str(tmp_path / "other"),
+                         "--seconds", "1")
+    _, err = refused.communicate(timeout=60)
+    assert refused.returncode == 1 and "does not answer" in err, err
+
+
+def test_over_tls_the_certificates_must_be_there(tmp_path):
+    process = c_observer("--router", "tls/127.0.0.1:7447", "--tls-dir", str(tmp_path))
+    _, err = process.communicate(timeout=30)
+    assert process.returncode == 2 and "ca.pem: `make certs` issues it" in err, err
