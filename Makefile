@@ -49,7 +49,8 @@ web/node_modules/.installed: web/package.json web/package-lock.json
 web: web/node_modules/.installed
 	cd web && npm run build --silent
 
-# The C observer (clients/c): zenoh-pico (third_party/) and the protos' C code from protoc-c.
+# The C observer (clients/c): zenoh-pico and Mbed TLS (third_party/), the protos' C code from
+# protoc-c.
 C_OBSERVER := build/c-observer/telerobot-observe
 c-observer: $(C_OBSERVER)
 $(C_OBSERVER): $(VENV)/.installed /usr/bin/protoc-c clients/c/observe.c clients/c/CMakeLists.txt $(PROTOS)

@@ -28,9 +28,18 @@ STATION = "lab-3"
 
 
 def c_observer(*args: str) -> subprocess.Popen:
+    return _start([], list(args))
+
+
+def c_observer_in(namespace: str, args: list[str]) -> subprocess.Popen:
+    """The C observer in a network namespace of the test's own."""
+    return _start(["ip", "netns", "exec", namespace], args)
+
+
+def _start(prefix: list[str], args: list[str]) -> subprocess.Popen:
     if not C_OBSERVER.exists():
         pytest.fail(f"{C_OBSERVER} is missing: `make test` builds it (`make c-observer`)")
-    return subprocess.Popen([str(C_OBSERVER), *args], stdout=subprocess.PIPE,
+    return subprocess.Popen([*prefix, str(C_OBSERVER), *args], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
 
 
