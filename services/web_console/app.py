@@ -116,7 +116,8 @@ class ConsoleApp:
     /healthz, assets. `upstream` is the DecisionServer's (Upstream), or a RouterWatch for a
     watch-only console."""
 
-    def __init__(self, upstream: Upstream, auth: str, allowed_hosts: Iterable[str] = (),
+    def __init__(self, upstream: Upstream | RouterWatch, auth: str,
+                 allowed_hosts: Iterable[str] = (),
                  max_body_bytes: int = BODY_MAX_BYTES, max_sockets: int = MAX_SOCKETS,
                  body_timeout_s: float = BODY_TIMEOUT_S):
         self.upstream = upstream
