@@ -263,7 +263,10 @@ class OperatorSession:
         self._target: pin.SE3 | None = None  # tool pose at the last accepted target
         # (where a sensor check's stop left the arm, where it was going)
         self._held_short_of: tuple[pin.SE3, pin.SE3] | None = None
-        self._held = False
+        self._held = False  # for the operator's silence, or the session's end
+        # The watchdog asked the sensor during this quiet spell (the next command asks again):
+        # apart from _held, so that a lost sensor's hold never hides the operator's silence.
+        self._sensor_asked = False
         self._sensor_was_lost = False
         self._sensor_checking = threading.Lock()
         self._closed = threading.Event()
@@ -390,7 +393,7 @@ class OperatorSession:
                 self._late += group  # its results come with the fresh command it joins
                 if first:  # the watchdog watches for that command (after the carry exists)
                     with self._lock:
-                        self._held = False
+                        self._held = self._sensor_asked = False
                     self._activity.set()
             else:
                 group, self._late = self._late + group, []
@@ -619,7 +622,7 @@ class OperatorSession:
     def _touch(self) -> None:
         with self._lock:
             self._last_activity = self._clock.monotonic()
-            self._held = False
+            self._held = self._sensor_asked = False
         self._activity.set()
 
     def _watch(self) -> None:
@@ -643,7 +646,8 @@ class OperatorSession:
                     due = deadline <= now
                     fire = due and not self._held and not self._closed.is_set()
                     expire = False
-                    if not due and not self._held and sensor_due_in_s is not None:
+                    if (not due and not self._held and not self._sensor_asked
+                            and sensor_due_in_s is not None):
                         check_sensor = sensor_due_in_s <= 0
                         deadline = min(deadline, now + max(sensor_due_in_s, 0.0))
                 if fire:
@@ -656,7 +660,7 @@ class OperatorSession:
                     self._hold("watchdog timeout: no command or heartbeat")
             elif check_sensor and (lost := self._sensor_check()):
                 with self._lock:
-                    self._held = True  # held by the check; the next command asks again
+                    self._sensor_asked = True  # (it held the arm) the next command asks again
                     carried = bool(self._late)
                 if carried:  # (no command moves the arm while the sensor is lost: answer it)
                     with self._moving:

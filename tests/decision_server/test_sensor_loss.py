@@ -73,6 +73,34 @@ def test_a_sensor_gone_quiet_between_commands_holds_the_arm_without_waiting_for_
     operator.close()
 
 
+def test_an_operator_gone_quiet_while_the_sensor_is_lost_is_still_held_for_it(fake_station):
+    """The sensor's hold does not hide the operator's silence: the watchdog's own hold follows
+    at its timeout, saying so (a frozen tab on a loaded machine, whose wrench went stale
+    first, is still told apart from a lost sensor)."""
+    station, slave = fake_station
+    operator = _streaming(station, slave)  # its watchdog: 0.5 s
+    events = station.core.events.subscribe(64)
+    reasons: list[str] = []
+
+    def hold_reasons() -> list[str]:
+        reasons.extend(e.payload.reason for e in iter(lambda: events.get(0), None)
+                       if isinstance(e.payload, WatchdogHold))
+        return reasons
+
+    slave.sensor_hung = True
+    slave.clock.advance(SENSOR_QUIET_NS / 1e9 + 0.001)
+    wait_for(lambda: any("went silent" in r for r in hold_reasons()), timeout_s=5,
+             what="the sensor's hold")
+    assert not any("watchdog timeout" in r for r in reasons)
+    slave.clock.advance(0.5)  # the operator said nothing since its last command
+    wait_for(lambda: any("watchdog timeout" in r for r in hold_reasons()), timeout_s=5,
+             what=lambda: f"the watchdog's hold; holds so far: {reasons}")
+    slave.sensor_hung = False
+    slave.step(0.001)
+    assert operator.move(STEP).outcome == pb.COMMAND_OUTCOME_APPLIED
+    operator.close()
+
+
 def _target_position(slave) -> np.ndarray:
     with slave._lock:
         return slave.kinematics.tool_pose(slave.q_target).translation.copy()
