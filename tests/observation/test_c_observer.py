@@ -18,6 +18,7 @@ from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 from tests.conftest import wait_for
 from tests.observation.test_observation import T0_NS, stamp
+from tests.observation.test_watch_console import RELIABLY
 from tests.processes import REPO
 from wire.observation import TOPICS, ZenohTls, client, key
 
@@ -53,7 +54,9 @@ def test_it_decodes_every_topic_with_the_protos_as_the_schema(router, sessions):
     observer = c_observer("--router", router, "--station", STATION, "--topics",
                           ",".join(TOPICS), "--count", "6", "--seconds", "60")
     session = sessions()
-    publishers = {topic: session.declare_publisher(key(STATION, topic)) for topic in TOPICS}
+    publishers = {topic: session.declare_publisher(key(STATION, topic),
+                                                   congestion_control=RELIABLY)
+                  for topic in TOPICS}
     wait_for(lambda: all(p.matching_status.matching for p in publishers.values()),
              timeout_s=30, what="the C observer subscribed to every topic")
     publishers["wrench"].put(fs_pb.StreamWrenchResponse(samples=[
@@ -117,7 +120,8 @@ def test_over_tls_it_joins_as_the_observer_and_checks_the_router(pki_dir, tls_ro
                           STATION, "--topics", "status", "--count", "1", "--seconds", "60")
     station = client(tls_router, ZenohTls(pki_dir, "observation"))
     try:
-        publisher = station.declare_publisher(key(STATION, "status"))
+        publisher = station.declare_publisher(key(STATION, "status"),
+                                              congestion_control=RELIABLY)
         wait_for(lambda: publisher.matching_status.matching, timeout_s=30,
                  what="the C observer subscribed through the TLS router")
         publisher.put(ds_pb.SessionStatus(control=ds_pb.ControlState(

@@ -12,6 +12,7 @@ import json
 import struct
 
 import pytest
+import zenoh
 from websockets.sync.client import connect
 
 from services.web_console.__main__ import main
@@ -29,6 +30,9 @@ from wire import convert
 from wire.observation import RouterUnreachable, ZenohTls, client, join_router, key
 
 STATION = "lab-3"
+# The test's puts stand for the station's and must all arrive, whatever the machine's load:
+# they wait for room in Zenoh's queue instead of being dropped (the station's own do not).
+RELIABLY = zenoh.CongestionControl.BLOCK
 
 
 class FakeClock:
@@ -47,7 +51,8 @@ def station(sessions):
 
     def put(topic: str, message) -> None:
         if topic not in publishers:
-            publishers[topic] = session.declare_publisher(key(STATION, topic))
+            publishers[topic] = session.declare_publisher(key(STATION, topic),
+                                                          congestion_control=RELIABLY)
             wait_for(lambda: publishers[topic].matching_status.matching, timeout_s=10,
                      what=f"the console subscribed to {topic}")
         publishers[topic].put(message.SerializeToString())
@@ -292,7 +297,8 @@ def test_over_tls_the_console_watches_as_an_observer(pki_dir, tls_router):
     watch = RouterWatch(join_router(tls_router, str(pki_dir), "observer"), STATION, tls_router)
     try:
         with serving(ConsoleApp(watch, "none")) as (_, port):
-            publisher = station.declare_publisher(key(STATION, "status"))
+            publisher = station.declare_publisher(key(STATION, "status"),
+                                                  congestion_control=RELIABLY)
             wait_for(lambda: publisher.matching_status.matching, timeout_s=10,
                      what="the console subscribed to the status")
             publisher.put(status("tls-ann").SerializeToString())
