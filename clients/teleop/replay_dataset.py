@@ -28,9 +28,10 @@ from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
 from wire import convert
 from wire.addresses import address_for
-from wire.errors import TelerobotError
+from wire.errors import AbortedError, TelerobotError
 
 SETTLE_S = 1.0  # after the replay's last increment, for the arm to come to rest
+REPLAY_SLACK_S = 60.0  # how much later than its length a replay may end
 STILL_M_PER_S = 1e-4
 
 
@@ -72,9 +73,20 @@ def replay(client: DecisionClient, root: Path, episode: int, speed: float = 1.0)
     ready_the_arm(client)
     move_to_joints(client, states[0, joints], f"episode {episode}'s first pose")
     started = time.monotonic()
-    client.start_replay(f"dataset-episode-{episode}", speed,
-                        increments=increments(actions, fps))
-    time.sleep((len(actions) - 1) / fps / speed)  # the replay's own length
+    name = f"dataset-episode-{episode}"
+    length_s = (len(actions) - 1) / fps / speed
+    # Followed from before it starts: its end is the DecisionServer's word, not a sleep of its
+    # length (a loaded station replays late, and the arm may pause on the way).
+    with client.stream_events(timeout=length_s + REPLAY_SLACK_S) as events:
+        client.start_replay(name, speed, increments=increments(actions, fps))
+        progress = next(e.replay_progress for e in events
+                        if e.WhichOneof("event") == "replay_progress"
+                        and e.replay_progress.name == name
+                        and e.replay_progress.state != pb.REPLAY_STATE_RUNNING)
+    if progress.state != pb.REPLAY_STATE_FINISHED:
+        raise AbortedError(f"the replay of episode {episode} stopped at command "
+                           f"{progress.commands_replayed} of {progress.command_count}: "
+                           f"{progress.detail}", reason="REPLAY_INTERRUPTED")
     deadline = time.monotonic() + SETTLE_S * 10
     last = client.robot.get_state().tool_pose.translation
     while time.monotonic() < deadline:  # then at rest
