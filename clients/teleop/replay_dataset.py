@@ -28,7 +28,7 @@ from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
 from wire import convert
 from wire.addresses import address_for
-from wire.errors import AbortedError, TelerobotError
+from wire.errors import AbortedError, TelerobotError, UnavailableError
 
 SETTLE_S = 1.0  # after the replay's last increment, for the arm to come to rest
 REPLAY_SLACK_S = 60.0  # how much later than its length a replay may end
@@ -79,10 +79,12 @@ def replay(client: DecisionClient, root: Path, episode: int, speed: float = 1.0)
     # length (a loaded station replays late, and the arm may pause on the way).
     with client.stream_events(timeout=length_s + REPLAY_SLACK_S) as events:
         client.start_replay(name, speed, increments=increments(actions, fps))
-        progress = next(e.replay_progress for e in events
-                        if e.WhichOneof("event") == "replay_progress"
-                        and e.replay_progress.name == name
-                        and e.replay_progress.state != pb.REPLAY_STATE_RUNNING)
+        progress = next((e.replay_progress for e in events
+                         if e.WhichOneof("event") == "replay_progress"
+                         and e.replay_progress.name == name
+                         and e.replay_progress.state != pb.REPLAY_STATE_RUNNING), None)
+    if progress is None:
+        raise UnavailableError("the DecisionServer's events ended before the replay did")
     if progress.state != pb.REPLAY_STATE_FINISHED:
         raise AbortedError(f"the replay of episode {episode} stopped at command "
                            f"{progress.commands_replayed} of {progress.command_count}: "
