@@ -351,8 +351,6 @@ class _Station:
         write_state(self._state_path, self._states)
 
 
-
-
 def _forward(_child: Child, line: str) -> None:
     """A child's log line, to the launcher's stderr (its ready line is the launcher's to say)."""
     if parse_ready_line(line) is None:
