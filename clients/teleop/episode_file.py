@@ -56,6 +56,7 @@ class Episode:
     increment_frame: list[str]  # BASE, WRIST or TOOL
     increment_position_m: np.ndarray  # (k, 3) in its frame
     increment_rotation: np.ndarray  # (k, 3, 3) in its frame
+    increment_target_m: np.ndarray  # (k, 3) the tool position it led to (the arm's target)
     video_ns: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # capture
     video_frames: list[bytes] = field(default_factory=list)  # H.264 access units (Annex B)
     eye_size: tuple[int, int] | None = None  # (width, height) per eye
@@ -99,7 +100,7 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
     created = int(metadata.get("create_time_ns", "0"))
     state_ns, joints, positions, rotations = [], [], [], []
     wrench_ns, wrenches = [], []
-    inc_ns, inc_frames, inc_positions, inc_rotations = [], [], [], []
+    inc_ns, inc_frames, inc_positions, inc_rotations, inc_targets = [], [], [], [], []
     video_ns, video, header = [], [], None
     for _, channel, message, decoded in reader.iter_decoded_messages(log_time_order=True):
         topic = channel.topic
@@ -119,6 +120,7 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
             inc_frames.append(FRAMES[decoded.frame])
             inc_positions.append(vector3_value(decoded.delta_position_m))
             inc_rotations.append(rotation_value(decoded.delta_rotation))
+            inc_targets.append(vector3_value(decoded.target_position_m))
         elif topic == STEREO_HEADER:
             header = decoded
         elif topic == STEREO_VIDEO:
@@ -133,6 +135,7 @@ def _contents(path: Path, metadata: dict, reader) -> Episode:
         np.array(rotations), np.array(wrench_ns, np.int64),
         np.array(wrenches).reshape(-1, 6), np.array(inc_ns, np.int64), inc_frames,
         np.array(inc_positions).reshape(-1, 3), np.array(inc_rotations).reshape(-1, 3, 3),
+        np.array(inc_targets).reshape(-1, 3),
         np.array(video_ns, np.int64), video,
         (header.width_px, header.height_px) if header is not None and video else None,
         metadata.get("robot", ""))

@@ -21,7 +21,10 @@ and a picture to its last. On frame k at time t_k (the station's clock):
 - observation.images.left / right: the newest stereo frame *captured* at or before t_k (capture
   time, not arrival);
 - action: the end-effector increment the station applied from t_k to t_k+1, summed (rotations
-  composed), in the base frame: dx, dy, dz (m), then the rotation vector (rad).
+  composed), in the base frame: dx, dy, dz (m), then the rotation vector (rad). The first
+  frame's also carries what the arm had still to make at t_0 of the increments applied before
+  it (from its position then to their target), so that a replay of the actions from the first
+  state leads where the station's commands led.
 Each video is H.264 (libx264, yuv420p, no B-frames, constant frame rate), frame i at pts i/fps,
 which is how lerobot finds a frame (from_timestamp + timestamp, within 1e-4 s).
 """
@@ -127,7 +130,8 @@ def _wrench_at(episode: Episode, times: np.ndarray) -> np.ndarray:
 
 
 def _actions(episode: Episode, times: np.ndarray, step_ns: int) -> np.ndarray:
-    """Each grid frame's applied increments, summed in the base frame."""
+    """Each grid frame's applied increments, summed in the base frame; the first frame's also
+    carries the motion still to come at its time from the commands before it."""
     actions = np.zeros((len(times), 6))
     if not len(episode.increment_ns):
         return actions
@@ -136,16 +140,31 @@ def _actions(episode: Episode, times: np.ndarray, step_ns: int) -> np.ndarray:
     tool = _nearest(episode.state_ns, episode.increment_ns)
     rotations = [np.eye(3) for _ in times]
     for k in np.flatnonzero(inside):
-        delta_p, delta_r = episode.increment_position_m[k], gram_schmidt(
-            episode.increment_rotation[k])
-        if episode.increment_frame[k] != "BASE":  # TOOL or WRIST axes: into the base frame
-            axes = gram_schmidt(episode.tool_rotation[tool[k]])
-            delta_p, delta_r = axes @ delta_p, axes @ delta_r @ axes.T
+        delta_p, delta_r = _in_base_frame(episode, k, tool[k])
         frame = frame_of[k]
         actions[frame, :3] += delta_p
         rotations[frame] = delta_r @ rotations[frame]
+    before = np.flatnonzero(episode.increment_ns < times[0])
+    if len(before):
+        # Commands before the first frame (which waits for the first picture) that the arm
+        # had not all made by then: the first action takes on the rest, the way from where
+        # the arm was at t_0 to the target they had led it to.
+        actions[0, :3] += episode.increment_target_m[before[-1]] - [
+            np.interp(times[0], episode.state_ns, episode.tool_position_m[:, a])
+            for a in range(3)]
     actions[:, 3:] = [pin.log3(rotation) for rotation in rotations]
     return actions
+
+
+def _in_base_frame(episode: Episode, k: int, tool: int) -> tuple[np.ndarray, np.ndarray]:
+    """Increment k (position, rotation) in the base frame; `tool`: the state sample nearest
+    to it, whose axes a TOOL or WRIST increment is in."""
+    delta_p, delta_r = episode.increment_position_m[k], gram_schmidt(
+        episode.increment_rotation[k])
+    if episode.increment_frame[k] != "BASE":
+        axes = gram_schmidt(episode.tool_rotation[tool])
+        delta_p, delta_r = axes @ delta_p, axes @ delta_r @ axes.T
+    return delta_p, delta_r
 
 
 def _nearest(sample_ns: np.ndarray, times: np.ndarray) -> np.ndarray:

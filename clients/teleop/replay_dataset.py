@@ -4,8 +4,11 @@ Replays a LeRobot dataset episode (as clients.teleop.export_lerobot writes them)
 to check a dataset on the arm: the arm goes to the episode's first joint angles in joint space,
 then the DecisionServer replays the episode's actions (StartReplay with the increments in the
 request: each frame's end-effector increment, in the base frame, at its frame's time). Prints
-one JSON line: the frames replayed, and how far the tool ended from where the recording had it
-(`final_error_mm`). Needs the control lock (it takes it) and a READY arm (it readies it).
+one JSON line: the frames replayed; how far the tool ended from where the recording had it
+(`final_error_mm`); from where the episode's actions lead from its first pose
+(`actions_error_mm`, the replay's own accuracy); and how far the recording's own motion was
+from its actions' sum (`actions_gap_mm`, which no faithful replay of the actions closes).
+Needs the control lock (it takes it) and a READY arm (it readies it).
 """
 
 from __future__ import annotations
@@ -97,10 +100,19 @@ def replay(client: DecisionClient, root: Path, episode: int, speed: float = 1.0)
         if np.linalg.norm(now - last) < STILL_M_PER_S * SETTLE_S / 10:
             break
         last = now
-    error = np.linalg.norm(last - states[-1, tool])
+    # Where the actions lead from the episode's first pose: the replay's own accuracy is
+    # against it, and the recording's motion that its actions do not account for is the
+    # rest of the final error.
+    led_to = states[0, tool] + actions[:-1, :3].sum(0)
     return {"episode": episode, "frames": len(actions), "fps": fps,
             "seconds": round(time.monotonic() - started, 2),
-            "final_error_mm": round(float(error) * 1e3, 2)}
+            "final_error_mm": _mm(last - states[-1, tool]),
+            "actions_error_mm": _mm(last - led_to),
+            "actions_gap_mm": _mm(states[-1, tool] - led_to)}
+
+
+def _mm(offset: np.ndarray) -> float:
+    return round(float(np.linalg.norm(offset)) * 1e3, 2)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -233,6 +233,9 @@ def test_the_actions_add_up_to_the_tool_path(dataset):
 def test_episode_0_replays_to_where_the_recording_had_the_tool(recorded):
     replayed = recorded[2]
     assert replayed["frames"] > 100, replayed
+    # The replay goes where the actions lead; the rest of the final error is the recording's
+    # own motion that the actions do not hold.
+    assert replayed["actions_error_mm"] <= 1.0, replayed
     assert replayed["final_error_mm"] <= 2.0, replayed
 
 
