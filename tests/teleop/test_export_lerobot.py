@@ -3,7 +3,8 @@ clock and an arm that moves 1 mm a sample; no station, no video): a run without 
 without images and says so; an unfinished or cut file is named incomplete; a recording that is
 no episode is skipped; an existing output, or nothing to export, is refused; the arm's name
 comes from the episodes; --append numbers new episodes on and leaves a dataset it cannot
-extend as it was."""
+extend as it was. And, on an episode made here, the first action of an arm that lags its
+commands."""
 
 from __future__ import annotations
 
@@ -17,7 +18,9 @@ import pinocchio as pin
 import pyarrow.parquet as pq
 import pytest
 
+from clients.teleop.episode_file import Episode
 from clients.teleop.export_lerobot import export, main
+from clients.teleop.lerobot_dataset import on_grid
 from services.decision_server.recording_mcap import Sources
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.slave import SlaveState
@@ -116,6 +119,35 @@ def test_the_actions_and_the_state_of_a_known_motion(tmp_path):
     info = json.loads((tmp_path / "out" / "meta" / "info.json").read_text())
     assert info["fps"] == 50
     shutil.rmtree(tmp_path / "out")
+
+
+def test_the_first_action_carries_what_the_arm_had_still_to_make_of_earlier_commands():
+    """An arm that lags its commands by 30 ms, and five 1 mm commands before the first frame
+    (which waits for the first picture): the first action takes on the motion they had not yet
+    made, so the actions lead from the first frame's state to where the commands did."""
+    ms = 1_000_000
+    state_ns = np.arange(0, 400 * ms, 10 * ms)
+    increment_ns = np.arange(0, 300 * ms, 10 * ms)  # 1 mm up each, the first five before 50 ms
+    targets = 0.001 * np.arange(1, len(increment_ns) + 1)
+    heights = np.interp(state_ns - 30 * ms, increment_ns, targets, left=0.0)  # 30 ms behind
+    count = len(state_ns)
+    episode = Episode(
+        Path("lagging.mcap"), "lagging", "lift", "SUCCEEDED", state_ns,
+        np.zeros((count, 6)), np.column_stack([np.full(count, 0.4), np.zeros(count), heights]),
+        np.repeat(np.eye(3)[None], count, 0), np.zeros(0, np.int64), np.zeros((0, 6)),
+        increment_ns, ["BASE"] * len(increment_ns),
+        np.tile([0.0, 0.0, 0.001], (len(increment_ns), 1)),
+        np.repeat(np.eye(3)[None], len(increment_ns), 0),
+        np.column_stack([np.full(len(targets), 0.4), np.zeros(len(targets)), targets]),
+        video_ns=np.array([50 * ms, 390 * ms]), video_frames=[b"", b""], eye_size=(8, 8))
+    frames = on_grid(episode, fps=50)
+    assert frames.times_ns[0] == 50 * ms
+    first_height = frames.state[0, 8]  # tool_z_m at 50 ms: 3 of the 5 mm commanded by then
+    assert first_height == pytest.approx(0.003, abs=1e-6)
+    # the 2 mm still to come, and the frame's own two commands (at 50 and 60 ms)
+    assert frames.action[0, 2] == pytest.approx(0.002 + 0.002, abs=1e-6)
+    np.testing.assert_allclose(first_height + frames.action[:-1, 2].sum(), targets[-1],
+                               atol=1e-6)
 
 
 def test_an_export_that_fails_leaves_no_half_dataset(tmp_path, monkeypatch):
