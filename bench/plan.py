@@ -51,7 +51,7 @@ class Plan:
     @property
     def overhead_pairs(self) -> int:
         """The interleaved (recording off, on) pairs of an `_mcap` row (issue #17)."""
-        return 3 if self.quick else 5
+        return 4 if self.quick else 6  # even: as many pairs on first as off first
 
     # Each leg of those pairs after the twin's own run (the first off leg, as long as the
     # twin): the quick run's length, enough for a steady p50 and CPU per command.

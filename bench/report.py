@@ -114,7 +114,7 @@ def _ratio3(numerator: float | None, denominator: float | None) -> float | None:
 
 def interleaved(pairs: list[tuple[dict, dict]]) -> dict:
     """A recording-on row (issue #17) from interleaved pairs [(off leg, on leg), ...] made
-    off, on, off, on...: the first on leg's result (its figures are the row's, as the first
+    off, on, on, off, off, on... (Session.mcap_twin): the first on leg's result (its figures are the row's, as the first
     off leg's are the twin's), with `overhead_pairs` (each leg's figures, and the on leg's
     `recording`), `overhead_ratios` (on / off per pair, for each of OVERHEAD_RATIOS both
     legs have), `overhead_median` (their median: what goals.py judges) and `recordings`
@@ -227,7 +227,7 @@ def table(results: dict[str, dict], tables: dict[str, list[str]] | None = None) 
     titles = {"baselines": "Project / baseline (same payloads, same domain cores, same run):",
               PLAINTEXT: "Mutual TLS / plaintext (the same scenario, right after it):",
               RECORDING_OFF: "MCAP recording on / off (the same scenario, right after it; "
-                             "then off, on, off, on...):"}
+                             "then on, off, off, on...):"}
     sections: dict[str, list[str]] = {key: [] for key in titles}
     for name, r in results.items():
         for label, other in compared_with(name):

@@ -16,9 +16,9 @@ drives at a time. Its scenarios (`*_tls`) run right after their plaintext twins.
 teleop_1000_mcap and force_1000_mcap (issue #17, recording.py) repeat teleop_1000 and
 force_1000 right after them, recording in MCAP: the DecisionServer (the same process) records
 the Teleoperate session; the wrench subscriber records each sample it receives. They run as
-interleaved pairs, off, on, off, on... (Plan.overhead_pairs; the twin's own run is the first
-off leg), and are judged on the median of the pairs' ratios (report.interleaved;
-Session.mcap_twin in bench/session.py).
+interleaved pairs in balanced order, off, on, on, off... (Plan.overhead_pairs, an even
+number; the twin's own run is the first off leg), and are judged on the median of the pairs'
+ratios (report.interleaved; Session.mcap_twin in bench/session.py).
 
 The results go to results/latest.json and raw_latencies.json, with the plots (plots.py), and
 the terminal report (report.table) is printed; the network and video rows carry their own run

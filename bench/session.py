@@ -199,33 +199,39 @@ class Session:
         versus = report.comparison(result, self.results.get(twin, {}))
         self.progress.done(f"{self.headline(name)} (/ {twin}: {report.ratio_text(versus)})")
 
-    def mcap_twin(self, twin: str, what: str, off: Callable[[int], dict],
-                  on: Callable[[int], dict], suffix: str = "mcap", reuse_twin: bool = True
-                  ) -> None:
+    def mcap_twin(self, twin: str, what: str, off: Callable[[int, float], dict],
+                  on: Callable[[int, float], dict], suffix: str = "mcap",
+                  reuse_twin: bool = True) -> None:
         """`<twin>_mcap`: plan.overhead_pairs interleaved pairs right after `twin` ran, on the
-        same processes: the twin's run (else, or when not `reuse_twin`, `off(0)`), `on(0)`, then
-        `off(i)`,
-        `on(i)` for each pair i after it (`on`: the twin's worker, recording in MCAP). The
-        row is report.interleaved's: the first on leg's figures, each pair's ratios and their
+        same processes, in balanced order: off, on, then on, off, then off, on... so that
+        neither a drift through the row nor the motion's direction favours one side. Pair
+        1's off leg is the twin's own run (else, or when not `reuse_twin`, a leg of its own).
+        Each leg is `off(pair, sign)` or `on(pair, sign)` (`on`: the twin's worker,
+        recording); `sign` alternates from leg to leg, the twin's run being +1, so that a leg
+        that moves the arm goes back where the one before went out. The row is
+        report.interleaved's: the first on leg's figures, each pair's ratios and their
         medians, which goals.py judges."""
         name = f"{twin}_{suffix}"
         count = self.plan.overhead_pairs
         self.progress.step(f"{name}: {twin} again, {what}; {count} pairs interleaved (off, on, "
-                           "off, on...)")
+                           "on, off...)")
         pairs = []
+        sign = 1.0  # of the next leg
         try:
             for index in range(count):
                 base = self.results.get(twin, {})
-                first = base if reuse_twin and index == 0 and base.get("p50_ms") is not None \
-                    else None
-                leg_off = first if first is not None else off(index)
-                leg_on = on(index)
-                for leg in (leg_off, leg_on):
+                legs = {}
+                if reuse_twin and index == 0 and base.get("p50_ms") is not None:
+                    legs["off"], sign = base, -sign
+                for role in ("off", "on") if index % 2 == 0 else ("on", "off"):
+                    if role not in legs:
+                        legs[role], sign = (off if role == "off" else on)(index, sign), -sign
+                for leg in legs.values():
                     leg.pop("ack_latencies_ms", None)
                     if index > 0:  # the row keeps pair 1's on leg's (raw_latencies.json)
                         leg.pop("latencies_ms", None)
-                pairs.append((leg_off, leg_on))
-                versus = report.comparison(leg_on, leg_off)
+                pairs.append((legs["off"], legs["on"]))
+                versus = report.comparison(legs["on"], legs["off"])
                 self.progress.note(f"{name} pair {index + 1}: {report.ratio_text(versus)}")
         except ChildFailed as error:
             return self.fail([name], error)

@@ -76,21 +76,20 @@ def _teleop(bench: Session, address: str) -> None:
                                             lockstep_p99_ms=lockstep["p99_ms"])
     bench.progress.done("; ".join(f"{r}: {bench.headline(f'teleop_{r}')}"
                                   for r in plan.command_rates))
-    # The same DecisionServer, right after. teleop_1000 moved +y: each on leg goes back
-    # (-y), each off leg after it out again, so the arm swings about where it was.
+    # The same DecisionServer, right after. teleop_1000 moved +y: the legs go back (-y) and
+    # out again in turn (mcap_twin's sign), so the arm swings about where it was.
     leg = {"duration_s": plan.overhead_teleop_leg_s, **server}
 
-    def teleop_leg(sign: float, **extra) -> Callable[[int], dict]:
-        return lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
+    def teleop_leg(**extra) -> Callable[[int, float], dict]:
+        return lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
             "first_sign": sign, **leg, **extra})["1000"]
 
     bench.mcap_twin("teleop_1000", "the DecisionServer recording the session in MCAP",
-                    teleop_leg(1.0),
-                    teleop_leg(-1.0, record_dir=str(bench.procs.scratch / "recordings")))
+                    teleop_leg(), teleop_leg(record_dir=str(bench.procs.scratch / "recordings")))
     # The same pairs with nothing recorded: how far two identical legs' figures differ in
     # this run, the noise the ratio rows (_mcap, _episode, _tls) are judged in.
     bench.mcap_twin("teleop_1000", "nothing recorded: identical legs, this run's noise",
-                    teleop_leg(1.0), teleop_leg(-1.0), suffix="aa", reuse_twin=False)
+                    teleop_leg(), teleop_leg(), suffix="aa", reuse_twin=False)
 
 
 def _teleop_episode(bench: Session) -> None:
@@ -113,10 +112,10 @@ def _teleop_episode(bench: Session) -> None:
             bench.mcap_twin(
                 "teleop_1000", "the DecisionServer recording it as a demonstration episode "
                 "(MCAP, the state at 100 Hz, the pattern camera's video at 320x240 per eye)",
-                lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
-                    "first_sign": 1.0, **leg})["1000"],
-                lambda index: bench.rate_worker("teleop", "grpc", address, [1000], {
-                    "first_sign": -1.0, **leg, "episode_task": EPISODE_TASK,
+                lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
+                    "first_sign": sign, **leg})["1000"],
+                lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
+                    "first_sign": sign, **leg, "episode_task": EPISODE_TASK,
                     "record_dir": str(bench.procs.scratch / "recordings")})["1000"],
                 suffix="episode", reuse_twin=False)
     except ChildFailed as error:

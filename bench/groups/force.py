@@ -29,8 +29,8 @@ def run(bench: Session) -> None:
         if name == "force_1000":
             bench.mcap_twin(name, "the subscriber writing each sample to MCAP (wrench and "
                             "Foxglove arrow, as make teleop --mcap) before its timestamp",
-                            lambda index: _force_leg(bench, index),
-                            lambda index: _force_leg(bench, index, True))
+                            lambda index, _sign: _force_leg(bench, index),
+                            lambda index, _sign: _force_leg(bench, index, True))
 
 
 def _force_leg(bench: Session, index: int, record: bool = False) -> dict:

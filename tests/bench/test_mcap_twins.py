@@ -3,7 +3,10 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
+import pytest
 
 from bench import goals, readme, recording, report
 from services.decision_server import recording_mcap
@@ -216,11 +219,11 @@ def test_a_teleop_recording_counts_merged_moves_in_commands(tmp_path):
     assert recording.topic_counts(path) == {recording_mcap.INCREMENT: 4, recording_mcap.ACK: 4}
 
 
-def test_the_pairs_are_three_quick_and_five_full_each_leg_the_quick_length():
+def test_the_pairs_are_four_quick_and_six_full_each_leg_the_quick_length():
     from bench.plan import Plan
 
     quick, full = Plan(quick=True), Plan(quick=False)
-    assert (quick.overhead_pairs, full.overhead_pairs) == (3, 5)
+    assert (quick.overhead_pairs, full.overhead_pairs) == (4, 6)
     assert (full.overhead_teleop_leg_s, full.overhead_force_leg_s) == (quick.command_s,
                                                                        quick.force_s)
 
@@ -248,6 +251,42 @@ def test_when_the_teleop_streams_fail_their_recording_twin_is_a_failed_row_too()
     for name in ("teleop_50", "teleop_1000", "teleop_1000_lockstep", "teleop_1000_mcap"):
         assert bench.results[name]["status"] == "failed", name
     assert "decision_server exited" in bench.results["teleop_1000_mcap"]["reason"]
+
+
+@pytest.mark.parametrize("reuse_twin", [True, False])
+def test_the_pairs_run_in_balanced_order_and_the_legs_go_out_and_back_in_turn(reuse_twin):
+    """off, on, then on, off...: as many pairs record first as second; each leg's sign is the
+    opposite of the one before it, the twin's own run (+1) included when it is pair 1's off."""
+    from types import SimpleNamespace
+
+    from bench.plan import Plan
+    from bench.run import Bench
+
+    bench = Bench.__new__(Bench)
+    bench.plan, bench.results = Plan(quick=True), {"teleop_1000": _row(995.0, 1.5, 4.0)}
+    bench.progress = SimpleNamespace(step=lambda *a: None, done=lambda *a: None,
+                                     note=lambda *a: None)
+    bench.record = bench.results.__setitem__
+    bench.headline = lambda name: ""
+    legs = []
+
+    def leg(role):
+        def run(index, sign):
+            legs.append((role, index, sign))
+            return _row(995.0, 1.5, 4.0)
+        return run
+
+    bench.mcap_twin("teleop_1000", "a test", leg("off"), leg("on"), suffix="x",
+                    reuse_twin=reuse_twin)
+    roles = [role for role, _, _ in legs]
+    expected = ["off", "on", "on", "off", "off", "on", "on", "off"]
+    assert roles == (expected[1:] if reuse_twin else expected)
+    assert [index for _, index, _ in legs] == ([0, 1, 1, 2, 2, 3, 3] if reuse_twin
+                                               else [0, 0, 1, 1, 2, 2, 3, 3])
+    signs = [sign for _, _, sign in legs]
+    assert signs[0] == (-1.0 if reuse_twin else 1.0)
+    assert all(a == -b for a, b in itertools.pairwise(signs))
+    assert len(bench.results["teleop_1000_x"]["overhead_pairs"]) == 4
 
 
 def test_pairs_of_identical_legs_make_a_row_of_ratios_without_recordings():
