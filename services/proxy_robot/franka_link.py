@@ -228,12 +228,17 @@ class FrankaArmLink:
                 self._in_flight = None
 
     def _describe(self, error) -> str:
-        """What libfranka said, with the errors the robot reports (when it still answers)."""
+        """What libfranka said, with the errors the robot reports when it still answers. A
+        network failure asks it nothing: pylibfranka waits out its 2 s receive timeout on a
+        robot that is gone without letting go of the GIL, which would freeze the whole process
+        (ProxyRobot's handlers, the hold's answer) for that long."""
         robot = self._robot
-        try:
-            named = franka_errors(robot.read_once().last_motion_errors) if robot else []
-        except self._failures:
-            named = []
+        named = []
+        if robot is not None and not isinstance(error, self._franka.NetworkException):
+            try:
+                named = franka_errors(robot.read_once().last_motion_errors)
+            except self._failures:
+                pass
         return f"{error}" + (f" ({', '.join(named)})" if named else "")
 
     def _fail(self, why: str) -> None:

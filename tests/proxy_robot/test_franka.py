@@ -9,6 +9,7 @@ import os
 import signal
 import threading
 import time
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -17,7 +18,7 @@ from clients.python import ForceSensorClient, ProxyRobotClient, RobotStatus
 from domain.robot_model.description import arm_description
 from domain.robot_model.workspace import cell_for
 from services.franka_sim.process import start_franka_sim as launch
-from services.proxy_robot.franka_link import FrankaArmLink
+from services.proxy_robot.franka_link import FrankaArmLink, libfranka_exceptions
 from services.runtime import children
 from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from tests.conftest import wait_for
@@ -153,6 +154,28 @@ def _lost(link: FrankaArmLink) -> str:
         return link.read_arm().fault
     except UnavailableError as error:
         return str(error)
+
+
+def test_a_network_failure_asks_the_robot_nothing_more():
+    """A robot that is gone is not read again for its errors (pylibfranka would hold the GIL
+    through its 2 s receive timeout); one that raised a control exception still answers."""
+    import pylibfranka
+
+    class Robot:
+        reads = 0
+
+        def read_once(self):
+            Robot.reads += 1
+            return SimpleNamespace(last_motion_errors=SimpleNamespace(cartesian_reflex=True))
+
+    link = FrankaArmLink.__new__(FrankaArmLink)
+    link._franka, link._robot = pylibfranka, Robot()
+    link._failures = libfranka_exceptions(pylibfranka)
+    gone = pylibfranka.NetworkException("libfranka: UDP receive: Timeout")
+    assert link._describe(gone) == "libfranka: UDP receive: Timeout" and Robot.reads == 0
+    reflex = pylibfranka.ControlException("libfranka: Move command aborted")
+    assert link._describe(reflex) == "libfranka: Move command aborted (cartesian_reflex)"
+    assert Robot.reads == 1
 
 
 def test_a_killed_franka_sim_is_a_clear_error_not_a_hang(franka_sim):
