@@ -114,11 +114,12 @@ def _ratio3(numerator: float | None, denominator: float | None) -> float | None:
 
 def interleaved(pairs: list[tuple[dict, dict]]) -> dict:
     """A recording-on row (issue #17) from interleaved pairs [(off leg, on leg), ...] made
-    off, on, on, off, off, on... (Session.mcap_twin): the first on leg's result (its figures are the row's, as the first
-    off leg's are the twin's), with `overhead_pairs` (each leg's figures, and the on leg's
-    `recording`), `overhead_ratios` (on / off per pair, for each of OVERHEAD_RATIOS both
-    legs have), `overhead_median` (their median: what goals.py judges) and `recordings`
-    (every on leg's, each checked by goals.recording_misses; none when no leg recorded)."""
+    off, on, on, off, off, on... (Session.mcap_twin): the first on leg's result (its figures
+    are the row's, as the first off leg's are the twin's), with `overhead_pairs` (each leg's
+    figures, and the on leg's `recording`), `overhead_ratios` (on / off per pair, for each of
+    OVERHEAD_RATIOS both legs have), `overhead_median` (their median: what goals.py judges)
+    and `recordings` (every on leg's, each checked by goals.recording_misses; none when no
+    leg recorded)."""
     row = dict(pairs[0][1])
     ratios: dict[str, list[float | None]] = {}
     for name, key in OVERHEAD_RATIOS.items():
