@@ -40,9 +40,10 @@ def _record(directory: Path, name: str, task: str = "lift", outcome: str = "SUCC
     sampled: list[float] = []  # the heights the recording's writer has taken
 
     def state():
-        sampled.append(z[0])
-        return SlaveState(pin.SE3(np.eye(3), np.array([0.4, 0.0, z[0]])), "READY",
-                          clock.time_ns(), joint_positions_rad=(0.1, 0.2, z[0], 0.0, 0.0, 0.0))
+        height = z[0]  # read once: the test's thread raises it meanwhile
+        sampled.append(height)
+        return SlaveState(pin.SE3(np.eye(3), np.array([0.4, 0.0, height])), "READY",
+                          clock.time_ns(), joint_positions_rad=(0.1, 0.2, height, 0.0, 0.0, 0.0))
 
     store.start(name, "MCAP", Sources(state=state, arm_name=arm), task)
     for _ in range(SAMPLES):
