@@ -111,8 +111,7 @@ def _joints_at(episode: Episode, times: np.ndarray) -> np.ndarray:
 def _tool_at(episode: Episode, times: np.ndarray) -> np.ndarray:
     """Position interpolated; orientation from the nearer sample, as a unit quaternion (w first,
     w >= 0)."""
-    position = np.column_stack([np.interp(times, episode.state_ns, episode.tool_position_m[:, a])
-                                for a in range(3)])
+    position = _position_at(episode, times)
     nearest = _nearest(episode.state_ns, times)
     quaternions = []
     for rotation in episode.tool_rotation[nearest]:
@@ -120,6 +119,12 @@ def _tool_at(episode: Episode, times: np.ndarray) -> np.ndarray:
         w, x, y, z = q.w, q.x, q.y, q.z
         quaternions.append([w, x, y, z] if w >= 0 else [-w, -x, -y, -z])
     return np.hstack([position, np.array(quaternions).reshape(-1, 4)])
+
+
+def _position_at(episode: Episode, times: np.ndarray) -> np.ndarray:
+    """The tool's position at `times`, interpolated, base frame: (n, 3)."""
+    return np.column_stack([np.interp(times, episode.state_ns, episode.tool_position_m[:, a])
+                            for a in range(3)])
 
 
 def _wrench_at(episode: Episode, times: np.ndarray) -> np.ndarray:
@@ -149,9 +154,8 @@ def _actions(episode: Episode, times: np.ndarray, step_ns: int) -> np.ndarray:
         # Commands before the first frame (which waits for the first picture) that the arm
         # had not all made by then: the first action takes on the rest, the way from where
         # the arm was at t_0 to the target they had led it to.
-        actions[0, :3] += episode.increment_target_m[before[-1]] - [
-            np.interp(times[0], episode.state_ns, episode.tool_position_m[:, a])
-            for a in range(3)]
+        actions[0, :3] += (episode.increment_target_m[before[-1]]
+                           - _position_at(episode, times[:1])[0])
     actions[:, 3:] = [pin.log3(rotation) for rotation in rotations]
     return actions
 
