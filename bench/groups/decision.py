@@ -78,18 +78,24 @@ def _teleop(bench: Session, address: str) -> None:
                                   for r in plan.command_rates))
     # The same DecisionServer, right after. teleop_1000 moved +y: the legs go back (-y) and
     # out again in turn (mcap_twin's sign), so the arm swings about where it was.
-    leg = {"duration_s": plan.overhead_teleop_leg_s, **server}
-
-    def teleop_leg(**extra) -> Callable[[int, float], dict]:
-        return lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
-            "first_sign": sign, **leg, **extra})["1000"]
-
     bench.mcap_twin("teleop_1000", "the DecisionServer recording the session in MCAP",
-                    teleop_leg(), teleop_leg(record_dir=str(bench.procs.scratch / "recordings")))
+                    _teleop_leg(bench, address),
+                    _teleop_leg(bench, address, record_dir=str(bench.procs.scratch / "recordings")))
     # The same pairs with nothing recorded: how far two identical legs' figures differ in
     # this run, the noise the ratio rows (_mcap, _episode, _tls) are judged in.
     bench.mcap_twin("teleop_1000", "nothing recorded: identical legs, this run's noise",
-                    teleop_leg(), teleop_leg(), suffix="aa", reuse_twin=False)
+                    _teleop_leg(bench, address), _teleop_leg(bench, address), suffix="aa",
+                    reuse_twin=False)
+
+
+def _teleop_leg(bench: Session, address: str, **extra) -> Callable[[int, float], dict]:
+    """A leg of an interleaved row (Session.mcap_twin): Teleoperate at 1 kHz through the
+    DecisionServer at `address` for overhead_teleop_leg_s, moving the arm `sign`-wards, its
+    CPU per command measured; `extra` goes to the worker (what the on legs record)."""
+    leg = {"duration_s": bench.plan.overhead_teleop_leg_s,
+           "server_pid": bench.pid("decision_server")}
+    return lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
+        "first_sign": sign, **leg, **extra})["1000"]
 
 
 def _teleop_episode(bench: Session) -> None:
@@ -107,16 +113,12 @@ def _teleop_episode(bench: Session) -> None:
         return bench.fail([name], error)
     try:
         with bench.decision_server(bench.station, camera_address) as address:
-            leg = {"duration_s": bench.plan.overhead_teleop_leg_s,
-                   "server_pid": bench.pid("decision_server")}
             bench.mcap_twin(
                 "teleop_1000", "the DecisionServer recording it as a demonstration episode "
                 "(MCAP, the state at 100 Hz, the pattern camera's video at 320x240 per eye)",
-                lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
-                    "first_sign": sign, **leg})["1000"],
-                lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
-                    "first_sign": sign, **leg, "episode_task": EPISODE_TASK,
-                    "record_dir": str(bench.procs.scratch / "recordings")})["1000"],
+                _teleop_leg(bench, address),
+                _teleop_leg(bench, address, episode_task=EPISODE_TASK,
+                            record_dir=str(bench.procs.scratch / "recordings")),
                 suffix="episode", reuse_twin=False)
     except ChildFailed as error:
         bench.progress.step(f"{name}: starting its DecisionServer")
