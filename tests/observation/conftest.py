@@ -9,6 +9,10 @@ from services.security import pki
 from services.zenoh_router.__main__ import listening_on
 from wire.observation import SessionPlan, ZenohTls, client
 
+# The tests' puts stand for the station's and must all arrive, whatever the machine's load:
+# they wait for room in Zenoh's queue instead of being dropped (the station's own do not).
+RELIABLY = zenoh.CongestionControl.BLOCK
+
 
 def routing(plan: SessionPlan):
     """A router of `plan` in this process: its endpoint (a port 0 made real), until closed."""

@@ -17,8 +17,8 @@ from telerobot.v1 import proxy_robot_pb2 as pr_pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 from tests.conftest import wait_for
+from tests.observation.conftest import RELIABLY
 from tests.observation.test_observation import T0_NS, stamp
-from tests.observation.test_watch_console import RELIABLY
 from tests.processes import REPO
 from wire.observation import TOPICS, ZenohTls, client, key
 

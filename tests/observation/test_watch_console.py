@@ -12,7 +12,6 @@ import json
 import struct
 
 import pytest
-import zenoh
 from websockets.sync.client import connect
 
 from services.web_console.__main__ import main
@@ -24,15 +23,13 @@ from telerobot.v1 import proxy_robot_pb2 as pr_pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
 from tests.conftest import wait_for
+from tests.observation.conftest import RELIABLY
 from tests.observation.test_observation import T0_NS, stamp
 from tests.web_console.test_limits import serving
 from wire import convert
 from wire.observation import RouterUnreachable, ZenohTls, client, join_router, key
 
 STATION = "lab-3"
-# The test's puts stand for the station's and must all arrive, whatever the machine's load:
-# they wait for room in Zenoh's queue instead of being dropped (the station's own do not).
-RELIABLY = zenoh.CongestionControl.BLOCK
 
 
 class FakeClock:
