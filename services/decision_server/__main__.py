@@ -17,7 +17,7 @@ import grpc
 
 from services.common.fanout import Subscription
 from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
-from services.decision_server.camera_feed import CameraFeed
+from services.decision_server.camera_feed import CameraSource
 from services.decision_server.core import ControlChanged, DecisionCore
 from services.decision_server.dependencies import SERVING, DependencyWatch
 from services.decision_server.recordings import RecordingStore
@@ -73,9 +73,10 @@ class DecisionService(Service):
         slave.watch_health("stereo_camera", self._stereo_channel)
         stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)
         video = self.args.recording_video
-        self.core = DecisionCore(
-            slave, RecordingStore(Path(self.args.recordings_dir)),
-            video_feed=CameraFeed(stereo, *video, RECORDING_VIDEO_KBIT) if video else None)
+        camera = CameraSource(self.args.stereo_camera_address, self.args.tls_dir or None, *video,
+                              RECORDING_VIDEO_KBIT) if video else None
+        self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir)),
+                                 camera=camera)
         self._slave = slave
         # Each dependency's state, from its health and the launcher's state file; every change
         # is an event (and, once attached, a health entry).

@@ -1,8 +1,9 @@
-"""CameraFeed: the stereo video an MCAP recording keeps (recording_mcap.Sources.video).
+"""CameraFeed: the stereo video an MCAP recording keeps; CameraSource: where it comes from
+(recording_mcap.Sources.video), which the recordings' writer process opens (recording_writer).
 
 While a recording runs, a thread of its own reads the camera's H.264 stream (both eyes side by
 side, at the size and bitrate the DecisionServer was started with) and hands each pair, with
-its stream's header, to the recording, which only queues it. A camera that is away, or goes
+its stream's header, to the recording. A camera that is away, or goes
 away, is asked again every RETRY_S until the recording stops: the recording goes on without
 video meanwhile, and says how many frames it kept (Recording.video_frames).
 """
@@ -12,15 +13,41 @@ from __future__ import annotations
 import logging
 import threading
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import grpc
 
+from services.decision_server.backends import RECONNECT_OPTIONS
+from services.runtime.tls import station_channel_security
 from telerobot.v1 import stereo_camera_pb2 as pb
+from telerobot.v1 import stereo_camera_pb2_grpc
+from wire.stereo import LOW_LATENCY_OPTIONS
+from wire.tls import open_channel
 
 log = logging.getLogger(__name__)
 
 RETRY_S = 0.5
 STOP_TIMEOUT_S = 2.0
+
+
+@dataclass(frozen=True)
+class CameraSource:
+    """The camera a recording's video comes from, as the DecisionServer reaches it (its TLS
+    directory, presenting its own certificate), and the stream it asks for."""
+
+    address: str
+    tls_dir: str | None
+    width_px: int
+    height_px: int
+    kbit_per_s: int
+
+    def open(self) -> tuple[CameraFeed, grpc.Channel]:
+        """A feed on a channel of its own (the caller closes it)."""
+        security = station_channel_security(self.tls_dir or None, "decision_server")
+        channel = open_channel(self.address, [*RECONNECT_OPTIONS, *LOW_LATENCY_OPTIONS],
+                               security, service="stereo_camera")
+        stub = stereo_camera_pb2_grpc.StereoCameraStub(channel)
+        return CameraFeed(stub, self.width_px, self.height_px, self.kbit_per_s), channel
 
 
 class CameraFeed:

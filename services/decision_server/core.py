@@ -135,10 +135,10 @@ class _Replay:
 
 class DecisionCore:
     def __init__(self, slave: Slave, recordings: RecordingStore, clock: Clock = SYSTEM_CLOCK,
-                 video_feed: Callable | None = None):
+                 camera=None):
         self.slave = slave
         self.recordings = recordings
-        self.video_feed = video_feed  # the stereo video for MCAP recordings (Sources.video)
+        self.camera = camera  # whose video MCAP recordings keep (a CameraSource, Sources.video)
         self.clock = clock
         self._lock = threading.RLock()
         self._event_sequence = itertools.count(1)
@@ -482,10 +482,10 @@ class DecisionCore:
         """An MCAP recording also samples the arm's latest state and wrench (20 Hz; an
         episode's, with a task, 100 Hz): the samples the streams brought (the arm is asked only
         before its stream's first), on the recording's writer thread; and the stereo video,
-        when the server has a camera."""
+        when the server has a camera (which the recording's writer process reads)."""
         self.locks.require(lease_id)
         return self.recordings.start(name, format, Sources(
-            lambda: self._state or self.slave.state(), self.slave.wrench, self.video_feed,
+            lambda: self._state or self.slave.state(), self.slave.wrench, self.camera,
             self._arm_name() if task else ""), task)
 
     def _arm_name(self) -> str:

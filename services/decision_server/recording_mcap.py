@@ -6,8 +6,11 @@ The channels and the metadata are documented on RecordingFormat (decision_server
 metadata record "recording". Each channel's schema is the message's file descriptors
 (mcap-protobuf-support writes them), so any MCAP reader decodes the file without gen/.
 
-`McapRecorder` writes on a thread of its own (`Recorder`, which the JSONL recorder shares): the
-command path only queues, so a slow or full disk never slows or fails a command. A full disk
+`McapRecorder` drains on a thread of its own (`Recorder`, which the JSONL recorder shares): the
+command path only queues, so a slow or full disk never slows or fails a command. The file itself
+is written by a process of its own, at ordinary priority (recording_writer, reached through
+writer_process.RemoteMcapFile): the MCAP writer's records, CRCs and compression, and the
+stereo video, take none of the DecisionServer's GIL or its real-time time. A full disk
 stops the recording. A writer that falls behind keeps what it wrote: new messages are dropped,
 counted, while it catches up, and each such gap is a "recording_gap" metadata record; the
 "recording" metadata then says what was dropped ("dropped", by channel). A recording that lost
@@ -19,6 +22,7 @@ from __future__ import annotations
 
 import json
 import logging
+import os
 import queue
 import struct
 import threading
@@ -27,19 +31,27 @@ from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING, BinaryIO
 
 import numpy as np
 from mcap.exceptions import EndOfFile
 from mcap.reader import make_reader
+from mcap.well_known import MessageEncoding
+from mcap.writer import LIBRARY_IDENTIFIER, CompressionType
+from mcap.writer import Writer as McapWriter
 from mcap_protobuf.decoder import DecoderFactory
-from mcap_protobuf.writer import Writer
+from mcap_protobuf.schema import register_schema
 
 from services.common.inbox import queued_now
+from services.decision_server.writer_process import RemoteMcapFile, WriterStart, in_a_process
 from services.runtime.clock import Clock
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
-from wire import convert, foxglove
+from wire import convert
 from wire.errors import FailedPreconditionError, TelerobotError
+
+if TYPE_CHECKING:
+    from services.decision_server.camera_feed import CameraSource
 
 log = logging.getLogger(__name__)
 
@@ -52,6 +64,7 @@ STEREO_HEADER = "/camera/stereo_header"
 STEREO_VIDEO = "/camera/stereo/video"  # foxglove.CompressedVideo, as make teleop --mcap writes
 CHANNELS = (INCREMENT, ACK, STATE, WRENCH, EVENTS)
 PROFILE = "telerobot"
+LIBRARY = f"{LIBRARY_IDENTIFIER} telerobot"
 METADATA = "recording"
 MAGIC = b"\x89MCAP0\r\n"  # an MCAP file's first and last bytes
 
@@ -65,7 +78,7 @@ EPISODE_SAMPLE_PERIOD_S = 0.01
 QUEUE_LIMIT = 20_000
 GAP = "recording_gap"  # the metadata record of each gap
 # What each kind of queued item is written as: the channels a gap counts.
-KIND_CHANNELS = {"increment": INCREMENT, "ack": ACK, "event": EVENTS, "video": STEREO_VIDEO}
+KIND_CHANNELS = {"increment": INCREMENT, "ack": ACK, "event": EVENTS}
 # The writer takes what is queued once a period, not as each item comes: at 1 kHz of acks,
 # waking for each cost the DecisionServer more than writing them (a wake is a GIL hand-over).
 DRAIN_PERIOD_S = 0.01
@@ -113,21 +126,39 @@ def _vector(vector) -> np.ndarray:
 # -- writing -------------------------------------------------------------------------------
 
 class McapFile:
-    """One MCAP file being written, synchronously. Log times never go back on a channel."""
+    """One MCAP file being written, synchronously, to `output` (a path, or a binary file this
+    takes over). Log times never go back on a channel. Its "recording" metadata holds `counts`,
+    what it holds by channel."""
 
-    def __init__(self, path: Path):
-        self.path = Path(path)
-        self._file = open(self.path, "wb")  # noqa: SIM115 - closed in finish()/abandon()
-        self._writer = Writer(self._file, chunk_size=CHUNK_BYTES, profile=PROFILE)
+    def __init__(self, output: Path | BinaryIO):
+        if isinstance(output, (str, Path)):
+            self._file = open(output, "wb")  # noqa: SIM115 - closed in finish()/abandon()
+        else:
+            self._file = output
+        self._writer = McapWriter(self._file, chunk_size=CHUNK_BYTES,
+                                  compression=CompressionType.ZSTD)
+        self._writer.start(profile=PROFILE, library=LIBRARY)
+        self._channels: dict[str, int] = {}
         self._last: dict[str, int] = {}
         self.counts: Counter[str] = Counter()
 
     def write(self, topic: str, message, log_time_ns: int,
               publish_time_ns: int | None = None) -> None:
+        self.write_serialized(topic, type(message), message.SerializeToString(), log_time_ns,
+                              publish_time_ns)
+
+    def write_serialized(self, topic: str, message_type, data: bytes, log_time_ns: int,
+                         publish_time_ns: int | None = None) -> None:
+        """A message already serialized, of `message_type` (its channel's schema)."""
+        channel = self._channels.get(topic)
+        if channel is None:
+            channel = self._channels[topic] = self._writer.register_channel(
+                topic=topic, message_encoding=MessageEncoding.Protobuf,
+                schema_id=register_schema(self._writer, message_type))
         log_time = max(int(log_time_ns), self._last.get(topic, 0))
-        self._writer.write_message(topic, message, log_time=log_time,
-                                   publish_time=int(publish_time_ns or log_time),
-                                   sequence=self.counts[topic])
+        self._writer.add_message(channel, log_time=log_time, data=data,
+                                 publish_time=int(publish_time_ns or log_time),
+                                 sequence=self.counts[topic])
         self._last[topic] = log_time
         self.counts[topic] += 1
 
@@ -139,10 +170,13 @@ class McapFile:
         self._writer.add_metadata(name, data)
 
     def finish(self, metadata: dict[str, str]) -> None:
+        """The "recording" metadata (with `counts`), the summary; on the disk (fsync)."""
         try:
-            self._writer.add_metadata(METADATA, metadata)
+            self._writer.add_metadata(METADATA, {**metadata,
+                                                 "counts": json.dumps(dict(self.counts))})
             self._writer.finish()
             self._file.flush()
+            os.fsync(self._file.fileno())
         finally:
             self._file.close()
 
@@ -164,24 +198,18 @@ def write_commands(path: Path, name: str, create_time_ns: int, commands) -> None
     except BaseException:
         file.abandon()
         raise
-    file.finish(metadata_for(name, create_time_ns, commands, file.counts))
-
-
-def metadata_for(name: str, create_time_ns: int, commands, counts,
-                 dropped: Counter | None = None) -> dict[str, str]:
     duration = commands[-1].offset_s - commands[0].offset_s if commands else 0.0
-    return metadata_of(name, create_time_ns, len(commands), duration, counts, dropped)
+    file.finish(metadata_of(name, create_time_ns, len(commands), duration))
 
 
-def metadata_of(name: str, create_time_ns: int, command_count: int, duration_s: float, counts,
+def metadata_of(name: str, create_time_ns: int, command_count: int, duration_s: float,
                 dropped: Counter | None = None, task: str = "", outcome: str = "",
                 robot: str = "") -> dict[str, str]:
-    """The "recording" metadata; "dropped" (by channel) only when a gap dropped messages;
-    "task", "outcome" (an EpisodeOutcome name without its prefix) and "robot" (the arm's
-    name, when known) for an episode."""
+    """The "recording" metadata but its "counts" (the file's: McapFile.finish); "dropped" (by
+    channel) only when a gap dropped messages; "task", "outcome" (an EpisodeOutcome name
+    without its prefix) and "robot" (the arm's name, when known) for an episode."""
     metadata = {"name": name, "create_time_ns": str(create_time_ns),
-                "duration_s": repr(float(duration_s)), "command_count": str(command_count),
-                "counts": json.dumps(dict(counts))}
+                "duration_s": repr(float(duration_s)), "command_count": str(command_count)}
     if dropped:
         metadata["dropped"] = json.dumps(dict(dropped))
     if task:
@@ -219,10 +247,9 @@ class Sources:
 
     state: Callable[[], object] | None = None
     wrench: Callable[[], object] | None = None
-    # The stereo video: called with a sink(header, pair) (StereoHeader, StereoPair of an H.264
-    # stream), it feeds the sink from a thread of its own until the function it returns is
-    # called. Only MCAP recordings take it.
-    video: Callable[[Callable[[object, object], None]], Callable[[], None]] | None = None
+    # The stereo camera whose H.264 video the recording keeps: the writer process reads it
+    # (recording_writer). Only MCAP recordings take it.
+    video: CameraSource | None = None
     # The arm's name (GetArmInfo's), which an episode's metadata records as "robot".
     arm_name: str = ""
 
@@ -289,9 +316,6 @@ class Recorder:
 
     def event(self, event) -> None:
         self._put("event", event)
-
-    def video(self, header, pair) -> None:
-        self._put("video", header, pair)
 
     def _put(self, kind: str, *payload) -> None:
         if self.error is not None:
@@ -393,40 +417,42 @@ class Recorder:
 class McapRecorder(Recorder):
     """An MCAP recording (see Recorder), which also samples `sources` every SAMPLE_PERIOD_S
     and keeps the server's events (`event_to_message` makes each the message to keep, or
-    None to leave it out)."""
+    None to leave it out). The file is written by a writer of its own, which `writer` starts
+    (RemoteMcapFile: a process, or a thread in the unit tests): here each message is only
+    serialized and sent on, each drain."""
 
     def __init__(self, path: Path, name: str, create_time_ns: int, clock: Clock,
                  sources: Sources, event_to_message: Callable | None,
-                 on_failure: Callable[[str], None], task: str = ""):
+                 on_failure: Callable[[str], None], task: str = "",
+                 writer: WriterStart = in_a_process):
         self._sources = sources
+        self._writer_start = writer
         self._event_to_message = event_to_message
         self._last_samples: dict[str, int] = {}
         self._next_sample = clock.monotonic()
         self.task = task
         self.outcome = ""  # set before finish(): how the episode went
-        self._header = None  # the stereo stream's, once written
-        self._video_keyed = False  # the video starts at the stream's first key frame
         super().__init__(path, name, create_time_ns, clock, on_failure)
 
     @property
     def video_frames(self) -> int:
-        return self._file.counts[STEREO_VIDEO]
+        return self._file.counts[STEREO_VIDEO]  # the writer's count, once finished
 
     def open(self) -> None:
-        self._file = McapFile(self.path)
+        self._file = RemoteMcapFile(self.path, self._sources.video, self._writer_start)
 
     def tick(self) -> None:
         now = self._clock.monotonic()
         if now >= self._next_sample:
             self._sample()
-            self._file.flush()  # a full disk shows up now, not at the end
             self._next_sample = now + (EPISODE_SAMPLE_PERIOD_S if self.task else SAMPLE_PERIOD_S)
+        self._file.flush()  # to the writer; a full disk there shows up now, not at the end
 
     def finish_file(self) -> None:
         self._sample()
         self._file.finish(metadata_of(self.name, self.create_time_ns, self.command_count,
-                                      self.duration_s, self._file.counts, self.dropped,
-                                      self.task, self.outcome, self._sources.arm_name))
+                                      self.duration_s, self.dropped, self.task, self.outcome,
+                                      self._sources.arm_name))
 
     def abandon(self) -> None:
         self._file.abandon()
@@ -449,20 +475,6 @@ class McapRecorder(Recorder):
             message = self._event_to_message(event)
             if message is not None:
                 self._file.write(EVENTS, message, event.time_ns)
-        elif kind == "video":
-            self._write_video(item[1], item[2])
-
-    def _write_video(self, header, pair) -> None:
-        """A stream's header once, then its frames from its first key frame, each at its
-        capture time (both eyes share it)."""
-        captured = convert.time_ns(pair.left_capture_time) or self._clock.time_ns()
-        if header != self._header:
-            self._header = header
-            self._video_keyed = False
-            self._file.write(STEREO_HEADER, header, captured)
-        self._video_keyed |= pair.keyframe
-        if self._video_keyed:
-            self._file.write(STEREO_VIDEO, foxglove.stereo_video(pair), captured)
 
     def _sample(self) -> None:
         """The latest robot state and wrench, each written once."""

@@ -33,6 +33,7 @@ import numpy as np
 
 from services.decision_server import recording_mcap
 from services.decision_server.recording_mcap import INCREMENT, Gap, McapRecorder, Recorder, Sources
+from services.decision_server.writer_process import WriterStart, in_a_process
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from wire.errors import (
     AlreadyExistsError,
@@ -185,15 +186,18 @@ class _Active:
     create_time_ns: int
     started: float  # monotonic
     recorder: Recorder
-    stop_video: Callable[[], None] | None = None  # ends the stereo video's feed
 
 
 class RecordingStore:
     """Recordings in one directory. One recording at a time. Thread-safe."""
 
-    def __init__(self, directory: Path, clock: Clock = SYSTEM_CLOCK):
+    def __init__(self, directory: Path, clock: Clock = SYSTEM_CLOCK,
+                 writer: WriterStart = in_a_process):
+        """`writer` starts each MCAP recording's writer (writer_process): a process of its
+        own, or recording_writer.on_a_thread where no process may start (the unit tests)."""
         self.directory = Path(directory)
         self._clock = clock
+        self._writer = writer
         self.directory.mkdir(parents=True, exist_ok=True)
         self._lock = threading.Lock()
         self._active: _Active | None = None
@@ -221,8 +225,9 @@ class RecordingStore:
 
     def start(self, name: str, format: str = "JSONL", sources: Sources | None = None,
               task: str = "") -> RecordingInfo:
-        """Start recording; MCAP recordings also sample `sources` (the arm's state, wrench,
-        and the stereo video when there is one). A `task` makes it an episode (MCAP only)."""
+        """Start recording; MCAP recordings also sample `sources` (the arm's state, wrench),
+        and keep the stereo video when there is a camera. A `task` makes it an episode (MCAP
+        only)."""
         if format not in SUFFIXES:
             raise InvalidArgumentError(f"unknown recording format {format!r}", reason="BAD_FORMAT")
         _check_task(task, format)
@@ -247,7 +252,7 @@ class RecordingStore:
                 if format == "MCAP":
                     recorder: Recorder = McapRecorder(
                         partial, name, created, self._clock, sources or Sources(),
-                        self.event_to_message, died, task)
+                        self.event_to_message, died, task, self._writer)
                 else:
                     recorder = JsonlRecorder(partial, name, created, self._clock, died)
             except OSError as error:
@@ -256,8 +261,6 @@ class RecordingStore:
             made.append(recorder)
             active = _Active(name, format, created, started, recorder)
             self._active = active
-            if format == "MCAP" and sources is not None and sources.video is not None:
-                active.stop_video = sources.video(recorder.video)
         return RecordingInfo(name, active.create_time_ns, 0.0, 0, format, task=task)
 
     @property
@@ -301,10 +304,8 @@ class RecordingStore:
         with self._lock:
             if self._active is None or self._active.recorder is not recorder:
                 return  # stopped meanwhile: StopRecording answered the failure itself
-            active, self._active = self._active, None
+            self._active = None
             self._failure = (recorder.name, why)
-        if active.stop_video is not None:
-            active.stop_video()
         on_failed = self.on_failed
         if on_failed is not None:
             on_failed(recorder.name, why)
@@ -327,8 +328,6 @@ class RecordingStore:
             self._active = None
         path = self._path(active.name, active.format)
         recorder = active.recorder
-        if active.stop_video is not None:
-            active.stop_video()  # before the end is written: no frame comes after it
         task = getattr(recorder, "task", "")
         if task:
             recorder.outcome = outcome

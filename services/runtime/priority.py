@@ -14,8 +14,10 @@ import logging
 import os
 import threading
 from collections.abc import Callable
+from typing import TypeVar
 
 log = logging.getLogger(__name__)
+T = TypeVar("T")
 
 # SCHED_FIFO priorities (1-99, higher first): the world's physics thread (10) preempts the
 # emergency-stop band (8), which preempts the services on the command path (5).
@@ -76,3 +78,37 @@ def raise_thread_priority(fifo_priority: int, nice: int, *, system=os,
         log.info("no privilege to set nice %d on the %s; it runs at the default", nice, what)
         return "default"
     return f"nice {nice}"
+
+
+# The nice value of a station's background work (the recordings' writer process): below every
+# service, so that on a busy machine it waits, not the command path.
+BACKGROUND_NICE = 10
+
+
+def start_in_background(start: Callable[[], T], nice: int = BACKGROUND_NICE, *,
+                        system=os) -> T:
+    """`start()` run on a thread of its own that first leaves real-time scheduling for the
+    ordinary one at nice `nice`, so the process `start` starts inherits that, never the
+    caller's SCHED_FIFO (Linux keeps both per thread, and a child takes its parent thread's).
+    Lowering is always allowed. Returns what `start` returns, or raises what it raised."""
+    outcome: list = []
+
+    def run() -> None:
+        try:
+            if hasattr(system, "sched_setscheduler"):
+                system.sched_setscheduler(0, system.SCHED_OTHER, system.sched_param(0))
+            try:
+                system.setpriority(system.PRIO_PROCESS, threading.get_native_id(), nice)
+            except PermissionError:
+                pass  # already nicer than `nice`: going back up needs a privilege
+            outcome.append((True, start()))
+        except BaseException as error:  # noqa: BLE001 - re-raised in the caller's thread
+            outcome.append((False, error))
+
+    thread = threading.Thread(target=run, name="background-start")
+    thread.start()
+    thread.join()
+    succeeded, value = outcome[0]
+    if not succeeded:
+        raise value
+    return value

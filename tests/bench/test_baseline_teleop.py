@@ -10,6 +10,7 @@ from bench import framing
 from bench.baseline_server import TELEOP_END, OperatorSessions
 from bench.teleop import init_request
 from services.decision_server.core import DecisionCore
+from services.decision_server.recording_writer import on_a_thread
 from services.decision_server.recordings import RecordingStore
 from telerobot.v1 import decision_server_pb2 as dpb
 from telerobot.v1 import types_pb2
@@ -21,7 +22,7 @@ from tests.fakes.slave import FakeSlave
 def sessions(tmp_path):
     clock = FakeClock()
     slave = FakeSlave(clock)
-    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings", clock), clock)
+    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings", clock, on_a_thread), clock)
     sessions = OperatorSessions(core)
     yield sessions, slave
     sessions.close()

@@ -21,6 +21,7 @@ from services.decision_server.arbitration import ControlMode, Lease
 from services.decision_server.assistance import Assistance, ForceControl
 from services.decision_server.backends import GrpcSlave
 from services.decision_server.core import DecisionCore
+from services.decision_server.recording_writer import on_a_thread
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
 from services.runtime.server import binding, create_server
@@ -72,7 +73,7 @@ class Rig:
 def rig(tmp_path):
     clock = FakeClock()
     slave = FakeSlave(clock)
-    core = DecisionCore(slave, RecordingStore(tmp_path, clock), clock)
+    core = DecisionCore(slave, RecordingStore(tmp_path, clock, on_a_thread), clock)
     lease = core.locks.acquire("alice", ControlMode.EXCLUSIVE)
     yield Rig(clock, slave, core, lease)
     slave.end_wrench_streams()
@@ -167,7 +168,7 @@ def fake_station(tmp_path) -> Iterator[tuple[Station, FakeSlave]]:
     calls that it only forwards find nobody (UNAVAILABLE)."""
     clock = FakeClock()
     slave = FakeSlave(clock)
-    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings", clock), clock)
+    core = DecisionCore(slave, RecordingStore(tmp_path / "recordings", clock, on_a_thread), clock)
     with grpc.insecure_channel(refused_address()) as nowhere:
         station, stop = serve_decisions(core, proxy_robot_pb2_grpc.ProxyRobotStub(nowhere),
                                         force_sensor_pb2_grpc.ForceSensorStub(nowhere))

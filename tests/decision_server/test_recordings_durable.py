@@ -17,6 +17,7 @@ import pytest
 from mcap.reader import make_reader
 
 from services.decision_server import recording_mcap, recordings
+from services.decision_server.recording_writer import on_a_thread
 from services.decision_server.recordings import RecordingStore
 from telerobot.v1 import decision_server_pb2 as pb
 from tests.conftest import wait_for
@@ -70,7 +71,7 @@ def test_the_partial_files_left_are_recovered_unless_their_name_is_taken(tmp_pat
     (tmp_path / "taken.jsonl").write_text('{"name": "taken", "create_time_ns": 1}\n')
     (tmp_path / "taken.jsonl.partial").write_text('{"name": "taken", "create_time_ns": 2}\n')
     (tmp_path / "free.jsonl.partial").write_text('{"name": "free", "create_time_ns": 3}\n')
-    store = RecordingStore(tmp_path, clock)
+    store = RecordingStore(tmp_path, clock, on_a_thread)
     assert (tmp_path / "taken.jsonl.partial").exists()
     assert [(i.name, i.create_time_ns, i.error) for i in store.list()] == [
         ("free", 3, ""), ("taken", 1, "")]
@@ -80,7 +81,7 @@ def test_stopping_a_jsonl_recording_syncs_it_to_the_disk(tmp_path, clock, monkey
     synced = []
     real_fsync = os.fsync
     monkeypatch.setattr(os, "fsync", lambda fd: synced.append(fd) or real_fsync(fd))
-    store = RecordingStore(tmp_path, clock)
+    store = RecordingStore(tmp_path, clock, on_a_thread)
     store.start("synced")
     _add(store, clock, 3)
     assert store.stop().command_count == 3
@@ -152,7 +153,7 @@ def test_an_mcap_writer_that_falls_behind_keeps_its_file_with_the_gap(tmp_path, 
     counted. The file is kept, with what was written, the gap (a metadata record) and the
     counts; a replay of it is refused, as it lost increments."""
     monkeypatch.setattr(recording_mcap, "QUEUE_LIMIT", 10)
-    store = RecordingStore(tmp_path, clock)
+    store = RecordingStore(tmp_path, clock, on_a_thread)
     store.event_to_message = blocked = Blocked()
     store.start("behind", "MCAP")
     store.note_event(object())
@@ -182,7 +183,7 @@ def test_an_mcap_writer_that_falls_behind_keeps_its_file_with_the_gap(tmp_path, 
 
 def test_a_stalled_mcap_writer_drops_acks_before_increments(tmp_path, clock, monkeypatch):
     monkeypatch.setattr(recording_mcap, "QUEUE_LIMIT", 10)
-    store = RecordingStore(tmp_path, clock)
+    store = RecordingStore(tmp_path, clock, on_a_thread)
     store.event_to_message = blocked = Blocked()
     store.start("acks", "MCAP")
     store.note_event(object())
@@ -212,7 +213,7 @@ def test_a_jsonl_writer_that_falls_behind_keeps_its_file_with_a_gap_line(tmp_pat
         return to_json(command)
 
     monkeypatch.setattr(recordings.RecordedCommand, "to_json", slow_to_json)
-    store = RecordingStore(tmp_path, clock)
+    store = RecordingStore(tmp_path, clock, on_a_thread)
     store.start("gap")
     _add(store, clock, 1)
     assert writing.wait(5)

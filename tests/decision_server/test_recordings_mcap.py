@@ -9,6 +9,8 @@ import subprocess
 import threading
 import time
 from collections import Counter, defaultdict
+from collections.abc import Iterator
+from concurrent import futures
 from pathlib import Path
 
 import grpc
@@ -18,11 +20,13 @@ from mcap.reader import make_reader
 from mcap_protobuf.decoder import DecoderFactory
 
 from services.decision_server import recording_convert, recording_mcap
+from services.decision_server.camera_feed import CameraSource
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import event_to_proto
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, types_pb2
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
+from telerobot.v1 import stereo_camera_pb2_grpc as sc_grpc
 from tests.conftest import wait_for
 from tests.decision_server.conftest import Operator
 from tests.processes import BUF
@@ -359,47 +363,54 @@ def test_the_readme_buf_curl_calls_record_in_mcap_and_replay(driven):
              and getattr(event.payload, "state", "") == "FINISHED", 5, "the replay to finish")
 
 
-class FakeCamera:
-    """Sources.video: feeds header-and-pair tuples from a thread of its own, as the
-    DecisionServer's CameraFeed does; the first frames are not key frames."""
+class FakeCamera(sc_grpc.StereoCameraServicer):
+    """A StereoCamera whose first StreamPairs sends a header and `frames` pairs (the first
+    ones not key frames) and ends; the calls after it send nothing until cancelled. Its
+    second call (`fed`) means the recording's feed took every pair of the first."""
 
     def __init__(self, frames: int = 6, first_key: int = 2):
         self.frames, self.first_key = frames, first_key
+        self.calls = 0
         self.fed = threading.Event()
-        self.stopped = False
+        self.cancelled = threading.Event()
 
-    def __call__(self, sink):
-        header = sc_pb.StereoHeader(width_px=4, height_px=2,
-                                    encoding=sc_pb.IMAGE_ENCODING_H264)
-
-        def feed():
-            for k in range(self.frames):
-                pair = sc_pb.StereoPair(sequence=k + 1, video_frame=b"\x00\x00\x01" + bytes([k]),
-                                        keyframe=k == self.first_key)
-                pair.left_capture_time.FromNanoseconds(1_000_000_000 + k * 33_000_000)
-                sink(header, pair)
+    def StreamPairs(self, request, context):
+        self.calls += 1
+        if self.calls > 1:
             self.fed.set()
+            context.add_callback(self.cancelled.set)
+            self.cancelled.wait(10)
+            return
+        yield sc_pb.StreamPairsResponse(header=sc_pb.StereoHeader(
+            width_px=4, height_px=2, encoding=sc_pb.IMAGE_ENCODING_H264))
+        for k in range(self.frames):
+            pair = sc_pb.StereoPair(sequence=k + 1, video_frame=b"\x00\x00\x01" + bytes([k]),
+                                    keyframe=k == self.first_key)
+            pair.left_capture_time.FromNanoseconds(1_000_000_000 + k * 33_000_000)
+            yield sc_pb.StreamPairsResponse(pair=pair)
 
-        thread = threading.Thread(target=feed, daemon=True)
-        thread.start()
 
-        def stop():
-            thread.join(5)
-            self.stopped = True
+@pytest.fixture
+def camera() -> Iterator[tuple[FakeCamera, CameraSource]]:
+    """A FakeCamera served in this process, and the CameraSource that reaches it."""
+    fake = FakeCamera()
+    server = grpc.server(futures.ThreadPoolExecutor(max_workers=4))
+    sc_grpc.add_StereoCameraServicer_to_server(fake, server)
+    port = server.add_insecure_port("127.0.0.1:0")
+    server.start()
+    yield fake, CameraSource(f"127.0.0.1:{port}", None, 320, 240, 1000)
+    server.stop(0)
 
-        return stop
 
-
-def test_an_episode_keeps_its_task_outcome_and_video(rig):
-    camera = FakeCamera()
-    rig.core.video_feed = camera
+def test_an_episode_keeps_its_task_outcome_and_video(rig, camera):
+    fake, rig.core.camera = camera
     lease = rig.lease.lease_id
     started = rig.core.start_recording(lease, "episode-1", "MCAP", "insert the peg")
     assert started.task == "insert the peg"
-    assert camera.fed.wait(5)
+    assert fake.fed.wait(10)
     rig.core.move_cartesian(lease, np.array([0.001, 0.0, 0.0]), np.eye(3), "BASE")
     saved = rig.core.stop_recording(lease, "FAILED")
-    assert camera.stopped  # the feed ends before the file does
+    assert fake.cancelled.wait(5)  # the feed ends with the file
     assert (saved.task, saved.outcome, saved.video_frames) == ("insert the peg", "FAILED", 4)
     assert rig.core.recordings.info("episode-1") == saved.__class__(
         "episode-1", saved.create_time_ns, saved.duration_s, 1, "MCAP", "", "insert the peg",

@@ -22,6 +22,7 @@ from clients.teleop.episode_file import Episode
 from clients.teleop.export_lerobot import export, main
 from clients.teleop.lerobot_dataset import on_grid
 from services.decision_server.recording_mcap import Sources
+from services.decision_server.recording_writer import on_a_thread
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.slave import SlaveState
 from tests.conftest import wait_for
@@ -35,7 +36,7 @@ def _record(directory: Path, name: str, task: str = "lift", outcome: str = "SUCC
     """An episode of SAMPLES samples 10 ms apart, the tool rising 1 mm each, with a matching
     increment; the store's file (its partial one if not `finish`)."""
     clock = FakeClock()
-    store = RecordingStore(directory, clock)
+    store = RecordingStore(directory, clock, on_a_thread)
     z = [0.0]
     sampled: list[float] = []  # the heights the recording's writer has taken
 
