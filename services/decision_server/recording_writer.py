@@ -56,6 +56,8 @@ class Writer:
         except EOFError:  # the server is gone: the partial file stays as it is
             self._stop_video()
             self._file.abandon()
+        finally:
+            self._connection.close()
 
     def _handle(self, request) -> bool:
         """Act on one request; True when it was the last."""

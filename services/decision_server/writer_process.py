@@ -20,6 +20,7 @@ from __future__ import annotations
 import socket
 import subprocess
 import sys
+import threading
 from collections import Counter
 from collections.abc import Callable
 from multiprocessing.connection import Connection
@@ -65,6 +66,12 @@ class RemoteMcapFile:
             file.close()
             theirs.close()
         self._connection = Connection(ours.detach())
+        # The writer's answers, read as they come so that each flush only looks at a field.
+        self._failure: str | None = None
+        self._finished: dict | None = None
+        self._answered = threading.Event()  # finished, failed or gone
+        threading.Thread(target=self._listen, name="recording-writer-answers",
+                         daemon=True).start()
         self._send(("open", video))
 
     def write(self, topic: str, message, log_time_ns: int,
@@ -90,16 +97,14 @@ class RemoteMcapFile:
     def finish(self, metadata: dict[str, str]) -> None:
         """The end of the file (McapFile.finish, in the writer), waited for; `counts` are then
         the writer's, the video's included. OSError if it failed."""
-        self.flush()
-        self._send(("finish", metadata))
         try:
-            if not self._connection.poll(FINISH_TIMEOUT_S):
+            self.flush()
+            self._send(("finish", metadata))
+            if not self._answered.wait(FINISH_TIMEOUT_S):
                 raise OSError(f"the recording's writer did not finish within "
                               f"{FINISH_TIMEOUT_S:.0f} s")
-            reply = self._receive()
-            if reply[0] != "finished":
-                raise OSError(reply[1])
-            self.counts = Counter(reply[1])
+            self._check()
+            self.counts = Counter(self._finished)
         finally:
             self._close()
 
@@ -120,26 +125,36 @@ class RemoteMcapFile:
             raise OSError(f"the recording's writer is gone ({self._exit_status()}): "
                           f"{error}") from error
 
-    def _receive(self):
+    def _listen(self) -> None:
+        """The writer's answers: ("failed", why) whenever writing fails, ("finished", counts)
+        at the end; its end closing means it is gone."""
         try:
-            return self._connection.recv()
-        except (EOFError, OSError) as error:
-            raise OSError(f"the recording's writer is gone ({self._exit_status()})") from error
+            while True:
+                answer = self._connection.recv()
+                if answer[0] == "failed":
+                    self._failure = answer[1]
+                    self._answered.set()
+                elif answer[0] == "finished":
+                    self._finished = answer[1]
+                    self._answered.set()
+                    return
+        except (EOFError, OSError):
+            if self._failure is None and self._finished is None:
+                self._failure = f"the recording's writer is gone ({self._exit_status()})"
+            self._answered.set()
 
     def _check(self) -> None:
-        while self._connection.poll():
-            reply = self._receive()
-            if reply[0] == "failed":
-                raise OSError(reply[1])
+        if self._failure is not None:
+            raise OSError(self._failure)
 
     def _exit_status(self) -> str:
         code = self._process.poll()
         return "still running" if code is None else f"exit status {code}"
 
     def _close(self) -> None:
-        self._connection.close()
         try:
             self._process.wait(EXIT_TIMEOUT_S)
         except subprocess.TimeoutExpired:
             self._process.kill()
             self._process.wait()
+        self._connection.close()
