@@ -20,6 +20,14 @@ def process_cpu_s(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / _TICKS_PER_S
 
 
+def reaped_children_cpu_s(pid: int) -> float:
+    """The CPU time so far of the children a process has waited for (user + system), s: the
+    DecisionServer's recording writers, once each recording has stopped."""
+    with open(f"/proc/{pid}/stat") as stat:
+        fields = stat.read().rsplit(")", 1)[1].split()
+    return (int(fields[13]) + int(fields[14])) / _TICKS_PER_S
+
+
 def machine_ticks() -> tuple[int, int]:
     """(busy, total) jiffies of all cores so far; idle and iowait are not busy."""
     with open("/proc/stat") as stat:

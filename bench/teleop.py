@@ -32,8 +32,10 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
   the server's recordings directory, is checked against ``session_applied``: the commands
   acked APPLIED or MODIFIED in the whole session, warm-up included;
 - ``server_pid``: ``server_cpu_ms_per_command``, the server process's CPU time (user + system,
-  all its threads: a recording's writer too) over the session, from before it opens (before
-  StartRecording) to after it ends (after StopRecording), per command applied in it. At 1 kHz
+  all its threads) over the session, from before it opens (before StartRecording) to after it
+  ends (after StopRecording), per command applied in it; and, for a recorded session,
+  ``writer_cpu_ms_per_command``, the same of the recording's writer process (the server's
+  child, reaped at StopRecording). At 1 kHz
   the DecisionServer is the stream's bottleneck on a 2-core machine: it keeps the rate by
   merging a backlog into fewer moves, so what recording costs it shows in its CPU, while the
   latency is a queue whose length the machine's load sets.
@@ -70,7 +72,7 @@ from google.protobuf import duration_pb2, timestamp_pb2
 
 from bench import framing
 from bench.command import PLAINTEXT, TELEOP_STEP_M, acquire_control, release_control
-from bench.cpu import process_cpu_s
+from bench.cpu import process_cpu_s, reaped_children_cpu_s
 from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldloop import LoopMeter
@@ -573,11 +575,16 @@ def measure(transport_kind: str, address: str, shm_name: str | None, rates: list
             run = functools.partial(run_rate, client, rate, duration_s, sign, loop, swing,
                                     window_s, drain_s)
             cpu_s = process_cpu_s(server_pid) if server_pid else None
+            writer_cpu_s = reaped_children_cpu_s(server_pid) if server_pid else None
             result = run() if record_dir is None else recorded(client, Path(record_dir), run,
                                                                 episode_task)
-            if cpu_s is not None and result["session_applied"]:
+            applied = result["session_applied"]
+            if cpu_s is not None and applied:
                 result["server_cpu_ms_per_command"] = round(
-                    1e3 * (process_cpu_s(server_pid) - cpu_s) / result["session_applied"], 4)
+                    1e3 * (process_cpu_s(server_pid) - cpu_s) / applied, 4)
+                if record_dir is not None:
+                    result["writer_cpu_ms_per_command"] = round(
+                        1e3 * (reaped_children_cpu_s(server_pid) - writer_cpu_s) / applied, 4)
             results[str(int(rate))] = result
         return results
     finally:

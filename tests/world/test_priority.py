@@ -1,15 +1,17 @@
 """The physics thread's priority choice: SCHED_FIFO where allowed and throttled, else nice, else
-the default. The os calls are faked: nothing here changes a real thread's scheduling."""
+the default; and a background process's start, below it. The os calls are faked: nothing here
+changes a real thread's scheduling."""
 
 from __future__ import annotations
 
 import errno
 import logging
 import os
+import threading
 
 import pytest
 
-from services.runtime.priority import raise_thread_priority
+from services.runtime.priority import raise_thread_priority, start_in_background
 
 THROTTLED = (950_000, 1_000_000)  # Linux's default: 95 % of every second
 THREAD = 4242
@@ -105,3 +107,32 @@ def test_a_process_wide_priority_is_inherited_by_later_threads() -> None:
     assert raise_thread_priority(5, 0, system=system, rt_throttling=lambda: THROTTLED,
                                  thread_id=THREAD, inherited=True) == "SCHED_FIFO 5"
     assert system.calls == [("sched_setscheduler", THREAD, FakeOs.SCHED_FIFO, 5)]
+
+
+def test_a_background_process_is_started_from_a_thread_at_ordinary_scheduling() -> None:
+    """start_in_background lowers a thread of its own, never the caller's, before `start`
+    runs there (a process started then inherits that thread's scheduling)."""
+    system = FakeOs()
+    system.SCHED_OTHER = 0
+    started_on = []
+
+    def start() -> str:
+        started_on.append(threading.get_native_id())
+        return "started"
+
+    assert start_in_background(start, 10, system=system) == "started"
+    [thread] = started_on
+    assert thread != threading.get_native_id()
+    assert system.calls == [("sched_setscheduler", 0, 0, 0),
+                            ("setpriority", FakeOs.PRIO_PROCESS, thread, 10)]
+
+
+def test_a_background_start_that_fails_raises_in_the_caller() -> None:
+    system = FakeOs("setpriority")  # already nicer: going back up is refused, and that is fine
+    system.SCHED_OTHER = 0
+
+    def start():
+        raise FileNotFoundError("no such interpreter")
+
+    with pytest.raises(FileNotFoundError, match="no such interpreter"):
+        start_in_background(start, 10, system=system)
