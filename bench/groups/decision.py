@@ -101,9 +101,10 @@ def _teleop_leg(bench: Session, address: str, **extra) -> Callable[[int, float],
 def _teleop_episode(bench: Session) -> None:
     """teleop_1000_episode: teleop_1000 off and on, interleaved, the on legs recorded as a
     demonstration episode (MCAP, the state at 100 Hz, the stereo video) by a DecisionServer
-    with a camera behind it. The camera is the test card (pattern): the row measures what
-    recording costs (an H.264 stream encoded at 320x240 per eye, written with the rest), not
-    what rendering the sim costs, which a real camera does not."""
+    with a camera behind it, each written by the recording's writer process (its CPU per
+    command is the row's writer_cpu_ms_per_command). The camera is the test card (pattern):
+    the row measures what recording costs (an H.264 stream encoded at 320x240 per eye, written
+    with the rest), not what rendering the sim costs, which a real camera does not."""
     name = "teleop_1000_episode"
     try:
         camera, camera_address = bench.procs.run_service("stereo_camera", [
