@@ -22,6 +22,7 @@ from services.decision_server.core import ControlChanged, DecisionCore
 from services.decision_server.dependencies import SERVING, DependencyWatch
 from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import DecisionServerServicer, make_facades
+from services.decision_server.writer_process import WriterProcesses
 from services.runtime.lanes import DEFAULT_LANES, Lane, LaneConfig
 from services.runtime.metrics import ServiceMetrics
 from services.runtime.port_watch import PortWatch
@@ -58,6 +59,7 @@ class DecisionService(Service):
     _stereo_channel: grpc.Channel | None = None
     _router_watch: PortWatch | None = None
     _servicer: DecisionServerServicer | None = None
+    _writers: WriterProcesses | None = None
 
     def bindings(self) -> Sequence[ServiceBinding]:
         # The inner links present the DecisionServer's own certificate when TLS is on.
@@ -75,8 +77,9 @@ class DecisionService(Service):
         video = self.args.recording_video
         camera = CameraSource(self.args.stereo_camera_address, self.args.tls_dir or None, *video,
                               RECORDING_VIDEO_KBIT) if video else None
-        self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir)),
-                                 camera=camera)
+        self._writers = WriterProcesses()  # the MCAP recordings' writers, one started ahead
+        self.core = DecisionCore(slave, RecordingStore(Path(self.args.recordings_dir),
+                                                       writer=self._writers), camera=camera)
         self._slave = slave
         # Each dependency's state, from its health and the launcher's state file; every change
         # is an event (and, once attached, a health entry).
@@ -114,6 +117,7 @@ class DecisionService(Service):
         if self._router_watch is not None:
             self._router_watch.start()
         self.dependencies.start()
+        self._writers.warm()
 
     def on_emergency_call(self) -> None:
         if self.core is not None:
@@ -129,6 +133,8 @@ class DecisionService(Service):
             self.core.slave.close()
         if self._stereo_channel is not None:
             self._stereo_channel.close()
+        if self._writers is not None:
+            self._writers.close()
 
 
 class _LeaseChanges(Subscription):

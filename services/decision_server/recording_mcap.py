@@ -43,7 +43,7 @@ from mcap_protobuf.decoder import DecoderFactory
 from mcap_protobuf.schema import register_schema
 
 from services.common.inbox import queued_now
-from services.decision_server.writer_process import RemoteMcapFile, WriterStart, in_a_process
+from services.decision_server.writer_process import RemoteMcapFile, WriterStart
 from services.runtime.clock import Clock
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import types_pb2
@@ -423,8 +423,8 @@ class McapRecorder(Recorder):
 
     def __init__(self, path: Path, name: str, create_time_ns: int, clock: Clock,
                  sources: Sources, event_to_message: Callable | None,
-                 on_failure: Callable[[str], None], task: str = "",
-                 writer: WriterStart = in_a_process):
+                 on_failure: Callable[[str], None], task: str,
+                 writer: WriterStart):
         self._sources = sources
         self._writer_start = writer
         self._event_to_message = event_to_message

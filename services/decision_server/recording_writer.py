@@ -1,10 +1,10 @@
-"""python -m services.decision_server.recording_writer CONNECTION_FD FILE_FD: the process that
-writes one MCAP recording, started by the DecisionServer (writer_process.RemoteMcapFile).
+"""python -m services.decision_server.recording_writer CONNECTION_FD: the process that writes
+one MCAP recording, started by the DecisionServer ahead of it (writer_process.WriterProcesses).
 
-It writes the file open on FILE_FD with what comes on CONNECTION_FD (pickled tuples):
-- ("open", camera): first; `camera`, a CameraSource or None, is the stereo camera whose H.264
-  stream it records beside the rest (header once, then every pair from the first key frame,
-  at its capture time);
+It waits on CONNECTION_FD (a socket) for pickled tuples:
+- ("open", camera): first, then the file's descriptor (SCM_RIGHTS), which it writes; `camera`,
+  a CameraSource or None, is the stereo camera whose H.264 stream it records beside the rest
+  (header once, then every pair from the first key frame, at its capture time);
 - ("messages", [(topic, type name, serialized message, log time ns, publish time ns), ...]);
 - ("metadata", name, data): a metadata record (a gap's);
 - ("finish", metadata): the video stopped first, the "recording" metadata and the summary
@@ -37,9 +37,10 @@ log = logging.getLogger("recording_writer")
 class Writer:
     """The file, written from the connection's messages and from the camera's thread."""
 
-    def __init__(self, connection: Connection, file):
-        self._connection = connection
-        self._file = McapFile(file)
+    def __init__(self, connection: socket.socket):
+        self._socket = connection
+        self._connection = Connection(os.dup(connection.fileno()))
+        self._file: McapFile | None = None  # once opened
         self._lock = threading.Lock()  # the file: the messages' and the video's
         self._failed = False
         self._types: dict[str, type] = {}  # message classes by full name
@@ -55,14 +56,18 @@ class Writer:
                     return
         except EOFError:  # the server is gone: the partial file stays as it is
             self._stop_video()
-            self._file.abandon()
+            if self._file is not None:
+                self._file.abandon()
         finally:
             self._connection.close()
+            self._socket.close()
 
     def _handle(self, request) -> bool:
         """Act on one request; True when it was the last."""
         kind = request[0]
         if kind == "open":
+            _, [descriptor], _, _ = socket.recv_fds(self._socket, 1, 1)
+            self._file = McapFile(os.fdopen(descriptor, "wb"))
             self._open_video(request[1])
         elif kind in ("finish", "abandon"):
             self._stop_video()
@@ -136,9 +141,8 @@ class Writer:
 class _WriterThread:
     """The writer on a thread of this process, with a process's poll() and wait()."""
 
-    def __init__(self, connection: socket.socket, file):
-        writer = Writer(Connection(os.dup(connection.fileno())),
-                        os.fdopen(os.dup(file.fileno()), "wb"))
+    def __init__(self, connection: socket.socket):
+        writer = Writer(connection)
         self._thread = threading.Thread(target=writer.run, name="recording-writer",
                                         daemon=True)
         self._thread.start()
@@ -156,16 +160,17 @@ class _WriterThread:
         pass  # a thread cannot be killed: it ends when its connection closes
 
 
-def on_a_thread(connection: socket.socket, file) -> _WriterThread:
-    """The writer on a thread of this process (a writer_process.WriterStart): the same code as
-    in_a_process's, no process (the unit tests')."""
-    return _WriterThread(connection, file)
+def on_a_thread() -> tuple[socket.socket, _WriterThread]:
+    """A writer on a thread of this process (a writer_process.WriterStart): the same code as
+    in WriterProcesses', no process (the unit tests')."""
+    ours, theirs = socket.socketpair()
+    return ours, _WriterThread(theirs)
 
 
 def main(argv: list[str]) -> int:
     logging.basicConfig(level=logging.WARNING, stream=sys.stderr,
                         format="%(asctime)s recording_writer %(levelname)s %(message)s")
-    Writer(Connection(int(argv[0])), os.fdopen(int(argv[1]), "wb")).run()
+    Writer(socket.socket(fileno=int(argv[0]))).run()
     return 0
 
 

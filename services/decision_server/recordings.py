@@ -33,7 +33,7 @@ import numpy as np
 
 from services.decision_server import recording_mcap
 from services.decision_server.recording_mcap import INCREMENT, Gap, McapRecorder, Recorder, Sources
-from services.decision_server.writer_process import WriterStart, in_a_process
+from services.decision_server.writer_process import WriterProcesses, WriterStart
 from services.runtime.clock import SYSTEM_CLOCK, Clock
 from wire.errors import (
     AlreadyExistsError,
@@ -192,12 +192,13 @@ class RecordingStore:
     """Recordings in one directory. One recording at a time. Thread-safe."""
 
     def __init__(self, directory: Path, clock: Clock = SYSTEM_CLOCK,
-                 writer: WriterStart = in_a_process):
-        """`writer` starts each MCAP recording's writer (writer_process): a process of its
-        own, or recording_writer.on_a_thread where no process may start (the unit tests)."""
+                 writer: WriterStart | None = None):
+        """`writer` gives each MCAP recording its writer (writer_process): by default a
+        WriterProcesses of its own; recording_writer.on_a_thread where no process may start
+        (the unit tests)."""
         self.directory = Path(directory)
         self._clock = clock
-        self._writer = writer
+        self._writer = writer or WriterProcesses()
         self.directory.mkdir(parents=True, exist_ok=True)
         self._lock = threading.Lock()
         self._active: _Active | None = None

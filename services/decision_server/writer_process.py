@@ -6,10 +6,11 @@ chunks, and the stereo video, run in the writer, a process with a GIL of its own
 ordinary scheduling and BACKGROUND_NICE (priority.start_in_background) so that on a busy
 machine it waits, not the command path.
 
-The server opens the partial file itself, so a directory it cannot write in fails
-StartRecording at once, and hands the descriptor to the writer with one end of a socket pair:
-`in_a_process` (the DecisionServer's), or recording_writer.on_a_thread, the same writer in this
-process (the unit tests', which start no process).
+Writers are started ahead (WriterProcesses), each with one end of a socket pair; a recording
+takes one. The server opens the partial file itself, so a directory it cannot write in fails
+StartRecording at once, and hands the descriptor over the socket (SCM_RIGHTS).
+recording_writer.on_a_thread is the same writer on a thread of this process (the unit tests',
+which start no process).
 The messages on it are recording_writer's (its docstring). The writer says when writing fails
 (a full disk); the next `flush()` raises it as an OSError, which ends the recording as a failed
 write in the server always did.
@@ -17,6 +18,7 @@ write in the server always did.
 
 from __future__ import annotations
 
+import os
 import socket
 import subprocess
 import sys
@@ -34,15 +36,56 @@ FINISH_TIMEOUT_S = 30.0
 EXIT_TIMEOUT_S = 5.0
 
 
-def in_a_process(connection: socket.socket, file) -> subprocess.Popen:
-    """The writer in a process of its own, at ordinary scheduling and BACKGROUND_NICE, given
-    its end of the connection and the file."""
-    argv = [sys.executable, "-m", WRITER_MODULE, str(connection.fileno()), str(file.fileno())]
-    return start_in_background(lambda: subprocess.Popen(
-        argv, pass_fds=(connection.fileno(), file.fileno()), stdin=subprocess.DEVNULL))
+class WriterProcesses:
+    """Writers in processes of their own, at ordinary scheduling and BACKGROUND_NICE, one kept
+    started ahead: a recording takes a writer that has already imported what it needs (about
+    half a second of CPU on a busy 2-core machine), so its video starts with it, and the next
+    one starts meanwhile. `warm()` starts the first before any recording (the DecisionServer
+    does at its start); else the first recording starts its own."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._spare: tuple[socket.socket, subprocess.Popen] | None = None
+
+    def warm(self) -> None:
+        with self._lock:
+            if self._spare is None:
+                self._spare = self._start()
+
+    def __call__(self) -> tuple[socket.socket, subprocess.Popen]:
+        """A started writer (our end of its connection, its process); the next is started."""
+        with self._lock:
+            taken = self._spare if self._spare is not None and self._spare[1].poll() is None \
+                else self._start()
+            self._spare = self._start()
+        return taken
+
+    def close(self) -> None:
+        """The spare stops (its connection closes)."""
+        with self._lock:
+            if self._spare is not None:
+                self._spare[0].close()
+                self._spare[1].wait(EXIT_TIMEOUT_S)
+                self._spare = None
+
+    @staticmethod
+    def _start() -> tuple[socket.socket, subprocess.Popen]:
+        ours, theirs = socket.socketpair()
+        argv = [sys.executable, "-m", WRITER_MODULE, str(theirs.fileno())]
+        try:
+            process = start_in_background(lambda: subprocess.Popen(
+                argv, pass_fds=(theirs.fileno(),), stdin=subprocess.DEVNULL))
+        except BaseException:
+            ours.close()
+            raise
+        finally:
+            theirs.close()
+        return ours, process
 
 
-WriterStart = Callable[[socket.socket, object], object]
+# Gives a started writer: our end of its connection and a handle with a process's poll(),
+# wait() and kill() (a WriterProcesses, or recording_writer.on_a_thread).
+WriterStart = Callable[[], tuple[socket.socket, object]]
 
 
 class RemoteMcapFile:
@@ -50,29 +93,31 @@ class RemoteMcapFile:
     CameraSource, or None): the camera whose stream the writer records beside the messages.
     Not thread-safe: the recorder's drain thread alone calls it."""
 
-    def __init__(self, path: Path, video=None, start: WriterStart = in_a_process):
+    def __init__(self, path: Path, video, start: WriterStart):
         self.path = Path(path)
         self.counts: Counter[str] = Counter()  # what was sent; the writer's own, once finished
         self._batch: list[tuple] = []
-        file = open(self.path, "wb")  # noqa: SIM115 - the writer's from now on
-        ours, theirs = socket.socketpair()
-        try:
-            self._process = start(theirs, file)
-        except BaseException:
-            ours.close()
-            self.path.unlink(missing_ok=True)
-            raise
-        finally:
-            file.close()
-            theirs.close()
-        self._connection = Connection(ours.detach())
+        with open(self.path, "wb") as file:  # the writer's, once handed over
+            try:
+                ours, self._process = start()
+            except BaseException:
+                self.path.unlink(missing_ok=True)
+                raise
+            try:
+                self._connection = Connection(os.dup(ours.fileno()))
+                self._send(("open", video))
+                socket.send_fds(ours, [b"F"], [file.fileno()])
+            except BaseException:
+                self.path.unlink(missing_ok=True)
+                raise
+            finally:
+                ours.close()
         # The writer's answers, read as they come so that each flush only looks at a field.
         self._failure: str | None = None
         self._finished: dict | None = None
         self._answered = threading.Event()  # finished, failed or gone
         threading.Thread(target=self._listen, name="recording-writer-answers",
                          daemon=True).start()
-        self._send(("open", video))
 
     def write(self, topic: str, message, log_time_ns: int,
               publish_time_ns: int | None = None) -> None:

@@ -1,7 +1,7 @@
-"""The MCAP recordings' writer process (recording_writer, writer_process): it runs at ordinary
-scheduling and BACKGROUND_NICE even when the server's threads are real-time, writes what the
-server sends it, and a writer that dies ends the recording with the reason while nothing else
-stops."""
+"""The MCAP recordings' writer processes (recording_writer, writer_process): one is started
+ahead of each recording; they run at ordinary scheduling and BACKGROUND_NICE even when the
+server's threads are real-time, write what the server sends, and a writer that dies ends the
+recording with the reason while nothing else stops."""
 
 from __future__ import annotations
 
@@ -15,6 +15,7 @@ import pytest
 
 from services.decision_server import recording_mcap
 from services.decision_server.recordings import RecordingStore
+from services.decision_server.writer_process import WriterProcesses
 from services.runtime.priority import BACKGROUND_NICE
 from telerobot.v1 import decision_server_pb2 as pb
 from tests.conftest import wait_for
@@ -58,33 +59,44 @@ def _on_a_real_time_thread(body):
     return outcome[0]
 
 
-def test_the_writer_runs_below_a_real_time_server_and_writes_what_it_is_sent(tmp_path):
-    store = RecordingStore(tmp_path)
+@pytest.fixture
+def writers():
+    writers = WriterProcesses()
+    yield writers
+    writers.close()
+
+
+def test_the_writers_run_below_a_real_time_server_and_write_what_they_are_sent(tmp_path,
+                                                                                writers):
+    store = RecordingStore(tmp_path, writer=writers)
 
     def record():
         store.start("low", "MCAP")
-        [pid] = wait_for(_writers, 10, "the writer process")
-        return pid, os.sched_getscheduler(pid), os.getpriority(os.PRIO_PROCESS, pid)
+        pids = wait_for(lambda: len(_writers()) == 2 and _writers(), 10,
+                        "the recording's writer and the next, started ahead")
+        return {(os.sched_getscheduler(pid), os.getpriority(os.PRIO_PROCESS, pid))
+                for pid in pids}
 
-    pid, policy, nice = _on_a_real_time_thread(record)
-    assert (policy, nice) == (os.SCHED_OTHER, BACKGROUND_NICE)
+    assert _on_a_real_time_thread(record) == {(os.SCHED_OTHER, BACKGROUND_NICE)}
     for i in range(5):
         store.add("BASE", np.array([0.001, 0.0, 0.0]), np.eye(3), np.array([0.5, 0.0, i]))
         store.note_ack(pb.CommandAck(sequence=i + 1))
     info = store.stop()
-    assert info.command_count == 5 and not _writers()  # it ends with the recording
+    assert info.command_count == 5 and len(_writers()) == 1  # it ends with the recording
     assert [c.target_position_m[2] for c in store.load("low")[1]] == [0, 1, 2, 3, 4]
     counts = recording_mcap.read_summary(tmp_path / "low.mcap")["counts"]
     assert '"/recording/ack": 5' in counts
+    writers.close()
+    assert not _writers()
 
 
-def test_a_writer_that_dies_ends_the_recording_with_the_reason(tmp_path):
-    store = RecordingStore(tmp_path)
+def test_a_writer_that_dies_ends_the_recording_with_the_reason(tmp_path, writers):
+    store = RecordingStore(tmp_path, writer=writers)
     failed = []
     store.on_failed = lambda name, why: failed.append((name, why))
     store.start("lost", "MCAP")
-    [pid] = wait_for(_writers, 10, "the writer process")
-    os.kill(pid, signal.SIGKILL)
+    for pid in wait_for(_writers, 10, "the writer processes"):  # the next one's too
+        os.kill(pid, signal.SIGKILL)
 
     def stopped() -> bool:
         store.add("BASE", np.zeros(3), np.eye(3), np.zeros(3))  # the server goes on
@@ -97,5 +109,5 @@ def test_a_writer_that_dies_ends_the_recording_with_the_reason(tmp_path):
         store.stop()
     assert error.value.reason == "RECORDING_FAILED"
     assert not list(tmp_path.iterdir())  # nothing half-written is left
-    store.start("next", "MCAP")  # the next recording has a writer of its own
+    store.start("next", "MCAP")  # the next recording has a writer of its own, a live one
     assert store.stop().command_count == 0
