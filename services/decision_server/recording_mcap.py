@@ -92,15 +92,28 @@ _FRAME_NAMES = {value: name for name, value in _FRAMES.items()}
 # -- RecordedCommand <-> RecordedIncrement ---------------------------------------------------
 
 def increment_to_proto(command) -> pb.RecordedIncrement:
-    message = pb.RecordedIncrement(
-        offset=convert.duration(command.offset_s),
-        target_position_m=convert.vector3_to_proto(command.target_position_m))
-    if command.delta_joints_rad is not None:
-        message.delta_joints_rad.extend(float(v) for v in command.delta_joints_rad)
+    return increment_message(*increment_fields(command))
+
+
+def increment_fields(command) -> tuple:
+    """A RecordedCommand as plain values (lists, not arrays): cheap to send to the writer,
+    which makes them a RecordedIncrement (increment_message), the costlier half."""
+    joints = command.delta_joints_rad
+    return (command.offset_s, command.frame, command.delta_position_m.tolist(),
+            command.delta_rotation.reshape(9).tolist(), command.target_position_m.tolist(),
+            None if joints is None else joints.tolist())
+
+
+def increment_message(offset_s: float, frame: str, delta_position, delta_rotation, target,
+                      delta_joints) -> pb.RecordedIncrement:
+    message = pb.RecordedIncrement(offset=convert.duration(offset_s),
+                                   target_position_m=convert.vector3_to_proto(target))
+    if delta_joints is not None:
+        message.delta_joints_rad.extend(float(v) for v in delta_joints)
     else:
-        message.frame = _FRAMES[command.frame]
-        message.delta_position_m.CopyFrom(convert.vector3_to_proto(command.delta_position_m))
-        message.delta_rotation.CopyFrom(convert.rotation_to_proto(command.delta_rotation))
+        message.frame = _FRAMES[frame]
+        message.delta_position_m.CopyFrom(convert.vector3_to_proto(delta_position))
+        message.delta_rotation.CopyFrom(convert.rotation_to_proto(delta_rotation))
     return message
 
 
@@ -464,9 +477,9 @@ class McapRecorder(Recorder):
     def write(self, item) -> None:
         kind = item[0]
         if kind == "increment":
-            command = item[1]
-            self._file.write(INCREMENT, increment_to_proto(command),
-                             self.create_time_ns + round(command.offset_s * 1e9))
+            command = item[1]  # the writer makes it a message: the costlier half
+            self._file.write_built(INCREMENT, increment_message, increment_fields(command),
+                                   self.create_time_ns + round(command.offset_s * 1e9))
         elif kind == "ack":
             ack, received = item[1], item[2]
             self._file.write(ACK, ack, received, convert.time_ns(ack.apply_time) or received)

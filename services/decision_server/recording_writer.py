@@ -5,7 +5,8 @@ It waits on CONNECTION_FD (a socket) for pickled tuples:
 - ("open", camera): first, then the file's descriptor (SCM_RIGHTS), which it writes; `camera`,
   a CameraSource or None, is the stereo camera whose H.264 stream it records beside the rest
   (header once, then every pair from the first key frame, at its capture time);
-- ("messages", [(topic, type name, serialized message, log time ns, publish time ns), ...]);
+- ("messages", [(topic, type name, serialized message, log time ns, publish time ns), ...]),
+  or in place of the type name and the message, a function and its arguments that build it;
 - ("metadata", name, data): a metadata record (a gap's);
 - ("finish", metadata): the video stopped first, the "recording" metadata and the summary
   written and synced; answers ("finished", counts by channel), then exits;
@@ -88,9 +89,12 @@ class Writer:
         if request[0] == "metadata":
             self._file.metadata(request[1], request[2])
             return
-        for topic, type_name, data, log_time, publish_time in request[1]:
-            self._file.write_serialized(topic, self._type(type_name), data, log_time,
-                                        publish_time or None)
+        for topic, kind, data, log_time, publish_time in request[1]:
+            if callable(kind):  # RemoteMcapFile.write_built's: built here
+                self._file.write(topic, kind(*data), log_time, publish_time or None)
+            else:  # serialized, `kind` its type's full name
+                self._file.write_serialized(topic, self._type(kind), data, log_time,
+                                            publish_time or None)
         self._file.flush()  # a full disk shows up now, not at the end
 
     def _type(self, name: str) -> type:

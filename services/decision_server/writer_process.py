@@ -126,6 +126,12 @@ class RemoteMcapFile:
                             int(publish_time_ns or 0)))
         self.counts[topic] += 1
 
+    def write_built(self, topic: str, build: Callable, args: tuple, log_time_ns: int) -> None:
+        """A message the writer builds, `build(*args)` (a module-level function: pickled by
+        name), for one whose building costs more than sending its parts."""
+        self._batch.append((topic, build, args, int(log_time_ns), 0))
+        self.counts[topic] += 1
+
     def metadata(self, name: str, data: dict[str, str]) -> None:
         """A metadata record, after the messages written before it."""
         self.flush()
