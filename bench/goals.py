@@ -271,12 +271,15 @@ def _median_misses(key: str, factor: float, medians: dict, ratios: dict) -> list
 
 def recording_misses(recording: dict | None) -> list[str]:
     """What a row's MCAP file lost (recording.py): each channel holding fewer (or more) than
-    the `expected` count, and the recorder's own error."""
+    the `expected` count, an episode's video when it holds no frame, and the recorder's own
+    error."""
     if not recording:
         return ["no recording checked"]
     misses = [f"recording: {name} {count} of {recording.get('expected')}"
               for name, count in (recording.get("recorded") or {}).items()
               if count != recording.get("expected")]
+    if recording.get("video_frames") == 0:  # an episode's (teleop.recorded): it has a camera
+        misses.append("recording: no video frame")
     if recording.get("error"):
         misses.append(f"recording: {recording['error']}"[:200])
     return misses

@@ -215,6 +215,10 @@ def test_a_teleop_recording_counts_merged_moves_in_commands(tmp_path):
     assert checked["recorded"] == {"increments (in commands)": 5, "applied acks": 2}
     assert (checked["moves"], checked["error"]) == (4, None)
     assert goals.recording_misses(checked) == ["recording: applied acks 2 of 5"]
+    episode = {"recorded": {"applied acks": 5}, "expected": 5, "error": None,
+               "video_frames": 0}  # an episode's, whole but without video
+    assert goals.recording_misses(episode) == ["recording: no video frame"]
+    assert goals.recording_misses({**episode, "video_frames": 60}) == []
     assert "StopRecording saved 5" in recording.teleop_check(path, 5, 5, 1e-5)["error"]
     assert recording.topic_counts(path) == {recording_mcap.INCREMENT: 4, recording_mcap.ACK: 4}
 
