@@ -8,12 +8,11 @@ machine it waits, not the command path.
 
 Writers are started ahead (WriterProcesses), each with one end of a socket pair; a recording
 takes one. The server opens the partial file itself, so a directory it cannot write in fails
-StartRecording at once, and hands the descriptor over the socket (SCM_RIGHTS).
-recording_writer.on_a_thread is the same writer on a thread of this process (the unit tests',
-which start no process).
-The messages on it are recording_writer's (its docstring). The writer says when writing fails
-(a full disk); the next `flush()` raises it as an OSError, which ends the recording as a failed
-write in the server always did.
+StartRecording at once, and hands the descriptor over the socket (SCM_RIGHTS). The messages on
+the socket are recording_writer's (its docstring). The writer says when writing fails (a full
+disk), and its end closes when it dies; the next `flush()` raises either as an OSError, which
+ends the recording as any failed write does. recording_writer.on_a_thread is the same writer on
+a thread of this process (the unit tests', which start no process).
 """
 
 from __future__ import annotations
@@ -55,8 +54,11 @@ class WriterProcesses:
     def __call__(self) -> tuple[socket.socket, subprocess.Popen]:
         """A started writer (our end of its connection, its process); the next is started."""
         with self._lock:
-            taken = self._spare if self._spare is not None and self._spare[1].poll() is None \
-                else self._start()
+            taken, self._spare = self._spare, None
+            if taken is not None and taken[1].poll() is not None:  # it died waiting
+                taken[0].close()
+                taken = None
+            taken = taken or self._start()
             self._spare = self._start()
         return taken
 
