@@ -38,33 +38,44 @@ EXIT_TIMEOUT_S = 5.0
 class WriterProcesses:
     """Writers in processes of their own, at ordinary scheduling and BACKGROUND_NICE, one kept
     started ahead: a recording takes a writer that has already imported what it needs (about
-    half a second of CPU on a busy 2-core machine), so its video starts with it, and the next
-    one starts meanwhile. `warm()` starts the first before any recording (the DecisionServer
-    does at its start); else the first recording starts its own."""
+    half a second of CPU on a busy 2-core machine), so its video starts with it. The next one
+    starts when that recording's writer has exited, so that its imports never share the
+    machine with a recording. `warm()` starts the first before any recording (the
+    DecisionServer does at its start); else the first recording starts its own."""
 
     def __init__(self):
         self._lock = threading.Lock()
         self._spare: tuple[socket.socket, subprocess.Popen] | None = None
+        self._closed = False
 
     def warm(self) -> None:
         with self._lock:
-            if self._spare is None:
+            if self._spare is None and not self._closed:
                 self._spare = self._start()
 
     def __call__(self) -> tuple[socket.socket, subprocess.Popen]:
-        """A started writer (our end of its connection, its process); the next is started."""
+        """A started writer (our end of its connection, its process); the next is started
+        once it has exited."""
         with self._lock:
             taken, self._spare = self._spare, None
             if taken is not None and taken[1].poll() is not None:  # it died waiting
                 taken[0].close()
                 taken = None
             taken = taken or self._start()
-            self._spare = self._start()
+        threading.Thread(target=self._warm_after, args=(taken[1],), name="recording-writer-next",
+                         daemon=True).start()
         return taken
 
-    def close(self) -> None:
-        """The spare stops (its connection closes)."""
+    def _warm_after(self, process: subprocess.Popen) -> None:
+        process.wait()
         with self._lock:
+            if not self._closed and self._spare is None:
+                self._spare = self._start()
+
+    def close(self) -> None:
+        """The spare stops (its connection closes), and no other is started."""
+        with self._lock:
+            self._closed = True
             if self._spare is not None:
                 self._spare[0].close()
                 self._spare[1].wait(EXIT_TIMEOUT_S)

@@ -1,7 +1,7 @@
 """The MCAP recordings' writer processes (recording_writer, writer_process): one is started
-ahead of each recording; they run at ordinary scheduling and BACKGROUND_NICE even when the
-server's threads are real-time, write what the server sends, and a writer that dies ends the
-recording with the reason while nothing else stops."""
+ahead of each recording, once the last one's has exited; they run at ordinary scheduling and
+BACKGROUND_NICE even when the server's threads are real-time, write what the server sends,
+and a writer that dies ends the recording with the reason while nothing else stops."""
 
 from __future__ import annotations
 
@@ -71,18 +71,23 @@ def test_the_writers_run_below_a_real_time_server_and_write_what_they_are_sent(t
     store = RecordingStore(tmp_path, writer=writers)
 
     def record():
+        writers.warm()  # as the DecisionServer does at its start
+        [ahead] = wait_for(_writers, 10, "the writer started ahead")
         store.start("low", "MCAP")
-        pids = wait_for(lambda: len(_writers()) == 2 and _writers(), 10,
-                        "the recording's writer and the next, started ahead")
-        return {(os.sched_getscheduler(pid), os.getpriority(os.PRIO_PROCESS, pid))
-                for pid in pids}
+        assert _writers() == [ahead]  # the recording took it; the next waits for its end
+        return ahead, os.sched_getscheduler(ahead), os.getpriority(os.PRIO_PROCESS, ahead)
 
-    assert _on_a_real_time_thread(record) == {(os.SCHED_OTHER, BACKGROUND_NICE)}
+    recording, *scheduling = _on_a_real_time_thread(record)
+    assert scheduling == [os.SCHED_OTHER, BACKGROUND_NICE]
     for i in range(5):
         store.add("BASE", np.array([0.001, 0.0, 0.0]), np.eye(3), np.array([0.5, 0.0, i]))
         store.note_ack(pb.CommandAck(sequence=i + 1))
-    info = store.stop()
-    assert info.command_count == 5 and len(_writers()) == 1  # it ends with the recording
+    assert store.stop().command_count == 5
+    [following] = wait_for(lambda: [p for p in _writers() if p != recording], 10,
+                           "the next writer, once the recording's has exited")
+    assert recording not in _writers()  # it ended with the recording
+    assert (os.sched_getscheduler(following), os.getpriority(os.PRIO_PROCESS, following)) == (
+        os.SCHED_OTHER, BACKGROUND_NICE)  # started from a real-time thread too
     assert [c.target_position_m[2] for c in store.load("low")[1]] == [0, 1, 2, 3, 4]
     counts = recording_mcap.read_summary(tmp_path / "low.mcap")["counts"]
     assert '"/recording/ack": 5' in counts
@@ -95,8 +100,8 @@ def test_a_writer_that_dies_ends_the_recording_with_the_reason(tmp_path, writers
     failed = []
     store.on_failed = lambda name, why: failed.append((name, why))
     store.start("lost", "MCAP")
-    for pid in wait_for(_writers, 10, "the writer processes"):  # the next one's too
-        os.kill(pid, signal.SIGKILL)
+    [pid] = wait_for(_writers, 10, "the writer process")
+    os.kill(pid, signal.SIGKILL)
 
     def stopped() -> bool:
         store.add("BASE", np.zeros(3), np.eye(3), np.zeros(3))  # the server goes on
