@@ -46,6 +46,9 @@ from domain.robot_model.description import arm_description
 from domain.robot_model.kinematics import ArmKinematics
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
+from wire.foxglove_video import STEREO_CAMERA_FRAME as STEREO_CAMERA_FRAME
+from wire.foxglove_video import h264_is_keyframe as h264_is_keyframe
+from wire.foxglove_video import stereo_video as stereo_video
 
 TF = "/tf"
 JOINT_STATES = "/joint_states"
@@ -74,7 +77,6 @@ FLANGE_FRAME = "flange"
 TOOL_FRAME = "tool"
 LEFT_CAMERA_FRAME = "camera_left"
 RIGHT_CAMERA_FRAME = "camera_right"
-STEREO_CAMERA_FRAME = "camera_stereo"
 
 FORCE_ARROW_M_PER_N = 0.01  # arrow length per newton: 10 N draws 0.1 m
 FORCE_ARROW_ENTITY = "tool_force"
@@ -259,27 +261,6 @@ def camera_images(pair: sc_pb.StereoPair) -> tuple[CompressedImage, CompressedIm
                                     pair.right_image)))
 
 
-def stereo_video(pair: sc_pb.StereoPair) -> CompressedVideo:
-    """An H.264 pair's side-by-side access unit as it came (Annex B, not re-encoded), format
-    "h264", stamped with the left eye's capture time, in ``camera_stereo``."""
-    if not pair.video_frame:
-        raise ValueError("a CompressedVideo needs an H.264 frame; this pair has none (an image "
-                         "stream's pair?): ask the camera for IMAGE_ENCODING_H264")
-    return CompressedVideo(timestamp=pair.left_capture_time, frame_id=STEREO_CAMERA_FRAME,
-                           data=pair.video_frame, format="h264")
-
-
-_IDR_SLICE = 5  # H.264 NAL unit type of an IDR picture's slice
-
-
-def h264_is_keyframe(access_unit: bytes) -> bool:
-    """Whether an Annex B access unit holds an IDR picture (a decoder may start at it)."""
-    start = access_unit.find(b"\x00\x00\x01")
-    while 0 <= start < len(access_unit) - 3:
-        if access_unit[start + 3] & 0x1F == _IDR_SLICE:
-            return True
-        start = access_unit.find(b"\x00\x00\x01", start + 3)
-    return False
 
 
 def _calibration(eye: sc_pb.CameraCalibration, frame: str, header: sc_pb.StereoHeader,

@@ -29,8 +29,10 @@ from multiprocessing.connection import Connection
 
 from google.protobuf import descriptor_pool, message_factory
 
+from services.decision_server.camera_feed import CameraSource
 from services.decision_server.recording_mcap import STEREO_HEADER, STEREO_VIDEO, McapFile
-from wire import convert, foxglove
+from wire import convert
+from wire.foxglove_video import stereo_video
 
 log = logging.getLogger("recording_writer")
 
@@ -113,7 +115,9 @@ class Writer:
             log.warning("writing the recording failed: %s", error)
             self._connection.send(("failed", str(error)))
 
-    def _open_video(self, camera) -> None:
+    def _open_video(self, camera: CameraSource | None) -> None:
+        """The camera's feed (its module imported with this one's, before any recording: the
+        "open" message only unpickles the CameraSource)."""
         if camera is None:
             return
         feed, channel = camera.open()
@@ -138,7 +142,7 @@ class Writer:
                 self._write(lambda: self._file.write(STEREO_HEADER, header, captured))
             self._keyed |= pair.keyframe
             if self._keyed:
-                self._write(lambda: self._file.write(STEREO_VIDEO, foxglove.stereo_video(pair),
+                self._write(lambda: self._file.write(STEREO_VIDEO, stereo_video(pair),
                                                      captured))
 
 
