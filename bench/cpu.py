@@ -15,17 +15,21 @@ _TICKS_PER_S = os.sysconf("SC_CLK_TCK")
 
 def process_cpu_s(pid: int) -> float:
     """A process's CPU time so far (user + system, every thread), s; 10 ms ticks."""
-    with open(f"/proc/{pid}/stat") as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()  # after the command, which may hold " "
+    fields = _stat_fields(pid)
     return (int(fields[11]) + int(fields[12])) / _TICKS_PER_S
 
 
 def reaped_children_cpu_s(pid: int) -> float:
     """The CPU time so far of the children a process has waited for (user + system), s: the
     DecisionServer's recording writers, once each recording has stopped."""
-    with open(f"/proc/{pid}/stat") as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()
+    fields = _stat_fields(pid)
     return (int(fields[13]) + int(fields[14])) / _TICKS_PER_S
+
+
+def _stat_fields(pid: int) -> list[str]:
+    """/proc/PID/stat's fields after the command (which may hold " "): state is [0]."""
+    with open(f"/proc/{pid}/stat") as stat:
+        return stat.read().rsplit(")", 1)[1].split()
 
 
 def machine_ticks() -> tuple[int, int]:

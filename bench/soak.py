@@ -36,6 +36,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from bench.cpu import process_cpu_s
+
 NAME = "soak"
 TELEOP_RATE_HZ = 500
 OBSERVERS = 4
@@ -96,7 +98,6 @@ def rss_trend(times_s: Sequence[float], rss_mib: Sequence[float],
 
 # -- /proc ------------------------------------------------------------------------------------
 
-_TICKS_PER_S = os.sysconf("SC_CLK_TCK")
 
 
 def read_process(pid: int) -> dict | None:
@@ -106,9 +107,7 @@ def read_process(pid: int) -> dict | None:
     try:
         with open(f"/proc/{pid}/status") as status:
             fields = dict(line.split(":", 1) for line in status if ":" in line)
-        with open(f"/proc/{pid}/stat") as stat:
-            # Fields after the command (which may hold spaces): utime and stime are 14 and 15.
-            after = stat.read().rsplit(")", 1)[1].split()
+        cpu_s = process_cpu_s(pid)
         fds = len(os.listdir(f"/proc/{pid}/fd"))
     except (FileNotFoundError, ProcessLookupError):
         return None
@@ -117,7 +116,7 @@ def read_process(pid: int) -> dict | None:
     return {"rss_mib": round(int(fields["VmRSS"].split()[0]) / 1024.0, 3),
             "anon_mib": round(int(fields["RssAnon"].split()[0]) / 1024.0, 3),
             "threads": int(fields["Threads"]), "fds": fds,
-            "cpu_s": (int(after[11]) + int(after[12])) / _TICKS_PER_S}
+            "cpu_s": cpu_s}
 
 
 class Sampler:

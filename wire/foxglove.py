@@ -261,8 +261,6 @@ def camera_images(pair: sc_pb.StereoPair) -> tuple[CompressedImage, CompressedIm
                                     pair.right_image)))
 
 
-
-
 def _calibration(eye: sc_pb.CameraCalibration, frame: str, header: sc_pb.StereoHeader,
                  stamp: Timestamp) -> CameraCalibration:
     fx, fy, cx, cy = eye.fx_px, eye.fy_px, eye.cx_px, eye.cy_px

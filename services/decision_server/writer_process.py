@@ -111,12 +111,9 @@ class RemoteMcapFile:
         self.counts: Counter[str] = Counter()  # what was sent; the writer's own, once finished
         self._batch: list[tuple] = []
         with open(self.path, "wb") as file:  # the writer's, once handed over
+            ours = None
             try:
                 ours, self._process = start()
-            except BaseException:
-                self.path.unlink(missing_ok=True)
-                raise
-            try:
                 self._connection = Connection(os.dup(ours.fileno()))
                 self._send(("open", video))
                 socket.send_fds(ours, [b"F"], [file.fileno()])
@@ -124,7 +121,8 @@ class RemoteMcapFile:
                 self.path.unlink(missing_ok=True)
                 raise
             finally:
-                ours.close()
+                if ours is not None:
+                    ours.close()
         # The writer's answers, read as they come so that each flush only looks at a field.
         self._failure: str | None = None
         self._finished: dict | None = None
