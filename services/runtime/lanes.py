@@ -6,7 +6,8 @@ may run work of a higher lane (borrowing); a higher lane's threads never run low
 saturated low lane cannot delay high-priority calls. Nothing here knows about gRPC; an RPC's
 lane comes from its proto's `default_lane` option (`declared_lane`).
 
-Thread priorities are set with per-thread nice values where the OS allows. In a real-time
+Thread priorities are set with per-thread nice values where the OS allows, each lane's an
+offset from the process's own (the camera's process runs niced as a whole). In a real-time
 process the medium and low lanes' work runs at the lowest real-time priority
 (`scheduled_as`), so the GIL goes to the command path's threads first. The isolation that
 matters most is structural: a high lane never waits behind a low queue.
@@ -390,10 +391,13 @@ def scheduled_as(config: LaneConfig, system=os) -> Iterator[None]:
                         "ordinary work: %s", threading.current_thread().name, exc)
 
 
-def _set_thread_nice(nice: int) -> None:
-    """Set this thread's nice value (Linux: per thread). Raising priority needs privilege."""
-    if nice == 0 or not hasattr(os, "setpriority"):
+def _set_thread_nice(offset: int) -> None:
+    """Set this thread's nice value (Linux: per thread) `offset` from the process's, which is
+    its main thread's: a process niced as a whole (priority.nice_every_thread) keeps its lanes
+    in the same order below the command path. Raising priority needs privilege."""
+    if offset == 0 or not hasattr(os, "setpriority"):
         return
+    nice = max(-20, min(19, os.getpriority(os.PRIO_PROCESS, os.getpid()) + offset))
     try:
         os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), nice)
     except PermissionError:

@@ -83,6 +83,25 @@ def raise_thread_priority(fifo_priority: int, nice: int, *, system=os,
 # The nice value of a station's background work (the recordings' writer process): below every
 # service, so that on a busy machine it waits, not the command path.
 BACKGROUND_NICE = 10
+# The nice value of the stereo camera, off the command path: on a shared machine its capture
+# and encoding yield to the operator's own processes (whose threads are ordinary), as the
+# recordings' writer does.
+VIDEO_NICE = BACKGROUND_NICE
+
+
+def nice_every_thread(nice: int, *, tasks_dir: str = "/proc/self/task", system=os) -> int:
+    """Set the nice value `nice` on every thread of this process (Linux keeps it per thread,
+    and a new thread takes its creator's, so the threads started later have it too); returns
+    how many threads took it. Raising the value is always allowed; a thread that ended
+    meanwhile is skipped."""
+    count = 0
+    for task in os.listdir(tasks_dir):
+        try:
+            system.setpriority(system.PRIO_PROCESS, int(task), nice)
+        except ProcessLookupError:
+            continue
+        count += 1
+    return count
 
 
 def start_in_background(start: Callable[[], T], nice: int = BACKGROUND_NICE, *,

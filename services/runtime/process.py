@@ -28,7 +28,7 @@ from services.runtime.config import (
     select_arm_from,
 )
 from services.runtime.metrics import ServiceMetrics
-from services.runtime.priority import raise_thread_priority
+from services.runtime.priority import nice_every_thread, raise_thread_priority
 from services.runtime.server import (
     PlaintextRefused,
     ServerSecurity,
@@ -73,16 +73,21 @@ def run_service(
     switch_interval_s: float = GIL_SWITCH_INTERVAL_S,
     realtime_priority: int = 0,
     reads_arm: bool = True,
+    nice: int = 0,
 ) -> int:
     """Run the service `name` until SIGINT/SIGTERM; returns the process exit code.
     `switch_interval_s` is the process's GIL switch interval (the world's is shorter).
     `realtime_priority` > 0: the service is on the command path, and every thread of its
     process runs at SCHED_FIFO at that priority where the host allows it (`--rt-priority`).
     `reads_arm`: the service loads the arm's model, so `--arm`'s file is checked before it
-    starts; a service that does not (the emergency-stop band) checks only the name."""
+    starts; a service that does not (the emergency-stop band) checks only the name.
+    `nice` > 0: the service is off the command path and yields to it, and every thread of its
+    process runs at that nice value (`--nice`)."""
     parser = base_parser(name, description)
     if realtime_priority:
         add_realtime_argument(parser, name, realtime_priority)
+    if nice:
+        add_nice_argument(parser, name, nice)
     if add_arguments:
         add_arguments(parser)
     args = parser.parse_args(argv)
@@ -95,6 +100,10 @@ def run_service(
                                   inherited=True)
         else:
             log.info("real-time scheduling off (--rt-priority 0)")
+    if nice and args.nice:
+        nice_every_thread(args.nice)
+        log.info("every thread at nice %d: on a busy machine this service waits, not the "
+                 "command path or the operator's processes", args.nice)
     dump_stacks_on_signal()
     sys.setswitchinterval(switch_interval_s)
 
@@ -199,6 +208,15 @@ def add_realtime_argument(parser: argparse.ArgumentParser, name: str, default: i
         help=f"SCHED_FIFO priority of every thread of this process where the OS allows it "
              f"(default {default}, below the world's physics thread); 0 turns it off "
              f"(env {env_name(name, 'rt_priority')})")
+
+
+def add_nice_argument(parser: argparse.ArgumentParser, name: str, default: int) -> None:
+    parser.add_argument(
+        "--nice", type=int, default=int(os.environ.get(env_name(name, "nice"), default)),
+        choices=range(0, 20), metavar="0-19",
+        help=f"nice value of every thread of this process (default {default}: below the "
+             f"operator's processes on a shared machine); 0 leaves it at the default "
+             f"(env {env_name(name, 'nice')})")
 
 
 def check_metrics_address(address: str, allow_network: bool) -> None:

@@ -28,6 +28,7 @@ import logging
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from services.runtime.priority import VIDEO_NICE
 from services.runtime.process import run_service
 from services.runtime.server import ServiceBinding, binding
 from services.runtime.service import Service
@@ -73,4 +74,4 @@ def build(args: argparse.Namespace) -> StereoCameraService:
 
 if __name__ == "__main__":
     raise SystemExit(run_service("stereo_camera", "StereoCamera: synchronized stereo pairs.",
-                                 build, add_arguments=add_source_arguments))
+                                 build, add_arguments=add_source_arguments, nice=VIDEO_NICE))

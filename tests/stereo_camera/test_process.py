@@ -6,10 +6,13 @@ import signal
 import subprocess
 import sys
 import uuid
+from pathlib import Path
 
 import grpc
 import pytest
 
+from services.runtime.lanes import DEFAULT_LANES
+from services.runtime.priority import VIDEO_NICE
 from services.stereo_camera.client import open_channel
 from telerobot.v1 import stereo_camera_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2_grpc
@@ -45,3 +48,53 @@ def test_a_device_source_without_devices_is_refused_at_start_saying_why():
          "127.0.0.1:0"], cwd=REPO, capture_output=True, text=True, timeout=60)
     assert result.returncode != 0
     assert "--left and --right, or --side-by-side" in result.stderr
+
+
+def thread_nice_values(pid: int) -> list[int]:
+    """The nice value of each thread of `pid` (/proc/PID/task/TID/stat field 19)."""
+    values = []
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        try:
+            values.append(int((task / "stat").read_text().rsplit(")", 1)[1].split()[16]))
+        except FileNotFoundError:  # the thread ended meanwhile
+            continue
+    return values
+
+
+def _stream_one_pair(address: str) -> None:
+    """An H.264 stream's first pair: the threads that capture and encode have started."""
+    with open_channel(address) as channel:
+        stub = stereo_camera_pb2_grpc.StereoCameraStub(channel)
+        call = stub.StreamPairs(pb.StreamPairsRequest(encoding=pb.IMAGE_ENCODING_H264),
+                                timeout=30)
+        assert any(response.HasField("pair") for response in call)
+        call.cancel()
+
+
+def test_the_camera_yields_to_the_operator_every_thread_at_its_nice_value():
+    running = start_service("stereo_camera", "--source", "pattern", "--width", "160",
+                            "--height", "120")
+    try:
+        _stream_one_pair(running.address)
+        values = thread_nice_values(running.pid)
+        # The lanes keep their order from the process's value: the stream's (medium) and the
+        # threads that capture and encode at VIDEO_NICE, the stop's and the high lane's above.
+        lanes = {VIDEO_NICE + config.nice for config in DEFAULT_LANES.values()}
+        assert set(values) <= lanes, values
+        assert values.count(VIDEO_NICE) >= len(values) - sum(
+            config.static_threads for config in DEFAULT_LANES.values() if config.nice), values
+        assert any(f"every thread at nice {VIDEO_NICE}" in line for line in running.lines)
+    finally:
+        running.stop()
+
+
+def test_nice_zero_leaves_the_camera_at_the_default():
+    running = start_service("stereo_camera", "--source", "pattern", "--width", "160",
+                            "--height", "120", "--nice", "0")
+    try:
+        _stream_one_pair(running.address)
+        values = thread_nice_values(running.pid)
+        assert set(values) <= {config.nice for config in DEFAULT_LANES.values()}, values
+        assert values.count(0) > len(values) // 2, values
+    finally:
+        running.stop()

@@ -1,6 +1,6 @@
 """The physics thread's priority choice: SCHED_FIFO where allowed and throttled, else nice, else
-the default; and a background process's start, below it. The os calls are faked: nothing here
-changes a real thread's scheduling."""
+the default; a background process's start, below it; and a whole process's nice value. The os
+calls are faked: nothing here changes a real thread's scheduling."""
 
 from __future__ import annotations
 
@@ -11,7 +11,11 @@ import threading
 
 import pytest
 
-from services.runtime.priority import raise_thread_priority, start_in_background
+from services.runtime.priority import (
+    nice_every_thread,
+    raise_thread_priority,
+    start_in_background,
+)
 
 THROTTLED = (950_000, 1_000_000)  # Linux's default: 95 % of every second
 THREAD = 4242
@@ -136,3 +140,18 @@ def test_a_background_start_that_fails_raises_in_the_caller() -> None:
 
     with pytest.raises(FileNotFoundError, match="no such interpreter"):
         start_in_background(start, 10, system=system)
+
+
+def test_nice_every_thread_sets_each_thread_of_the_process_and_skips_one_that_ended(tmp_path):
+    for task in ("101", "102", "103"):
+        (tmp_path / task).mkdir()
+
+    class EndedOs(NiceOnlyOs):
+        def setpriority(self, which, tid, nice) -> None:
+            super().setpriority(which, tid, nice)
+            if tid == 102:
+                raise ProcessLookupError(errno.ESRCH, "No such process")
+
+    system = EndedOs()
+    assert nice_every_thread(5, tasks_dir=str(tmp_path), system=system) == 2
+    assert sorted(system.calls) == [("setpriority", 0, tid, 5) for tid in (101, 102, 103)]
