@@ -33,6 +33,10 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 COMMAND_PATH_SERVICES = ("decision_server", "proxy_robot", "force_sensor", "emergency_stop")
 for _service in COMMAND_PATH_SERVICES:
     os.environ.setdefault(f"TELEROBOT_{_service.upper()}_RT_PRIORITY", "0")
+# The camera's nice value (priority.VIDEO_NICE) would put it below the suite's command path,
+# whose threads are ordinary here: the suite runs it beside them, at the default.
+# tests/stereo_camera/test_process.py checks the niced start.
+os.environ.setdefault("TELEROBOT_STEREO_CAMERA_NICE", "0")
 
 from services.runtime import children  # noqa: E402
 from services.runtime.children import Child  # noqa: E402

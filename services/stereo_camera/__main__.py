@@ -17,6 +17,9 @@ Serves synchronized stereo pairs (section IV of the full paper) from one source,
 - device / file: cv2.VideoCapture on --left and --right, or on one --side-by-side source, with
   an optional --calibration JSON file.
 
+Every thread runs at nice VIDEO_NICE (10; --nice): video yields to control, so on a shared
+machine the operator's own processes come before the capture and the encoders.
+
 The capture thread starts with the service and opens the source only when a client first wants
 pairs; close() stops it and releases the renderer or the devices.
 """
