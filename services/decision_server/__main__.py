@@ -16,7 +16,7 @@ from pathlib import Path
 import grpc
 
 from services.common.fanout import Subscription
-from services.decision_server.backends import RECONNECT_OPTIONS, GrpcSlave
+from services.decision_server.backends import GrpcSlave
 from services.decision_server.camera_feed import CameraSource
 from services.decision_server.core import ControlChanged, DecisionCore
 from services.decision_server.dependencies import SERVING, DependencyWatch
@@ -70,7 +70,7 @@ class DecisionService(Service):
         # A window of about one pair: the forward then reads a pair only as its client takes
         # one, so it holds no backlog of its own (wire/stereo.py).
         self._stereo_channel = open_channel(self.args.stereo_camera_address,
-                                            [*RECONNECT_OPTIONS, *LOW_LATENCY_OPTIONS], security,
+                                            LOW_LATENCY_OPTIONS, security,
                                             service="stereo_camera")
         slave.watch_health("stereo_camera", self._stereo_channel)
         stereo = stereo_camera_pb2_grpc.StereoCameraStub(self._stereo_channel)

@@ -43,11 +43,6 @@ CALL_TIMEOUT_S = 5.0
 # one that takes longer is down, and ProxyRobot's stop stands without it.
 BAND_TIMEOUT_S = 1.0
 MAX_FORWARD_TIMEOUT_S = 60.0
-# A backend that restarts is reachable again within a second, not after gRPC's default
-# reconnect back-off (which grows to two minutes); calls meanwhile fail fast with UNAVAILABLE.
-RECONNECT_OPTIONS = [("grpc.initial_reconnect_backoff_ms", 100),
-                     ("grpc.min_reconnect_backoff_ms", 100),
-                     ("grpc.max_reconnect_backoff_ms", 1000)]
 RETRY_S = 0.5  # background streams reconnect this often after a failure
 STATE_PERIOD_S = 0.01  # the pose and wrench in acks come from 100 Hz streams
 STATE_FRESH_S = 0.1  # an older cached pose is fetched anew
@@ -107,8 +102,9 @@ class GrpcSlave:
         security = security or ChannelSecurity()  # plaintext unless told
 
         def channel(address: str, service: str) -> grpc.Channel:
-            # Over TLS the certificate must name that service (wire.tls.open_channel).
-            return open_channel(address, RECONNECT_OPTIONS, security, service=service)
+            # Over TLS the certificate must name that service, and a backend that restarts is
+            # reachable again within a second (wire.tls.open_channel's KEEPALIVE_OPTIONS).
+            return open_channel(address, (), security, service=service)
 
         self.robot_channel = channel(proxy_address, "proxy_robot")
         self.sensor_channel = channel(sensor_address, "force_sensor")

@@ -17,7 +17,6 @@ from dataclasses import dataclass
 
 import grpc
 
-from services.decision_server.backends import RECONNECT_OPTIONS
 from services.runtime.tls import station_channel_security
 from telerobot.v1 import stereo_camera_pb2 as pb
 from telerobot.v1 import stereo_camera_pb2_grpc
@@ -44,8 +43,8 @@ class CameraSource:
     def open(self) -> tuple[CameraFeed, grpc.Channel]:
         """A feed on a channel of its own (the caller closes it)."""
         security = station_channel_security(self.tls_dir or None, "decision_server")
-        channel = open_channel(self.address, [*RECONNECT_OPTIONS, *LOW_LATENCY_OPTIONS],
-                               security, service="stereo_camera")
+        channel = open_channel(self.address, LOW_LATENCY_OPTIONS, security,
+                               service="stereo_camera")
         stub = stereo_camera_pb2_grpc.StereoCameraStub(channel)
         return CameraFeed(stub, self.width_px, self.height_px, self.kbit_per_s), channel
 
