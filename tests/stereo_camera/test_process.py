@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 import sys
+import threading
 import uuid
 from pathlib import Path
 
@@ -50,15 +52,22 @@ def test_a_device_source_without_devices_is_refused_at_start_saying_why():
     assert "--left and --right, or --side-by-side" in result.stderr
 
 
-def thread_nice_values(pid: int) -> list[int]:
-    """The nice value of each thread of `pid` (/proc/PID/task/TID/stat field 19)."""
-    values = []
+def thread_nice_values(pid: int) -> dict[int, int]:
+    """The nice value of each thread of `pid`, by thread id (/proc/PID/task/TID/stat field
+    19); the main thread's id is `pid`."""
+    values = {}
     for task in Path(f"/proc/{pid}/task").iterdir():
         try:
-            values.append(int((task / "stat").read_text().rsplit(")", 1)[1].split()[16]))
+            values[int(task.name)] = int((task / "stat").read_text().rsplit(")", 1)[1].split()[16])
         except FileNotFoundError:  # the thread ended meanwhile
             continue
     return values
+
+
+def lane_values(base: int) -> set[int]:
+    """The nice values a process's threads may have when its own is `base`: each lane's
+    offset from it."""
+    return {base + config.nice for config in DEFAULT_LANES.values()}
 
 
 def _stream_one_pair(address: str) -> None:
@@ -76,11 +85,10 @@ def test_the_camera_yields_to_the_operator_every_thread_at_its_nice_value():
                             "--height", "120", "--nice", str(VIDEO_NICE))  # the suite's is 0
     try:
         _stream_one_pair(running.address)
-        values = thread_nice_values(running.pid)
+        values = list(thread_nice_values(running.pid).values())
         # The lanes keep their order from the process's value: the stream's (medium) and the
         # threads that capture and encode at VIDEO_NICE, the stop's and the high lane's above.
-        lanes = {VIDEO_NICE + config.nice for config in DEFAULT_LANES.values()}
-        assert set(values) <= lanes, values
+        assert set(values) <= lane_values(VIDEO_NICE), values
         assert values.count(VIDEO_NICE) >= len(values) - sum(
             config.static_threads for config in DEFAULT_LANES.values() if config.nice), values
         assert any(f"every thread at nice {VIDEO_NICE}" in line for line in running.lines)
@@ -88,13 +96,15 @@ def test_the_camera_yields_to_the_operator_every_thread_at_its_nice_value():
         running.stop()
 
 
-def test_nice_zero_leaves_the_camera_at_the_default():
+def test_nice_zero_leaves_the_camera_at_the_value_it_was_started_with():
+    inherited = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
     running = start_service("stereo_camera", "--source", "pattern", "--width", "160",
                             "--height", "120", "--nice", "0")
     try:
         _stream_one_pair(running.address)
         values = thread_nice_values(running.pid)
-        assert set(values) <= {config.nice for config in DEFAULT_LANES.values()}, values
-        assert values.count(0) > len(values) // 2, values
+        assert values[running.pid] == inherited  # the main thread: the process's own
+        assert set(values.values()) <= lane_values(inherited), values
+        assert list(values.values()).count(inherited) > len(values) // 2, values
     finally:
         running.stop()
