@@ -98,8 +98,6 @@ def rss_trend(times_s: Sequence[float], rss_mib: Sequence[float],
 
 # -- /proc ------------------------------------------------------------------------------------
 
-
-
 def read_process(pid: int) -> dict | None:
     """RSS and its anonymous part (the heap, without mapped files and shared memory; MiB),
     threads, open file descriptors and CPU time (s, user + system) of `pid`; None if it is

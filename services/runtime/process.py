@@ -215,7 +215,7 @@ def add_nice_argument(parser: argparse.ArgumentParser, name: str, default: int) 
         "--nice", type=int, default=int(os.environ.get(env_name(name, "nice"), default)),
         choices=range(0, 20), metavar="0-19",
         help=f"nice value of every thread of this process (default {default}: below the "
-             f"operator's processes on a shared machine); 0 leaves it at the default "
+             f"operator's processes on a shared machine); 0 leaves it as the process was started "
              f"(env {env_name(name, 'nice')})")
 
 
