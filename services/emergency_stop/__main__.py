@@ -26,14 +26,17 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def build(args: argparse.Namespace) -> CoreService:
+    _raise_priority()
     servicer = EmergencyStopServicer(lambda: SharedMemoryEmergencyStop(args.shm_name))
     servicer.open()
     return CoreService([binding(proxy_robot_pb2_grpc, "ProxyRobot", servicer)], servicer.close,
                        emergency_latch=servicer.stop_now)
 
 
-# Threads inherit their creator's nice value, so setting it first gives every thread of this
-# process (gRPC's included) the priority: a stop should not wait for a CPU behind bulk work.
+# Threads inherit their creator's nice value, so setting it on the main thread before the
+# server starts gives the server's threads the priority: a stop should not wait for a CPU
+# behind bulk work. Set in build(), after the arguments are parsed, so that `--help` and
+# docs/gen_reference.py (which stops at the parse) leave their caller's priority alone.
 BAND_NICE = -10
 
 
@@ -46,7 +49,6 @@ def _raise_priority() -> None:
 
 
 if __name__ == "__main__":
-    _raise_priority()
     raise SystemExit(run_service(
         "emergency_stop", "The emergency-stop band: ProxyRobot.EmergencyStop past the driver.",
         build, add_arguments=_add_arguments,

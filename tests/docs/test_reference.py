@@ -6,7 +6,10 @@ from __future__ import annotations
 import importlib.util
 import os
 import sys
+import threading
 from pathlib import Path
+
+import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -67,3 +70,23 @@ def test_every_command_has_a_section_and_every_variable_a_row():
     for name in ("TELEROBOT_TLS_DIR", "TELEROBOT_IDENTITY", "TELEROBOT_TOKEN",
                  "TELEROBOT_DECISION_SERVER_ADDRESS", "TELEROBOT_WORLD_SHM"):
         assert f"`{name}`" in text
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="only a privileged caller could be raised")
+def test_building_a_commands_parser_leaves_the_callers_priority_alone():
+    """The band sets its nice value once its arguments are parsed, not before: the reference
+    (and `--help`) stop at the parse, and the test runner keeps its value, so the processes
+    the suite starts later do not inherit the band's. Built on a thread of its own at nice 5,
+    whatever the runner's thread is at."""
+    seen = []
+
+    def build() -> None:
+        thread = threading.get_native_id()
+        os.setpriority(os.PRIO_PROCESS, thread, 5)
+        _generator().parser_of("services.emergency_stop")
+        seen.append(os.getpriority(os.PRIO_PROCESS, thread))
+
+    worker = threading.Thread(target=build)
+    worker.start()
+    worker.join()
+    assert seen == [5]
