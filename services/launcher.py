@@ -82,7 +82,7 @@ from services.web_console.https import certificate_files
 from wire.addresses import env_name
 from wire.local_call import LOCAL_CALLS_ENV
 from wire.observation import ROUTER_ENV, BadEndpoint, address_of, checked_endpoint, endpoint_for
-from wire.processes import dump_stacks_on_signal, parse_ready_line, ready_line, say
+from wire.processes import dump_stacks_on_signal, handle_signals, parse_ready_line, ready_line, say
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV, ChannelSecurity, dialable, open_channel
 
 log = logging.getLogger("launcher")
@@ -182,11 +182,10 @@ def main(argv: list[str] | None = None) -> int:
         stop.set()
         wake.set()
 
-    def on_signal(signum, _frame):
+    def on_signal(signum: int) -> None:
         request_stop(f"{signal.Signals(signum).name} received")
 
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
+    handle_signals({signal.SIGINT: on_signal, signal.SIGTERM: on_signal})
     # Started by a supervisor of its own (`make teleop`, the tests): stop with it.
     watch_parent(lambda: request_stop("the parent process is gone"), stop)
 

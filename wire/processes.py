@@ -11,15 +11,18 @@ and stack dumps on a signal. Any program can start the station this way
   (`kill -QUIT <pid>`; Ctrl-\\ in a terminal). faulthandler does it in C, so it answers even
   when no Python code can run, as in a hang. A supervisor sends it before it kills a process
   that did not stop (services.runtime.children), so the log says where it was stuck.
+- A process acts on its stop signals (SIGINT, SIGTERM) on a thread of its own
+  (`handle_signals`), never inside Python's signal handler.
 """
 
 from __future__ import annotations
 
 import faulthandler
+import os
 import signal
 import sys
 import threading
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 READY_LINE_PREFIX = "TELEROBOT_READY"
 PARENT_PID_ENV = "TELEROBOT_PARENT_PID"
@@ -74,3 +77,38 @@ def runs_a_service(args: Sequence[str]) -> bool:
     not a tool deeper down such as `-m services.security.pki`."""
     return (len(args) >= 2 and args[0] == "-m" and args[1].startswith("services.")
             and args[1].count(".") == 1)
+
+
+_signal_handlers: dict[int, Callable[[int], None]] = {}
+
+
+def handle_signals(handlers: dict[int, Callable[[int], None]]) -> None:
+    """Call `handlers[signum](signum)` on the "signals" thread each time the process gets
+    `signum`. Main thread only.
+
+    Python runs a signal handler on the main thread between two bytecodes, which may be while
+    that thread holds the very lock the handler needs: inside `Event.wait()` it holds the
+    Event's own lock, so a handler that sets the Event waits for itself forever. Here Python's
+    C-level handler only writes the signal's number to a pipe (signal.set_wakeup_fd), and the
+    thread reading the pipe runs the handler, which may take any lock."""
+    if not _signal_handlers:
+        read_end, write_end = os.pipe()
+        os.set_blocking(write_end, False)  # set_wakeup_fd's C handler must never block
+        signal.set_wakeup_fd(write_end, warn_on_full_buffer=False)
+        threading.Thread(target=_dispatch_signals, args=(read_end,), name="signals",
+                         daemon=True).start()
+    for signum, handler in handlers.items():
+        _signal_handlers[signum] = handler
+        signal.signal(signum, _on_main_thread)
+
+
+def _on_main_thread(_signum, _frame) -> None:
+    """Python's handler: nothing, the signals thread acts (and it must not: see above)."""
+
+
+def _dispatch_signals(read_end: int) -> None:
+    while True:
+        for signum in os.read(read_end, 64):
+            handler = _signal_handlers.get(signum)
+            if handler is not None:
+                handler(signum)

@@ -22,7 +22,7 @@ import threading
 from services.impairment.link import LinkProfile
 from services.impairment.proxy import CUT_MODES, ImpairmentProxy
 from wire.addresses import is_loopback
-from wire.processes import dump_stacks_on_signal, say, say_ready
+from wire.processes import dump_stacks_on_signal, handle_signals, say, say_ready
 
 _DURATION_UNITS = {"us": 1e-6, "ms": 1e-3, "s": 1.0}
 _BANDWIDTH_UNITS = {"bit": 1.0, "kbit": 1e3, "mbit": 1e6, "gbit": 1e9}
@@ -119,10 +119,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"impairment: {error}", file=sys.stderr)
         return 2
     stop, cut_now, tell = threading.Event(), threading.Event(), threading.Event()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda *_: stop.set())
-    signal.signal(signal.SIGUSR1, lambda *_: cut_now.set())
-    signal.signal(signal.SIGUSR2, lambda *_: tell.set())
+    handle_signals({signal.SIGINT: lambda _: stop.set(), signal.SIGTERM: lambda _: stop.set(),
+                    signal.SIGUSR1: lambda _: cut_now.set(), signal.SIGUSR2: lambda _: tell.set()})
     with ImpairmentProxy(args.listen, args.target, up, down,
                          report=say) as proxy:
         say_ready("impairment", proxy.address)

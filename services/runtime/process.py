@@ -40,7 +40,7 @@ from services.security.audit import AUDIT_DIR_ENV, AuditLog, audit_log_for
 from services.security.tokens import TokenStore, tokens_file
 from wire.addresses import env_name, is_loopback
 from wire.errors import TelerobotError
-from wire.processes import PARENT_PID_ENV, dump_stacks_on_signal, say_ready
+from wire.processes import PARENT_PID_ENV, dump_stacks_on_signal, handle_signals, say_ready
 
 log = logging.getLogger(__name__)
 
@@ -48,10 +48,6 @@ log = logging.getLogger(__name__)
 # default is 5 ms, longer than a whole command budget). Every call crosses several threads.
 GIL_SWITCH_INTERVAL_S = 0.001
 _PARENT_POLL_S = 0.25  # how often a process checks that its parent (PARENT_PID_ENV) lives
-# A process-directed signal may land on any thread (gRPC's C threads included); its Python
-# handler runs only once the main thread runs bytecode again, which a main thread blocked in
-# Event.wait() without a timeout never does. So the main thread wakes this often to let it run.
-SIGNAL_POLL_S = 0.25
 
 
 def token_port_name(service: str) -> str:
@@ -262,26 +258,24 @@ def stop_requested() -> threading.Event:
     """An event set on SIGINT or SIGTERM, or when the supervising parent (PARENT_PID_ENV) goes
     away: a process without a gRPC server of its own waits on it (wait_for_stop)."""
     stop = threading.Event()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda *_: stop.set())
+    _install_signal_handlers(stop)
     watch_parent(stop.set, stop)
     return stop
 
 
 def wait_for_stop(stop: threading.Event) -> None:
-    """Block the main thread until `stop` is set, by a signal's handler too (SIGNAL_POLL_S)."""
-    while not stop.wait(SIGNAL_POLL_S):
-        pass
+    """Block the main thread until `stop` is set (a signal's handler runs on a thread of its
+    own: handle_signals)."""
+    stop.wait()
 
 
 def _install_signal_handlers(stop: threading.Event) -> None:
-    def on_signal(signum, _frame):
+    def on_signal(signum: int) -> None:
         if stop.is_set():
             os._exit(128 + signum)  # second signal: the operator wants out now
         stop.set()
 
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
+    handle_signals({signal.SIGINT: on_signal, signal.SIGTERM: on_signal})
 
 
 def watch_parent(on_gone: Callable[[], None], stop: threading.Event | None = None) -> bool:

@@ -75,14 +75,15 @@ def _kill_mid_episode(address: str, recordings: Path, shm: str) -> None:
 
 
 def _decision_server_pid(shm: str) -> int:
-    """The station's DecisionServer: the process running it with this station's world."""
+    """The station's DecisionServer: the process running it with this station's world (not its
+    recording writer, `-m services.decision_server.recording_writer`, which shares both)."""
     for entry in Path("/proc").iterdir():
         try:
-            command = (entry / "cmdline").read_bytes()
+            arguments = (entry / "cmdline").read_bytes().split(b"\0")
             environ = (entry / "environ").read_bytes()
         except (OSError, ValueError):
             continue
-        if b"services.decision_server" in command and shm.encode() in environ:
+        if arguments[1:3] == [b"-m", b"services.decision_server"] and shm.encode() in environ:
             return int(entry.name)
     raise AssertionError("no DecisionServer process found")
 
