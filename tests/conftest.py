@@ -58,12 +58,17 @@ sys.setswitchinterval(GIL_SWITCH_INTERVAL_S)
 
 def wait_for(predicate, timeout_s: float = 5.0, what: str = "condition"):
     """Poll `predicate` every 5 ms until it returns something true, and return that; fail the
-    test after `timeout_s`, saying `what` (or what `what()` says then)."""
+    test after `timeout_s`, saying `what` (or what `what()` says then). It looks once more at
+    the deadline: a machine that stalled this thread past it may have met the condition
+    meanwhile."""
     deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
+    while True:
+        past_deadline = time.monotonic() >= deadline
         value = predicate()
         if value:
             return value
+        if past_deadline:
+            break
         time.sleep(0.005)
     raise AssertionError(f"timed out waiting for {what() if callable(what) else what}")
 

@@ -36,6 +36,7 @@ from services.runtime.server import (
     create_server,
 )
 from services.runtime.service import Service
+from services.runtime.thread_names import name_os_threads
 from services.security.audit import AUDIT_DIR_ENV, AuditLog, audit_log_for
 from services.security.tokens import TokenStore, tokens_file
 from wire.addresses import env_name, is_loopback
@@ -101,6 +102,7 @@ def run_service(
         log.info("every thread at nice %d: on a busy machine this service waits, not the "
                  "command path or the operator's processes", args.nice)
     dump_stacks_on_signal()
+    name_os_threads()
     sys.setswitchinterval(switch_interval_s)
 
     stop = threading.Event()
