@@ -26,6 +26,23 @@ def reaped_children_cpu_s(pid: int) -> float:
     return (int(fields[13]) + int(fields[14])) / _TICKS_PER_S
 
 
+def thread_cpu_s(pid: int) -> dict[str, float]:
+    """A process's CPU time so far by thread name (the OS's: runtime.thread_names gives each
+    service thread its Python name there), threads of one name summed, s. A thread that has
+    ended is no longer counted: compare two readings only for threads that live through both."""
+    times: dict[str, float] = {}
+    for task in os.scandir(f"/proc/{pid}/task"):
+        try:
+            with open(f"{task.path}/stat") as stat:
+                text = stat.read()
+        except (FileNotFoundError, ProcessLookupError):
+            continue  # the thread ended meanwhile
+        name = text[text.index("(") + 1:text.rindex(")")]
+        fields = text.rsplit(")", 1)[1].split()
+        times[name] = times.get(name, 0.0) + (int(fields[11]) + int(fields[12])) / _TICKS_PER_S
+    return times
+
+
 def _stat_fields(pid: int) -> list[str]:
     """/proc/PID/stat's fields after the command (which may hold " "): state is [0]."""
     with open(f"/proc/{pid}/stat") as stat:

@@ -157,6 +157,8 @@ def _baselines(name: str, results: dict[str, dict]) -> str:
             if label == report.RECORDING_OFF and results[name].get("overhead_median"):
                 text += (f"; medians of {len(results[name].get('overhead_pairs') or [])} "
                          f"interleaved pairs: {_overhead(results[name])}")
+                if by_thread := report.thread_cpu_text(results[name]):
+                    text += f"; the server's CPU by thread, on − off: {by_thread}"
             parts.append(text)
     if results[name].get("cpu"):
         parts.append(_cpu_text(results[name]["cpu"]))

@@ -13,7 +13,7 @@ import time
 from importlib import metadata
 from pathlib import Path
 
-from bench.goals import CPU_KEY, SUBSCRIBER_CPU_KEY, is_baseline, verdict_text
+from bench.goals import CPU_KEY, SUBSCRIBER_CPU_KEY, THREAD_CPU_KEY, is_baseline, verdict_text
 from bench.stats import ratio
 
 # What the papers report for the same path, for the table's last column.
@@ -95,7 +95,7 @@ def comparison(result: dict, base: dict) -> dict[str, float | None]:
 
 # A leg's figures an interleaved pair keeps (the rest, e.g. latencies, is the leg's worker's).
 LEG_KEYS = ("delivered_hz", "p50_ms", "p99_ms", "dropped", CPU_KEY, SUBSCRIBER_CPU_KEY,
-            "session_applied", "retried_after")
+            THREAD_CPU_KEY, "session_applied", "retried_after")
 # The ratios (on / off) of an interleaved pair: {name: result key}; goals.py judges some.
 OVERHEAD_RATIOS = {"delivered": "delivered_hz", "p50": "p50_ms", "p99": "p99_ms",
                    "server_cpu": CPU_KEY, "subscriber_cpu": SUBSCRIBER_CPU_KEY}
@@ -117,9 +117,10 @@ def interleaved(pairs: list[tuple[dict, dict]]) -> dict:
     off, on, on, off, off, on... (Session.mcap_twin): the first on leg's result (its figures
     are the row's, as the first off leg's are the twin's), with `overhead_pairs` (each leg's
     figures, and the on leg's `recording`), `overhead_ratios` (on / off per pair, for each of
-    OVERHEAD_RATIOS both legs have), `overhead_median` (their median: what goals.py judges)
-    and `recordings` (every on leg's, each checked by goals.recording_misses; none when no
-    leg recorded)."""
+    OVERHEAD_RATIOS both legs have), `overhead_median` (their median: what goals.py judges),
+    `thread_cpu_change` (where the server's CPU per command moved: thread_cpu_change) and
+    `recordings` (every on leg's, each checked by goals.recording_misses; none when no leg
+    recorded)."""
     row = dict(pairs[0][1])
     ratios: dict[str, list[float | None]] = {}
     for name, key in OVERHEAD_RATIOS.items():
@@ -132,10 +133,32 @@ def interleaved(pairs: list[tuple[dict, dict]]) -> dict:
         name: round(statistics.median(known), 3)
         for name, values in ratios.items()
         if (known := [value for value in values if value is not None])}
+    if change := thread_cpu_change(pairs):
+        row["thread_cpu_change"] = change
     recordings = [on.get("recording") for _, on in pairs]
     if any(recording is not None for recording in recordings):  # (none in an A/A row)
         row["recordings"] = recordings
     return row
+
+
+def thread_cpu_change(pairs: list[tuple[dict, dict]]) -> dict[str, float]:
+    """{thread name: the median over pairs of the on leg's CPU per command less the off
+    leg's, µs}, for the names either leg of a pair has (0 in the other), largest change
+    first; {} when the legs were not split by thread."""
+    legs = [(off.get(THREAD_CPU_KEY), on.get(THREAD_CPU_KEY)) for off, on in pairs]
+    legs = [(off, on) for off, on in legs if off is not None and on is not None]
+    names = {name for off, on in legs for name in (*off, *on)}
+    change = {name: round(statistics.median(on.get(name, 0.0) - off.get(name, 0.0)
+                                            for off, on in legs), 1) for name in names}
+    return dict(sorted(change.items(), key=lambda item: -abs(item[1])))
+
+
+def thread_cpu_text(row: dict, shown: int = 4) -> str:
+    """"event_engine +11.7, follow-proxy_ro +5.7 µs/command": the `shown` largest changes of
+    thread_cpu_change; "" without them."""
+    change = list((row.get("thread_cpu_change") or {}).items())[:shown]
+    return ", ".join(f"{name} {value:+.1f}" for name, value in change) + (
+        " µs/command" if change else "")
 
 
 def overhead_text(row: dict, symbol: str = "x") -> str:

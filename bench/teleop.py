@@ -35,7 +35,9 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
   all its threads) over the session, from before it opens (before StartRecording) to after it
   ends (after StopRecording), per command applied in it; and, for a recorded session,
   ``writer_cpu_ms_per_command``, the same of the recording's writer process (the server's
-  child, reaped at StopRecording). At 1 kHz
+  child, reaped at StopRecording); ``server_cpu_us_per_command_by_thread``, the server's
+  CPU split by thread name (the threads that live through the session: a recording's own
+  thread ends with it and is not in it). At 1 kHz
   the DecisionServer is the stream's bottleneck on a 2-core machine: it keeps the rate by
   merging a backlog into fewer moves, so what recording costs it shows in its CPU, while the
   latency is a queue whose length the machine's load sets.
@@ -72,7 +74,8 @@ from google.protobuf import duration_pb2, timestamp_pb2
 
 from bench import framing
 from bench.command import PLAINTEXT, TELEOP_STEP_M, acquire_control, release_control
-from bench.cpu import process_cpu_s, reaped_children_cpu_s
+from bench.cpu import process_cpu_s, reaped_children_cpu_s, thread_cpu_s
+from bench.goals import THREAD_CPU_KEY
 from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldloop import LoopMeter
@@ -556,6 +559,14 @@ def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict],
     return result
 
 
+def _per_command_us(before: dict[str, float], after: dict[str, float], commands: int
+                    ) -> dict[str, float]:
+    """Each thread name's CPU between two thread_cpu_s readings, µs per command (those that
+    spent any)."""
+    return {name: round(1e6 * (after[name] - before.get(name, 0.0)) / commands, 1)
+            for name in after if after[name] > before.get(name, 0.0)}
+
+
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
             duration_s: float, swing: int | None = None, window_s: float | None = None,
             drain_s: float = DRAIN_S, first_sign: float = 1.0, record_dir: str | None = None,
@@ -575,6 +586,7 @@ def measure(transport_kind: str, address: str, shm_name: str | None, rates: list
             run = functools.partial(run_rate, client, rate, duration_s, sign, loop, swing,
                                     window_s, drain_s)
             cpu_s = process_cpu_s(server_pid) if server_pid else None
+            threads_s = thread_cpu_s(server_pid) if server_pid else None
             writer_cpu_s = reaped_children_cpu_s(server_pid) if server_pid else None
             result = run() if record_dir is None else recorded(client, Path(record_dir), run,
                                                                 episode_task)
@@ -582,6 +594,8 @@ def measure(transport_kind: str, address: str, shm_name: str | None, rates: list
             if cpu_s is not None and applied:
                 result["server_cpu_ms_per_command"] = round(
                     1e3 * (process_cpu_s(server_pid) - cpu_s) / applied, 4)
+                result[THREAD_CPU_KEY] = _per_command_us(threads_s, thread_cpu_s(server_pid),
+                                                         applied)
                 if record_dir is not None:
                     result["writer_cpu_ms_per_command"] = round(
                         1e3 * (reaped_children_cpu_s(server_pid) - writer_cpu_s) / applied, 4)

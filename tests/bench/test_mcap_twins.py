@@ -137,6 +137,31 @@ def test_interleaved_pairs_make_the_row_of_the_first_on_leg_with_ratios_and_medi
         "server_cpu x1.04 (x1.04, x1.30, -)")
 
 
+def test_an_interleaved_row_says_where_the_servers_cpu_moved_by_thread():
+    """Each pair's on − off per thread name (0 where a leg had no such thread), the median
+    over pairs, the largest change first; shown in the readme's row."""
+    by_thread = goals.THREAD_CPU_KEY
+    pairs = _pairs([1.0, 1.0, 1.0])
+    for (off, on), engine, follow in zip(pairs, (10.0, 14.0, 9.0), (2.0, 6.0, 5.0),
+                                         strict=True):
+        off[by_thread] = {"event_engine": 80.0, "follow-proxy_ro": 30.0, "grpc": 60.0}
+        on[by_thread] = {"event_engine": 80.0 + engine, "follow-proxy_ro": 30.0 + follow,
+                         "grpc": 59.0, "recording-video": 3.0}
+    pairs[2][1][by_thread].pop("recording-video")
+    row = report.interleaved(pairs)
+    assert row["thread_cpu_change"] == {"event_engine": 10.0, "follow-proxy_ro": 5.0,
+                                        "recording-video": 3.0, "grpc": -1.0}
+    assert row["overhead_pairs"][0]["on"][by_thread]["grpc"] == 59.0
+    assert report.thread_cpu_text(row, shown=2) == (
+        "event_engine +10.0, follow-proxy_ro +5.0 µs/command")
+    results = {"teleop_1000": _row(995.0, 0.5, 4.0), "teleop_1000_mcap": row}
+    line = next(line for line in readme.table({"quick": True, "machine": {}, **results})
+                .splitlines() if line.startswith("| `teleop_1000_mcap`"))
+    assert "the server's CPU by thread, on − off: event_engine +10.0, follow-proxy_ro +5.0, " \
+           "recording-video +3.0, grpc -1.0 µs/command" in line
+    assert report.thread_cpu_change(_pairs([1.0])) == {}  # legs not split by thread
+
+
 def test_an_interleaved_row_is_judged_on_the_median_of_its_pairs_and_every_recording():
     twin = _row(995.0, 30.0, 200.0, **{goals.CPU_KEY: 0.9})  # pair 1's off leg, not judged on
     results = {"teleop_1000": twin,
