@@ -35,6 +35,7 @@ import json
 import os
 import re
 import sys
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -58,6 +59,8 @@ STATUS_PERIOD_S = 1.0  # the session's status is put at least this often
 VIDEO_FPS = 10.0  # the camera's pace on this machine (a stereo pair renders in ~85 ms)
 VIDEO_KBIT = 1000  # the bitrate ceiling, kbit/s: 640x480 per eye at 10 fps
 VIDEO_KEYFRAME_S = 2.0  # the longest a newcomer waits for a key frame
+# The longest a process waits for its session's close (close_session) before it exits anyway.
+CLOSE_TIMEOUT_S = 2.0
 
 # topic -> the message type of its payloads
 TOPICS = {
@@ -232,6 +235,25 @@ class SessionPlan:
 def client(router: str, tls: ZenohTls | None = None) -> zenoh.Session:
     """A client session through `router` (tcp/HOST:PORT, or tls/HOST:PORT with `tls`)."""
     return SessionPlan("client", connect=(router,), tls=tls).open()
+
+
+def close_session(session: zenoh.Session, timeout_s: float = CLOSE_TIMEOUT_S) -> bool:
+    """Close `session`, waiting at most `timeout_s`; whether it closed in time. Zenoh's close
+    can block about 10 s, then fail, when a link to a `connect` endpoint is slow or lossy
+    (eclipse-zenoh/zenoh#2675): longer than a supervisor's grace, so the process would be
+    killed. Past the timeout the process goes on to exit, which closes its sockets anyway."""
+    closed = threading.Event()
+
+    def close() -> None:
+        try:
+            session.close()
+        except zenoh.ZError as error:  # "close operation timed out"
+            print(f"closing the Zenoh session: {error}", file=sys.stderr)
+        finally:
+            closed.set()
+
+    threading.Thread(target=close, name="zenoh-close", daemon=True).start()
+    return closed.wait(timeout_s)
 
 
 class RouterUnreachable(ConnectionError):

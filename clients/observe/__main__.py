@@ -26,9 +26,11 @@ from wire.observation import (
     TOPICS,
     BadEndpoint,
     RouterUnreachable,
+    close_session,
     default_router,
     join_router,
 )
+from wire.processes import handle_signals
 from wire.tls import IDENTITY_ENV, TLS_DIR_ENV
 
 
@@ -94,8 +96,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"observe: {error}", file=sys.stderr)
         return 2
     stop = threading.Event()
-    signal.signal(signal.SIGINT, lambda *_: stop.set())
-    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    handle_signals({signal.SIGINT: lambda _: stop.set(), signal.SIGTERM: lambda _: stop.set()})
     deadline = time.monotonic() + args.seconds if args.seconds > 0 else None
     try:
         while not stop.wait(args.every):
@@ -106,7 +107,7 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         summary = observer.summary()
         observer.close()
-        session.close()
+        close_session(session)
     if args.json:
         print(json.dumps(summary))
     return 0 if any(count["messages"] for count in summary.values()) else 1

@@ -28,11 +28,13 @@ from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name
 from wire.observation import (
+    CLOSE_TIMEOUT_S,
     STATION_ENV,
     BadEndpoint,
     ZenohTls,
     checked_endpoint,
     client,
+    close_session,
     default_router,
     station_name,
     tls_from,
@@ -97,7 +99,9 @@ def main(argv: list[str] | None = None) -> int:
         wait_for_stop(stop)
     finally:
         publisher.close()
-        session.close()
+        if not close_session(session):
+            log.warning("the session did not close within %.0f s: exiting without it",
+                        CLOSE_TIMEOUT_S)
         for channel in channels:
             channel.close()
     log.info("stopped; published %s", dict(publisher.published))

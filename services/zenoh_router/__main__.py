@@ -24,7 +24,14 @@ import zenoh
 from services.runtime.config import configure_logging
 from services.runtime.process import stop_requested, wait_for_stop
 from wire.addresses import address_for, env_name
-from wire.observation import BadEndpoint, SessionPlan, ZenohTls, endpoint_for
+from wire.observation import (
+    CLOSE_TIMEOUT_S,
+    BadEndpoint,
+    SessionPlan,
+    ZenohTls,
+    close_session,
+    endpoint_for,
+)
 from wire.processes import dump_stacks_on_signal, say_ready
 from wire.tls import TLS_DIR_ENV
 
@@ -98,7 +105,9 @@ def main(argv: list[str] | None = None) -> int:
         say_ready(NAME, address)
         wait_for_stop(stop)
     finally:
-        session.close()
+        if not close_session(session):
+            log.warning("the session did not close within %.0f s: exiting without it",
+                        CLOSE_TIMEOUT_S)
     return 0
 
 
