@@ -7,7 +7,8 @@ HOST``) drives it as it would drive a real FR3.
 
 franka-sim pins numpy 1.26 and mujoco < 3.3, so it runs from a venv of its own: ``make
 franka-sim`` makes ``.venv-franka``, and ``.venv-franka/bin/python -m services.franka_sim`` runs
-it. This module imports nothing of the project's for that reason.
+it. This module imports nothing of the project's for that reason, but wire.processes, which
+needs only the standard library.
 
 A robot's controller runs in real time, and so does this one where the host allows it: every
 thread at SCHED_FIFO (--rt-priority, 10 as the world's physics thread), only while the kernel
@@ -28,11 +29,12 @@ import threading
 import time
 from pathlib import Path
 
+from wire.processes import PARENT_PID_ENV, handle_signals
+
 FR3_SCENE = (Path(__file__).resolve().parents[2] / "domain" / "robot_model" / "arms" / "fr3"
              / "scene.xml")
 COMMAND_PORT = 1337  # libfranka's: a client cannot choose another
 READY_LINE = "franka-sim ready"
-PARENT_PID_ENV = "TELEROBOT_PARENT_PID"  # wire.processes.PARENT_PID_ENV (not imported: see above)
 RT_PRIORITY_ENV = "TELEROBOT_FRANKA_SIM_RT_PRIORITY"
 DEFAULT_RT_PRIORITY = 10
 RT_RUNTIME_PATH = "/proc/sys/kernel/sched_rt_runtime_us"
@@ -63,8 +65,7 @@ def main(argv: list[str] | None = None) -> int:
     server = FrankaSimServer(host=args.host, port=COMMAND_PORT, enable_gripper=False,
                              enforce_comm_constraints=args.enforce_comm_constraints)
     stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
+    handle_signals({signal.SIGINT: lambda _: stop.set(), signal.SIGTERM: lambda _: stop.set()})
     _stop_with_parent(stop)
     thread = threading.Thread(target=server.start, name="franka-sim", daemon=True)
     thread.start()
