@@ -132,10 +132,11 @@ class GrpcSlave:
         self._health_calls: set = set()  # open health watches, cancelled on close
         self._health: dict[str, str] = {}  # dependency -> "ok" or why not
         self._health_answered: dict[str, threading.Event] = {}  # set at the first answer
-        for target, name in ((self._follow_state, "proxy_robot"),
-                             (self._follow_wrench, "force_sensor"),
-                             (self._follow_events, "proxy_robot events")):
-            threading.Thread(target=target, name=f"follow-{name}", daemon=True).start()
+        # Thread names within the 15 characters the OS keeps of each (runtime.thread_names).
+        for target, name in ((self._follow_state, "follow-state"),
+                             (self._follow_wrench, "follow-wrench"),
+                             (self._follow_events, "follow-events")):
+            threading.Thread(target=target, name=name, daemon=True).start()
         self.watch_health("proxy_robot", self.robot_channel)
         self.watch_health("force_sensor", self.sensor_channel)
         if self.emergency_channel is not None:
