@@ -15,8 +15,7 @@ _TICKS_PER_S = os.sysconf("SC_CLK_TCK")
 
 def process_cpu_s(pid: int) -> float:
     """A process's CPU time so far (user + system, every thread), s; 10 ms ticks."""
-    fields = _stat_fields(pid)
-    return (int(fields[11]) + int(fields[12])) / _TICKS_PER_S
+    return _cpu_s(_stat_fields(pid))
 
 
 def reaped_children_cpu_s(pid: int) -> float:
@@ -38,15 +37,23 @@ def thread_cpu_s(pid: int) -> dict[str, float]:
         except (FileNotFoundError, ProcessLookupError):
             continue  # the thread ended meanwhile
         name = text[text.index("(") + 1:text.rindex(")")]
-        fields = text.rsplit(")", 1)[1].split()
-        times[name] = times.get(name, 0.0) + (int(fields[11]) + int(fields[12])) / _TICKS_PER_S
+        times[name] = times.get(name, 0.0) + _cpu_s(_fields(text))
     return times
 
 
 def _stat_fields(pid: int) -> list[str]:
-    """/proc/PID/stat's fields after the command (which may hold " "): state is [0]."""
     with open(f"/proc/{pid}/stat") as stat:
-        return stat.read().rsplit(")", 1)[1].split()
+        return _fields(stat.read())
+
+
+def _fields(stat: str) -> list[str]:
+    """A /proc stat line's fields after the command (which may hold " "): state is [0]."""
+    return stat.rsplit(")", 1)[1].split()
+
+
+def _cpu_s(fields: list[str]) -> float:
+    """User + system time of those fields, s."""
+    return (int(fields[11]) + int(fields[12])) / _TICKS_PER_S
 
 
 def machine_ticks() -> tuple[int, int]:

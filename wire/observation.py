@@ -32,6 +32,7 @@ lets only the station's publisher and other routers put into telerobot/** (ACCES
 from __future__ import annotations
 
 import json
+import logging
 import os
 import re
 import sys
@@ -48,6 +49,8 @@ from telerobot.v1 import (
     stereo_camera_pb2,
 )
 from wire.addresses import address_for, is_loopback
+
+log = logging.getLogger(__name__)
 
 KEY_ROOT = "telerobot"
 STATION_ENV = "TELEROBOT_STATION"  # the station's name in its Zenoh keys (default station)
@@ -237,8 +240,8 @@ def client(router: str, tls: ZenohTls | None = None) -> zenoh.Session:
     return SessionPlan("client", connect=(router,), tls=tls).open()
 
 
-def close_session(session: zenoh.Session, timeout_s: float = CLOSE_TIMEOUT_S) -> bool:
-    """Close `session`, waiting at most `timeout_s`; whether it closed in time. Zenoh's close
+def close_session(session: zenoh.Session, timeout_s: float = CLOSE_TIMEOUT_S) -> None:
+    """Close `session`, waiting at most `timeout_s` (and saying so past it). Zenoh's close
     can block about 10 s, then fail, when a link to a `connect` endpoint is slow or lossy
     (eclipse-zenoh/zenoh#2675): longer than a supervisor's grace, so the process would be
     killed. Past the timeout the process goes on to exit, which closes its sockets anyway."""
@@ -248,12 +251,14 @@ def close_session(session: zenoh.Session, timeout_s: float = CLOSE_TIMEOUT_S) ->
         try:
             session.close()
         except zenoh.ZError as error:  # "close operation timed out"
-            print(f"closing the Zenoh session: {error}", file=sys.stderr)
+            log.warning("closing the Zenoh session: %s", error)
         finally:
             closed.set()
 
     threading.Thread(target=close, name="zenoh-close", daemon=True).start()
-    return closed.wait(timeout_s)
+    if not closed.wait(timeout_s):
+        log.warning("the Zenoh session did not close within %.0f s: exiting without it",
+                    timeout_s)
 
 
 class RouterUnreachable(ConnectionError):

@@ -28,7 +28,6 @@ from services.runtime.process import stop_requested, wait_for_stop
 from services.runtime.tls import station_channel_security
 from wire.addresses import address_for, env_name
 from wire.observation import (
-    CLOSE_TIMEOUT_S,
     STATION_ENV,
     BadEndpoint,
     ZenohTls,
@@ -99,9 +98,7 @@ def main(argv: list[str] | None = None) -> int:
         wait_for_stop(stop)
     finally:
         publisher.close()
-        if not close_session(session):
-            log.warning("the session did not close within %.0f s: exiting without it",
-                        CLOSE_TIMEOUT_S)
+        close_session(session)
         for channel in channels:
             channel.close()
     log.info("stopped; published %s", dict(publisher.published))

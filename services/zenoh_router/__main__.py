@@ -25,7 +25,6 @@ from services.runtime.config import configure_logging
 from services.runtime.process import stop_requested, wait_for_stop
 from wire.addresses import address_for, env_name
 from wire.observation import (
-    CLOSE_TIMEOUT_S,
     BadEndpoint,
     SessionPlan,
     ZenohTls,
@@ -105,9 +104,7 @@ def main(argv: list[str] | None = None) -> int:
         say_ready(NAME, address)
         wait_for_stop(stop)
     finally:
-        if not close_session(session):
-            log.warning("the session did not close within %.0f s: exiting without it",
-                        CLOSE_TIMEOUT_S)
+        close_session(session)
     return 0
 
 
