@@ -7,7 +7,8 @@ metadata record "recording". Each channel's schema is the message's file descrip
 (mcap-protobuf-support writes them), so any MCAP reader decodes the file without gen/.
 
 `McapRecorder` drains on a thread of its own (`Recorder`, which the JSONL recorder shares): the
-command path only queues, so a slow or full disk never slows or fails a command. The file itself
+command path only queues, or packs an increment or an ack into a buffer (recording_records), so
+a slow or full disk never slows or fails a command. The file itself
 is written by a process of its own, at ordinary priority (recording_writer, reached through
 writer_process.RemoteMcapFile): the MCAP writer's records, CRCs and compression, and the
 stereo video, take none of the DecisionServer's GIL or its real-time time. A full disk
@@ -43,6 +44,7 @@ from mcap_protobuf.decoder import DecoderFactory
 from mcap_protobuf.schema import register_schema
 
 from services.common.inbox import queued_now
+from services.decision_server.recording_records import pack_ack, pack_increment
 from services.decision_server.writer_process import RemoteMcapFile, WriterStart
 from services.runtime.clock import Clock
 from telerobot.v1 import decision_server_pb2 as pb
@@ -92,16 +94,9 @@ _FRAME_NAMES = {value: name for name, value in _FRAMES.items()}
 # -- RecordedCommand <-> RecordedIncrement ---------------------------------------------------
 
 def increment_to_proto(command) -> pb.RecordedIncrement:
-    return increment_message(*increment_fields(command))
-
-
-def increment_fields(command) -> tuple:
-    """A RecordedCommand as plain values (lists, not arrays): cheap to send to the writer,
-    which makes them a RecordedIncrement (increment_message), the costlier half."""
-    joints = command.delta_joints_rad
-    return (command.offset_s, command.frame, command.delta_position_m.tolist(),
-            command.delta_rotation.reshape(9).tolist(), command.target_position_m.tolist(),
-            None if joints is None else joints.tolist())
+    return increment_message(command.offset_s, command.frame, command.delta_position_m,
+                             command.delta_rotation.reshape(9), command.target_position_m,
+                             command.delta_joints_rad)
 
 
 def increment_message(offset_s: float, frame: str, delta_position, delta_rotation, target,
@@ -282,8 +277,9 @@ class Gap:
 
 
 class Recorder:
-    """A recording being written on its own thread. `increment`, `ack` and `event` only queue;
-    the writer takes what is queued every DRAIN_PERIOD_S. `on_failure(reason)` is called (on
+    """A recording being written on its own thread. `add` (an increment), `ack` and `event`
+    only queue (McapRecorder packs increments and acks instead: recording_records); the
+    writer takes what is queued every DRAIN_PERIOD_S. `on_failure(reason)` is called (on
     the writer thread) when writing fails (a full disk): the recording is then over, nothing
     more is queued, and the partial file is deleted. A writer QUEUE_LIMIT behind loses no file:
     new items are dropped and counted (`dropped`, by channel) until it catches up, and the gap
@@ -321,8 +317,11 @@ class Recorder:
         return 0.0 if self.first_offset_s is None else self.last_offset_s - self.first_offset_s
 
     # -- from any thread: queue only --------------------------------------------------------
-    def increment(self, command) -> None:
-        self._put("increment", command)
+    def add(self, offset_s: float, frame: str, delta_position, delta_rotation,
+            target_position, delta_joints) -> None:
+        """An applied increment, `offset_s` into the recording (a RecordedCommand's fields;
+        the arrays are the caller's, not to be kept)."""
+        raise NotImplementedError
 
     def ack(self, ack: pb.CommandAck) -> None:
         self._put("ack", ack, self._clock.time_ns())
@@ -334,29 +333,39 @@ class Recorder:
         if self.error is not None:
             return
         with self._lock:
-            resume = QUEUE_LIMIT // 2
-            if self._gap is not None and self._queued <= resume:
-                self._enqueue(("gap", self._gap))  # caught up: the gap is over
-                self._gap = None
-            limit = 2 * QUEUE_LIMIT if kind == "increment" else (
-                resume if self._gap is not None else QUEUE_LIMIT)
-            if self._queued < limit:
-                self._enqueue((kind, *payload))
-                return
-            now = self._clock.time_ns()
-            opened = self._gap is None
-            if opened:
-                self._gap = Gap(now, now)
-            self._gap.last_ns = now
-            self._gap.counts[kind] += 1
-        if opened:
+            if self._admit(kind):
+                self._queue.put((kind, *payload))
+
+    def _admit(self, kind: str) -> bool:
+        """With the lock held: whether there is room for one more item of `kind` (then
+        counted as queued), else it is dropped and counted in the open gap."""
+        resume = QUEUE_LIMIT // 2
+        if self._gap is not None and self._queued <= resume:
+            self._enqueue(("gap", self._gap))  # caught up: the gap is over
+            self._gap = None
+        limit = 2 * QUEUE_LIMIT if kind == "increment" else (
+            resume if self._gap is not None else QUEUE_LIMIT)
+        if self._queued < limit:
+            self._queued += 1
+            return True
+        now = self._clock.time_ns()
+        if self._gap is None:  # (said once per gap, so under the lock)
+            self._gap = Gap(now, now)
             log.warning("the recording '%s' fell %d messages behind: new ones are dropped, "
                         "and counted, until it catches up", self.name, limit)
+        self._gap.last_ns = now
+        self._gap.counts[kind] += 1
+        return False
 
     def _enqueue(self, item) -> None:
         """With the lock held."""
         self._queued += 1
         self._queue.put(item)
+
+    def _done(self, count: int) -> None:
+        """`count` queued items are written."""
+        with self._lock:
+            self._queued -= count
 
     def finish(self) -> None:
         """Write what is queued (and the gap still open), the end, and close. Raises
@@ -389,10 +398,10 @@ class Recorder:
                         self.write_gap(gap)
                     else:
                         if kind == "increment":
-                            self._count(item[1])
+                            self._count(item[1].offset_s)
                         self.write(item)
-                    with self._lock:
-                        self._queued -= 1
+                    self._done(1)
+                self.drain_packed()
                 self.tick()
         except Exception as error:  # noqa: BLE001 - any failure to write ends the recording
             self.error = f"writing {self.path.name} failed: {error}"
@@ -401,15 +410,20 @@ class Recorder:
         log.warning("the recording '%s' stopped: %s", self.name, self.error)
         self._on_failure(self.error)
 
-    def _count(self, command) -> None:
+    def _count(self, offset_s: float) -> None:
+        """An increment written (or packed)."""
         self.command_count += 1
         if self.first_offset_s is None:
-            self.first_offset_s = command.offset_s
-        self.last_offset_s = command.offset_s
+            self.first_offset_s = offset_s
+        self.last_offset_s = offset_s
 
     # -- a format's ----------------------------------------------------------------------------
     def open(self) -> None:
         raise NotImplementedError
+
+    def drain_packed(self) -> None:
+        """Each drain, after the queued items: send on what the command path packed itself
+        (McapRecorder's increments and acks)."""
 
     def write(self, item) -> None:
         raise NotImplementedError
@@ -431,8 +445,9 @@ class McapRecorder(Recorder):
     """An MCAP recording (see Recorder), which also samples `sources` every SAMPLE_PERIOD_S
     and keeps the server's events (`event_to_message` makes each the message to keep, or
     None to leave it out). The file is written by a writer of its own, which `writer` starts
-    (RemoteMcapFile: a process, or a thread in the unit tests): here each message is only
-    serialized and sent on, each drain."""
+    (RemoteMcapFile: a process, or a thread in the unit tests): here each event and sample is
+    only serialized, the command path's packed increments and acks taken whole, and all sent
+    on, each drain."""
 
     def __init__(self, path: Path, name: str, create_time_ns: int, clock: Clock,
                  sources: Sources, event_to_message: Callable | None,
@@ -445,6 +460,10 @@ class McapRecorder(Recorder):
         self._next_sample = clock.monotonic()
         self.task = task
         self.outcome = ""  # set before finish(): how the episode went
+        # What the command path packed since the last drain (recording_records), under the
+        # lock: increments and acks, and how many of each.
+        self._increments, self._acks = bytearray(), bytearray()
+        self._packed = [0, 0]
         super().__init__(path, name, create_time_ns, clock, on_failure)
 
     @property
@@ -461,7 +480,40 @@ class McapRecorder(Recorder):
             self._next_sample = now + (EPISODE_SAMPLE_PERIOD_S if self.task else SAMPLE_PERIOD_S)
         self._file.flush()  # to the writer; a full disk there shows up now, not at the end
 
+    # -- the command path: packed, not queued ------------------------------------------------
+    def add(self, offset_s: float, frame: str, delta_position, delta_rotation,
+            target_position, delta_joints) -> None:
+        if self.error is not None:
+            return
+        with self._lock:
+            if self._admit("increment"):
+                pack_increment(self._increments, self.create_time_ns + round(offset_s * 1e9),
+                               offset_s, frame, delta_position, delta_rotation,
+                               target_position, delta_joints)
+                self._packed[0] += 1
+                self._count(offset_s)
+
+    def ack(self, ack: pb.CommandAck) -> None:
+        if self.error is not None:
+            return
+        serialized = ack.SerializeToString()  # (outside the lock)
+        with self._lock:
+            if self._admit("ack"):
+                pack_ack(self._acks, self._clock.time_ns(), serialized)
+                self._packed[1] += 1
+
+    def drain_packed(self) -> None:
+        with self._lock:
+            if not any(self._packed):
+                return
+            increments, self._increments = self._increments, bytearray()
+            acks, self._acks = self._acks, bytearray()
+            counts, self._packed = self._packed, [0, 0]
+        self._file.write_packed(increments, acks, {INCREMENT: counts[0], ACK: counts[1]})
+        self._done(counts[0] + counts[1])
+
     def finish_file(self) -> None:
+        self.drain_packed()
         self._sample()
         self._file.finish(metadata_of(self.name, self.create_time_ns, self.command_count,
                                       self.duration_s, self.dropped, self.task, self.outcome,
@@ -475,15 +527,8 @@ class McapRecorder(Recorder):
         self._file.metadata(GAP, gap.as_metadata())
 
     def write(self, item) -> None:
-        kind = item[0]
-        if kind == "increment":
-            command = item[1]  # the writer makes it a message: the costlier half
-            self._file.write_built(INCREMENT, increment_message, increment_fields(command),
-                                   self.create_time_ns + round(command.offset_s * 1e9))
-        elif kind == "ack":
-            ack, received = item[1], item[2]
-            self._file.write(ACK, ack, received, convert.time_ns(ack.apply_time) or received)
-        elif kind == "event" and self._event_to_message is not None:
+        """An event (the only kind queued: increments and acks are packed)."""
+        if self._event_to_message is not None:
             event = item[1]
             message = self._event_to_message(event)
             if message is not None:

@@ -5,8 +5,9 @@ It waits on CONNECTION_FD (a socket) for pickled tuples:
 - ("open", camera): first, then the file's descriptor (SCM_RIGHTS), which it writes; `camera`,
   a CameraSource or None, is the stereo camera whose H.264 stream it records beside the rest
   (header once, then every pair from the first key frame, at its capture time);
-- ("messages", [(topic, type name, serialized message, log time ns, publish time ns), ...]),
-  or in place of the type name and the message, a function and its arguments that build it;
+- ("messages", [(topic, type name, serialized message, log time ns, publish time ns), ...],
+  increments, acks): the last two packed by the command path (recording_records), made
+  messages here;
 - ("metadata", name, data): a metadata record (a gap's);
 - ("finish", metadata): the video stopped first, the "recording" metadata and the summary
   written and synced; answers ("finished", counts by channel), then exits;
@@ -30,7 +31,16 @@ from multiprocessing.connection import Connection
 from google.protobuf import descriptor_pool, message_factory
 
 from services.decision_server.camera_feed import CameraSource
-from services.decision_server.recording_mcap import STEREO_HEADER, STEREO_VIDEO, McapFile
+from services.decision_server.recording_mcap import (
+    ACK,
+    INCREMENT,
+    STEREO_HEADER,
+    STEREO_VIDEO,
+    McapFile,
+    increment_message,
+)
+from services.decision_server.recording_records import unpack_acks, unpack_increments
+from telerobot.v1.decision_server_pb2 import CommandAck
 from wire import convert
 from wire.foxglove_video import stereo_video
 
@@ -91,12 +101,16 @@ class Writer:
         if request[0] == "metadata":
             self._file.metadata(request[1], request[2])
             return
-        for topic, kind, data, log_time, publish_time in request[1]:
-            if callable(kind):  # RemoteMcapFile.write_built's: built here
-                self._file.write(topic, kind(*data), log_time, publish_time or None)
-            else:  # serialized, `kind` its type's full name
-                self._file.write_serialized(topic, self._type(kind), data, log_time,
-                                            publish_time or None)
+        _, batch, increments, acks = request
+        for topic, type_name, data, log_time, publish_time in batch:
+            self._file.write_serialized(topic, self._type(type_name), data, log_time,
+                                        publish_time or None)
+        for log_time, fields in unpack_increments(increments):
+            self._file.write(INCREMENT, increment_message(*fields), log_time)
+        for received, data in unpack_acks(acks):
+            ack = CommandAck.FromString(data)  # published at its apply time
+            self._file.write_serialized(ACK, CommandAck, data, received,
+                                        convert.time_ns(ack.apply_time) or received)
         self._file.flush()  # a full disk shows up now, not at the end
 
     def _type(self, name: str) -> type:

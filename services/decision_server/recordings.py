@@ -149,6 +149,13 @@ class JsonlRecorder(Recorder):
             self.abandon()
             raise
 
+    def add(self, offset_s: float, frame: str, delta_position, delta_rotation,
+            target_position, delta_joints) -> None:
+        self._put("increment", RecordedCommand(
+            offset_s, frame, np.array(delta_position, float), np.array(delta_rotation, float),
+            np.array(target_position, float),
+            None if delta_joints is None else np.array(delta_joints, float)))
+
     def ack(self, ack) -> None:
         pass
 
@@ -280,12 +287,8 @@ class RecordingStore:
             active = self._active
             if active is None:
                 return
-            command = RecordedCommand(
-                self._clock.monotonic() - active.started, frame,
-                np.array(delta_position, float), np.array(delta_rotation, float),
-                np.array(target_position, float),
-                None if delta_joints is None else np.array(delta_joints, float))
-            active.recorder.increment(command)  # queued: written off this thread
+            active.recorder.add(self._clock.monotonic() - active.started, frame,
+                                delta_position, delta_rotation, target_position, delta_joints)
 
     def note_ack(self, ack) -> None:
         """An ack the server sent (a CommandAck): kept by an MCAP recording."""

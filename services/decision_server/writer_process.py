@@ -1,7 +1,8 @@
 """The DecisionServer's end of an MCAP recording's writer process (recording_writer). No gRPC.
 
 `RemoteMcapFile` looks like recording_mcap.McapFile to the recorder, but only serializes each
-message and sends it on, a batch per `flush()`: the MCAP writer's records, CRCs and zstd
+message and sends it on, a batch per `flush()` with the increments and acks the command path
+packed (`write_packed`): building those messages, the MCAP writer's records, CRCs and zstd
 chunks, and the stereo video, run in the writer, a process with a GIL of its own, started at
 ordinary scheduling and BACKGROUND_NICE (priority.start_in_background) so that on a busy
 machine it waits, not the command path.
@@ -110,6 +111,7 @@ class RemoteMcapFile:
         self.path = Path(path)
         self.counts: Counter[str] = Counter()  # what was sent; the writer's own, once finished
         self._batch: list[tuple] = []
+        self._increments, self._acks = bytearray(), bytearray()  # recording_records' packing
         with open(self.path, "wb") as file:  # the writer's, once handed over
             ours = None
             try:
@@ -137,11 +139,12 @@ class RemoteMcapFile:
                             int(publish_time_ns or 0)))
         self.counts[topic] += 1
 
-    def write_built(self, topic: str, build: Callable, args: tuple, log_time_ns: int) -> None:
-        """A message the writer builds, `build(*args)` (a module-level function: pickled by
-        name), for one whose building costs more than sending its parts."""
-        self._batch.append((topic, build, args, int(log_time_ns), 0))
-        self.counts[topic] += 1
+    def write_packed(self, increments: bytes, acks: bytes, counts: dict[str, int]) -> None:
+        """Increments and acks packed by the command path (recording_records), which the
+        writer unpacks and makes messages; `counts`: how many, by channel."""
+        self._increments += increments
+        self._acks += acks
+        self.counts.update(counts)
 
     def metadata(self, name: str, data: dict[str, str]) -> None:
         """A metadata record, after the messages written before it."""
@@ -152,9 +155,10 @@ class RemoteMcapFile:
         """Send what was written since the last; OSError if the writer said writing failed,
         or is gone."""
         self._check()
-        if self._batch:
-            batch, self._batch = self._batch, []
-            self._send(("messages", batch))
+        if self._batch or self._increments or self._acks:
+            message = ("messages", self._batch, bytes(self._increments), bytes(self._acks))
+            self._batch, self._increments, self._acks = [], bytearray(), bytearray()
+            self._send(message)
 
     def finish(self, metadata: dict[str, str]) -> None:
         """The end of the file (McapFile.finish, in the writer), waited for; `counts` are then

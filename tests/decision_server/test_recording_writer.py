@@ -66,15 +66,23 @@ def writers():
     writers.close()
 
 
+@pytest.fixture
+def ours():
+    """The pids of the recording writers started during the test (a station that other tests
+    share, in this process, keeps a writer of its own ready)."""
+    before = set(_writers())
+    return lambda: [pid for pid in _writers() if pid not in before]
+
+
 def test_the_writers_run_below_a_real_time_server_and_write_what_they_are_sent(tmp_path,
-                                                                                writers):
+                                                                                writers, ours):
     store = RecordingStore(tmp_path, writer=writers)
 
     def record():
         writers.warm()  # as the DecisionServer does at its start
-        [ahead] = wait_for(_writers, 10, "the writer started ahead")
+        [ahead] = wait_for(ours, 10, "the writer started ahead")
         store.start("low", "MCAP")
-        assert _writers() == [ahead]  # the recording took it; the next waits for its end
+        assert ours() == [ahead]  # the recording took it; the next waits for its end
         return ahead, os.sched_getscheduler(ahead), os.getpriority(os.PRIO_PROCESS, ahead)
 
     recording, *scheduling = _on_a_real_time_thread(record)
@@ -83,24 +91,24 @@ def test_the_writers_run_below_a_real_time_server_and_write_what_they_are_sent(t
         store.add("BASE", np.array([0.001, 0.0, 0.0]), np.eye(3), np.array([0.5, 0.0, i]))
         store.note_ack(pb.CommandAck(sequence=i + 1))
     assert store.stop().command_count == 5
-    [following] = wait_for(lambda: [p for p in _writers() if p != recording], 10,
+    [following] = wait_for(lambda: [p for p in ours() if p != recording], 10,
                            "the next writer, once the recording's has exited")
-    assert recording not in _writers()  # it ended with the recording
+    assert recording not in ours()  # it ended with the recording
     assert (os.sched_getscheduler(following), os.getpriority(os.PRIO_PROCESS, following)) == (
         os.SCHED_OTHER, BACKGROUND_NICE)  # started from a real-time thread too
     assert [c.target_position_m[2] for c in store.load("low")[1]] == [0, 1, 2, 3, 4]
     counts = recording_mcap.read_summary(tmp_path / "low.mcap")["counts"]
     assert '"/recording/ack": 5' in counts
     writers.close()
-    assert not _writers()
+    assert not ours()
 
 
-def test_a_writer_that_dies_ends_the_recording_with_the_reason(tmp_path, writers):
+def test_a_writer_that_dies_ends_the_recording_with_the_reason(tmp_path, writers, ours):
     store = RecordingStore(tmp_path, writer=writers)
     failed = []
     store.on_failed = lambda name, why: failed.append((name, why))
     store.start("lost", "MCAP")
-    [pid] = wait_for(_writers, 10, "the writer process")
+    [pid] = wait_for(ours, 10, "the writer process")
     os.kill(pid, signal.SIGKILL)
 
     def stopped() -> bool:
