@@ -30,10 +30,13 @@ def pack_increment(buffer: bytearray, log_time_ns: int, offset_s: float, frame: 
                    delta_position, delta_rotation, target_position, delta_joints) -> None:
     """One increment appended to `buffer` (Δrotation: 3×3; `delta_joints`: None for a
     Cartesian increment)."""
-    joints = () if delta_joints is None else delta_joints
-    buffer += INCREMENT_HEAD.pack(log_time_ns, offset_s, FRAME_CODES[frame], *delta_position,
-                                  *np.ravel(delta_rotation), *target_position, len(joints))
-    if len(joints):
+    joints = () if delta_joints is None else np.ravel(delta_joints).tolist()
+    # (.tolist(): Python floats, which struct packs several times faster than numpy's)
+    buffer += INCREMENT_HEAD.pack(log_time_ns, offset_s, FRAME_CODES[frame],
+                                  *np.ravel(delta_position).tolist(),
+                                  *np.ravel(delta_rotation).tolist(),
+                                  *np.ravel(target_position).tolist(), len(joints))
+    if joints:
         buffer += struct.pack(f"<{len(joints)}d", *joints)
 
 
