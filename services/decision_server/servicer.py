@@ -236,6 +236,24 @@ def _is_state_sample(event) -> bool:
             and payload.message.WhichOneof("event") == "data_received")
 
 
+_ROUTINE_STATUSES = frozenset({types_pb2.ROBOT_STATUS_READY, types_pb2.ROBOT_STATUS_MOVING})
+
+
+def _sampled_by_recording(event) -> bool:
+    """ProxyRobot's events that an MCAP recording's own 100 Hz state samples already hold:
+    state samples, arrivals (moved) and the READY <-> MOVING changes each command brings
+    (about 290 a second at 1 kHz). Errors and every other status change are kept."""
+    payload = event.payload
+    if not isinstance(payload, RobotEventForwarded):
+        return False
+    message = payload.message
+    kind = message.WhichOneof("event")
+    if kind == "status_changed":
+        change = message.status_changed
+        return {change.previous_status, change.status} <= _ROUTINE_STATUSES
+    return kind in ("data_received", "moved")
+
+
 def _dependency_state(state: str) -> int:
     return pb.DependencyState.Value(f"DEPENDENCY_STATE_{state}")
 
@@ -320,10 +338,10 @@ class DecisionServerServicer(decision_server_pb2_grpc.DecisionServerServicer):
             dependencies = DependencyWatch(core.slave.health, core.clock)
             dependencies.subscribe(core.emit)
         self._dependencies = dependencies
-        # MCAP recordings hold the events as StreamEventsResponse, without the state samples
-        # ProxyRobot forwards (the recording samples the state itself).
+        # MCAP recordings hold the events as StreamEventsResponse, without those of ProxyRobot
+        # the recording's own state samples hold.
         core.recordings.event_to_message = lambda event: (
-            None if _is_state_sample(event) else event_to_proto(event, core.clock))
+            None if _sampled_by_recording(event) else event_to_proto(event, core.clock))
         # The state and the wrench change at 100 Hz, acks go out at up to 1 kHz: each sample
         # is converted once, for every ack that carries it.
         self._pose_of = _LastConverted(lambda state: convert.pose_to_proto(state.tool_pose))

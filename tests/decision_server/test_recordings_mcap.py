@@ -25,6 +25,7 @@ from services.decision_server.recordings import RecordingStore
 from services.decision_server.servicer import event_to_proto
 from telerobot.v1 import decision_server_pb2 as pb
 from telerobot.v1 import force_sensor_pb2, types_pb2
+from telerobot.v1 import proxy_robot_pb2 as pr_pb
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import stereo_camera_pb2_grpc as sc_grpc
 from tests.conftest import wait_for
@@ -242,6 +243,31 @@ def test_start_recording_takes_a_format_and_the_file_holds_every_channel(fake_st
         station.decisions.StartRecording(pb.StartRecordingRequest(name="session"),
                                          metadata=metadata)
     assert error.value.code() is grpc.StatusCode.ALREADY_EXISTS
+
+
+def test_the_arms_routine_events_are_left_to_the_recordings_state_samples(fake_station):
+    station, slave = fake_station
+    _, metadata = station.acquire()
+    station.decisions.StartRecording(pb.StartRecordingRequest(
+        name="events", format=pb.RECORDING_FORMAT_MCAP), metadata=metadata)
+
+    def status(previous, now, reason=""):
+        return pr_pb.StreamRobotEventsResponse(status_changed=pr_pb.StatusChangedEvent(
+            previous_status=previous, status=now, reason=reason))
+
+    ready, moving = types_pb2.ROBOT_STATUS_READY, types_pb2.ROBOT_STATUS_MOVING
+    for event in (status(ready, moving), pr_pb.StreamRobotEventsResponse(moved=pr_pb.MovedEvent()),
+                  status(moving, ready),
+                  pr_pb.StreamRobotEventsResponse(data_received=pr_pb.DataReceivedEvent()),
+                  status(moving, types_pb2.ROBOT_STATUS_ESTOPPED, "stopped"),
+                  pr_pb.StreamRobotEventsResponse(error=pr_pb.RobotErrorEvent(reason="X"))):
+        slave.on_robot_event(event)
+    station.decisions.StopRecording(pb.StopRecordingRequest(), metadata=metadata)
+
+    robot = [e.robot for _, e in _read(station.core.recordings.directory / "events.mcap")[
+        recording_mcap.EVENTS] if e.WhichOneof("event") == "robot"]
+    assert [(r.WhichOneof("event"), r.status_changed.status) for r in robot] == [
+        ("status_changed", types_pb2.ROBOT_STATUS_ESTOPPED), ("error", 0)]
 
 
 def test_replaying_a_truncated_mcap_file_is_failed_precondition(fake_station):

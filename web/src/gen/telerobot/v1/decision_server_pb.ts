@@ -2512,7 +2512,9 @@ export enum RecordingFormat {
    *   /robot/state          RobotState (status, sample time, tool pose), sampled at 20 Hz
    *   /robot/wrench         Wrench at the tool (tool axes), sampled at 20 Hz
    *   /decision_server/events  StreamEventsResponse: control, watchdog holds, assistance
-   *                         changes, replays, sessions, dependencies (not state samples)
+   *                         changes, replays, sessions, dependencies, the arm's errors and
+   *                         status changes (not its state samples, arrivals or READY <->
+   *                         MOVING changes: /robot/state holds those)
    * and a metadata record "recording" (name, create_time_ns, duration_s, command_count, the
    * count per channel). A writer that fell behind drops new messages until it catches up: each
    * gap is a "recording_gap" metadata record (first_ns, last_ns, dropped: JSON counts by
