@@ -324,7 +324,8 @@ class Recorder:
         raise NotImplementedError
 
     def ack(self, ack: pb.CommandAck) -> None:
-        self._put("ack", ack, self._clock.time_ns())
+        """An ack the server sent."""
+        raise NotImplementedError
 
     def event(self, event) -> None:
         self._put("event", event)

@@ -206,7 +206,7 @@ def test_force_pairs_are_judged_on_the_p50_and_report_the_subscriber_s_cpu():
     assert rows["force_1000_mcap"][-1] == (
         "recording off 999 Hz, 1.10 / 3.00 (p50 ×1.09, p99 ×1.00); medians of 3 interleaved "
         "pairs: delivered ×1.00 (×1.00 ×1.00 ×1.00), p50 ×1.09 (×1.09 ×0.91 ×1.18), "
-        "subscriber CPU/sample ×1.37 (×1.33 ×1.50 ×1.37)")
+        "p99 ×1.00 (×1.00 ×1.00 ×1.00), subscriber CPU/sample ×1.37 (×1.33 ×1.50 ×1.37)")
 
 
 def test_the_wrench_recorder_writes_each_sample_and_its_arrow(tmp_path):
