@@ -5,8 +5,9 @@ At 1 kHz, a command's increment and its ack are most of what an episode records.
 path packs each into a bytearray (a struct and the ack's serialization, a few µs), and the
 recorder's drain sends the buffers whole: the messages are built, indexed and compressed in the
 writer (recording_writer), a process with a GIL of its own. Anything more per item on the
-DecisionServer's side costs its command path: queueing, converting and pickling each took about
-35 µs of its GIL per command on a busy 2-core machine, and raised teleop_1000's p99 by a quarter.
+DecisionServer's side costs its command path: queueing, converting and pickling each one costs
+about 25 µs of its GIL per command on a busy 2-core machine, enough to move teleop_1000's p99
+(docs/demonstrations.md, "Cost to teleoperation").
 
 An increment: INCREMENT_HEAD (log time ns, offset s, frame code, Δposition, Δrotation row-major,
 target position, joint count), then that many float64 joint increments. An ack: ACK_HEAD (log
