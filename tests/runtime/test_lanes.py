@@ -202,7 +202,9 @@ def test_run_here_never_jumps_queued_work_of_its_lane_or_higher(executor):
 
 def test_run_here_keeps_the_lane_within_max_threads(executor):
     """HIGH has max 2: with a call running here and one on the lane's own thread, a third gets
-    no new HIGH thread; it runs on an idle lower lane's thread (borrowing), as before."""
+    no new HIGH thread; it runs on an idle lower lane's thread (borrowing), as before. Which of
+    the two submitted calls borrows is not fixed: HIGH's static thread may not be waiting yet
+    when the first comes, and an idle lower thread then takes it."""
     release = threading.Event()
     running = threading.Semaphore(0)
     inline = threading.Thread(target=lambda: executor.run_here(Lane.HIGH,
@@ -216,8 +218,8 @@ def test_run_here_keeps_the_lane_within_max_threads(executor):
     counters = executor.counters()[Lane.HIGH]
     assert counters.threads == 1 and counters.borrowed == 1
     release.set()
-    assert "-high-" in on_thread.result(5)
-    assert "-medium-" in third.result(5) or "-low-" in third.result(5)
+    lanes = sorted(name.split("-")[1] for name in (on_thread.result(5), third.result(5)))
+    assert lanes in (["high", "medium"], ["high", "low"])
     inline.join(5)
 
 
