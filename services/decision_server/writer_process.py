@@ -156,7 +156,7 @@ class RemoteMcapFile:
         or is gone."""
         self._check()
         if self._batch or self._increments or self._acks:
-            message = ("messages", self._batch, bytes(self._increments), bytes(self._acks))
+            message = ("messages", self._batch, self._increments, self._acks)
             self._batch, self._increments, self._acks = [], bytearray(), bytearray()
             self._send(message)
 
