@@ -9,7 +9,9 @@ in a process of its own with the GIL handed over every 1 ms as in the services:
 
 - ``sync``: grpcio's sync server, a thread per stream, each waiting on a queue of its own;
 - ``aio``: grpc.aio, a coroutine per stream on one event loop; the sampler hands each message
-  to the loop once (call_soon_threadsafe), the loop puts it on the streams' queues.
+  to the loop once (call_soon_threadsafe), the loop puts it on the streams' queues;
+- ``aio-fd``: grpc.aio, each stream woken through an eventfd of its own that stays registered
+  with the loop, as ForceSensor's streams are (services/runtime/aio_server.py).
 
 The operator (decimation 1) is one client in this process; the observers (decimation 10, a
 thread and a connection each, as bench/force.py's) are in a process of their own. Latency is
@@ -23,6 +25,8 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import collections
+import os
 import queue
 import subprocess
 import sys
@@ -34,11 +38,12 @@ import grpc
 import numpy as np
 from google.protobuf.timestamp_pb2 import Timestamp
 
+from bench.cpu import process_cpu_s
 from bench.probes.tenant import start_tenant
 from services.runtime.process import GIL_SWITCH_INTERVAL_S
 from telerobot.v1 import force_sensor_pb2 as pb
 
-KINDS = ("sync", "aio")
+KINDS = ("sync", "aio", "aio-fd")
 METHOD = "/telerobot.v1.ForceSensor/StreamWrench"
 PERIOD_S = 0.001
 OBSERVER_DECIMATION = 10
@@ -114,6 +119,56 @@ class _AioFanout:
             del self._queues[inbox]
 
 
+class _FdFanout:
+    """ForceSensor's way on grpc.aio: each stream has an eventfd of its own, which the sampler
+    writes for each message it queues for it, and which stays registered with the loop
+    (add_reader) for the stream's life; the stream's coroutine awaits a future that the fd's
+    reader resolves."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._inboxes: dict[int, tuple[collections.deque, int]] = {}
+
+    def publish(self, sequence: int, payload: bytes) -> None:  # the sampler's thread
+        with self._lock:
+            inboxes = list(self._inboxes.items())
+        for fd, (inbox, decimation) in inboxes:
+            if sequence % decimation == 0:
+                inbox.append(payload)
+                os.eventfd_write(fd, 1)
+
+    async def stream(self, request, context):
+        loop = asyncio.get_running_loop()
+        fd = os.eventfd(0, os.EFD_NONBLOCK | os.EFD_CLOEXEC)
+        inbox: collections.deque = collections.deque()
+        waiter = loop.create_future()
+
+        def readable():
+            try:
+                os.eventfd_read(fd)
+            except BlockingIOError:
+                pass
+            if not waiter.done():
+                waiter.set_result(None)
+
+        loop.add_reader(fd, readable)
+        with self._lock:
+            self._inboxes[fd] = (inbox, max(1, request.decimation))
+        try:
+            while True:
+                while inbox:
+                    yield inbox.popleft()
+                waiter = loop.create_future()
+                if not inbox:
+                    await waiter
+        finally:
+            with self._lock:
+                del self._inboxes[fd]
+            loop.remove_reader(fd)
+            # The sampler may hold it from its snapshot: closed once it cannot be written.
+            threading.Timer(1.0, os.close, (fd,)).start()
+
+
 def _handler(stream) -> grpc.GenericRpcHandler:
     # No response serializer: the streams send the sampler's bytes as they are.
     return grpc.method_handlers_generic_handler("telerobot.v1.ForceSensor", {
@@ -137,7 +192,8 @@ def serve(kind: str) -> None:
         return
 
     async def main():
-        fanout = _AioFanout(asyncio.get_running_loop())
+        fanout = (_AioFanout(asyncio.get_running_loop()) if kind == "aio"
+                  else _FdFanout())
         server = grpc.aio.server()
         server.add_generic_rpc_handlers((_handler(fanout.stream),))
         port = server.add_insecure_port("127.0.0.1:0")
@@ -204,16 +260,20 @@ def operator(kind: str, observers: int, seconds: float, tenant_share: float) -> 
         channel, call = _stream(port, 1)
         latencies, count = [], 0
         start = time.monotonic()
+        cpu_start = None
         for message in call:
             now = time.time_ns()
             elapsed = time.monotonic() - start
             if elapsed < WARMUP_S:
                 continue
+            if cpu_start is None:
+                cpu_start = process_cpu_s(server.pid)
             if elapsed > WARMUP_S + seconds:
                 break
             made = message.samples[0].sample_time.ToNanoseconds()
             latencies.append((now - made) / 1e6)
             count += 1
+        server_cpu = (process_cpu_s(server.pid) - cpu_start) / seconds
         call.cancel()
         channel.close()
         observed = ""
@@ -224,7 +284,7 @@ def operator(kind: str, observers: int, seconds: float, tenant_share: float) -> 
         ms = np.asarray(latencies)
         return (f"{kind:4s} {observers:2d} observers, tenant {tenant_share:.2f}: "
                 f"operator {count / seconds:6.0f} Hz, p50 {np.percentile(ms, 50):.2f}  "
-                f"p99 {np.percentile(ms, 99):.2f} ms{observed}")
+                f"p99 {np.percentile(ms, 99):.2f} ms, server {server_cpu:.0%} of a core{observed}")
     finally:
         if watchers is not None and watchers.poll() is None:
             watchers.kill()

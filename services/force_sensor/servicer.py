@@ -1,6 +1,8 @@
 """ForceSensor over gRPC: reads requests, calls ForceSensorCore, converts answers and errors.
 
-StreamWrench yields each message already serialized (bytes; the lane interceptor sends bytes
+StreamWrench never blocks: while it has nothing to send it yields a Wakeup on its subscription's
+eventfd, which the server waits for (on grpc.aio, the event loop: no thread per stream). It
+yields each message already serialized (bytes; the lane interceptor sends bytes
 as they are): a batch's samples are encoded once, by the first stream that needs them, and
 every subscriber given the same batch sends those bytes, followed by its own dropped_count.
 """
@@ -129,11 +131,15 @@ class ForceSensorServicer(force_sensor_pb2_grpc.ForceSensorServicer):
             request.batch_size, request.queue_capacity)
         with self._core.subscribe(options) as subscription:
             while context.is_active():
-                batch = subscription.get(STREAM_POLL_S)
-                if batch is None:
-                    if self._core.failure:
-                        raise UnavailableError(f"the sensor stopped: {self._core.failure}; "
-                                               "StartReading again, then resubscribe",
-                                               reason="SENSOR_DOWN")
+                batch = subscription.next_or_arm()
+                if batch is not None:
+                    yield stream_message(batch, subscription.dropped)
                     continue
-                yield stream_message(batch, subscription.dropped)
+                if self._core.failure:
+                    raise UnavailableError(f"the sensor stopped: {self._core.failure}; "
+                                           "StartReading again, then resubscribe",
+                                           reason="SENSOR_DOWN")
+                # Waited for by whoever drives the stream (services/common/wakeup.py): on
+                # grpc.aio, the event loop, with no thread of its own.
+                yield subscription.wakeup(STREAM_POLL_S)
+                subscription.disarm()

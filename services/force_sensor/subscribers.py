@@ -12,7 +12,6 @@ counters, change filter, queue and `dropped` stay its own, so sharing changes no
 from __future__ import annotations
 
 import os
-import select
 import threading
 import time
 import weakref
@@ -23,12 +22,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from services.common.fanout import Fanout
+from services.common.wakeup import Wakeup
 from services.force_sensor.settings import exceeds
 from wire.errors import InvalidArgumentError
 
 DEFAULT_QUEUE_CAPACITY = 64
 MAX_BATCH_SIZE = 1000
 MAX_QUEUE_CAPACITY = 10_000
+STREAM_WAIT_S = 1.0  # get() without a timeout waits in turns of this
 
 
 @dataclass(frozen=True)
@@ -155,9 +156,7 @@ class WrenchSubscription:
         # GIL released (see `_wake`). Closed with the object, once nothing can write to it.
         self._wake_fd = os.eventfd(0, os.EFD_CLOEXEC | os.EFD_NONBLOCK)
         weakref.finalize(self, os.close, self._wake_fd)
-        self._poll = select.poll()
-        self._poll.register(self._wake_fd, select.POLLIN)
-        self._waiting = False  # the stream is (about to be) in poll(): write to wake it
+        self._waiting = False  # the stream is armed (next_or_arm): write to wake it
         self.dropped = 0
         self.closed = False
 
@@ -180,26 +179,38 @@ class WrenchSubscription:
             self.deliver(WrenchBatch(readings))
 
     def get(self, timeout_s: float | None = None) -> WrenchBatch | None:
-        """The oldest queued batch, waiting up to timeout_s; None on timeout or once closed."""
+        """The oldest queued batch, waiting up to timeout_s on this thread; None on timeout or
+        once closed."""
         deadline = None if timeout_s is None else time.monotonic() + timeout_s
         while True:
-            # Say so before looking: a batch queued after the look then writes the eventfd.
-            self._waiting = True
-            batch = self._pop()
+            batch = self.next_or_arm()
             if batch is not None or self.closed:
-                self._waiting = False
+                self.disarm()
                 return batch
-            left_ms = None if deadline is None else (deadline - time.monotonic()) * 1e3
-            if left_ms is not None and left_ms <= 0:
-                self._waiting = False
+            left_s = None if deadline is None else deadline - time.monotonic()
+            if left_s is not None and left_s <= 0:
+                self.disarm()
                 return None
-            woken = self._poll.poll(left_ms)
+            self.wakeup(STREAM_WAIT_S if left_s is None else left_s).wait()
+            self.disarm()
+
+    def next_or_arm(self) -> WrenchBatch | None:
+        """The oldest queued batch without waiting; None when there is none, and then a batch
+        queued from now on writes the wakeup's fd, until disarm()."""
+        # Armed before looking: a batch queued after the look then writes the eventfd.
+        self._waiting = True
+        batch = self._pop()
+        if batch is not None:
             self._waiting = False
-            if woken:
-                try:
-                    os.eventfd_read(self._wake_fd)  # back to zero
-                except BlockingIOError:
-                    pass
+        return batch
+
+    def wakeup(self, timeout_s: float) -> Wakeup:
+        """What the stream waits on after next_or_arm() found nothing (services/common/wakeup)."""
+        return Wakeup(self._wake_fd, timeout_s)
+
+    def disarm(self) -> None:
+        """Done waiting: batches queued from now on do not write the fd."""
+        self._waiting = False
 
     def _pop(self) -> WrenchBatch | None:
         with self._lock:

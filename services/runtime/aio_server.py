@@ -15,7 +15,10 @@ interceptor's wrapped handlers run on a thread pool as they ran on the sync serv
 `SyncContext` that gives them the sync ServicerContext they were written for. A stream's
 messages are pulled from its sync generator one at a time on that pool, always in the stream's
 own set of context variables (the caller it acts as); a client stream's messages are read from
-the loop for the handler's thread.
+the loop for the handler's thread. A stream that yields a Wakeup (services/common/wakeup.py)
+waits for it on the loop, and from then on is pulled on the loop too: such a stream never
+blocks, and its messages then cost no hand-over between the pool and the loop (ForceSensor's
+StreamWrench: docs/performance.md).
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ from concurrent import futures
 
 import grpc
 
+from services.common.wakeup import Wakeup, reset_eventfd
 from services.runtime.rpc import LaneInterceptor
 
 _END = object()
@@ -141,20 +145,30 @@ def on_threads(handler: grpc.RpcMethodHandler, pool: futures.Executor
         # the sync server: each pull may run on a different pool thread, and a variable the
         # generator sets (the caller it acts as) must still be there, and be reset, later.
         context_vars = contextvars.Context()
-        responses = pending = None
+        responses = pending = wakeups = None
         try:
             responses = iter(await asyncio.wrap_future(pool.submit(
                 context_vars.run, behavior, sync_request(request), sync_context)))
             while True:
-                pending = pool.submit(context_vars.run, next, responses, _END)
-                item = await asyncio.wrap_future(pending)
+                if wakeups is None:  # the handler may block: pulled on the pool
+                    pending = pool.submit(context_vars.run, next, responses, _END)
+                    item = await asyncio.wrap_future(pending)
+                else:  # it waits through Wakeups, so it never blocks: pulled here
+                    item = context_vars.run(next, responses, _END)
                 if item is _END:
                     return
+                if type(item) is Wakeup:
+                    if wakeups is None:
+                        wakeups = _Wakeups(asyncio.get_running_loop())
+                    await wakeups.wait(item)
+                    continue
                 yield item
         except Aborted as aborted:
             await context.abort(aborted.code, aborted.details, aborted.trailing_metadata)
         finally:
             sync_context.ended()
+            if wakeups is not None:
+                wakeups.close()
             if responses is not None:
                 # Once the pull in flight, if any, has returned: a running generator cannot
                 # be closed.
@@ -168,6 +182,53 @@ def on_threads(handler: grpc.RpcMethodHandler, pool: futures.Executor
              (False, True): "unary_stream", (True, True): "stream_stream"}
     kind = kinds[(bool(handler.request_streaming), bool(handler.response_streaming))]
     return handler._replace(**{kind: streamed if handler.response_streaming else answered})
+
+
+class _Wakeups:
+    """The eventfds a stream has waited on, each watched by the loop from the stream's first
+    Wakeup on it to the stream's end: one registration, not one per message. The watch resets
+    the fd whenever it is written, so the loop never spins on it, and remembers a write that
+    came while the stream was not waiting, as the eventfd itself would."""
+
+    def __init__(self, loop: asyncio.AbstractEventLoop):
+        self._loop = loop
+        self._fds: set[int] = set()
+        self._written_meanwhile: set[int] = set()
+        self._waiting_on: int | None = None
+        self._waiter: asyncio.Future | None = None
+
+    async def wait(self, wakeup: Wakeup) -> None:
+        loop, fd = self._loop, wakeup.fd
+        if fd not in self._fds:
+            loop.add_reader(fd, self._written, fd)
+            self._fds.add(fd)
+        if fd in self._written_meanwhile:
+            self._written_meanwhile.discard(fd)
+            return
+        self._waiting_on, self._waiter = fd, loop.create_future()
+        timer = loop.call_later(wakeup.timeout_s, self._wake)
+        try:
+            await self._waiter
+        finally:
+            self._waiting_on = self._waiter = None
+            timer.cancel()
+
+    def _written(self, fd: int) -> None:
+        reset_eventfd(fd)
+        if fd == self._waiting_on:
+            self._wake()
+        else:
+            self._written_meanwhile.add(fd)
+
+    def _wake(self) -> None:
+        waiter = self._waiter
+        if waiter is not None and not waiter.done():
+            waiter.set_result(None)
+
+    def close(self) -> None:
+        for fd in self._fds:
+            self._loop.remove_reader(fd)
+        self._fds.clear()
 
 
 class AioLaneInterceptor(grpc.aio.ServerInterceptor):

@@ -44,7 +44,7 @@ import contextlib
 import logging
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import CancelledError
 from dataclasses import dataclass
 
@@ -53,6 +53,7 @@ from google.protobuf.message import DecodeError, Message
 from google.rpc import code_pb2, error_details_pb2, status_pb2
 from grpc_status import rpc_status
 
+from services.common.wakeup import Wakeup
 from services.runtime.auth import CallSecurity
 from services.runtime.lanes import (  # noqa: F401 - LANE_TO_PROTO re-exported
     LANE_TO_PROTO,
@@ -267,10 +268,13 @@ class LaneInterceptor(grpc.ServerInterceptor):
                  max_streams: int = DEFAULT_MAX_STREAMS,
                  on_emergency_call: Callable[[], None] | None = None,
                  security: CallSecurity | None = None, metrics: ServiceMetrics | None = None,
-                 slots: CallSlots | None = None, read_first: bool = False):
+                 slots: CallSlots | None = None, read_first: bool = False,
+                 waits_on_loop: bool = False):
         """`slots`: the server's streams and calls by caller, shared by its ports (a new one
         of `max_streams` when None). `read_first`: each unary call takes its slot before its
-        request is read (the sync server; a grpc.aio server reads it on its loop first)."""
+        request is read (the sync server; a grpc.aio server reads it on its loop first).
+        `waits_on_loop`: a stream's Wakeups (services/common/wakeup.py) pass up to the server's
+        event loop (grpc.aio); otherwise the stream's thread waits for them here."""
         self._executor = executor
         self._metrics = metrics
         self._on_emergency_call = on_emergency_call
@@ -278,6 +282,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
         self._client_lane_limit = client_lane_limit
         self.slots = slots if slots is not None else CallSlots(max_streams)
         self._read_first = read_first
+        self._waits_here = not waits_on_loop
         self.refusal_warnings = RefusalWarnings()
 
     @property
@@ -438,7 +443,8 @@ class LaneInterceptor(grpc.ServerInterceptor):
                     caller = admit(context)
                     request = _decode_or_abort(decode, raw, context)
                     with audit(caller, context):
-                        yield from _streamed(behavior, request, context, caller)
+                        yield from _streamed(behavior, request, context, caller,
+                                             self._waits_here)
 
             if reads_first:
                 return grpc.stream_stream_rpc_method_handler(unary_stream, None, encode)
@@ -465,7 +471,7 @@ class LaneInterceptor(grpc.ServerInterceptor):
                 caller = admit(context)
                 with audit(caller, context):
                     yield from _streamed(behavior, _decoded(raw_iterator, decode, context),
-                                         context, caller)
+                                         context, caller, self._waits_here)
 
         return grpc.stream_stream_rpc_method_handler(stream_stream, None, encode)
 
@@ -488,13 +494,31 @@ class LaneInterceptor(grpc.ServerInterceptor):
                   "CANCELLED")
 
 
-def _streamed(behavior: Callable, request, context, caller: Caller | None = None) -> Iterator:
-    """A streaming handler's responses, produced as `caller`, domain errors as status codes."""
+def _streamed(behavior: Callable, request, context, caller: Caller | None = None,
+              waits_here: bool = True) -> Iterator:
+    """A streaming handler's responses, produced as `caller`, domain errors as status codes;
+    with `waits_here`, the Wakeups it yields are waited for on this thread."""
     with acting_as(caller):
         try:
-            yield from behavior(request, context)
+            responses = behavior(request, context)
+            yield from _waiting_here(responses) if waits_here else responses
         except TelerobotError as error:
             abort_with_error(context, error)
+
+
+def _waiting_here(responses: Iterable) -> Iterator:
+    """`responses` without their Wakeups: each is waited for on the stream's own thread."""
+    responses = iter(responses)
+    try:
+        for response in responses:
+            if type(response) is Wakeup:
+                response.wait()
+            else:
+                yield response
+    finally:
+        close = getattr(responses, "close", None)
+        if close is not None:  # the client left: the handler's finally blocks run now
+            close()
 
 
 def _call(behavior: Callable, request, context, caller: Caller | None = None):

@@ -228,7 +228,8 @@ def create_server(
     def build(call_security: CallSecurity | None):
         interceptor = LaneInterceptor(executor, client_lane_limit, max_streams,
                                       on_emergency_call, call_security, metrics, slots,
-                                      read_first=aio_loop is None)
+                                      read_first=aio_loop is None,
+                                      waits_on_loop=aio_loop is not None)
         # Two servers on one port would split calls between them silently: refuse instead.
         options = [("grpc.so_reuseport", 0), *SERVER_KEEPALIVE_OPTIONS,
                    ("grpc.max_concurrent_streams", per_connection)]

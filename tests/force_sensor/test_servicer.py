@@ -23,13 +23,19 @@ from tests.proxy_robot.conftest import send_home
 pytestmark = pytest.mark.e2e
 
 
-@pytest.fixture
-def sensor(world):
+# On grpcio's sync server, and on grpc.aio (the service's default), where StreamWrench's
+# Wakeups are waited for on the event loop (services/common/wakeup.py).
+SERVERS = pytest.mark.parametrize("aio", [False, True], ids=["sync", "aio"])
+
+
+@pytest.fixture(params=[False, True], ids=["sync", "aio"])
+def sensor(world, request):
     send_home(world)
     core = ForceSensorCore(lambda: SharedMemoryWrenchLink(world.shm_name),
                            lambda: SharedMemoryArmLink(world.shm_name))
     server, port = create_server(
-        "127.0.0.1:0", [binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(core))])
+        "127.0.0.1:0", [binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(core))],
+        aio=request.param)
     server.start()
     channel = grpc.insecure_channel(f"127.0.0.1:{port}")
     stub = force_sensor_pb2_grpc.ForceSensorStub(channel)
@@ -242,12 +248,14 @@ def test_thread_priority_sets_the_sampling_thread_nice_value(sensor):
         assert os.getpriority(os.PRIO_PROCESS, thread_id) == nice
 
 
-def test_sensor_down_ends_streams_with_unavailable(world_factory):
+@SERVERS
+def test_sensor_down_ends_streams_with_unavailable(world_factory, aio):
     world = world_factory()
     core = ForceSensorCore(lambda: SharedMemoryWrenchLink(world.shm_name),
                            lambda: SharedMemoryArmLink(world.shm_name))
     server, port = create_server(
-        "127.0.0.1:0", [binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(core))])
+        "127.0.0.1:0", [binding(force_sensor_pb2_grpc, "ForceSensor", ForceSensorServicer(core))],
+        aio=aio)
     server.start()
     try:
         with grpc.insecure_channel(f"127.0.0.1:{port}") as channel:
