@@ -48,8 +48,8 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
         "--aio-server", action=argparse.BooleanOptionalAction,
         default=os.environ.get(AIO_SERVER_ENV, "1") != "0",
         help=f"serve on grpc.aio (the default): each StreamWrench is a coroutine on the event "
-             f"loop, woken by the sampler, with no thread of its own; with 32 observers the "
-             f"fan-out takes about a third less CPU than on grpcio's sync server "
+             f"loop, woken by the sampler, with no thread of its own; with 16 or more observers "
+             f"the process takes about a fifth less CPU than on grpcio's sync server "
              f"(docs/performance.md; env {AIO_SERVER_ENV}=0 for the sync server)")
     add_shm_name_argument(parser, "the world's shared-memory segment")
 
