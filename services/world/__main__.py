@@ -10,6 +10,7 @@ import argparse
 import os
 import signal
 
+from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY, raise_thread_priority
 from services.runtime.process import run_service
 from services.world.service import PHYSICS_THREAD_FIFO_PRIORITY, WorldService
 from services.world.shm_layout import add_shm_name_argument
@@ -36,6 +37,13 @@ def main(argv: list[str] | None = None) -> int:
     built: list[WorldService] = []
 
     def build(args: argparse.Namespace) -> WorldService:
+        if args.rt_priority:
+            # The process's other threads (gRPC's, health, metrics) below the physics thread but
+            # real-time too: one of them holding the GIL when the physics thread wants it must
+            # get a core at once, not wait its turn among a busy host's ordinary processes
+            # (docs/services/world.md). The threads started from here on inherit it.
+            raise_thread_priority(min(COMMAND_PATH_FIFO_PRIORITY, args.rt_priority), 0,
+                                  what="world's other threads", inherited=True)
         # A crashed physics loop stops the process like a signal would, then exits 1 below.
         service = WorldService(args.shm_name,
                                on_failure=lambda: os.kill(os.getpid(), signal.SIGTERM),

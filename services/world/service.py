@@ -12,7 +12,9 @@ real-time throttling is on (/proc/sys/kernel/sched_rt_runtime_us not -1; Linux's
 leaves 50 ms of every second to ordinary threads), so a runaway physics thread cannot lock a
 core. Without the privilege (CAP_SYS_NICE, or an RT budget in its cgroup), or with the
 throttling off, it falls back to nice -10, and without that to the default; the log says which
-it got. Other threads of the process keep the default scheduling.
+it got. The process's other threads run at SCHED_FIFO 5, below it (services/world/__main__.py):
+a thread of this process that holds the GIL when the physics thread wants it must get a core
+at once, not wait among the host's ordinary processes.
 """
 
 from __future__ import annotations

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 import sys
@@ -12,7 +13,9 @@ import numpy as np
 import pytest
 from grpc_health.v1 import health_pb2, health_pb2_grpc
 
+from services.runtime.priority import COMMAND_PATH_FIFO_PRIORITY
 from services.world.link import ArmSample
+from services.world.service import PHYSICS_THREAD_FIFO_PRIORITY
 from services.world.shm_link import STALE_AFTER_S, SharedMemoryArmLink, SharedMemoryWrenchLink
 from tests.conftest import wait_for
 from tests.processes import REPO, World, segment_exists
@@ -192,3 +195,23 @@ def test_a_second_world_on_the_same_segment_refuses_to_start(shared_world: World
     assert second.returncode == 1
     assert "already running" in second.stderr
     SharedMemoryArmLink(shared_world.shm_name).close()  # the first is untouched
+
+
+def test_every_thread_that_serves_runs_real_time_below_the_physics_thread(
+        shared_world: World) -> None:
+    # The physics thread needs the GIL at every step: whichever thread of the world holds it
+    # must get a core at once, so gRPC's and the lanes' threads are real-time too.
+    pid = shared_world.running.process.pid
+    scheduling = {}
+    for task in os.listdir(f"/proc/{pid}/task"):
+        with open(f"/proc/{pid}/task/{task}/comm") as comm:
+            name = comm.read().strip()
+        policy = os.sched_getscheduler(int(task)) & ~os.SCHED_RESET_ON_FORK
+        scheduling[name] = (policy, os.sched_getparam(int(task)).sched_priority)
+    if scheduling["physics"][0] != os.SCHED_FIFO:
+        pytest.skip("this host gives the world no SCHED_FIFO (its log says why)")
+    assert scheduling["physics"] == (os.SCHED_FIFO, PHYSICS_THREAD_FIFO_PRIORITY)
+    serving = {name: policy for name, policy in scheduling.items()
+               if name.startswith(("rpc-", "event_engine", "metrics-", "loop-stats"))}
+    assert serving and set(serving.values()) == {(os.SCHED_FIFO, COMMAND_PATH_FIFO_PRIORITY)}, (
+        scheduling)
