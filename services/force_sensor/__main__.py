@@ -46,11 +46,11 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the Net F/T's counts per newton-metre")
     parser.add_argument(
         "--aio-server", action=argparse.BooleanOptionalAction,
-        default=os.environ.get(AIO_SERVER_ENV, "1") != "0",
-        help=f"serve on grpc.aio (the default): each StreamWrench is a coroutine on the event "
-             f"loop, woken by the sampler, with no thread of its own; with 16 or more observers "
-             f"the process takes about a fifth less CPU than on grpcio's sync server "
-             f"(docs/performance.md; env {AIO_SERVER_ENV}=0 for the sync server)")
+        default=os.environ.get(AIO_SERVER_ENV, "") == "1",
+        help=f"serve on grpc.aio: each StreamWrench is a coroutine on the event loop, woken by "
+             f"the sampler, with no thread of its own; with 16 or more observers the process "
+             f"takes about a fifth less CPU, but the DecisionServer's Teleoperate beside it is "
+             f"slower (docs/performance.md; env {AIO_SERVER_ENV}=1)")
     add_shm_name_argument(parser, "the world's shared-memory segment")
 
 

@@ -25,11 +25,11 @@ gRPC client, on the shared 2-core VM):
 - On grpcio's synchronous server each message cost its stream's thread two wake-ups (for the
   batch, then when the polling thread had completed the send) and the polling thread one, ~13
   thread hand-offs per ms with 33 streams; the sampling step (some 40 us of its own work) then
-  took 0.4-1.8 ms at p50 and 3-13 ms at p99, so ticks were missed. So the service serves on
-  grpc.aio (its --aio-server, the default): each stream is a coroutine that the event loop
-  wakes when the subscription's eventfd is written (loop.add_reader, services/common/wakeup.py),
-  with no thread of its own. At 32 observers this process takes about a fifth less CPU, and
-  the operator's stream keeps 1 kHz (docs/performance.md).
+  took 0.4-1.8 ms at p50 and 3-13 ms at p99, so ticks were missed. On grpc.aio (--aio-server,
+  off by default) each stream is a coroutine that the event loop wakes when the subscription's
+  eventfd is written (loop.add_reader, services/common/wakeup.py), with no thread of its own:
+  at 32 observers this process takes about a fifth less CPU and the operator's stream keeps
+  1 kHz, but the DecisionServer's Teleoperate beside it is slower (docs/performance.md).
 """
 
 from __future__ import annotations

@@ -7,8 +7,8 @@ emergency stop's arrival waits its turn: 12-15 ms at p99 on a server whose calls
 17-27 ms with ProxyRobot's stack. On grpc.aio the same servicer sees the stop within 3 ms.
 Through this module, the bench's estop_under_load_proxy latched the hold at p99 6-8 ms
 instead of 28-39. The price: every other call takes 0.3-0.45 ms longer (docs/performance.md →
-Profiles), so a service opts in: ProxyRobot with --aio-server, off by default; ForceSensor by
-default, for its streams (below).
+Profiles), so a service opts in (ProxyRobot's and ForceSensor's --aio-server) and none does
+by default.
 
 What stays the same: servicers are sync code, and every call still goes through
 LaneInterceptor (lanes, validation, security, audit, metrics, the early stop on arrival). The
