@@ -40,6 +40,7 @@ from google.protobuf.timestamp_pb2 import Timestamp
 
 from bench.cpu import process_cpu_s
 from bench.probes.tenant import start_tenant
+from services.common.wakeup import reset_eventfd
 from services.runtime.process import GIL_SWITCH_INTERVAL_S
 from telerobot.v1 import force_sensor_pb2 as pb
 
@@ -144,10 +145,7 @@ class _FdFanout:
         waiter = loop.create_future()
 
         def readable():
-            try:
-                os.eventfd_read(fd)
-            except BlockingIOError:
-                pass
+            reset_eventfd(fd)
             if not waiter.done():
                 waiter.set_result(None)
 
