@@ -8,6 +8,8 @@ with the clients; they are re-exported here.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pinocchio as pin
 
@@ -27,7 +29,8 @@ __all__ = [
 
 def rotation_angle(rotation: np.ndarray) -> float:
     """Angle of a rotation matrix, in radians (0..pi)."""
-    return float(np.arccos(np.clip((np.trace(rotation) - 1.0) / 2.0, -1.0, 1.0)))
+    cosine = (rotation[0, 0] + rotation[1, 1] + rotation[2, 2] - 1.0) / 2.0
+    return math.acos(min(1.0, max(-1.0, cosine)))  # in floats: it runs on every command
 
 
 def euler_xyz(rotation: np.ndarray) -> np.ndarray:

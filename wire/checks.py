@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from wire.errors import InvalidArgumentError
@@ -18,7 +20,7 @@ def finite_vector(values, length: int, what: str) -> np.ndarray:
     if array.shape != (length,):
         raise InvalidArgumentError(f"{what} needs {length} values, got {array.size}",
                                    reason="BAD_LENGTH")
-    if not np.all(np.isfinite(array)):
+    if not np.isfinite(array).all():
         raise InvalidArgumentError(f"{what} contains NaN or Inf: {array.tolist()}",
                                    reason="NOT_FINITE")
     return array
@@ -35,10 +37,22 @@ def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def gram_schmidt(matrix: np.ndarray) -> np.ndarray:
     """The orthonormal matrix nearest in the Gram-Schmidt sense: columns normalized in order,
     the third taken as the cross product so the result is a proper rotation."""
-    x = matrix[:, 0] / np.linalg.norm(matrix[:, 0])
-    y = matrix[:, 1] - (x @ matrix[:, 1]) * x
-    y /= np.linalg.norm(y)
-    return np.column_stack([x, y, cross3(x, y)])
+    return np.array(_gram_schmidt(*np.asarray(matrix, float).reshape(9).tolist())).reshape(3, 3)
+
+
+def _gram_schmidt(a: float, b: float, c: float, d: float, e: float, f: float, g: float,
+                  h: float, i: float) -> list[float]:
+    """gram_schmidt on a row-major 3x3's nine values, in floats: numpy's per-call overhead
+    was most of its cost, and every command's rotation goes through it."""
+    norm = math.sqrt(a * a + d * d + g * g)
+    x0, x1, x2 = a / norm, d / norm, g / norm
+    along = x0 * b + x1 * e + x2 * h
+    y0, y1, y2 = b - along * x0, e - along * x1, h - along * x2
+    norm = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2)
+    y0, y1, y2 = y0 / norm, y1 / norm, y2 / norm
+    return [x0, y0, x1 * y2 - x2 * y1,
+            x1, y1, x2 * y0 - x0 * y2,
+            x2, y2, x0 * y1 - x1 * y0]
 
 
 def rotation_matrix(values, what: str) -> np.ndarray:
@@ -48,11 +62,15 @@ def rotation_matrix(values, what: str) -> np.ndarray:
     values = list(values)
     if not values:
         return np.eye(3)
-    matrix = finite_vector(values, 9, what).reshape(3, 3)
-    error = np.abs(matrix.T @ matrix - np.eye(3)).max()
-    if error > ROTATION_TOLERANCE or np.linalg.det(matrix) <= 0:
+    a, b, c, d, e, f, g, h, i = finite_vector(values, 9, what).tolist()
+    # MᵀM − I, entry by entry (the columns' norms and dot products), in floats.
+    error = max(abs(a * a + d * d + g * g - 1.0), abs(b * b + e * e + h * h - 1.0),
+                abs(c * c + f * f + i * i - 1.0), abs(a * b + d * e + g * h),
+                abs(a * c + d * f + g * i), abs(b * c + e * f + h * i))
+    determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    if error > ROTATION_TOLERANCE or determinant <= 0:
         raise InvalidArgumentError(
             f"{what} is not a rotation matrix (|MᵀM − I| = {error:.2g}, det = "
-            f"{np.linalg.det(matrix):.3g}); send an orthonormal row-major 3x3 with det +1, "
+            f"{determinant:.3g}); send an orthonormal row-major 3x3 with det +1, "
             "or leave it empty for no rotation", reason="NOT_A_ROTATION")
-    return gram_schmidt(matrix)
+    return np.array(_gram_schmidt(a, b, c, d, e, f, g, h, i)).reshape(3, 3)

@@ -11,6 +11,7 @@ answer.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -47,9 +48,10 @@ class IkResult:
 
 def pose_errors(reached: pin.SE3, target: pin.SE3) -> tuple[float, float]:
     """(position error in m, rotation error in rad) between two poses."""
-    position = float(np.linalg.norm(target.translation - reached.translation))
-    rotation = float(np.linalg.norm(pin.log3(reached.rotation.T @ target.rotation)))
-    return position, rotation
+    offset = target.translation - reached.translation
+    axis_angle = pin.log3(reached.rotation.T @ target.rotation)
+    # math.sqrt of a dot: np.linalg.norm's generality costs more than the IK step's algebra.
+    return math.sqrt(offset @ offset), math.sqrt(axis_angle @ axis_angle)
 
 
 def solve_ik(
@@ -71,7 +73,7 @@ def solve_ik(
     model, data = kinematics.model, kinematics.data
     frame_id = kinematics.frame_id(frame)
     lower, upper = model.lowerPositionLimit, model.upperPositionLimit
-    q = np.clip(np.asarray(q_seed, float), lower, upper)
+    q = _clamp(np.asarray(q_seed, float), lower, upper)
 
     iteration = 0
     while True:
@@ -97,11 +99,16 @@ def solve_ik(
         if model.nq > TASK_DIMENSION and max(position_error, rotation_error) > POSTURE_UNTIL:
             step += _null_space(error_jacobian, step_damping) @ _posture_step(
                 q, kinematics.home_q, lower, upper)
-        largest = np.max(np.abs(step))
+        largest = abs(step).max()
         if largest > IK_MAX_STEP:
             step *= IK_MAX_STEP / largest
-        q = np.clip(pin.integrate(model, q, step), lower, upper)
+        q = _clamp(pin.integrate(model, q, step), lower, upper)
         iteration += 1
+
+
+def _clamp(q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
+    """np.clip's result, without its per-call overhead (this runs on every command)."""
+    return np.minimum(np.maximum(q, lower), upper)
 
 
 def _posture_step(q: np.ndarray, home: np.ndarray, lower: np.ndarray,
@@ -115,11 +122,17 @@ def _posture_step(q: np.ndarray, home: np.ndarray, lower: np.ndarray,
 
 def _null_space(jacobian: np.ndarray, damping: float) -> np.ndarray:
     """Projector onto joint motions that (to first order) leave the task where it is."""
-    gram = jacobian @ jacobian.T + damping * np.eye(jacobian.shape[0])
-    return np.eye(jacobian.shape[1]) - jacobian.T @ np.linalg.solve(gram, jacobian)
+    return np.eye(jacobian.shape[1]) - jacobian.T @ np.linalg.solve(_gram(jacobian, damping),
+                                                                    jacobian)
 
 
 def _damped_step(jacobian: np.ndarray, error: np.ndarray, damping: float) -> np.ndarray:
     """Damped least-squares solution of ``jacobian @ step = -error``."""
-    gram = jacobian @ jacobian.T + damping * np.eye(jacobian.shape[0])
-    return -jacobian.T @ np.linalg.solve(gram, error)
+    return -jacobian.T @ np.linalg.solve(_gram(jacobian, damping), error)
+
+
+def _gram(jacobian: np.ndarray, damping: float) -> np.ndarray:
+    """J Jᵀ + damping·I."""
+    gram = jacobian @ jacobian.T
+    gram.flat[::gram.shape[0] + 1] += damping  # the diagonal
+    return gram

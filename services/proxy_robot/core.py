@@ -22,6 +22,7 @@ itself, so a test on a fake clock and a fake link decides exactly when it happen
 from __future__ import annotations
 
 import logging
+import math
 import threading
 from collections.abc import Callable
 
@@ -282,9 +283,10 @@ class ProxyRobotCore:
 
         Returns (new joint target, its tool pose, applied fraction in (0, 1])."""
         delta_x = finite_vector(delta_position_m, 3, "delta_position_m")
-        if np.linalg.norm(delta_x) > MAX_TRANSLATION_INCREMENT_M:
+        distance = math.sqrt(delta_x @ delta_x)
+        if distance > MAX_TRANSLATION_INCREMENT_M:
             raise OutOfRangeError(
-                f"translation increment {np.linalg.norm(delta_x) * 1e3:.1f} mm exceeds the cap "
+                f"translation increment {distance * 1e3:.1f} mm exceeds the cap "
                 f"of {MAX_TRANSLATION_INCREMENT_M * 1e3:.0f} mm per command; split it",
                 reason="INCREMENT_CAP")
         angle = rotation_angle(delta_rotation)
@@ -299,7 +301,8 @@ class ProxyRobotCore:
             tool_goal = self._apply_increment(q_base, tool_now, pin.SE3(delta_rotation, delta_x),
                                               frame)
             for fraction in (1.0, *REDUCED_FRACTIONS):
-                goal = tool_now * pin.exp6(fraction * pin.log6(tool_now.actInv(tool_goal)))
+                goal = tool_goal if fraction == 1.0 else tool_now * pin.exp6(
+                    fraction * pin.log6(tool_now.actInv(tool_goal)))
                 q_goal = self._solve(goal, q_base, first_try=fraction == 1.0)
                 if q_goal is not None:
                     return self._command(q_goal), self._tool_pose(q_goal), fraction
@@ -384,7 +387,7 @@ class ProxyRobotCore:
         with self._lock:
             self._motion_base()  # an e-stop may have landed during the IK
             link = self._require_link()
-            motion = float(np.max(np.abs(target - self._target_q)))
+            motion = float(abs(target - self._target_q).max())
             link.write_target(target, self._segments.duration_s(motion))
             self._target_q = target.copy()
             self._set_status(RobotStatus.MOVING, "moving to a new target")

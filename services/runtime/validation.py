@@ -14,7 +14,9 @@ its words. A string past its bound there is cut to the bound, and the stop goes 
 
 from __future__ import annotations
 
-from google.protobuf.descriptor import FieldDescriptor
+import functools
+
+from google.protobuf.descriptor import Descriptor, FieldDescriptor
 from google.protobuf.message import Message
 
 from telerobot.v1 import options_pb2
@@ -27,6 +29,7 @@ NANOS_MAX = 999_999_999
 _ENUM = FieldDescriptor.TYPE_ENUM
 _STRING = FieldDescriptor.TYPE_STRING
 _MESSAGE = FieldDescriptor.TYPE_MESSAGE
+_TIME_TYPES = ("google.protobuf.Duration", "google.protobuf.Timestamp")
 
 
 def check_request(message: Message, *, cut_long_strings: bool = False) -> None:
@@ -41,6 +44,8 @@ def max_length(field: FieldDescriptor) -> int:
 
 
 def _check(message: Message, prefix: str, cut_long_strings: bool) -> None:
+    if not _may_refuse(message.DESCRIPTOR):
+        return  # numbers only, at any depth (a Vector3, a Matrix3): nothing to look at
     for field, value in message.ListFields():
         path = f"{prefix}{field.name}"
         values = value if _is_repeated(field) else (value,)
@@ -62,6 +67,24 @@ def _check(message: Message, prefix: str, cut_long_strings: bool) -> None:
                 where = f"{path}[{index}]" if _is_repeated(field) else path
                 _check_time(field.message_type.full_name, item, where)
                 _check(item, f"{where}.", cut_long_strings)
+
+
+@functools.cache
+def _may_refuse(descriptor: Descriptor) -> bool:
+    """Whether a message of this type can hold anything _check refuses: an enum, a string, a
+    Duration or a Timestamp, in it or in any message it can hold."""
+    seen, pending = set(), [descriptor]
+    while pending:
+        current = pending.pop()
+        if current.full_name in _TIME_TYPES:
+            return True
+        for field in current.fields:
+            if field.type in (_ENUM, _STRING):
+                return True
+            if field.type == _MESSAGE and field.message_type.full_name not in seen:
+                seen.add(field.message_type.full_name)
+                pending.append(field.message_type)
+    return False
 
 
 def _check_time(type_name: str, value: Message, path: str) -> None:

@@ -8,6 +8,7 @@ answer (process gone, heartbeat stale, link closed).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -31,10 +32,9 @@ def checked_joint_target(joint_positions_rad, lower: np.ndarray,
         raise InvalidArgumentError(
             f"a joint target needs {joints} finite angles in rad, got {target!r}",
             reason="BAD_TARGET")
-    outside = np.flatnonzero((target < lower - LIMIT_TOLERANCE_RAD)
-                             | (target > upper + LIMIT_TOLERANCE_RAD))
-    if outside.size:
-        joint = int(outside[0])
+    outside = (target < lower - LIMIT_TOLERANCE_RAD) | (target > upper + LIMIT_TOLERANCE_RAD)
+    if outside.any():
+        joint = int(np.flatnonzero(outside)[0])
         raise OutOfRangeError(
             f"joint {joint + 1} target {np.degrees(target[joint]):.1f} deg is past its limit "
             f"({np.degrees(lower[joint]):.0f}..{np.degrees(upper[joint]):.0f} deg)",
@@ -46,7 +46,7 @@ def checked_duration(duration_s) -> float:
     """A target's segment duration (s), as every ArmLink takes it: InvalidArgumentError unless a
     finite number >= 0 (the servo clips a long one to its own cap)."""
     duration = float(duration_s)
-    if not np.isfinite(duration) or duration < 0.0:
+    if not math.isfinite(duration) or duration < 0.0:
         raise InvalidArgumentError(f"a target's segment duration must be finite and >= 0 s, got "
                                    f"{duration_s!r}", reason="BAD_DURATION")
     return duration

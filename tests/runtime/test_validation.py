@@ -137,3 +137,19 @@ def test_a_timestamp_outside_its_range_is_refused_and_a_valid_one_passes():
     request.command.send_time.seconds = 1_800_000_000
     request.command.send_time.nanos = 999_999_999
     check_request(request)
+
+
+def test_messages_of_numbers_only_are_passed_over_and_the_rest_still_checked():
+    """A Vector3 or a Matrix3 cannot hold anything to refuse, so the check does not walk it;
+    a message that holds one beside an enum is still checked, at any depth."""
+    from services.runtime.validation import _may_refuse
+    from telerobot.v1 import types_pb2
+
+    assert not _may_refuse(types_pb2.Vector3.DESCRIPTOR)
+    assert not _may_refuse(types_pb2.Matrix3.DESCRIPTOR)
+    assert _may_refuse(proxy_robot_pb2.MoveCartesianIncrementalRequest.DESCRIPTOR)
+    assert _may_refuse(decision_server_pb2.TeleoperateRequest.DESCRIPTOR)  # a Timestamp, deep
+    request = proxy_robot_pb2.MoveCartesianIncrementalRequest(frame=99)
+    request.delta_position_m.x = 1e-3
+    with pytest.raises(Exception, match="frame = 99"):
+        check_request(request)
