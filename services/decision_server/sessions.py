@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import math
 import threading
 import uuid
 from collections import OrderedDict
@@ -271,6 +272,7 @@ class OperatorSession:
         self._sensor_checking = threading.Lock()
         self._closed = threading.Event()
         self._activity = threading.Event()
+        self._watch_until = math.inf  # when the watchdog's wait ends (monotonic s)
         self._watchdog = threading.Thread(target=self._watch, name=f"watchdog-{self.session_id}",
                                           daemon=True)
 
@@ -476,7 +478,13 @@ class OperatorSession:
             elif not lost and self._held_short_of is not None:
                 self._finish_held_segment(*self._held_short_of)
             self._sensor_was_lost = bool(lost)
-            return lost
+        # What the sensor said may bring the watchdog's next check of it sooner (a sensor now
+        # streaming, which it was not when the watchdog planned its wait).
+        due_in_s = self.core.sensor_check_due_in_s()
+        if due_in_s is not None and self._clock.monotonic() + max(due_in_s, 0.0) < \
+                self._watch_until:
+            self._activity.set()
+        return lost
 
     def _hold_while_asking(self) -> None:
         """The wrench went stale: the arm stops where it can while the sensor is asked
@@ -597,6 +605,7 @@ class OperatorSession:
             self._detached_at = None
             stream = self.stream
         self._touch()
+        self._activity.set()  # the watchdog waits for the resume window: its deadline is sooner
         self.core.emit(self._changed("RESUMED", "a new stream resumed the session"))
         return stream
 
@@ -622,8 +631,14 @@ class OperatorSession:
     def _touch(self) -> None:
         with self._lock:
             self._last_activity = self._clock.monotonic()
+            rearmed = self._held or self._sensor_asked
             self._held = self._sensor_asked = False
-        self._activity.set()
+        # A command moves the operator's deadline later, which the watchdog finds out when its
+        # wait ends: it is woken only when it must act sooner than it planned, for a hold or a
+        # sensor check this re-arms (and see _sensor_check). Waking it for every command cost
+        # a thread switch a command.
+        if rearmed:
+            self._activity.set()
 
     def _watch(self) -> None:
         """Holds the arm when the operator goes quiet, or when the force sensor's wrench does
@@ -631,8 +646,10 @@ class OperatorSession:
         session when it stays detached past its resume window."""
         while not self._closed.is_set():
             # Clear before reading the state, so a command or a close that lands in between
-            # still wakes the wait below instead of being missed.
+            # still wakes the wait below instead of being missed; until the wait's deadline is
+            # known, any command wakes it.
             self._activity.clear()
+            self._watch_until = math.inf
             sensor_due_in_s = self.core.sensor_check_due_in_s()
             with self._lock:
                 now = self._clock.monotonic()
@@ -666,6 +683,7 @@ class OperatorSession:
                     with self._moving:
                         self._hold(lost)
                 continue
+            self._watch_until = math.inf if due else deadline
             self._clock.wait_until(self._activity, None if due else deadline)
 
     def _hold(self, reason: str) -> None:
