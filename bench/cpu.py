@@ -8,6 +8,8 @@ so their share is part of the answer."""
 from __future__ import annotations
 
 import os
+import re
+import threading
 import time
 
 _TICKS_PER_S = os.sysconf("SC_CLK_TCK")
@@ -25,20 +27,67 @@ def reaped_children_cpu_s(pid: int) -> float:
     return (int(fields[13]) + int(fields[14])) / _TICKS_PER_S
 
 
-def thread_cpu_s(pid: int) -> dict[str, float]:
-    """A process's CPU time so far by thread name (the OS's: runtime.thread_names gives each
-    service thread its Python name there), threads of one name summed, s. A thread that has
-    ended is no longer counted: compare two readings only for threads that live through both."""
-    times: dict[str, float] = {}
-    for task in os.scandir(f"/proc/{pid}/task"):
+def thread_kind(name: str) -> str:
+    """A thread's name without the session id a per-session thread carries ("teleop-in-
+    d40be" -> "teleop-in"), so that the threads of two sessions compare."""
+    return _SESSION_ID.sub("", name)
+
+
+_SESSION_ID = re.compile(r"-[0-9a-f]{4,}$")
+
+
+class ThreadCpuWatch:
+    """A process's CPU time by thread name (thread_kind) over a window, a thread that starts
+    or ends within it included: every `period_s` a thread of its own reads each thread's
+    time, and a thread's last reading is what it spent (what one spends after the last
+    reading before it ends, under `period_s`, is not counted)."""
+
+    def __init__(self, pid: int, period_s: float = 0.05):
+        self._pid = pid
+        self._period_s = period_s
+        self._first = _task_cpu_s(pid)
+        self._last = dict(self._first)
+        self._stop = threading.Event()
+        self._reader = threading.Thread(target=self._read, name="thread-cpu-watch", daemon=True)
+        self._reader.start()
+
+    def _read(self) -> None:
+        while not self._stop.wait(self._period_s):
+            self.sample()
+
+    def sample(self) -> None:
+        """Read each thread's time now (the watch's own thread does every period_s)."""
+        self._last.update(_task_cpu_s(self._pid))
+
+    def stop(self) -> dict[str, float]:
+        """{thread name: CPU s spent in the window}, the names that spent any."""
+        self._stop.set()
+        self._reader.join()
+        self.sample()
+        spent: dict[str, float] = {}
+        for task, (name, cpu_s) in self._last.items():
+            before = self._first.get(task, (name, 0.0))[1]
+            if cpu_s > before:
+                spent[name] = spent.get(name, 0.0) + cpu_s - before
+        return spent
+
+
+def _task_cpu_s(pid: int) -> dict[int, tuple[str, float]]:
+    """{thread id: (thread_kind of its name, CPU s so far)} of a process's threads now."""
+    tasks = {}
+    try:
+        entries = list(os.scandir(f"/proc/{pid}/task"))
+    except (FileNotFoundError, ProcessLookupError):
+        return tasks  # the process ended
+    for task in entries:
         try:
             with open(f"{task.path}/stat") as stat:
                 text = stat.read()
         except (FileNotFoundError, ProcessLookupError):
             continue  # the thread ended meanwhile
-        name = text[text.index("(") + 1:text.rindex(")")]
-        times[name] = times.get(name, 0.0) + _cpu_s(_fields(text))
-    return times
+        name = thread_kind(text[text.index("(") + 1:text.rindex(")")])
+        tasks[int(task.name)] = (name, _cpu_s(_fields(text)))
+    return tasks
 
 
 def _stat_fields(pid: int) -> list[str]:

@@ -112,6 +112,7 @@ class Goal:
 
 CPU_KEY = "server_cpu_ms_per_command"  # teleop.py's, with a server_pid
 THREAD_CPU_KEY = "server_cpu_us_per_command_by_thread"  # teleop.py's too: by thread name
+PROXY_CPU_KEY = "proxy_cpu_ms_per_command"  # teleop.py's, with a proxy_pid: ProxyRobot's
 STATION_CPU_KEY = "station_cpu_pct"  # observers_zenoh's: the station's processes, % of a core
 SUBSCRIBER_CPU_KEY = "subscriber_cpu_us_per_sample"  # force.py's
 _LABELS = {"p50_ms": "p50", "p99_ms": "p99", CPU_KEY: "server CPU/command",

@@ -13,7 +13,14 @@ import time
 from importlib import metadata
 from pathlib import Path
 
-from bench.goals import CPU_KEY, SUBSCRIBER_CPU_KEY, THREAD_CPU_KEY, is_baseline, verdict_text
+from bench.goals import (
+    CPU_KEY,
+    PROXY_CPU_KEY,
+    SUBSCRIBER_CPU_KEY,
+    THREAD_CPU_KEY,
+    is_baseline,
+    verdict_text,
+)
 from bench.stats import ratio
 
 # What the papers report for the same path, for the table's last column.
@@ -94,8 +101,8 @@ def comparison(result: dict, base: dict) -> dict[str, float | None]:
 
 
 # A leg's figures an interleaved pair keeps (the rest, e.g. latencies, is the leg's worker's).
-LEG_KEYS = ("delivered_hz", "p50_ms", "p99_ms", "dropped", CPU_KEY, SUBSCRIBER_CPU_KEY,
-            THREAD_CPU_KEY, "session_applied", "retried_after")
+LEG_KEYS = ("delivered_hz", "p50_ms", "p99_ms", "dropped", CPU_KEY, PROXY_CPU_KEY,
+            SUBSCRIBER_CPU_KEY, THREAD_CPU_KEY, "session_applied", "retried_after")
 # The ratios (on / off) of an interleaved pair: {name: result key}; goals.py judges some.
 OVERHEAD_RATIOS = {"delivered": "delivered_hz", "p50": "p50_ms", "p99": "p99_ms",
                    "server_cpu": CPU_KEY, "subscriber_cpu": SUBSCRIBER_CPU_KEY}
@@ -296,7 +303,8 @@ def _extras(results: dict[str, dict], tables: dict[str, list[str]]) -> list[str]
             lines.append(f"  {name}: pending: {r.get('reason')}")
         elif family(name) in ("command", "teleop"):
             cpu = (f"; DecisionServer CPU {fmt(r[CPU_KEY], 3)} ms/command" if CPU_KEY in r
-                   else "")
+                   else "") + (f", ProxyRobot {fmt(r[PROXY_CPU_KEY], 3)}"
+                               if PROXY_CPU_KEY in r else "")
             lines.append(f"  {name}: ack round trip p50 {fmt(r.get('ack_p50_ms'), 3)} / p99 "
                          f"{fmt(r.get('ack_p99_ms'), 3)} ms; late ticks skipped "
                          f"{r.get('late_skipped')}{cpu}")

@@ -36,8 +36,9 @@ rate at 1 / round trip and measures the client's patience, not the stream. So he
   ends (after StopRecording), per command applied in it; and, for a recorded session,
   ``writer_cpu_ms_per_command``, the same of the recording's writer process (the server's
   child, reaped at StopRecording); ``server_cpu_us_per_command_by_thread``, the server's
-  CPU split by thread name (the threads that live through the session: a recording's own
-  thread ends with it and is not in it). At 1 kHz
+  CPU split by thread name, the session's own threads (`teleop`, `teleop-in`, `watchdog`)
+  and a recording's included (bench.cpu.ThreadCpuWatch);
+- ``proxy_pid``: ``proxy_cpu_ms_per_command``, the same of ProxyRobot's process. At 1 kHz
   the DecisionServer is the stream's bottleneck on a 2-core machine: it keeps the rate by
   merging a backlog into fewer moves, so what recording costs it shows in its CPU, while the
   latency is a queue whose length the machine's load sets.
@@ -74,8 +75,8 @@ from google.protobuf import duration_pb2, timestamp_pb2
 
 from bench import framing
 from bench.command import PLAINTEXT, TELEOP_STEP_M, acquire_control, release_control
-from bench.cpu import process_cpu_s, reaped_children_cpu_s, thread_cpu_s
-from bench.goals import THREAD_CPU_KEY
+from bench.cpu import ThreadCpuWatch, process_cpu_s, reaped_children_cpu_s
+from bench.goals import PROXY_CPU_KEY, THREAD_CPU_KEY
 from bench.schedule import Schedule
 from bench.stats import summary
 from bench.worldloop import LoopMeter
@@ -559,24 +560,18 @@ def recorded(client: GrpcTeleop, record_dir: Path, run: Callable[[], dict],
     return result
 
 
-def _per_command_us(before: dict[str, float], after: dict[str, float], commands: int
-                    ) -> dict[str, float]:
-    """Each thread name's CPU between two thread_cpu_s readings, µs per command (those that
-    spent any)."""
-    return {name: round(1e6 * (after[name] - before.get(name, 0.0)) / commands, 1)
-            for name in after if after[name] > before.get(name, 0.0)}
-
-
 def measure(transport_kind: str, address: str, shm_name: str | None, rates: list[float],
             duration_s: float, swing: int | None = None, window_s: float | None = None,
             drain_s: float = DRAIN_S, first_sign: float = 1.0, record_dir: str | None = None,
-            server_pid: int | None = None, episode_task: str = "", **client_options
+            server_pid: int | None = None, proxy_pid: int | None = None,
+            episode_task: str = "", **client_options
             ) -> dict[str, dict]:
     """run_rate for each rate (a session each, the direction of motion alternating from
     `first_sign`); {str(rate): result}. `client_options` go to the client (`security` for
     gRPC, and `watchdog_s`); `swing`, `window_s`, `drain_s`: see run_rate (the soak's long
     stream); `record_dir`: each session recorded (`recorded`); `server_pid`: the server's CPU
-    per command of each session (`server_cpu_ms_per_command`)."""
+    per command of each session (`server_cpu_ms_per_command`), and by thread; `proxy_pid`:
+    ProxyRobot's (`proxy_cpu_ms_per_command`)."""
     client = CLIENTS[transport_kind](address, **client_options)
     loop = LoopMeter(shm_name) if shm_name else None
     results = {}
@@ -586,19 +581,27 @@ def measure(transport_kind: str, address: str, shm_name: str | None, rates: list
             run = functools.partial(run_rate, client, rate, duration_s, sign, loop, swing,
                                     window_s, drain_s)
             cpu_s = process_cpu_s(server_pid) if server_pid else None
-            threads_s = thread_cpu_s(server_pid) if server_pid else None
+            proxy_cpu_s = process_cpu_s(proxy_pid) if proxy_pid else None
+            threads = ThreadCpuWatch(server_pid) if server_pid else None
             writer_cpu_s = reaped_children_cpu_s(server_pid) if server_pid else None
-            result = run() if record_dir is None else recorded(client, Path(record_dir), run,
-                                                                episode_task)
+            try:
+                result = run() if record_dir is None else recorded(client, Path(record_dir),
+                                                                    run, episode_task)
+            finally:
+                spent_by_thread = threads.stop() if threads else None
             applied = result["session_applied"]
             if cpu_s is not None and applied:
                 result["server_cpu_ms_per_command"] = round(
                     1e3 * (process_cpu_s(server_pid) - cpu_s) / applied, 4)
-                result[THREAD_CPU_KEY] = _per_command_us(threads_s, thread_cpu_s(server_pid),
-                                                         applied)
+                result[THREAD_CPU_KEY] = {
+                    name: round(1e6 * spent / applied, 1) for name, spent in sorted(
+                        spent_by_thread.items(), key=lambda item: -item[1])}
                 if record_dir is not None:
                     result["writer_cpu_ms_per_command"] = round(
                         1e3 * (reaped_children_cpu_s(server_pid) - writer_cpu_s) / applied, 4)
+            if proxy_cpu_s is not None and applied:
+                result[PROXY_CPU_KEY] = round(
+                    1e3 * (process_cpu_s(proxy_pid) - proxy_cpu_s) / applied, 4)
             results[str(int(rate))] = result
         return results
     finally:

@@ -63,7 +63,7 @@ def _teleop(bench: Session, address: str) -> None:
     names = [f"teleop_{rate}" for rate in plan.command_rates]
     bench.progress.step(f"{', '.join(names)}: DecisionServer.Teleoperate, commands streamed "
                         f"at the offered rate (pipelined), {plan.command_s:.0f} s each")
-    server = {"server_pid": bench.pid("decision_server")}  # its CPU per command
+    server = _cpu_of(bench)
     try:
         results = bench.rate_worker("teleop", "grpc", address, plan.command_rates, server)
     except ChildFailed as error:  # the recording's twin has nothing to compare with
@@ -92,10 +92,15 @@ def _teleop_leg(bench: Session, address: str, **extra) -> Callable[[int, float],
     """A leg of an interleaved row (Session.mcap_twin): Teleoperate at 1 kHz through the
     DecisionServer at `address` for overhead_teleop_leg_s, moving the arm `sign`-wards, its
     CPU per command measured; `extra` goes to the worker (what the on legs record)."""
-    leg = {"duration_s": bench.plan.overhead_teleop_leg_s,
-           "server_pid": bench.pid("decision_server")}
+    leg = {"duration_s": bench.plan.overhead_teleop_leg_s, **_cpu_of(bench)}
     return lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
         "first_sign": sign, **leg, **extra})["1000"]
+
+
+def _cpu_of(bench: Session) -> dict:
+    """A teleop worker's parameters to measure the DecisionServer's and ProxyRobot's CPU per
+    command."""
+    return {"server_pid": bench.pid("decision_server"), "proxy_pid": bench.pid("proxy_robot")}
 
 
 def _teleop_episode(bench: Session) -> None:

@@ -47,3 +47,39 @@ def test_a_process_gone_before_the_window_ends_is_left_out():
     window = CpuWindow({"gone": gone.pid})
     gone.wait()
     assert window.stop()["cpu_pct"] == {}
+
+
+def test_a_session_thread_that_ends_within_the_window_is_counted_under_its_kind():
+    """ThreadCpuWatch: a thread started after the window opened and ended before it closed
+    still counts (its last reading), under its name without the session id."""
+    import os
+    import threading
+    import time
+
+    from bench.cpu import ThreadCpuWatch, thread_kind
+
+    assert thread_kind("teleop-in-d40be") == "teleop-in"
+    assert thread_kind("event_engine") == "event_engine"
+    burnt, finish = threading.Event(), threading.Event()
+
+    def burn() -> None:
+        start = time.thread_time()
+        while time.thread_time() - start < 0.2:
+            pass
+        burnt.set()
+        finish.wait(30)
+
+    watch = ThreadCpuWatch(os.getpid(), period_s=3600.0)  # read only when asked
+    worker = threading.Thread(target=burn)
+    worker.start()
+    try:
+        # The OS's name, as runtime.thread_names gives a session's threads theirs.
+        with open(f"/proc/self/task/{worker.native_id}/comm", "w") as comm:
+            comm.write("teleop-9f3c2a1b")
+        assert burnt.wait(30)
+        watch.sample()  # alive: its 0.2 s read
+    finally:
+        finish.set()
+        worker.join()
+    spent = watch.stop()  # it has ended
+    assert spent["teleop"] >= 0.15, spent

@@ -261,6 +261,28 @@ def test_the_watchdog_holds_the_arm_exactly_at_its_timeout(rig):
     assert sum(c.kind == "hold" for c in rig.slave.commands) == 1  # no second hold
 
 
+def test_commands_do_not_wake_the_watchdog_and_it_still_holds_at_the_last_ones_timeout(rig):
+    """A command only moves the watchdog's deadline later: the watchdog finds that out when
+    its wait ends, so commands cost it no wake-up, and its hold still comes exactly one
+    timeout after the last of them."""
+    armed = rig.clock.waiters()
+    session = rig.core.open_session("alice", rig.lease.lease_id, None, 0.05)
+    wakes = []
+    wake = session._activity.set
+    session._activity.set = lambda: (wakes.append(rig.clock.monotonic()), wake())
+    wait_for(lambda: rig.clock.waiters() > armed, what="the watchdog to arm")
+    for _ in range(20):  # 0.2 s of commands every 10 ms: four timeouts' worth
+        session.command(np.array([0.0, 0.0, 0.0001]), np.eye(3), False)
+        rig.clock.advance(0.01)
+    assert wakes == []
+    assert not any(c.kind == "hold" for c in rig.slave.commands)
+    rig.clock.advance(0.039)  # 0.049 s after the last command
+    assert not any(c.kind == "hold" for c in rig.slave.commands)
+    rig.clock.advance(0.002)
+    wait_for(lambda: any(c.kind == "hold" for c in rig.slave.commands), what="a hold")
+    session.close("done")
+
+
 def test_the_watchdog_holds_only_after_a_move_in_flight_lands(rig):
     """A station so slow that the watchdog times out while a command's move is in flight: the
     hold waits for that move to land. Sent beside it, the hold could reach the arm first and
