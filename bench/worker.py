@@ -65,7 +65,7 @@ def _teleop(p: dict) -> dict:
     raise_thread_priority(COMMAND_PATH_FIFO_PRIORITY, -10, what="master's sender")
 
     options = {key: p[key] for key in ("swing", "window_s", "drain_s", "first_sign",
-                                       "record_dir", "server_pid", "episode_task")
+                                       "record_dir", "server_pid", "proxy_pid", "episode_task")
                if p.get(key)}
     if p.get("watchdog_s"):  # the session's watchdog (the soak's); else teleop's own
         options["watchdog_s"] = p["watchdog_s"]

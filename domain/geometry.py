@@ -2,8 +2,9 @@
 increment in the base or tool frame moves the tool.
 
 The checks and repairs of values received from outside (`finite_vector`, `rotation_matrix`,
-`gram_schmidt`) and a fast 3-vector cross product (`cross3`) live in ``wire.checks``, shared
-with the clients; they are re-exported here.
+`gram_schmidt`), a fast 3-vector cross product (`cross3`) and a vector's norm that keeps the
+interpreter lock (`vector_norm`) live in ``wire.checks``, shared with the clients; they are
+re-exported here.
 """
 
 from __future__ import annotations
@@ -19,11 +20,13 @@ from wire.checks import (
     finite_vector,
     gram_schmidt,
     rotation_matrix,
+    vector_norm,
 )
 
 __all__ = [
     "ROTATION_TOLERANCE", "cross3", "euler_xyz", "finite_vector", "from_euler_xyz",
     "gram_schmidt", "moved_by", "rotation_angle", "rotation_matrix", "scale_increment",
+    "vector_norm",
 ]
 
 

@@ -47,6 +47,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from domain.geometry import vector_norm
+
 # Forces under this are the sensor's noise and the peg's friction: their work is not counted, so
 # free motion never starves for energy (a 0.5 N floor over a 40 mm stroke is 20 mJ).
 FORCE_DEADBAND_N = 0.5
@@ -81,7 +83,7 @@ def bound_motion(step_m: np.ndarray, force_n: np.ndarray, available_j: float
     allowed_j = max(available_j, 0.0)
     if out_j <= allowed_j:
         return step, 0.0
-    norm = float(np.linalg.norm(force))
+    norm = vector_norm(force)
     return step + (out_j - allowed_j) / norm * (force / norm), out_j - allowed_j
 
 
@@ -96,14 +98,14 @@ def bound_force(force_n: np.ndarray, step_m: np.ndarray, available_j: float
     allowed_j = max(available_j, 0.0)
     if out_j <= allowed_j:
         return force, 0.0
-    norm = float(np.linalg.norm(step))
+    norm = vector_norm(step)
     return force - (out_j - allowed_j) / norm * (step / norm), out_j - allowed_j
 
 
 def counted_force(force_n: np.ndarray, deadband_n: float = FORCE_DEADBAND_N) -> np.ndarray:
     """The force whose work the observers count: zero under the deadband."""
     force = np.asarray(force_n, dtype=float)
-    return force if float(np.linalg.norm(force)) >= deadband_n else np.zeros_like(force)
+    return force if vector_norm(force) >= deadband_n else np.zeros_like(force)
 
 
 @dataclass
@@ -176,7 +178,7 @@ class MasterPassivity:
         """The force to display (slave newtons, base axes) for the slave's `force_n` while the
         hand moves `hand_step_m` (slave metres) this step; observes the step's energy."""
         force = np.asarray(force_n, dtype=float)
-        if float(np.linalg.norm(force)) < self.deadband_n:
+        if vector_norm(force) < self.deadband_n:
             return force  # shown as it is, its work not counted (see FORCE_DEADBAND_N)
         step = np.asarray(hand_step_m, dtype=float)
         shown, dissipated = bound_force(force, step, self.available_j)
@@ -188,5 +190,5 @@ class MasterPassivity:
 
 
 def _clipped(vector: np.ndarray, length: float) -> np.ndarray:
-    norm = float(np.linalg.norm(vector))
+    norm = vector_norm(vector)
     return vector if norm <= length else vector * (length / norm)

@@ -34,6 +34,13 @@ def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.array([ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx])
 
 
+def vector_norm(values) -> float:
+    """np.linalg.norm of a vector, in floats. np.linalg.norm computes through ndarray.dot,
+    which lets go of the interpreter lock: in a process whose other threads are busy, the
+    caller then waits for it again, about 0.1 ms on this host, where this takes 0.2 µs."""
+    return math.hypot(*np.asarray(values, dtype=float).ravel().tolist())
+
+
 def gram_schmidt(matrix: np.ndarray) -> np.ndarray:
     """The orthonormal matrix nearest in the Gram-Schmidt sense: columns normalized in order,
     the third taken as the cross product so the result is a proper rotation."""

@@ -11,12 +11,12 @@ answer.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
 
+from domain.geometry import vector_norm
 from domain.robot_model.kinematics import TOOL_FRAME, ArmKinematics
 
 # Damping lambda^2 added to J J^T (Sugihara 2011): a floor that keeps steps finite at singularities
@@ -48,10 +48,8 @@ class IkResult:
 
 def pose_errors(reached: pin.SE3, target: pin.SE3) -> tuple[float, float]:
     """(position error in m, rotation error in rad) between two poses."""
-    offset = target.translation - reached.translation
-    axis_angle = pin.log3(reached.rotation.T @ target.rotation)
-    # math.sqrt of a dot: np.linalg.norm's generality costs more than the IK step's algebra.
-    return math.sqrt(offset @ offset), math.sqrt(axis_angle @ axis_angle)
+    return (vector_norm(target.translation - reached.translation),
+            vector_norm(pin.log3(reached.rotation.T @ target.rotation)))
 
 
 def solve_ik(

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from domain.geometry import scale_increment
+from domain.geometry import scale_increment, vector_norm
 from wire.errors import InvalidArgumentError
 
 
@@ -64,7 +64,7 @@ class Assistance:
             if not np.isfinite(value) or value <= 0:
                 raise InvalidArgumentError(f"{name} must be > 0", reason="BAD_SCALE")
         if self.constraint is not None:
-            norm = np.linalg.norm(self.constraint.axis)
+            norm = vector_norm(self.constraint.axis)
             if not np.isfinite(norm) or norm < 1e-9:
                 raise InvalidArgumentError("the constraint axis must be a non-zero vector",
                                            reason="BAD_AXIS")
@@ -103,7 +103,7 @@ def apply_assistance(assistance: Assistance, delta_position: np.ndarray,
         axis_base = constraint.axis
         if constraint.frame == "TOOL":
             axis_base = tool.rotation @ axis_base
-        axis_base = axis_base / np.linalg.norm(axis_base)
+        axis_base = axis_base / vector_norm(axis_base)
         anchor = constraint.anchor_m if constraint.anchor_m is not None else tool.translation
         next_point = tool.translation + _to_base(dx, mapping, tool)
         offset = next_point - anchor
@@ -112,7 +112,7 @@ def apply_assistance(assistance: Assistance, delta_position: np.ndarray,
         else:
             correction = -(offset - (offset @ axis_base) * axis_base)
         dx = dx + _in_mapping_frame(correction, mapping, tool)
-        modified = bool(np.linalg.norm(correction) > 1e-12)
+        modified = vector_norm(correction) > 1e-12
     force = assistance.force_control
     if force is not None:
         keep_translation = ~force.axes[:3]

@@ -10,6 +10,7 @@ from collections.abc import Callable
 import numpy as np
 import pinocchio as pin
 
+from domain.geometry import vector_norm
 from services.decision_server.assistance import ForceControl
 from services.decision_server.slave import Slave
 from services.runtime.clock import Clock
@@ -116,8 +117,8 @@ class ForceLoop:
             torque_error = (sample.torque_nm - control.desired_torque_nm) * control.axes[3:]
             pending_x += control.translation_gain_m_per_n_s * force_error * dt
             pending_r += control.rotation_gain_rad_per_nm_s * torque_error * dt
-            if (np.linalg.norm(pending_x) < MIN_TRANSLATION_STEP_M
-                    and np.linalg.norm(pending_r) < MIN_ROTATION_STEP_RAD):
+            if (vector_norm(pending_x) < MIN_TRANSLATION_STEP_M
+                    and vector_norm(pending_r) < MIN_ROTATION_STEP_RAD):
                 continue
             delta_x, delta_m = pending_x, pin.exp3(pending_r)
             pending_x, pending_r = np.zeros(3), np.zeros(3)

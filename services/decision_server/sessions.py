@@ -33,7 +33,7 @@ from typing import Protocol
 import numpy as np
 import pinocchio as pin
 
-from domain.geometry import moved_by, rotation_angle
+from domain.geometry import moved_by, rotation_angle, vector_norm
 from domain.passivity import SlavePassivity
 from services.decision_server.arbitration import Lease
 from services.decision_server.assistance import Assistance, apply_assistance
@@ -154,7 +154,7 @@ def merge_groups(increments: list[MasterIncrement]) -> list[list[MasterIncrement
     groups: list[list[MasterIncrement]] = []
     translation = rotation = 0.0
     for increment in increments:
-        size = float(np.linalg.norm(increment.delta_position))
+        size = vector_norm(increment.delta_position)
         angle = rotation_angle(increment.delta_rotation)
         group = groups[-1] if groups else None
         if (group is not None and group[0].clutch_engaged == increment.clutch_engaged
@@ -428,7 +428,7 @@ class OperatorSession:
         if ages[0] > BACKLOG_AGE_FACTOR * self.max_command_age_s:
             return (f"a backlog: {late} commands waited up to {ages[0] * 1e3:.0f} ms, past "
                     f"{BACKLOG_AGE_FACTOR} x max_command_age; the arm holds")
-        translation = float(np.linalg.norm(sum(i.delta_position for i in group)))
+        translation = vector_norm(sum(i.delta_position for i in group))
         rotation = sum(rotation_angle(i.delta_rotation) for i in group)
         if translation > MAX_MERGED_TRANSLATION_M or rotation > MAX_MERGED_ROTATION_RAD:
             return (f"a backlog: {late} late commands and the fresh one add up to "

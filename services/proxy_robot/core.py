@@ -22,14 +22,13 @@ itself, so a test on a fake clock and a fake link decides exactly when it happen
 from __future__ import annotations
 
 import logging
-import math
 import threading
 from collections.abc import Callable
 
 import numpy as np
 import pinocchio as pin
 
-from domain.geometry import finite_vector, moved_by, rotation_angle
+from domain.geometry import finite_vector, moved_by, rotation_angle, vector_norm
 from domain.robot_model import names
 from domain.robot_model.description import ArmDescription
 from domain.robot_model.ik import solve_ik
@@ -252,7 +251,7 @@ class ProxyRobotCore:
                 raise FailedPreconditionError(
                     "the arm is MOVING: set the tool frame once it is READY",
                     reason="MOVING")
-            offset = float(np.linalg.norm(flange_to_tool.translation))
+            offset = vector_norm(flange_to_tool.translation)
             if offset > TOOL_OFFSET_LIMIT_M:
                 raise InvalidArgumentError(
                     f"the tool point is {offset:.3f} m from the flange; at most "
@@ -283,7 +282,7 @@ class ProxyRobotCore:
 
         Returns (new joint target, its tool pose, applied fraction in (0, 1])."""
         delta_x = finite_vector(delta_position_m, 3, "delta_position_m")
-        distance = math.sqrt(delta_x @ delta_x)
+        distance = vector_norm(delta_x)
         if distance > MAX_TRANSLATION_INCREMENT_M:
             raise OutOfRangeError(
                 f"translation increment {distance * 1e3:.1f} mm exceeds the cap "

@@ -11,6 +11,7 @@ from wire.checks import (
     finite_vector,
     gram_schmidt,
     rotation_matrix,
+    vector_norm,
 )
 from wire.errors import InvalidArgumentError
 
@@ -86,3 +87,23 @@ def test_the_fast_cross_product_is_numpys_to_the_bit():
     for _ in range(200):
         a, b = generator.normal(scale=10.0, size=(2, 3))
         assert np.array_equal(cross3(a, b), np.cross(a, b))
+
+
+def test_the_norm_that_keeps_the_lock_is_numpys_within_rounding():
+    generator = np.random.default_rng(11)
+    for size in (3, 6, 9):
+        for _ in range(100):
+            vector = generator.normal(scale=10.0, size=size)
+            assert vector_norm(vector) == pytest.approx(np.linalg.norm(vector), rel=1e-15)
+    assert vector_norm([3.0, 4.0]) == 5.0 and vector_norm(np.zeros(3)) == 0.0
+
+
+def test_the_gram_schmidt_in_floats_is_numpys_within_rounding():
+    generator = np.random.default_rng(5)
+    for _ in range(200):
+        matrix = generator.normal(size=(3, 3))
+        x = matrix[:, 0] / np.linalg.norm(matrix[:, 0])
+        y = matrix[:, 1] - (x @ matrix[:, 1]) * x
+        y /= np.linalg.norm(y)
+        np.testing.assert_allclose(gram_schmidt(matrix), np.column_stack([x, y, np.cross(x, y)]),
+                                   rtol=0, atol=1e-14)
