@@ -150,7 +150,9 @@ GOALS: tuple[tuple[str, Goal], ...] = (
                          source=f"{_ISSUE}, {_OVERLOAD_ISSUE}")),
     ("teleop_50", Goal(p99_ms=2.0, source=_ISSUE)),
     ("command_1000", Goal(min_rate=990, p99_vs=("command_1000_zmq", 1.5), source=_ISSUE)),
-    ("teleop_1000_tls", Goal(p99_vs=("teleop_1000", 1.2), source=_TLS_ISSUE)),
+    # Judged on its interleaved pairs: one leg's p99 at 1 kHz moves by more than 1.2 x by
+    # itself on this machine (teleop_1000_aa).
+    ("teleop_1000_tls", Goal(p99_vs=("teleop_1000", 1.2), paired=True, source=_TLS_ISSUE)),
     ("command_1000_tls", Goal(p99_vs=("command_1000", 1.2), source=_TLS_ISSUE)),
     ("teleop_1000_mcap", _recording_overhead("teleop_1000", "cpu")),
     ("force_1000_mcap", _recording_overhead("force_1000", "p50")),

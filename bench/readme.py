@@ -154,7 +154,7 @@ def _baselines(name: str, results: dict[str, dict]) -> str:
                       for text, key in _TWIN_RATIOS.get(label, ())]
             shown = [f"{key} ×{value:.2f}" for key, value in ratios if value is not None]
             text += f" ({', '.join(shown)})" if shown else ""
-            if label == report.RECORDING_OFF and results[name].get("overhead_median"):
+            if results[name].get("overhead_median"):
                 text += (f"; medians of {len(results[name].get('overhead_pairs') or [])} "
                          f"interleaved pairs: {_overhead(results[name])}")
                 if by_thread := report.thread_cpu_text(results[name]):

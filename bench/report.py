@@ -256,7 +256,8 @@ def table(results: dict[str, dict], tables: dict[str, list[str]] | None = None) 
     if misses:
         lines += ["", "Goals missed:", *misses]
     titles = {"baselines": "Project / baseline (same payloads, same domain cores, same run):",
-              PLAINTEXT: "Mutual TLS / plaintext (the same scenario, right after it):",
+              PLAINTEXT: "Mutual TLS / plaintext (the same scenario, right after it; "
+                         "teleop's then on, off, off, on...):",
               RECORDING_OFF: "MCAP recording on / off (the same scenario, right after it; "
                              "then on, off, off, on...):"}
     sections: dict[str, list[str]] = {key: [] for key in titles}
@@ -266,7 +267,7 @@ def table(results: dict[str, dict], tables: dict[str, list[str]] | None = None) 
             if entry:
                 sections[label if label in titles else "baselines"].append(
                     f"  {name} / {other}: {ratio_text(entry)}")
-            if label == RECORDING_OFF and r.get("overhead_median"):
+            if r.get("overhead_median") and label in titles:
                 sections[label].append(
                     f"  {name}, median of {len(r.get('overhead_pairs') or [])} interleaved "
                     f"pairs (on / off): {overhead_text(r)}")

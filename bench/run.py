@@ -11,7 +11,8 @@ with, in the same run.
 When the command or decision group runs, a twin of the station's services (proxy_robot,
 force_sensor, emergency_stop, and a DecisionServer when needed) serves mutual TLS with a PKI
 made for the run in its scratch directory; it joins the same world, which one of the two
-drives at a time. Its scenarios (`*_tls`) run right after their plaintext twins.
+drives at a time. `command_1000_tls` runs right after its plaintext twin; `teleop_1000_tls`
+in pairs interleaved with it, the TLS station driving for its legs.
 
 teleop_1000_mcap and force_1000_mcap (issue #17, recording.py) repeat teleop_1000 and
 force_1000 right after them, recording in MCAP: the DecisionServer (the same process) records

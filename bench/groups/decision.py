@@ -6,6 +6,7 @@ stop through it, idle and under its intended load."""
 from __future__ import annotations
 
 import sys
+import time
 from collections.abc import Callable
 
 import grpc
@@ -15,7 +16,8 @@ from bench.groups.estop import add_load, under_load
 from bench.plan import Plan
 from bench.procs import ChildFailed
 from bench.session import Session
-from bench.station import OPERATOR_IDENTITY, Station
+from bench.station import OPERATOR_IDENTITY
+from services.decision_server.backends import RETRY_S
 from telerobot.v1 import decision_server_pb2_grpc
 
 EPISODE_TASK = "bench: teleop_1000"
@@ -30,15 +32,15 @@ def run(bench: Session) -> None:
     commands streamed on Teleoperate, pipelined; teleop_1000_lockstep the same sent
     lockstep, a diagnostic; teleop_1000_mcap teleop_1000 recorded in MCAP, in pairs
     interleaved with it; teleop_1000_aa the same pairs with nothing recorded, a diagnostic),
-    then teleop_1000_tls through a DecisionServer of the TLS station, teleop_1000_zmq (the same
+    then teleop_1000_tls (the same pairs, the on legs through a DecisionServer of the TLS
+    station), teleop_1000_zmq (the same
     DecisionCore over pyzmq) with the DecisionServer stopped, so nothing else follows
     ProxyRobot's streams meanwhile; then, through a fresh DecisionServer, the emergency
     stop idle and under its intended load (200 RunAction BusyWork on the low lane)."""
     teleop = [f"teleop_{rate}" for rate in bench.plan.command_rates]
     bench.with_decision_server(teleop + ["teleop_1000_lockstep", "teleop_1000_mcap",
-                                         "teleop_1000_aa"],
+                                         "teleop_1000_aa", "teleop_1000_tls"],
                                lambda address: _teleop(bench, address))
-    bench.tls_twin("teleop_1000", lambda tls: _teleop_tls(bench, tls))
     if bench.plan.profile:
         bench.with_decision_server(["profile"],
                                    lambda address: _profile(bench, address))
@@ -86,6 +88,8 @@ def _teleop(bench: Session, address: str) -> None:
     bench.mcap_twin("teleop_1000", "nothing recorded: identical legs, this run's noise",
                     _teleop_leg(bench, address), _teleop_leg(bench, address), suffix="aa",
                     reuse_twin=False)
+    if bench.tls is not None:
+        _teleop_tls(bench, address)
 
 
 def _teleop_leg(bench: Session, address: str, **extra) -> Callable[[int, float], dict]:
@@ -97,10 +101,11 @@ def _teleop_leg(bench: Session, address: str, **extra) -> Callable[[int, float],
         "first_sign": sign, **leg, **extra})["1000"]
 
 
-def _cpu_of(bench: Session) -> dict:
+def _cpu_of(bench: Session, suffix: str = "") -> dict:
     """A teleop worker's parameters to measure the DecisionServer's and ProxyRobot's CPU per
-    command."""
-    return {"server_pid": bench.pid("decision_server"), "proxy_pid": bench.pid("proxy_robot")}
+    command (`suffix`: the TLS station's, "_tls")."""
+    return {"server_pid": bench.pid("decision_server" + suffix),
+            "proxy_pid": bench.pid("proxy_robot" + suffix)}
 
 
 def _teleop_episode(bench: Session) -> None:
@@ -133,12 +138,42 @@ def _teleop_episode(bench: Session) -> None:
         bench.procs.stop(camera)
 
 
-def _teleop_tls(bench: Session, tls: Station) -> dict:
-    """teleop_1000 through a DecisionServer of the TLS station (which presents its own
-    certificate to ProxyRobot), the worker presenting an operator's."""
-    with bench.decision_server(tls) as address:
-        return bench.rate_worker("teleop", "grpc", address, [1000],
-                                 tls.client_params(OPERATOR_IDENTITY))["1000"]
+def _teleop_tls(bench: Session, address: str) -> None:
+    """teleop_1000_tls: teleop_1000's legs through the DecisionServer at `address`,
+    interleaved with legs through a DecisionServer of the TLS station (which presents its
+    own certificate to ProxyRobot), the worker presenting an operator's. The TLS station
+    drives the world for its legs (Session.driving), and each leg after a change of driver
+    starts once the DecisionServer's streams from the station that drives now are back."""
+    name = "teleop_1000_tls"
+    tls = bench.tls
+    try:
+        with bench.decision_server(tls) as tls_address:
+            def on(index: int, sign: float) -> dict:
+                with bench.driving(tls):
+                    _await_streams()
+                    return bench.rate_worker("teleop", "grpc", tls_address, [1000], {
+                        "first_sign": sign, "duration_s": bench.plan.overhead_teleop_leg_s,
+                        **_cpu_of(bench, tls.suffix),
+                        **tls.client_params(OPERATOR_IDENTITY)})["1000"]
+
+            plaintext = _teleop_leg(bench, address)
+
+            def off(index: int, sign: float) -> dict:
+                _await_streams()  # (the TLS station drove the world for the leg before)
+                return plaintext(index, sign)
+
+            bench.mcap_twin("teleop_1000", "the on legs through the station serving mutual "
+                            "TLS", off, on, suffix="tls")
+    except ChildFailed as error:
+        bench.progress.step(f"{name}: starting its DecisionServer")
+        bench.fail([name], error)
+
+
+def _await_streams() -> None:
+    """Until the DecisionServer's streams from a station that drives the world again are
+    back: each retries every RETRY_S after a failure, so within one RETRY_S of the change,
+    and a retry may itself take a round trip; twice that."""
+    time.sleep(2 * RETRY_S)
 
 
 def _teleop_baseline(bench: Session) -> None:
