@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import os
 import re
-import threading
 import time
 
 _TICKS_PER_S = os.sysconf("SC_CLK_TCK")
@@ -38,31 +37,22 @@ _SESSION_ID = re.compile(r"-[0-9a-f]{4,}$")
 
 class ThreadCpuWatch:
     """A process's CPU time by thread name (thread_kind) over a window, a thread that starts
-    or ends within it included: every `period_s` a thread of its own reads each thread's
-    time, and a thread's last reading is what it spent (what one spends after the last
-    reading before it ends, under `period_s`, is not counted)."""
+    or ends within it included: each thread counts what it had spent at its last reading
+    (at the start, at each sample(), at stop()). A caller samples while the threads it wants
+    are alive, at a moment that costs its measurement nothing: reading every thread's /proc
+    file holds the caller's interpreter for about a millisecond."""
 
-    def __init__(self, pid: int, period_s: float = 0.05):
+    def __init__(self, pid: int):
         self._pid = pid
-        self._period_s = period_s
         self._first = _task_cpu_s(pid)
         self._last = dict(self._first)
-        self._stop = threading.Event()
-        self._reader = threading.Thread(target=self._read, name="thread-cpu-watch", daemon=True)
-        self._reader.start()
-
-    def _read(self) -> None:
-        while not self._stop.wait(self._period_s):
-            self.sample()
 
     def sample(self) -> None:
-        """Read each thread's time now (the watch's own thread does every period_s)."""
+        """Read each thread's time now."""
         self._last.update(_task_cpu_s(self._pid))
 
     def stop(self) -> dict[str, float]:
         """{thread name: CPU s spent in the window}, the names that spent any."""
-        self._stop.set()
-        self._reader.join()
         self.sample()
         spent: dict[str, float] = {}
         for task, (name, cpu_s) in self._last.items():

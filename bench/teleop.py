@@ -443,11 +443,13 @@ def stream_at_rate(stream: Stream, tracker: AckTracker, sequences: Iterator[int]
 
 def run_rate(client, rate_hz: float, duration_s: float, sign: float,
              loop: LoopMeter | None, swing: int | None = None,
-             window_s: float | None = None, drain_s: float = DRAIN_S) -> dict:
+             window_s: float | None = None, drain_s: float = DRAIN_S,
+             drained: Callable[[], None] | None = None) -> dict:
     """One Teleoperate session streaming at rate_hz for duration_s; the scenario's summary and
     raw latencies. `swing`: see stream_at_rate; `window_s`: the summary adds the latency
     and the acked commands of every window of that length (`windows`), to see a drift;
-    `drain_s`: how long acks still count after the last send."""
+    `drain_s`: how long acks still count after the last send; `drained()` is called then,
+    the session still open."""
     stream = client.open()
     tracker = AckTracker()
     reader = None
@@ -471,6 +473,8 @@ def run_rate(client, rate_hz: float, duration_s: float, sign: float,
         tracker.wait_drained(drain_s)
         world_loop = loop.since_mark() if loop is not None else None
         books = tracker.close_books()
+        if drained is not None:
+            drained()
         stream.end()
         tracker.ended.wait(CLOSE_S)
     finally:
@@ -578,17 +582,17 @@ def measure(transport_kind: str, address: str, shm_name: str | None, rates: list
     try:
         for index, rate in enumerate(rates):
             sign = first_sign if index % 2 == 0 else -first_sign
+            # The server's threads are read once more as the session's acks have drained, its
+            # own threads still alive (they end with it).
+            threads = ThreadCpuWatch(server_pid) if server_pid else None
             run = functools.partial(run_rate, client, rate, duration_s, sign, loop, swing,
-                                    window_s, drain_s)
+                                    window_s, drain_s, threads.sample if threads else None)
             cpu_s = process_cpu_s(server_pid) if server_pid else None
             proxy_cpu_s = process_cpu_s(proxy_pid) if proxy_pid else None
-            threads = ThreadCpuWatch(server_pid) if server_pid else None
             writer_cpu_s = reaped_children_cpu_s(server_pid) if server_pid else None
-            try:
-                result = run() if record_dir is None else recorded(client, Path(record_dir),
-                                                                    run, episode_task)
-            finally:
-                spent_by_thread = threads.stop() if threads else None
+            result = run() if record_dir is None else recorded(client, Path(record_dir), run,
+                                                                episode_task)
+            spent_by_thread = threads.stop() if threads else None
             applied = result["session_applied"]
             if cpu_s is not None and applied:
                 result["server_cpu_ms_per_command"] = round(

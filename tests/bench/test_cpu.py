@@ -69,7 +69,7 @@ def test_a_session_thread_that_ends_within_the_window_is_counted_under_its_kind(
         burnt.set()
         finish.wait(30)
 
-    watch = ThreadCpuWatch(os.getpid(), period_s=3600.0)  # read only when asked
+    watch = ThreadCpuWatch(os.getpid())
     worker = threading.Thread(target=burn)
     worker.start()
     try:
