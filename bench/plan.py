@@ -53,6 +53,13 @@ class Plan:
         """The interleaved (recording off, on) pairs of an `_mcap` row (issue #17)."""
         return 4 if self.quick else 6  # even: as many pairs on first as off first
 
+    @property
+    def p99_pairs(self) -> int:
+        """The interleaved pairs of a row judged on its p99 ratio (`_tls`, `_episode`) and of
+        `teleop_1000_aa`, the noise they are judged in: one pair's p99 ratio at 1 kHz moves
+        by more than their bounds by itself on this machine, and so does a median of four."""
+        return 8 if self.quick else 12
+
     # Each leg of those pairs after the twin's own run (the first off leg, as long as the
     # twin): the quick run's length, enough for a steady p50 and CPU per command.
     overhead_teleop_leg_s: float = 2.0

@@ -201,10 +201,10 @@ class Session:
 
     def mcap_twin(self, twin: str, what: str, off: Callable[[int, float], dict],
                   on: Callable[[int, float], dict], suffix: str = "mcap",
-                  reuse_twin: bool = True) -> None:
-        """`<twin>_mcap`: plan.overhead_pairs interleaved pairs right after `twin` ran, on the
-        same processes, in balanced order: off, on, then on, off, then off, on... so that
-        neither a drift through the row nor the motion's direction favours one side. Pair
+                  reuse_twin: bool = True, pairs: int | None = None) -> None:
+        """`<twin>_mcap`: `pairs` (plan.overhead_pairs) interleaved pairs right after `twin`
+        ran, on the same processes, in balanced order: off, on, then on, off, then off, on...
+        so that neither a drift through the row nor the motion's direction favours one side. Pair
         1's off leg is the twin's own run (else, or when not `reuse_twin`, a leg of its own).
         Each leg is `off(pair, sign)` or `on(pair, sign)` (`on`: the twin's worker,
         recording); `sign` alternates from leg to leg, the twin's run being +1, so that a leg
@@ -212,7 +212,7 @@ class Session:
         report.interleaved's: the first on leg's figures, each pair's ratios and their
         medians, which goals.py judges."""
         name = f"{twin}_{suffix}"
-        count = self.plan.overhead_pairs
+        count = pairs or self.plan.overhead_pairs
         self.progress.step(f"{name}: {twin} again, {what}; {count} pairs interleaved (off, on, "
                            "on, off...)")
         pairs = []

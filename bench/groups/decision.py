@@ -87,7 +87,7 @@ def _teleop(bench: Session, address: str) -> None:
     # this run, the noise the ratio rows (_mcap, _episode, _tls) are judged in.
     bench.mcap_twin("teleop_1000", "nothing recorded: identical legs, this run's noise",
                     _teleop_leg(bench, address), _teleop_leg(bench, address), suffix="aa",
-                    reuse_twin=False)
+                    reuse_twin=False, pairs=bench.plan.p99_pairs)
     if bench.tls is not None:
         _teleop_tls(bench, address)
 
@@ -130,7 +130,7 @@ def _teleop_episode(bench: Session) -> None:
                 _teleop_leg(bench, address),
                 _teleop_leg(bench, address, episode_task=EPISODE_TASK,
                             record_dir=str(bench.procs.scratch / "recordings")),
-                suffix="episode", reuse_twin=False)
+                suffix="episode", reuse_twin=False, pairs=bench.plan.p99_pairs)
     except ChildFailed as error:
         bench.progress.step(f"{name}: starting its DecisionServer")
         bench.fail([name], error)
@@ -163,7 +163,7 @@ def _teleop_tls(bench: Session, address: str) -> None:
                 return plaintext(index, sign)
 
             bench.mcap_twin("teleop_1000", "the on legs through the station serving mutual "
-                            "TLS", off, on, suffix="tls")
+                            "TLS", off, on, suffix="tls", pairs=bench.plan.p99_pairs)
     except ChildFailed as error:
         bench.progress.step(f"{name}: starting its DecisionServer")
         bench.fail([name], error)
