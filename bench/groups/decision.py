@@ -164,8 +164,10 @@ def _teleop_tls(bench: Session, address: str) -> None:
 
             bench.mcap_twin("teleop_1000", "the on legs through the station serving mutual "
                             "TLS", off, on, suffix="tls", pairs=bench.plan.p99_pairs)
-    except ChildFailed as error:
+    except ChildFailed as error:  # (a leg's own failure is mcap_twin's)
         bench.progress.step(f"{name}: starting its DecisionServer")
+        bench.fail([name], error)
+    except grpc.RpcError as error:  # a station's set-up calls as a leg changes the driver
         bench.fail([name], error)
 
 

@@ -645,9 +645,9 @@ class OperatorSession:
         and the sensor does not answer (the operator moves by what it feels); closes the
         session when it stays detached past its resume window."""
         while not self._closed.is_set():
-            # Clear before reading the state, so a command or a close that lands in between
-            # still wakes the wait below instead of being missed; until the wait's deadline is
-            # known, any command wakes it.
+            # Clear before reading the state, so a close or a re-armed hold that lands in
+            # between still wakes the wait below instead of being missed; until the wait's
+            # deadline is known, so does any sensor check (_sensor_check).
             self._activity.clear()
             self._watch_until = math.inf
             sensor_due_in_s = self.core.sensor_check_due_in_s()
