@@ -71,7 +71,9 @@ def _run(link: FrankaArmLink, home: np.ndarray, duration_s: float) -> dict:
         sent += 1
         lowest_success = min(lowest_success, link.success_rate)
     window_s = time.monotonic() - start
-    latencies_ms = [ns / 1e6 for ns in link.applied_ns]
+    # Copied at once (list() of a deque holds the interpreter throughout): the link's
+    # control thread still appends as the last targets land.
+    latencies_ms = [ns / 1e6 for ns in list(link.applied_ns)]
     result = summary(latencies_ms, RATE_HZ, sent, window_s, schedule.skipped,
                      control_success_rate=round(lowest_success, 4))
     result["latencies_ms"] = latencies_ms  # for the plots (Session.record takes it out)
