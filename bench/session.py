@@ -201,8 +201,8 @@ class Session:
 
     def mcap_twin(self, twin: str, what: str, off: Callable[[int, float], dict],
                   on: Callable[[int, float], dict], suffix: str = "mcap",
-                  reuse_twin: bool = True, pairs: int | None = None) -> None:
-        """`<twin>_mcap`: `pairs` (plan.overhead_pairs) interleaved pairs right after `twin`
+                  reuse_twin: bool = True, pair_count: int | None = None) -> None:
+        """`<twin>_mcap`: `pair_count` (plan.overhead_pairs) interleaved pairs right after `twin`
         ran, on the same processes, in balanced order: off, on, then on, off, then off, on...
         so that neither a drift through the row nor the motion's direction favours one side. Pair
         1's off leg is the twin's own run (else, or when not `reuse_twin`, a leg of its own).
@@ -212,7 +212,7 @@ class Session:
         report.interleaved's: the first on leg's figures, each pair's ratios and their
         medians, which goals.py judges."""
         name = f"{twin}_{suffix}"
-        count = pairs or self.plan.overhead_pairs
+        count = pair_count or self.plan.overhead_pairs
         self.progress.step(f"{name}: {twin} again, {what}; {count} pairs interleaved (off, on, "
                            "on, off...)")
         pairs = []

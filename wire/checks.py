@@ -44,11 +44,11 @@ def vector_norm(values) -> float:
 def gram_schmidt(matrix: np.ndarray) -> np.ndarray:
     """The orthonormal matrix nearest in the Gram-Schmidt sense: columns normalized in order,
     the third taken as the cross product so the result is a proper rotation."""
-    return np.array(_gram_schmidt(*np.asarray(matrix, float).reshape(9).tolist())).reshape(3, 3)
+    return _gram_schmidt(*np.asarray(matrix, float).reshape(9).tolist())
 
 
 def _gram_schmidt(a: float, b: float, c: float, d: float, e: float, f: float, g: float,
-                  h: float, i: float) -> list[float]:
+                  h: float, i: float) -> np.ndarray:
     """gram_schmidt on a row-major 3x3's nine values, in floats: numpy's per-call overhead
     was most of its cost, and every command's rotation goes through it."""
     norm = math.sqrt(a * a + d * d + g * g)
@@ -57,9 +57,9 @@ def _gram_schmidt(a: float, b: float, c: float, d: float, e: float, f: float, g:
     y0, y1, y2 = b - along * x0, e - along * x1, h - along * x2
     norm = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2)
     y0, y1, y2 = y0 / norm, y1 / norm, y2 / norm
-    return [x0, y0, x1 * y2 - x2 * y1,
-            x1, y1, x2 * y0 - x0 * y2,
-            x2, y2, x0 * y1 - x1 * y0]
+    return np.array([[x0, y0, x1 * y2 - x2 * y1],
+                     [x1, y1, x2 * y0 - x0 * y2],
+                     [x2, y2, x0 * y1 - x1 * y0]])
 
 
 def rotation_matrix(values, what: str) -> np.ndarray:
@@ -80,4 +80,4 @@ def rotation_matrix(values, what: str) -> np.ndarray:
             f"{what} is not a rotation matrix (|MᵀM − I| = {error:.2g}, det = "
             f"{determinant:.3g}); send an orthonormal row-major 3x3 with det +1, "
             "or leave it empty for no rotation", reason="NOT_A_ROTATION")
-    return np.array(_gram_schmidt(a, b, c, d, e, f, g, h, i)).reshape(3, 3)
+    return _gram_schmidt(a, b, c, d, e, f, g, h, i)

@@ -87,16 +87,18 @@ def _teleop(bench: Session, address: str) -> None:
     # this run, the noise the ratio rows (_mcap, _episode, _tls) are judged in.
     bench.mcap_twin("teleop_1000", "nothing recorded: identical legs, this run's noise",
                     _teleop_leg(bench, address), _teleop_leg(bench, address), suffix="aa",
-                    reuse_twin=False, pairs=bench.plan.p99_pairs)
+                    reuse_twin=False, pair_count=bench.plan.p99_pairs)
     if bench.tls is not None:
         _teleop_tls(bench, address)
 
 
-def _teleop_leg(bench: Session, address: str, **extra) -> Callable[[int, float], dict]:
+def _teleop_leg(bench: Session, address: str, suffix: str = "",
+                **extra) -> Callable[[int, float], dict]:
     """A leg of an interleaved row (Session.mcap_twin): Teleoperate at 1 kHz through the
     DecisionServer at `address` for overhead_teleop_leg_s, moving the arm `sign`-wards, its
-    CPU per command measured; `extra` goes to the worker (what the on legs record)."""
-    leg = {"duration_s": bench.plan.overhead_teleop_leg_s, **_cpu_of(bench)}
+    CPU per command measured (`suffix`: of the TLS station's processes, see _cpu_of);
+    `extra` goes to the worker (what the on legs record, a TLS station's credentials)."""
+    leg = {"duration_s": bench.plan.overhead_teleop_leg_s, **_cpu_of(bench, suffix)}
     return lambda index, sign: bench.rate_worker("teleop", "grpc", address, [1000], {
         "first_sign": sign, **leg, **extra})["1000"]
 
@@ -130,7 +132,7 @@ def _teleop_episode(bench: Session) -> None:
                 _teleop_leg(bench, address),
                 _teleop_leg(bench, address, episode_task=EPISODE_TASK,
                             record_dir=str(bench.procs.scratch / "recordings")),
-                suffix="episode", reuse_twin=False, pairs=bench.plan.p99_pairs)
+                suffix="episode", reuse_twin=False, pair_count=bench.plan.p99_pairs)
     except ChildFailed as error:
         bench.progress.step(f"{name}: starting its DecisionServer")
         bench.fail([name], error)
@@ -148,22 +150,21 @@ def _teleop_tls(bench: Session, address: str) -> None:
     tls = bench.tls
     try:
         with bench.decision_server(tls) as tls_address:
+            secure = _teleop_leg(bench, tls_address, tls.suffix,
+                                 **tls.client_params(OPERATOR_IDENTITY))
+            plaintext = _teleop_leg(bench, address)
+
             def on(index: int, sign: float) -> dict:
                 with bench.driving(tls):
                     _await_streams()
-                    return bench.rate_worker("teleop", "grpc", tls_address, [1000], {
-                        "first_sign": sign, "duration_s": bench.plan.overhead_teleop_leg_s,
-                        **_cpu_of(bench, tls.suffix),
-                        **tls.client_params(OPERATOR_IDENTITY)})["1000"]
-
-            plaintext = _teleop_leg(bench, address)
+                    return secure(index, sign)
 
             def off(index: int, sign: float) -> dict:
                 _await_streams()  # (the TLS station drove the world for the leg before)
                 return plaintext(index, sign)
 
             bench.mcap_twin("teleop_1000", "the on legs through the station serving mutual "
-                            "TLS", off, on, suffix="tls", pairs=bench.plan.p99_pairs)
+                            "TLS", off, on, suffix="tls", pair_count=bench.plan.p99_pairs)
     except ChildFailed as error:  # (a leg's own failure is mcap_twin's)
         bench.progress.step(f"{name}: starting its DecisionServer")
         bench.fail([name], error)
