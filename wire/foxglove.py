@@ -46,6 +46,7 @@ from domain.robot_model.description import arm_description
 from domain.robot_model.kinematics import ArmKinematics
 from telerobot.v1 import stereo_camera_pb2 as sc_pb
 from telerobot.v1 import types_pb2
+from wire import convert
 from wire.foxglove_video import STEREO_CAMERA_FRAME as STEREO_CAMERA_FRAME
 from wire.foxglove_video import h264_is_keyframe as h264_is_keyframe
 from wire.foxglove_video import stereo_video as stereo_video
@@ -108,10 +109,7 @@ def _transform(parent: str, child: str, parent_T_child: pin.SE3, stamp: Timestam
 
 
 def _pose_se3(pose: types_pb2.Pose) -> pin.SE3:
-    rotation = (np.asarray(pose.rotation.row_major, float).reshape(3, 3)
-                if pose.rotation.row_major else np.eye(3))
-    position = pose.position_m
-    return pin.SE3(rotation, np.array([position.x, position.y, position.z]))
+    return pin.SE3(convert.rotation_value(pose.rotation), convert.vector3_value(pose.position_m))
 
 
 def camera_transforms(header: sc_pb.StereoHeader, stamp_ns: int) -> list[FrameTransform]:

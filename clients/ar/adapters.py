@@ -20,6 +20,7 @@ import numpy as np
 from clients.ar.identification import CameraProjection, ProjectionKind
 from clients.ar.model import Frame, RobotModel, make_pose
 from telerobot.v1 import proxy_robot_pb2, stereo_camera_pb2, types_pb2
+from wire import convert
 
 _FRAMES = {
     Frame.BASE: types_pb2.REFERENCE_FRAME_BASE,
@@ -31,10 +32,8 @@ _AT_REST = (types_pb2.ROBOT_STATUS_READY,)
 
 def pose_matrix(pose: types_pb2.Pose) -> np.ndarray:
     """A Pose message as a 4x4 matrix (an empty rotation is the identity)."""
-    rotation = (np.array(pose.rotation.row_major, float).reshape(3, 3)
-                if pose.rotation.row_major else np.eye(3))
-    position = (pose.position_m.x, pose.position_m.y, pose.position_m.z)
-    return make_pose(rotation, position)
+    return make_pose(convert.rotation_value(pose.rotation),
+                     convert.vector3_value(pose.position_m))
 
 
 def pose_message(pose) -> types_pb2.Pose:

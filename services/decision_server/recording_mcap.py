@@ -115,20 +115,15 @@ def increment_message(offset_s: float, frame: str, delta_position, delta_rotatio
 def increment_from_proto(message, recorded_command_type):
     """A RecordedCommand (the type is passed in: recordings.py imports this module)."""
     offset_s = message.offset.seconds + message.offset.nanos / 1e9
-    target = _vector(message.target_position_m)
+    target = convert.vector3_value(message.target_position_m)
     if message.delta_joints_rad:
         return recorded_command_type(offset_s, "JOINTS", np.zeros(3), np.eye(3), target,
                                      np.array(message.delta_joints_rad, dtype=float))
     if message.frame not in _FRAME_NAMES:
         raise ValueError(f"an increment with no frame at {offset_s:.3f} s")
-    rotation = (np.array(message.delta_rotation.row_major, dtype=float).reshape(3, 3)
-                if message.delta_rotation.row_major else np.eye(3))
     return recorded_command_type(offset_s, _FRAME_NAMES[message.frame],
-                                 _vector(message.delta_position_m), rotation, target)
-
-
-def _vector(vector) -> np.ndarray:
-    return np.array([vector.x, vector.y, vector.z], dtype=float)
+                                 convert.vector3_value(message.delta_position_m),
+                                 convert.rotation_value(message.delta_rotation), target)
 
 
 # -- writing -------------------------------------------------------------------------------
